@@ -1,0 +1,40 @@
+# The two commands a new user types are `make demo` and `make test`; each installs
+# what is missing, builds, and runs. PRESET picks the CMake preset (see CMakePresets.json).
+PRESET ?= ci
+BUILD  := build/$(PRESET)
+PYTHON := /usr/bin/python3
+
+.PHONY: all deps configure build test test-cpp test-python demo bench asan clean
+
+all: build
+
+deps:
+	@scripts/install-deps.sh build
+
+configure: deps
+	@cmake --preset $(PRESET) >/dev/null
+
+build: configure
+	cmake --build --preset $(PRESET)
+
+test: build
+	ctest --preset $(PRESET)
+	RIGID_PYTHON_DIR=$(CURDIR)/$(BUILD)/python RIGID_EXE=$(CURDIR)/$(BUILD)/bin/rigid \
+	  $(PYTHON) -m pytest -q python/tests tests/cli
+
+demo: build
+	$(BUILD)/bin/rigid demo
+
+bench:
+	@scripts/install-deps.sh bench
+	cmake --preset bench >/dev/null
+	cmake --build --preset bench
+	scripts/run-benchmarks.sh build/bench
+
+asan: deps
+	cmake --preset asan >/dev/null
+	cmake --build --preset asan
+	ctest --preset asan
+
+clean:
+	rm -rf build

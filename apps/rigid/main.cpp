@@ -1,0 +1,40 @@
+// The rigid command-line tool: CLI11 parsing and the single error exit path.
+#include <cstdio>
+#include <exception>
+
+#include <CLI/CLI.hpp>
+
+#include "rigid/common/error.hpp"
+#include "rigid/version.hpp"
+
+// One header per subcommand, each defining add_<verb>_command(CLI::App&).
+#include "cli_demo.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "rigid: rigid-body mechanics from isometries and inertia tensors to Euler's equations.\n"
+      "SI units throughout; quaternions are (w, x, y, z) unless an option says otherwise."};
+  app.set_version_flag("--version", std::string("rigid ") + RIGID_VERSION_STRING);
+  app.require_subcommand(0, 1);
+
+  add_demo_command(app);
+
+  try {
+    app.parse(argc, argv);
+    if (app.get_subcommands().empty()) {
+      std::fputs(app.help().c_str(), stderr);
+      std::fputs("rigid: error: a subcommand is required (see the list above)\n", stderr);
+      return 2;
+    }
+  } catch (const CLI::ParseError& e) {
+    // CLI11's own messages for --help, --version and bad command lines.
+    return app.exit(e);
+  } catch (const rigid::Error& e) {
+    std::fprintf(stderr, "rigid: error: %s\n", e.what());
+    return 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "rigid: error: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,14 @@
+// The Python module `rigid`: numpy arrays in and out, rigid::Error raised as rigid.Error
+// (a subclass of ValueError).
+#include <pybind11/pybind11.h>
+
+#include "rigid/common/error.hpp"
+#include "rigid/version.hpp"
+
+namespace py = pybind11;
+
+PYBIND11_MODULE(rigid, m) {
+  m.doc() = "rigid: rigid-body mechanics from isometries and inertia tensors to Euler's equations";
+  m.attr("__version__") = RIGID_VERSION_STRING;
+  py::register_exception<rigid::Error>(m, "Error", PyExc_ValueError);
+}

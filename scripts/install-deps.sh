@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages rigid needs, and only those that are missing.
+# Idempotent and quick when everything is present: one `dpkg -s` per package.
+# Usage: scripts/install-deps.sh [build|bench]   (default: build)
+set -euo pipefail
+
+build_packages=(
+  g++ cmake ninja-build pkg-config make
+  libeigen3-dev libboost-dev libboost-math-dev libginac-dev libcln-dev
+  libfmt-dev libspdlog-dev libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
+  libtinyobjloader-dev libtinyxml2-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+  pybind11-dev python3-dev python3-numpy python3-pytest python3-scipy python3-sympy
+)
+bench_packages=(libmujoco-dev libbullet-dev libode-dev)
+
+wanted=("${build_packages[@]}")
+if [[ "${1:-build}" == "bench" ]]; then wanted+=("${bench_packages[@]}"); fi
+
+missing=()
+for p in "${wanted[@]}"; do
+  if ! dpkg -s "$p" >/dev/null 2>&1 || ! dpkg -s "$p" 2>/dev/null | grep -q '^Status: install ok installed'; then
+    missing+=("$p")
+  fi
+done
+if [[ ${#missing[@]} -eq 0 ]]; then
+  exit 0
+fi
+
+echo "rigid: installing missing Debian packages: ${missing[*]}"
+sudo=""
+if [[ $(id -u) -ne 0 ]]; then
+  if command -v sudo >/dev/null 2>&1; then sudo="sudo"; else
+    echo "rigid: error: missing packages (${missing[*]}) and not root; run as root or install sudo" >&2
+    exit 1
+  fi
+fi
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -qq
+$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"

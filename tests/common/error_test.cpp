@@ -1,0 +1,35 @@
+#include "rigid/common/error.hpp"
+
+#include <gtest/gtest.h>
+
+#include "support/expect_error.hpp"
+
+namespace rigid {
+namespace {
+
+double checked_radius(double r) {
+  RIGID_REQUIRE(r > 0, "radius must be positive and finite, got {} m", r);
+  return r;
+}
+
+TEST(Error, RequireNamesFunctionAndValue) {
+  EXPECT_EQ(checked_radius(2.0), 2.0);
+  EXPECT_RIGID_ERROR(checked_radius(-0.5),
+                     "checked_radius(): radius must be positive and finite, got -0.5 m");
+}
+
+TEST(Error, SourceLocationFormats) {
+  EXPECT_EQ(to_string(SourceLocation{"a.toml", 3, 7}), "a.toml:3:7");
+  EXPECT_EQ(to_string(SourceLocation{"a.toml", 3, 0}), "a.toml:3");
+  EXPECT_EQ(to_string(SourceLocation{"a.toml", 0, 0}), "a.toml");
+  EXPECT_RIGID_ERROR(detail::throw_error_at(SourceLocation{"s.toml", 2, 5}, "bad key"),
+                     "s.toml:2:5: bad key");
+}
+
+TEST(Error, AssertThrowsInsteadOfAborting) {
+  EXPECT_RIGID_ERROR(detail::throw_assertion("x > 0", "f.cpp", 12, "g"),
+                     "internal error in g() at f.cpp:12: invariant `x > 0` does not hold");
+}
+
+}  // namespace
+}  // namespace rigid
