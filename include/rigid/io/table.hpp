@@ -1,0 +1,55 @@
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace rigid::io {
+
+/// A rectangular table of doubles with named columns, stored row-major: the shape of
+/// a trajectory (one row per output time).
+/// Class invariant: data().size() == rows() * columns().size(); column names are
+/// unique and non-empty.
+class Table {
+ public:
+  /// @throws rigid::Error if a name is empty or repeated.
+  explicit Table(std::vector<std::string> columns);
+
+  /// Appends one row. @throws rigid::Error if row.size() differs from the column count.
+  void add_row(std::span<const double> row);
+
+  [[nodiscard]] const std::vector<std::string>& columns() const { return columns_; }
+  [[nodiscard]] std::size_t rows() const { return columns_.empty() ? 0 : data_.size() / columns_.size(); }
+  [[nodiscard]] const std::vector<double>& data() const { return data_; }
+  [[nodiscard]] double operator()(std::size_t row, std::size_t col) const {
+    return data_[row * columns_.size() + col];
+  }
+  /// Index of the column called `name`. @throws rigid::Error listing the columns if absent.
+  [[nodiscard]] std::size_t column(std::string_view name) const;
+
+ private:
+  std::vector<std::string> columns_;
+  std::vector<double> data_;
+};
+
+/// CSV text: a header line of column names, then one line per row; every double is
+/// printed in its shortest form that reads back to the same bits.
+[[nodiscard]] std::string to_csv(const Table& table);
+
+/// NumPy .npy (format 1.0) bytes: a little-endian float64 array of shape (rows, columns),
+/// C order. Column names are not stored; they are the CSV header.
+[[nodiscard]] std::string to_npy(const Table& table);
+
+/// Writes to_csv(table) / to_npy(table) atomically (see write_file_atomically).
+void write_csv(const std::filesystem::path& path, const Table& table);
+void write_npy(const std::filesystem::path& path, const Table& table);
+
+/// Reads a CSV written by write_csv (or any numeric CSV with a header line).
+/// @throws rigid::Error with file:line:column for a missing file, a ragged row or a
+///         field that is not a number.
+[[nodiscard]] Table read_csv(const std::filesystem::path& path);
+
+}  // namespace rigid::io

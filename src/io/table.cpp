@@ -1,0 +1,138 @@
+#include "rigid/io/table.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <charconv>
+#include <cstdint>
+#include <fstream>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "rigid/common/error.hpp"
+#include "rigid/io/atomic_file.hpp"
+
+namespace rigid::io {
+
+Table::Table(std::vector<std::string> columns) : columns_(std::move(columns)) {
+  for (std::size_t i = 0; i < columns_.size(); ++i) {
+    RIGID_REQUIRE(!columns_[i].empty(), "column {} has an empty name", i);
+    RIGID_REQUIRE(std::find(columns_.begin(), columns_.begin() + static_cast<std::ptrdiff_t>(i),
+                            columns_[i]) == columns_.begin() + static_cast<std::ptrdiff_t>(i),
+                  "column name '{}' appears twice", columns_[i]);
+  }
+}
+
+void Table::add_row(std::span<const double> row) {
+  RIGID_REQUIRE(row.size() == columns_.size(), "row has {} values, expected {} (one per column)",
+                row.size(), columns_.size());
+  data_.insert(data_.end(), row.begin(), row.end());
+}
+
+std::size_t Table::column(std::string_view name) const {
+  const auto it = std::find(columns_.begin(), columns_.end(), name);
+  RIGID_REQUIRE(it != columns_.end(), "no column '{}'; the columns are {}", name,
+                fmt::join(columns_, ", "));
+  return static_cast<std::size_t>(it - columns_.begin());
+}
+
+std::string to_csv(const Table& table) {
+  fmt::memory_buffer out;
+  fmt::format_to(std::back_inserter(out), "{}\n", fmt::join(table.columns(), ","));
+  const std::size_t n = table.columns().size();
+  for (std::size_t r = 0; r < table.rows(); ++r) {
+    for (std::size_t c = 0; c < n; ++c) {
+      // fmt's "{}" for double is the shortest representation that round-trips.
+      fmt::format_to(std::back_inserter(out), "{}", table(r, c));
+      out.push_back(c + 1 < n ? ',' : '\n');
+    }
+  }
+  return fmt::to_string(out);
+}
+
+std::string to_npy(const Table& table) {
+  static_assert(std::endian::native == std::endian::little, "the .npy writer assumes little endian");
+  // NPY 1.0: magic, version, uint16 header length, a Python-literal dict padded with
+  // spaces and ended by '\n' so that the data starts at a multiple of 64 bytes.
+  std::string header = fmt::format("{{'descr': '<f8', 'fortran_order': False, 'shape': ({}, {}), }}",
+                                   table.rows(), table.columns().size());
+  const std::size_t preamble = 10;
+  const std::size_t total = (preamble + header.size() + 1 + 63) / 64 * 64;
+  header.append(total - preamble - header.size() - 1, ' ');
+  header.push_back('\n');
+  std::string out = "\x93NUMPY";
+  out.push_back('\x01');
+  out.push_back('\x00');
+  const auto len = static_cast<std::uint16_t>(header.size());
+  out.push_back(static_cast<char>(len & 0xff));
+  out.push_back(static_cast<char>(len >> 8));
+  out += header;
+  const auto& d = table.data();
+  out.append(reinterpret_cast<const char*>(d.data()), d.size() * sizeof(double));
+  return out;
+}
+
+void write_csv(const std::filesystem::path& path, const Table& table) {
+  write_file_atomically(path, to_csv(table));
+}
+
+void write_npy(const std::filesystem::path& path, const Table& table) {
+  write_file_atomically(path, to_npy(table));
+}
+
+namespace {
+
+std::vector<std::string_view> split_commas(std::string_view line) {
+  std::vector<std::string_view> fields;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t comma = line.find(',', start);
+    fields.push_back(line.substr(start, comma - start));
+    if (comma == std::string_view::npos) break;
+    start = comma + 1;
+  }
+  return fields;
+}
+
+}  // namespace
+
+Table read_csv(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  RIGID_REQUIRE(in.good(), "cannot open '{}' for reading", path.string());
+  std::string line;
+  RIGID_REQUIRE(static_cast<bool>(std::getline(in, line)),
+                "'{}' is empty; expected a header line of column names", path.string());
+  if (!line.empty() && line.back() == '\r') line.pop_back();
+  std::vector<std::string> names;
+  for (auto f : split_commas(line)) names.emplace_back(f);
+  Table table(std::move(names));
+  std::vector<double> row;
+  int line_no = 1;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.empty()) continue;
+    const auto fields = split_commas(line);
+    if (fields.size() != table.columns().size()) {
+      detail::throw_error_at({path.string(), line_no, 1},
+                             fmt::format("row has {} fields, expected {} (one per column)",
+                                         fields.size(), table.columns().size()));
+    }
+    row.clear();
+    int column = 1;
+    for (auto f : fields) {
+      double v = 0;
+      const auto [end, ec] = std::from_chars(f.data(), f.data() + f.size(), v);
+      if (ec != std::errc() || end != f.data() + f.size()) {
+        detail::throw_error_at({path.string(), line_no, column},
+                               fmt::format("'{}' is not a number", f));
+      }
+      row.push_back(v);
+      column += static_cast<int>(f.size()) + 1;
+    }
+    table.add_row(row);
+  }
+  return table;
+}
+
+}  // namespace rigid::io

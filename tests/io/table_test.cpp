@@ -1,0 +1,78 @@
+#include "rigid/io/table.hpp"
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "support/expect_error.hpp"
+
+namespace rigid::io {
+namespace {
+
+namespace fs = std::filesystem;
+
+TEST(Table, CsvRoundTripsEveryBit) {
+  // Doubles chosen to need all 17 significant digits, subnormals and extremes.
+  std::mt19937_64 rng(42);
+  std::uniform_real_distribution<double> u(-1e3, 1e3);
+  Table t({"t", "q", "v"});
+  t.add_row(std::vector<double>{0.1, 1.0 / 3.0, std::nextafter(1.0, 2.0)});
+  t.add_row(std::vector<double>{std::numeric_limits<double>::denorm_min(),
+                                std::numeric_limits<double>::max(), -0.0});
+  for (int i = 0; i < 1000; ++i) t.add_row(std::vector<double>{u(rng), u(rng) * 1e-200, u(rng) * 1e200});
+  const fs::path file = fs::temp_directory_path() / "rigid_table_roundtrip.csv";
+  write_csv(file, t);
+  const Table back = read_csv(file);
+  ASSERT_EQ(back.columns(), t.columns());
+  ASSERT_EQ(back.rows(), t.rows());
+  for (std::size_t i = 0; i < t.data().size(); ++i) {
+    EXPECT_EQ(std::memcmp(&back.data()[i], &t.data()[i], sizeof(double)), 0) << "value " << i;
+  }
+}
+
+TEST(Table, NpyHeaderFollowsFormat10) {
+  Table t({"a", "b", "c"});
+  t.add_row(std::vector<double>{1, 2, 3});
+  t.add_row(std::vector<double>{4, 5, 6});
+  const std::string npy = to_npy(t);
+  ASSERT_GE(npy.size(), 10u);
+  EXPECT_EQ(npy.substr(0, 6), "\x93NUMPY");
+  const std::size_t header_len = static_cast<unsigned char>(npy[8]) + 256u * static_cast<unsigned char>(npy[9]);
+  // The data starts 64-byte aligned and is exactly rows*cols doubles.
+  EXPECT_EQ((10 + header_len) % 64, 0u);
+  EXPECT_EQ(npy.size(), 10 + header_len + 6 * sizeof(double));
+  const std::string header = npy.substr(10, header_len);
+  EXPECT_NE(header.find("'shape': (2, 3)"), std::string::npos);
+  EXPECT_EQ(header.back(), '\n');
+  double last = 0;
+  std::memcpy(&last, npy.data() + npy.size() - sizeof(double), sizeof(double));
+  EXPECT_EQ(last, 6.0);
+}
+
+TEST(Table, BadInputIsNamed) {
+  EXPECT_RIGID_ERROR(Table({"a", "a"}), "column name 'a' appears twice");
+  Table t({"a", "b"});
+  EXPECT_RIGID_ERROR(t.add_row(std::vector<double>{1}), "row has 1 values, expected 2");
+  EXPECT_RIGID_ERROR((void)t.column("c"), "no column 'c'; the columns are a, b");
+
+  const fs::path file = fs::temp_directory_path() / "rigid_table_bad.csv";
+  {
+    std::ofstream out(file);
+    out << "a,b\n1,2\n3,x4\n";
+  }
+  EXPECT_RIGID_ERROR((void)read_csv(file), file.string() + ":3:3: 'x4' is not a number");
+  {
+    std::ofstream out(file);
+    out << "a,b\n1,2,3\n";
+  }
+  EXPECT_RIGID_ERROR((void)read_csv(file), file.string() + ":2:1: row has 3 fields, expected 2");
+  EXPECT_RIGID_ERROR((void)read_csv(file.string() + ".missing"), "cannot open");
+}
+
+}  // namespace
+}  // namespace rigid::io
