@@ -1,0 +1,167 @@
+#pragma once
+
+#include <array>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "rigid/common/error.hpp"
+
+namespace rigid::scene {
+
+/// A number or an expression string exactly as the scene file gave it, with the
+/// position of the value so that later errors (undefined symbol, parse error inside
+/// the expression) can point into the file.
+struct Expression {
+  std::string text;             ///< as written, or the number in shortest round-trip form
+  SourceLocation where;         ///< position of the value in the scene file
+  std::optional<double> number; ///< set when the file gave a plain number
+  bool quoted = false;          ///< true for a string value (its text starts one column later)
+
+  /// Location of character `offset` of `text` in the file (for errors inside the expression).
+  [[nodiscard]] SourceLocation at(std::size_t offset) const;
+};
+
+/// A named parameter from `[parameters]`, usable in every expression.
+struct Parameter {
+  std::string name;
+  Expression value;
+};
+
+/// A generalized coordinate from `[[coordinates]]`.
+struct Coordinate {
+  std::string name;
+  Expression initial;   ///< q(0) (m or rad)
+  Expression velocity;  ///< q̇(0)
+  SourceLocation where;
+};
+
+/// One elementary rotation about a fixed unit axis by an angle expression (rad).
+struct AxisRotation {
+  std::array<double, 3> axis{};
+  Expression angle;
+};
+
+/// A point mass (kg) at a position (m) in the body frame.
+struct PointMass {
+  Expression mass;
+  std::array<Expression, 3> position;
+};
+
+/// Where a body's mass properties come from.
+struct MassSpec {
+  enum class Kind { kPrimitive, kMesh, kExplicit, kPointMasses };
+  Kind kind = Kind::kPrimitive;
+  /// kPrimitive: the shape name (e.g. "solid_cylinder") and its dimensions in metres.
+  std::string primitive;
+  std::vector<std::pair<std::string, Expression>> dimensions;
+  /// kPrimitive, kMesh: exactly one of total mass (kg) and density (kg/m³).
+  std::optional<Expression> mass;
+  std::optional<Expression> density;
+  /// kMesh: the file (resolved against the scene file's directory) and its length unit.
+  std::filesystem::path mesh_file;
+  std::string units = "m";
+  /// kExplicit: mass, COM in the body frame, inertia about the COM (xx yy zz xy xz yz,
+  /// tensor elements, kg·m²).
+  std::array<Expression, 3> com;
+  std::array<Expression, 6> inertia;
+  /// kPointMasses.
+  std::vector<PointMass> points;
+  SourceLocation where;
+};
+
+/// A rigid body: its mass properties and either a pose that is a function of the
+/// coordinates and time, or a free body with an initial pose and twist.
+struct Body {
+  std::string name;
+  SourceLocation where;
+  MassSpec mass;
+  bool free = false;
+  /// Pose of the body frame B in the world W as expressions: p_WB (m) and
+  /// R_WB = R_1 R_2 ... R_k (the listed rotations composed left to right).
+  std::array<Expression, 3> position;
+  std::vector<AxisRotation> rotations;
+  /// Free body: initial position (m), orientation as a unit quaternion (w, x, y, z),
+  /// velocity of the COM in the world (m/s), angular velocity in the body frame (rad/s).
+  std::array<double, 3> initial_position{};
+  std::array<double, 4> initial_orientation{1, 0, 0, 0};
+  std::array<double, 3> initial_velocity{};
+  std::array<double, 3> angular_velocity{};
+  /// Free body with a fixed pivot (heavy top): the pivot in the body frame (m).
+  std::optional<std::array<double, 3>> pivot;
+};
+
+/// A named expression: a holonomic constraint g(q, t) = 0, a potential V(q, t) (J), or
+/// a generalized force Q_i(q, q̇, t) on one coordinate.
+struct NamedExpression {
+  std::string name;  ///< constraint/potential name, or the coordinate a force acts on
+  Expression expression;
+};
+
+/// A linear spring between a point of one body and a point of another body or of the
+/// world: V = ½ k (|p_a − p_b| − rest_length)².
+struct Spring {
+  std::string body_a, body_b;            ///< body_b empty: anchored in the world
+  std::array<double, 3> point_a{}, point_b{};  ///< in the body frames (or world for b)
+  Expression stiffness;                  ///< N/m
+  Expression rest_length;                ///< m
+  SourceLocation where;
+};
+
+/// `[simulation]`.
+struct Simulation {
+  Expression t_end;                   ///< s
+  std::string integrator;             ///< empty: the default of the system kind
+  std::optional<Expression> dt;       ///< fixed step (s)
+  std::optional<Expression> tolerance;///< relative and absolute tolerance of adaptive methods
+  std::optional<Expression> output_dt;///< spacing of output rows (s); default: every step
+  SourceLocation where;
+};
+
+/// `[output]`.
+struct Output {
+  std::filesystem::path directory;    ///< relative to the working directory; empty: "out"
+  std::vector<std::string> formats = {"csv", "json"};  ///< csv, npy, json
+};
+
+/// A whole scene as written, checked for structure, types and names but not yet turned
+/// into a model (that needs the expression parser; see rigid::scene::build).
+struct Scene {
+  std::filesystem::path file;
+  std::vector<Parameter> parameters;
+  std::vector<Coordinate> coordinates;
+  std::vector<Body> bodies;
+  std::vector<NamedExpression> constraints;
+  std::vector<NamedExpression> potentials;
+  std::vector<NamedExpression> forces;
+  std::vector<Spring> springs;
+  std::array<Expression, 3> gravity;  ///< m/s², world frame; default (0, 0, 0)
+  Simulation simulation;
+  Output output;
+
+  /// True when the scene is made of free bodies (simulated on SO(3)); false when it is
+  /// a system of generalized coordinates (simulated by the Lagrangian engine).
+  [[nodiscard]] bool is_free_body_scene() const;
+};
+
+/// Parses a scene from TOML text; `file` is used in messages and to resolve mesh paths.
+/// @throws rigid::Error starting with "file:line:col:" for TOML syntax errors, unknown
+///         keys (with a "did you mean" suggestion), wrong types and missing fields.
+[[nodiscard]] Scene parse_scene(std::string_view toml_text, const std::filesystem::path& file);
+
+/// Reads and parses a scene file. @throws rigid::Error if it cannot be read or parsed.
+[[nodiscard]] Scene load_scene(const std::filesystem::path& file);
+
+/// Replaces the values of parameters by `name=value` assignments (the CLI's --set).
+/// @throws rigid::Error for a malformed assignment or an unknown parameter name.
+void apply_overrides(Scene& scene, const std::vector<std::string>& assignments);
+
+/// The closest of `candidates` to `word` by edit distance, if close enough to be a
+/// plausible typo (distance ≤ max(1, |word|/3)).
+[[nodiscard]] std::optional<std::string> did_you_mean(std::string_view word,
+                                                      const std::vector<std::string>& candidates);
+
+}  // namespace rigid::scene

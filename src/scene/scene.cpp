@@ -1,0 +1,621 @@
+#include "rigid/scene/scene.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+namespace rigid::scene {
+namespace {
+
+using Keys = std::vector<std::string>;
+
+const Keys kTopKeys = {"parameters", "coordinates", "bodies", "constraints", "potentials",
+                       "forces", "springs", "gravity", "simulation", "output"};
+
+// The parser keeps the file name and turns every toml++ position into a message that
+// starts with file:line:col.
+class Parser {
+ public:
+  explicit Parser(std::filesystem::path file) : file_(std::move(file)) {}
+
+  [[nodiscard]] SourceLocation where(const toml::source_region& r) const {
+    return {file_.string(), static_cast<int>(r.begin.line), static_cast<int>(r.begin.column)};
+  }
+  [[noreturn]] void fail(const toml::source_region& r, const std::string& message) const {
+    detail::throw_error_at(where(r), message);
+  }
+  [[noreturn]] void fail(const toml::node& n, const std::string& message) const {
+    fail(n.source(), message);
+  }
+
+  // Every key of `t` must be one of `allowed`; otherwise say which, where, and the closest.
+  void check_keys(const toml::table& t, std::string_view context, const Keys& allowed) const {
+    for (auto&& [key, value] : t) {
+      if (std::find(allowed.begin(), allowed.end(), key.str()) != allowed.end()) continue;
+      std::string msg = fmt::format("unknown key '{}' in {}", key.str(), context);
+      if (&allowed != &kTopKeys &&
+          std::find(kTopKeys.begin(), kTopKeys.end(), key.str()) != kTopKeys.end()) {
+        // TOML puts every key after a [header] into that table: a classic slip.
+        fail(key.source(), msg + fmt::format("; '{}' is a top-level key: move it above the first "
+                                             "[table] header",
+                                             key.str()));
+      }
+      if (auto guess = did_you_mean(key.str(), allowed)) msg += fmt::format("; did you mean '{}'?", *guess);
+      msg += fmt::format(" (expected one of: {})", fmt::join(allowed, ", "));
+      fail(key.source(), msg);
+    }
+  }
+
+  static std::string_view type_name(const toml::node& n) {
+    switch (n.type()) {
+      case toml::node_type::string: return "a string";
+      case toml::node_type::integer: return "an integer";
+      case toml::node_type::floating_point: return "a number";
+      case toml::node_type::boolean: return "a boolean";
+      case toml::node_type::array: return "an array";
+      case toml::node_type::table: return "a table";
+      default: return "a date or time";
+    }
+  }
+
+  [[nodiscard]] Expression expression(const toml::node& n, std::string_view what) const {
+    Expression e;
+    e.where = where(n.source());
+    if (auto s = n.as_string()) {
+      e.text = s->get();
+      e.quoted = true;
+      if (e.text.find_first_not_of(" \t") == std::string::npos) {
+        fail(n, fmt::format("{} is an empty expression; expected a number or an expression", what));
+      }
+      return e;
+    }
+    if (n.is_number()) {
+      const double v = n.value<double>().value();
+      if (!std::isfinite(v)) fail(n, fmt::format("{} is {}; expected a finite number", what, v));
+      e.number = v;
+      e.text = fmt::format("{}", v);
+      return e;
+    }
+    fail(n, fmt::format("{} must be a number or an expression string, got {}", what, type_name(n)));
+  }
+
+  [[nodiscard]] const toml::node& required(const toml::table& t, const toml::source_region& at,
+                                           std::string_view key, std::string_view context) const {
+    const toml::node* n = t.get(key);
+    if (n == nullptr) fail(at, fmt::format("{} is missing '{}'", context, key));
+    return *n;
+  }
+
+  [[nodiscard]] std::string string(const toml::node& n, std::string_view what) const {
+    if (auto s = n.as_string()) return s->get();
+    fail(n, fmt::format("{} must be a string, got {}", what, type_name(n)));
+  }
+
+  [[nodiscard]] std::string identifier(const toml::node& n, std::string_view what) const {
+    std::string s = string(n, what);
+    const bool ok = !s.empty() && (std::isalpha(static_cast<unsigned char>(s[0])) || s[0] == '_') &&
+                    std::all_of(s.begin(), s.end(), [](char c) {
+                      return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+                    });
+    if (!ok) {
+      fail(n, fmt::format("{} '{}' is not a valid name; expected letters, digits and '_', "
+                          "starting with a letter",
+                          what, s));
+    }
+    return s;
+  }
+
+  [[nodiscard]] double number(const toml::node& n, std::string_view what) const {
+    if (!n.is_number()) fail(n, fmt::format("{} must be a number, got {}", what, type_name(n)));
+    const double v = n.value<double>().value();
+    if (!std::isfinite(v)) fail(n, fmt::format("{} is {}; expected a finite number", what, v));
+    return v;
+  }
+
+  [[nodiscard]] bool boolean(const toml::node& n, std::string_view what) const {
+    if (auto b = n.as_boolean()) return b->get();
+    fail(n, fmt::format("{} must be true or false, got {}", what, type_name(n)));
+  }
+
+  [[nodiscard]] const toml::array& array(const toml::node& n, std::string_view what,
+                                         std::size_t size) const {
+    const toml::array* a = n.as_array();
+    if (a == nullptr) fail(n, fmt::format("{} must be an array of {}, got {}", what, size, type_name(n)));
+    if (a->size() != size) {
+      fail(n, fmt::format("{} must have {} elements, got {}", what, size, a->size()));
+    }
+    return *a;
+  }
+
+  [[nodiscard]] std::array<double, 3> vector3(const toml::node& n, std::string_view what) const {
+    const auto& a = array(n, what, 3);
+    return {number(*a.get(0), what), number(*a.get(1), what), number(*a.get(2), what)};
+  }
+
+  [[nodiscard]] std::array<Expression, 3> expression3(const toml::node& n, std::string_view what) const {
+    const auto& a = array(n, what, 3);
+    return {expression(*a.get(0), what), expression(*a.get(1), what), expression(*a.get(2), what)};
+  }
+
+  [[nodiscard]] const toml::table& table(const toml::node& n, std::string_view what) const {
+    if (auto t = n.as_table()) return *t;
+    fail(n, fmt::format("{} must be a table, got {}", what, type_name(n)));
+  }
+
+  // [[name]] arrays of tables; a single [name] table is reported as the wrong form.
+  template <typename F>
+  void each_table(const toml::table& root, std::string_view key, F&& f) const {
+    const toml::node* n = root.get(key);
+    if (n == nullptr) return;
+    const toml::array* a = n->as_array();
+    if (a == nullptr) {
+      fail(*n, fmt::format("'{}' must be an array of tables, written [[{}]], got {}", key, key,
+                           type_name(*n)));
+    }
+    std::size_t i = 0;
+    for (const toml::node& e : *a) {
+      ++i;
+      if (!e.is_table()) {
+        fail(e, fmt::format("entry {} of '{}' must be a table, got {}", i, key, type_name(e)));
+      }
+      f(*e.as_table(), i);
+    }
+  }
+
+  const std::filesystem::path& file() const { return file_; }
+
+ private:
+  std::filesystem::path file_;
+};
+
+const Keys kDimensionKeys = {"radius", "inner_radius", "outer_radius", "height", "length",
+                             "width", "depth", "size", "semi_axes", "top_radius",
+                             "bottom_radius", "major_radius", "minor_radius", "thickness",
+                             "vertices", "dimension"};
+const Keys kBodyKeys = [] {
+  Keys k = {"name", "primitive", "mesh", "units", "inertia", "point_masses", "mass", "density",
+            "position", "rotation", "free", "initial_position", "initial_quaternion",
+            "initial_rotation", "initial_velocity", "angular_velocity", "pivot"};
+  k.insert(k.end(), kDimensionKeys.begin(), kDimensionKeys.end());
+  return k;
+}();
+
+void parse_mass(const Parser& p, const toml::table& t, const std::string& context, Body& body) {
+  MassSpec& m = body.mass;
+  m.where = body.where;
+  const int sources = (t.contains("primitive") ? 1 : 0) + (t.contains("mesh") ? 1 : 0) +
+                      (t.contains("inertia") ? 1 : 0) + (t.contains("point_masses") ? 1 : 0);
+  if (sources != 1) {
+    p.fail(t.source(), fmt::format("{} needs exactly one of 'primitive', 'mesh', 'inertia' or "
+                                   "'point_masses' to give its mass properties, got {}",
+                                   context, sources));
+  }
+  if (auto n = t.get("mass")) m.mass = p.expression(*n, context + " mass");
+  if (auto n = t.get("density")) m.density = p.expression(*n, context + " density");
+  for (const auto& key : kDimensionKeys) {
+    if (auto n = t.get(key)) {
+      if (!t.contains("primitive")) {
+        p.fail(*n, fmt::format("'{}' in {} is a primitive's dimension, but the body has no "
+                               "'primitive'",
+                               key, context));
+      }
+      if (auto a = n->as_array()) {
+        // vector dimensions (size = [x, y, z], semi_axes = [a, b, c]) become key_0, key_1, ...
+        std::size_t i = 0;
+        for (const toml::node& e : *a) {
+          m.dimensions.emplace_back(fmt::format("{}_{}", key, i++),
+                                    p.expression(e, fmt::format("{} {}", context, key)));
+        }
+      } else {
+        m.dimensions.emplace_back(key, p.expression(*n, fmt::format("{} {}", context, key)));
+      }
+    }
+  }
+  const bool needs_amount = t.contains("primitive") || t.contains("mesh");
+  if (needs_amount && m.mass.has_value() == m.density.has_value()) {
+    p.fail(t.source(), fmt::format("{} needs exactly one of 'mass' (kg) and 'density' (kg/m³){}",
+                                   context, m.mass ? ", not both" : ""));
+  }
+  if (!needs_amount && (m.density || (m.mass && t.contains("point_masses")))) {
+    p.fail(t.source(), fmt::format("{}: 'mass'/'density' go with 'primitive' or 'mesh'; 'inertia' "
+                                   "carries its own mass and point masses each have one",
+                                   context));
+  }
+  if (auto n = t.get("primitive")) {
+    m.kind = MassSpec::Kind::kPrimitive;
+    m.primitive = p.string(*n, context + " primitive");
+  } else if (auto mesh = t.get("mesh")) {
+    m.kind = MassSpec::Kind::kMesh;
+    std::filesystem::path f = p.string(*mesh, context + " mesh");
+    m.mesh_file = f.is_absolute() ? f : p.file().parent_path() / f;
+    if (auto u = t.get("units")) m.units = p.string(*u, context + " units");
+  } else if (auto inertia = t.get("inertia")) {
+    m.kind = MassSpec::Kind::kExplicit;
+    const toml::table& it = p.table(*inertia, context + " inertia");
+    const std::string ic = context + " inertia";
+    p.check_keys(it, ic, {"mass", "com", "ixx", "iyy", "izz", "ixy", "ixz", "iyz"});
+    m.mass = p.expression(p.required(it, inertia->source(), "mass", ic), ic + " mass");
+    if (auto c = it.get("com")) {
+      m.com = p.expression3(*c, ic + " com");
+    } else {
+      for (auto& e : m.com) e = Expression{"0", p.where(inertia->source()), 0.0, false};
+    }
+    const char* names[6] = {"ixx", "iyy", "izz", "ixy", "ixz", "iyz"};
+    for (int i = 0; i < 6; ++i) {
+      if (auto v = it.get(names[i])) {
+        m.inertia[static_cast<std::size_t>(i)] = p.expression(*v, ic + " " + names[i]);
+      } else if (i < 3) {
+        p.fail(inertia->source(), fmt::format("{} is missing '{}' (kg·m², about the COM)", ic, names[i]));
+      } else {
+        m.inertia[static_cast<std::size_t>(i)] = Expression{"0", p.where(inertia->source()), 0.0, false};
+      }
+    }
+    if (t.contains("units")) p.fail(*t.get("units"), "'units' goes with 'mesh'");
+  } else {
+    m.kind = MassSpec::Kind::kPointMasses;
+    const toml::node& pm = *t.get("point_masses");
+    const toml::array* a = pm.as_array();
+    if (a == nullptr || a->empty()) {
+      p.fail(pm, fmt::format("{} point_masses must be a non-empty array of {{mass, position}} tables",
+                             context));
+    }
+    for (const toml::node& e : *a) {
+      const toml::table& pt = p.table(e, context + " point mass");
+      p.check_keys(pt, context + " point mass", {"mass", "position"});
+      PointMass point;
+      point.mass = p.expression(p.required(pt, e.source(), "mass", context + " point mass"), "mass");
+      point.position = p.expression3(p.required(pt, e.source(), "position", context + " point mass"),
+                                     "position");
+      m.points.push_back(std::move(point));
+    }
+  }
+}
+
+void parse_pose(const Parser& p, const toml::table& t, const std::string& context, Body& body) {
+  if (auto f = t.get("free")) body.free = p.boolean(*f, context + " free");
+  const Keys free_keys = {"initial_position", "initial_quaternion", "initial_rotation",
+                          "initial_velocity", "angular_velocity", "pivot"};
+  if (body.free) {
+    for (const char* key : {"position", "rotation"}) {
+      if (auto n = t.get(key)) {
+        p.fail(*n, fmt::format("{} is free, so its pose is a state, not an expression: use "
+                               "'initial_position' and 'initial_quaternion' or 'initial_rotation' "
+                               "instead of '{}'",
+                               context, key));
+      }
+    }
+    if (auto n = t.get("initial_position")) body.initial_position = p.vector3(*n, "initial_position");
+    if (auto n = t.get("initial_velocity")) body.initial_velocity = p.vector3(*n, "initial_velocity");
+    if (auto n = t.get("angular_velocity")) body.angular_velocity = p.vector3(*n, "angular_velocity");
+    if (auto n = t.get("pivot")) body.pivot = p.vector3(*n, "pivot");
+    if (t.contains("initial_quaternion") && t.contains("initial_rotation")) {
+      p.fail(*t.get("initial_rotation"),
+             "give the initial orientation once: 'initial_quaternion' or 'initial_rotation', not both");
+    }
+    if (auto n = t.get("initial_quaternion")) {
+      const auto& a = p.array(*n, "initial_quaternion (w, x, y, z)", 4);
+      double norm2 = 0;
+      for (std::size_t i = 0; i < 4; ++i) {
+        body.initial_orientation[i] = p.number(*a.get(i), "initial_quaternion");
+        norm2 += body.initial_orientation[i] * body.initial_orientation[i];
+      }
+      if (std::abs(std::sqrt(norm2) - 1.0) > 1e-9) {
+        p.fail(*n, fmt::format("initial_quaternion (w, x, y, z) has norm {}; expected a unit "
+                               "quaternion (|q| within 1e-9 of 1)",
+                               std::sqrt(norm2)));
+      }
+    }
+    if (auto n = t.get("initial_rotation")) {
+      const toml::table& rt = p.table(*n, "initial_rotation");
+      p.check_keys(rt, "initial_rotation", {"axis", "angle"});
+      const auto axis = p.vector3(p.required(rt, n->source(), "axis", "initial_rotation"), "axis");
+      const double angle = p.number(p.required(rt, n->source(), "angle", "initial_rotation"), "angle");
+      const double len = std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
+      if (!(len > 0)) p.fail(*n, "initial_rotation axis is zero; expected a non-zero vector");
+      const double s = std::sin(angle / 2) / len;
+      body.initial_orientation = {std::cos(angle / 2), axis[0] * s, axis[1] * s, axis[2] * s};
+    }
+    return;
+  }
+  for (const auto& key : free_keys) {
+    if (auto n = t.get(key)) {
+      p.fail(*n, fmt::format("'{}' is for free bodies; {} has a pose given by 'position' and "
+                             "'rotation' (set free = true to make it a free body)",
+                             key, context));
+    }
+  }
+  if (auto n = t.get("position")) {
+    body.position = p.expression3(*n, context + " position");
+  } else {
+    for (auto& e : body.position) e = Expression{"0", body.where, 0.0, false};
+  }
+  if (auto n = t.get("rotation")) {
+    const toml::array* a = n->as_array();
+    if (a == nullptr) {
+      p.fail(*n, fmt::format("{} rotation must be an array of {{axis = [x, y, z], angle = ...}} "
+                             "tables, applied left to right",
+                             context));
+    }
+    for (const toml::node& e : *a) {
+      const toml::table& rt = p.table(e, context + " rotation");
+      p.check_keys(rt, context + " rotation", {"axis", "angle"});
+      AxisRotation r;
+      r.axis = p.vector3(p.required(rt, e.source(), "axis", context + " rotation"), "axis");
+      const double len = std::sqrt(r.axis[0] * r.axis[0] + r.axis[1] * r.axis[1] + r.axis[2] * r.axis[2]);
+      if (!(len > 0)) p.fail(*rt.get("axis"), "rotation axis is zero; expected a non-zero vector");
+      for (double& c : r.axis) c /= len;
+      r.angle = p.expression(p.required(rt, e.source(), "angle", context + " rotation"), "angle");
+      body.rotations.push_back(std::move(r));
+    }
+  }
+}
+
+Scene parse_document(const toml::table& root, const Parser& p) {
+  Scene s;
+  s.file = p.file();
+  p.check_keys(root, "the scene", kTopKeys);
+  std::vector<std::string> names;  // every name an expression may use, for clashes
+  auto claim = [&](const std::string& name, const toml::node& at, std::string_view what) {
+    if (std::find(names.begin(), names.end(), name) != names.end()) {
+      p.fail(at, fmt::format("{} '{}' is already defined; names of parameters, coordinates and "
+                             "bodies must be distinct",
+                             what, name));
+    }
+    if (name == "t") p.fail(at, fmt::format("{} may not be called 't' (that is time)", what));
+    names.push_back(name);
+  };
+
+  if (auto n = root.get("parameters")) {
+    const toml::table& t = p.table(*n, "[parameters]");
+    for (auto&& [key, value] : t) {
+      const std::string name(key.str());
+      claim(name, value, "parameter");
+      s.parameters.push_back({name, p.expression(value, "parameter " + name)});
+    }
+    // toml++ keeps keys sorted; the file's order is the one a reader expects (and the
+    // order in which parameters may refer to earlier ones).
+    std::stable_sort(s.parameters.begin(), s.parameters.end(), [](const Parameter& a, const Parameter& b) {
+      return std::pair(a.value.where.line, a.value.where.column) <
+             std::pair(b.value.where.line, b.value.where.column);
+    });
+  }
+  p.each_table(root, "coordinates", [&](const toml::table& t, std::size_t i) {
+    const std::string ctx = fmt::format("[[coordinates]] entry {}", i);
+    p.check_keys(t, ctx, {"name", "initial", "velocity"});
+    Coordinate c;
+    c.where = p.where(t.source());
+    const toml::node& name = p.required(t, t.source(), "name", ctx);
+    c.name = p.identifier(name, "coordinate name");
+    claim(c.name, name, "coordinate");
+    c.initial = t.contains("initial") ? p.expression(*t.get("initial"), c.name + " initial")
+                                      : Expression{"0", c.where, 0.0, false};
+    c.velocity = t.contains("velocity") ? p.expression(*t.get("velocity"), c.name + " velocity")
+                                        : Expression{"0", c.where, 0.0, false};
+    s.coordinates.push_back(std::move(c));
+  });
+  p.each_table(root, "bodies", [&](const toml::table& t, std::size_t i) {
+    Body b;
+    b.where = p.where(t.source());
+    if (auto n = t.get("name")) {
+      b.name = p.identifier(*n, "body name");
+      claim(b.name, *n, "body");
+    } else {
+      b.name = fmt::format("body{}", i);
+    }
+    const std::string ctx = fmt::format("body '{}'", b.name);
+    p.check_keys(t, ctx, kBodyKeys);
+    parse_mass(p, t, ctx, b);
+    parse_pose(p, t, ctx, b);
+    s.bodies.push_back(std::move(b));
+  });
+  auto named_list = [&](std::string_view key, std::string_view name_key,
+                        std::vector<NamedExpression>& out) {
+    p.each_table(root, key, [&](const toml::table& t, std::size_t i) {
+      const std::string ctx = fmt::format("[[{}]] entry {}", key, i);
+      p.check_keys(t, ctx, {std::string(name_key), "expression"});
+      NamedExpression e;
+      if (auto n = t.get(name_key)) {
+        e.name = p.string(*n, ctx + " " + std::string(name_key));
+      } else if (name_key == "coordinate") {
+        p.fail(t.source(), ctx + " is missing 'coordinate' (the coordinate the force acts on)");
+      } else {
+        e.name = fmt::format("{}{}", key.substr(0, key.size() - 1), i);
+      }
+      e.expression = p.expression(p.required(t, t.source(), "expression", ctx), ctx + " expression");
+      out.push_back(std::move(e));
+    });
+  };
+  named_list("constraints", "name", s.constraints);
+  named_list("potentials", "name", s.potentials);
+  named_list("forces", "coordinate", s.forces);
+  p.each_table(root, "springs", [&](const toml::table& t, std::size_t i) {
+    const std::string ctx = fmt::format("[[springs]] entry {}", i);
+    p.check_keys(t, ctx, {"body_a", "point_a", "body_b", "point_b", "stiffness", "rest_length"});
+    Spring sp;
+    sp.where = p.where(t.source());
+    sp.body_a = p.string(p.required(t, t.source(), "body_a", ctx), "body_a");
+    if (auto n = t.get("point_a")) sp.point_a = p.vector3(*n, "point_a");
+    if (auto n = t.get("body_b")) sp.body_b = p.string(*n, "body_b");
+    if (auto n = t.get("point_b")) sp.point_b = p.vector3(*n, "point_b");
+    sp.stiffness = p.expression(p.required(t, t.source(), "stiffness", ctx), "stiffness");
+    sp.rest_length = t.contains("rest_length") ? p.expression(*t.get("rest_length"), "rest_length")
+                                               : Expression{"0", sp.where, 0.0, false};
+    s.springs.push_back(std::move(sp));
+  });
+  if (auto n = root.get("gravity")) {
+    s.gravity = p.expression3(*n, "gravity (m/s², world frame)");
+  } else {
+    for (auto& e : s.gravity) e = Expression{"0", {s.file.string(), 0, 0}, 0.0, false};
+  }
+
+  const toml::node* sim = root.get("simulation");
+  if (sim == nullptr) {
+    p.fail(root.source(), "the scene has no [simulation] table; expected at least t_end (s)");
+  }
+  const toml::table& st = p.table(*sim, "[simulation]");
+  p.check_keys(st, "[simulation]", {"t_end", "integrator", "dt", "tolerance", "output_dt"});
+  s.simulation.where = p.where(sim->source());
+  s.simulation.t_end = p.expression(p.required(st, sim->source(), "t_end", "[simulation]"), "t_end");
+  if (auto n = st.get("integrator")) s.simulation.integrator = p.string(*n, "integrator");
+  if (auto n = st.get("dt")) s.simulation.dt = p.expression(*n, "dt");
+  if (auto n = st.get("tolerance")) s.simulation.tolerance = p.expression(*n, "tolerance");
+  if (auto n = st.get("output_dt")) s.simulation.output_dt = p.expression(*n, "output_dt");
+
+  if (auto n = root.get("output")) {
+    const toml::table& ot = p.table(*n, "[output]");
+    p.check_keys(ot, "[output]", {"directory", "formats"});
+    if (auto d = ot.get("directory")) s.output.directory = p.string(*d, "output directory");
+    if (auto f = ot.get("formats")) {
+      const toml::array* a = f->as_array();
+      if (a == nullptr) p.fail(*f, "formats must be an array of strings such as [\"csv\", \"npy\", \"json\"]");
+      s.output.formats.clear();
+      const Keys known = {"csv", "npy", "json"};
+      for (const toml::node& e : *a) {
+        std::string fmt_name = p.string(e, "output format");
+        if (std::find(known.begin(), known.end(), fmt_name) == known.end()) {
+          std::string msg = fmt::format("unknown output format '{}'", fmt_name);
+          if (auto g = did_you_mean(fmt_name, known)) msg += fmt::format("; did you mean '{}'?", *g);
+          p.fail(e, msg + " (expected csv, npy or json)");
+        }
+        s.output.formats.push_back(std::move(fmt_name));
+      }
+    }
+  }
+
+  // cross-references
+  const bool any_free = std::any_of(s.bodies.begin(), s.bodies.end(), [](const Body& b) { return b.free; });
+  if (any_free) {
+    for (const Body& b : s.bodies) {
+      if (!b.free) {
+        detail::throw_error_at(b.where, fmt::format("body '{}' has no 'free = true' but other bodies "
+                                                    "do; a scene is either free bodies or bodies "
+                                                    "posed by coordinates",
+                                                    b.name));
+      }
+    }
+    if (!s.coordinates.empty()) {
+      detail::throw_error_at(s.coordinates.front().where,
+                             "a scene of free bodies has no [[coordinates]]; their state is the "
+                             "pose and twist given in each body");
+    }
+  } else if (s.coordinates.empty()) {
+    p.fail(root.source(), "the scene has no [[coordinates]] and no free bodies; expected at least "
+                          "one coordinate (name, initial, velocity) or a body with free = true");
+  }
+  for (const NamedExpression& f : s.forces) {
+    const bool known = std::any_of(s.coordinates.begin(), s.coordinates.end(),
+                                   [&](const Coordinate& c) { return c.name == f.name; });
+    if (!known) {
+      std::vector<std::string> coords;
+      for (const auto& c : s.coordinates) coords.push_back(c.name);
+      std::string msg = fmt::format("force on unknown coordinate '{}'", f.name);
+      if (auto g = did_you_mean(f.name, coords)) msg += fmt::format("; did you mean '{}'?", *g);
+      detail::throw_error_at(f.expression.where, msg);
+    }
+  }
+  for (const Spring& sp : s.springs) {
+    for (const std::string* name : {&sp.body_a, &sp.body_b}) {
+      if (name->empty()) continue;
+      const bool known = std::any_of(s.bodies.begin(), s.bodies.end(),
+                                     [&](const Body& b) { return b.name == *name; });
+      if (!known) {
+        std::vector<std::string> bodies;
+        for (const auto& b : s.bodies) bodies.push_back(b.name);
+        std::string msg = fmt::format("spring attached to unknown body '{}'", *name);
+        if (auto g = did_you_mean(*name, bodies)) msg += fmt::format("; did you mean '{}'?", *g);
+        detail::throw_error_at(sp.where, msg);
+      }
+    }
+  }
+  return s;
+}
+
+}  // namespace
+
+SourceLocation Expression::at(std::size_t offset) const {
+  SourceLocation loc = where;
+  if (loc.column > 0) loc.column += static_cast<int>(offset) + (quoted ? 1 : 0);
+  return loc;
+}
+
+bool Scene::is_free_body_scene() const {
+  return !bodies.empty() && bodies.front().free;
+}
+
+std::optional<std::string> did_you_mean(std::string_view word, const std::vector<std::string>& candidates) {
+  // Levenshtein distance by the two-row dynamic programme.
+  auto distance = [](std::string_view a, std::string_view b) {
+    std::vector<std::size_t> prev(b.size() + 1), cur(b.size() + 1);
+    for (std::size_t j = 0; j <= b.size(); ++j) prev[j] = j;
+    for (std::size_t i = 1; i <= a.size(); ++i) {
+      cur[0] = i;
+      for (std::size_t j = 1; j <= b.size(); ++j) {
+        const std::size_t subst = prev[j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1);
+        cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, subst});
+      }
+      std::swap(prev, cur);
+    }
+    return prev[b.size()];
+  };
+  std::optional<std::string> best;
+  std::size_t best_d = std::max<std::size_t>(1, word.size() / 3) + 1;
+  for (const auto& c : candidates) {
+    const std::size_t d = distance(word, c);
+    if (d < best_d) {
+      best_d = d;
+      best = c;
+    }
+  }
+  return best;
+}
+
+Scene parse_scene(std::string_view toml_text, const std::filesystem::path& file) {
+  Parser p(file);
+  toml::table root;
+  try {
+    root = toml::parse(toml_text, file.string());
+  } catch (const toml::parse_error& e) {
+    detail::throw_error_at(p.where(e.source()),
+                           fmt::format("TOML syntax error: {}", e.description()));
+  }
+  return parse_document(root, p);
+}
+
+Scene load_scene(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  RIGID_REQUIRE(in.good(), "cannot open scene file '{}'", file.string());
+  std::stringstream text;
+  text << in.rdbuf();
+  return parse_scene(text.str(), file);
+}
+
+void apply_overrides(Scene& scene, const std::vector<std::string>& assignments) {
+  for (const std::string& a : assignments) {
+    const auto eq = a.find('=');
+    RIGID_REQUIRE(eq != std::string::npos && eq > 0 && eq + 1 < a.size(),
+                  "--set '{}' is not of the form name=value", a);
+    const std::string name = a.substr(0, eq);
+    const std::string value = a.substr(eq + 1);
+    auto it = std::find_if(scene.parameters.begin(), scene.parameters.end(),
+                           [&](const Parameter& p) { return p.name == name; });
+    if (it == scene.parameters.end()) {
+      std::vector<std::string> names;
+      for (const auto& p : scene.parameters) names.push_back(p.name);
+      std::string hint;
+      if (auto g = did_you_mean(name, names)) hint = fmt::format("; did you mean '{}'?", *g);
+      RIGID_THROW("--set {}: the scene has no parameter '{}'{} (parameters: {})", a, name, hint,
+                  names.empty() ? std::string("none") : fmt::format("{}", fmt::join(names, ", ")));
+    }
+    it->value = Expression{value, {"--set", 0, 0}, std::nullopt, false};
+    double v = 0;
+    const auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), v);
+    if (ec == std::errc() && end == value.data() + value.size() && std::isfinite(v)) it->value.number = v;
+  }
+}
+
+}  // namespace rigid::scene
