@@ -6,6 +6,7 @@
 #include <vector>
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/LU>
 
 #include "rigid/common/error.hpp"
 #include "rigid/common/format.hpp"
