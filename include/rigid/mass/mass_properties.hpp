@@ -26,7 +26,7 @@ struct PrincipalAxes {
 /// Class invariant (checked by the constructor, trusted afterwards): m is positive and
 /// finite, p_OC_B and I_C_B are finite, I_C_B is symmetric, positive semidefinite and its
 /// principal moments satisfy the triangle inequalities I₁ + I₂ ≥ I₃, each within
-/// kRelativeTolerance · tr(I_C_B). Semidefinite (not definite) because thin rods and point
+/// kRelativeTolerance · tr(I_C_B); the stored tensor is exactly symmetric. Semidefinite (not definite) because thin rods and point
 /// masses are legitimate bodies with a zero moment.
 class MassProperties {
  public:
@@ -89,7 +89,7 @@ class MassProperties {
  private:
   struct Unchecked {};
   MassProperties(Unchecked, double mass, const Eigen::Vector3d& p, const Eigen::Matrix3d& I)
-      : mass_(mass), p_OC_B_(p), I_C_B_(I) {}
+      : mass_(mass), p_OC_B_(p), I_C_B_(0.5 * (I + I.transpose())) {}
   friend MassProperties combine(std::span<const MassProperties> parts);
 
   double mass_;

@@ -1,0 +1,354 @@
+#include "rigid/io/inertial_xml.hpp"
+
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <string_view>
+
+#include <Eigen/Geometry>
+#include <fmt/format.h>
+#include <tinyxml2.h>
+
+#include "rigid/common/error.hpp"
+
+namespace rigid::io {
+namespace {
+
+// A problem with one inertial: recorded in the entry, not thrown, so that `check` can list
+// every bad inertial of a file.
+struct EntryProblem {
+  std::string text;
+};
+
+std::vector<double> parse_numbers(const char* text, std::size_t expected, const std::string& what) {
+  std::vector<double> out;
+  std::string_view s = text == nullptr ? std::string_view{} : std::string_view(text);
+  std::size_t i = 0;
+  while (i < s.size()) {
+    while (i < s.size() && std::isspace(static_cast<unsigned char>(s[i]))) ++i;
+    if (i >= s.size()) break;
+    std::size_t j = i;
+    while (j < s.size() && !std::isspace(static_cast<unsigned char>(s[j]))) ++j;
+    const std::string_view token = s.substr(i, j - i);
+    double v = 0.0;
+    const char* first = token.data();
+    if (!token.empty() && token.front() == '+') ++first;
+    const auto [ptr, ec] = std::from_chars(first, token.data() + token.size(), v);
+    if (ec != std::errc() || ptr != token.data() + token.size()) {
+      throw EntryProblem{fmt::format("{}: expected a number, got '{}'", what, token)};
+    }
+    out.push_back(v);
+    i = j;
+  }
+  if (out.size() != expected) {
+    throw EntryProblem{fmt::format("{}: expected {} number{}, got {} ('{}')", what, expected,
+                                   expected == 1 ? "" : "s", out.size(), s)};
+  }
+  return out;
+}
+
+Eigen::Vector3d vec3(const std::vector<double>& v, std::size_t offset = 0) {
+  return Eigen::Vector3d(v[offset], v[offset + 1], v[offset + 2]);
+}
+
+double required_number(const tinyxml2::XMLElement* e, const char* attribute,
+                       const std::string& element) {
+  const char* text = e->Attribute(attribute);
+  if (text == nullptr) {
+    throw EntryProblem{fmt::format("<{}> has no attribute '{}'", element, attribute)};
+  }
+  return parse_numbers(text, 1, fmt::format("<{}> attribute '{}'", element, attribute))[0];
+}
+
+Eigen::Matrix3d tensor(double xx, double yy, double zz, double xy, double xz, double yz) {
+  Eigen::Matrix3d I;
+  I << xx, xy, xz, xy, yy, yz, xz, yz, zz;
+  return I;
+}
+
+void read_urdf(const tinyxml2::XMLElement* inertial, InertialEntry& entry) {
+  Eigen::Vector3d xyz = Eigen::Vector3d::Zero();
+  Eigen::Vector3d rpy = Eigen::Vector3d::Zero();
+  if (const auto* origin = inertial->FirstChildElement("origin")) {
+    if (const char* t = origin->Attribute("xyz")) xyz = vec3(parse_numbers(t, 3, "<origin> attribute 'xyz'"));
+    if (const char* t = origin->Attribute("rpy")) rpy = vec3(parse_numbers(t, 3, "<origin> attribute 'rpy'"));
+  }
+  const auto* mass = inertial->FirstChildElement("mass");
+  if (mass == nullptr) throw EntryProblem{"<inertial> has no <mass> element"};
+  entry.mass = required_number(mass, "value", "mass");
+  const auto* in = inertial->FirstChildElement("inertia");
+  if (in == nullptr) throw EntryProblem{"<inertial> has no <inertia> element"};
+  const Eigen::Matrix3d I_in =
+      tensor(required_number(in, "ixx", "inertia"), required_number(in, "iyy", "inertia"),
+             required_number(in, "izz", "inertia"), required_number(in, "ixy", "inertia"),
+             required_number(in, "ixz", "inertia"), required_number(in, "iyz", "inertia"));
+  // the tensor is given in the inertial frame (rotated by rpy): re-express in the link frame
+  const Eigen::Matrix3d R = rotation_from_rpy(rpy);
+  entry.com = xyz;
+  entry.inertia_com = R * I_in * R.transpose();
+}
+
+void read_mjcf(const tinyxml2::XMLElement* inertial, InertialEntry& entry) {
+  for (const char* unsupported : {"axisangle", "euler", "xyaxes", "zaxis"}) {
+    if (inertial->Attribute(unsupported) != nullptr) {
+      throw EntryProblem{fmt::format("orientation attribute '{}' is not supported (its meaning "
+                                     "depends on <compiler> settings); use quat=\"w x y z\"",
+                                     unsupported)};
+    }
+  }
+  const char* pos = inertial->Attribute("pos");
+  if (pos == nullptr) throw EntryProblem{"<inertial> has no attribute 'pos'"};
+  entry.com = vec3(parse_numbers(pos, 3, "<inertial> attribute 'pos'"));
+  Eigen::Quaterniond q = Eigen::Quaterniond::Identity();
+  if (const char* t = inertial->Attribute("quat")) {
+    const auto v = parse_numbers(t, 4, "<inertial> attribute 'quat'");
+    q = Eigen::Quaterniond(v[0], v[1], v[2], v[3]);  // MJCF order: w x y z
+    if (!(q.norm() > 0.0) || !std::isfinite(q.norm())) {
+      throw EntryProblem{fmt::format("<inertial> attribute 'quat': expected a non-zero "
+                                     "quaternion, got '{}'", t)};
+    }
+    q.normalize();  // MuJoCo normalises quat as well
+  }
+  entry.mass = required_number(inertial, "mass", "inertial");
+  const char* diag = inertial->Attribute("diaginertia");
+  const char* full = inertial->Attribute("fullinertia");
+  if ((diag == nullptr) == (full == nullptr)) {
+    throw EntryProblem{"<inertial> needs exactly one of 'diaginertia' and 'fullinertia'"};
+  }
+  Eigen::Matrix3d I_in;
+  if (diag != nullptr) {
+    const auto v = parse_numbers(diag, 3, "<inertial> attribute 'diaginertia'");
+    I_in = Eigen::Vector3d(v[0], v[1], v[2]).asDiagonal();
+  } else {
+    // MJCF order: xx yy zz xy xz yz
+    const auto v = parse_numbers(full, 6, "<inertial> attribute 'fullinertia'");
+    I_in = tensor(v[0], v[1], v[2], v[3], v[4], v[5]);
+  }
+  const Eigen::Matrix3d R = q.toRotationMatrix();
+  entry.inertia_com = R * I_in * R.transpose();
+}
+
+double sdf_child(const tinyxml2::XMLElement* parent, const char* name, double fallback) {
+  const auto* e = parent->FirstChildElement(name);
+  if (e == nullptr) return fallback;
+  return parse_numbers(e->GetText(), 1, fmt::format("<{}>", name))[0];
+}
+
+void read_sdf(const tinyxml2::XMLElement* inertial, InertialEntry& entry) {
+  Eigen::Vector3d xyz = Eigen::Vector3d::Zero();
+  Eigen::Vector3d rpy = Eigen::Vector3d::Zero();
+  if (const auto* pose = inertial->FirstChildElement("pose")) {
+    if (pose->Attribute("relative_to") != nullptr) {
+      throw EntryProblem{"<pose relative_to=...> of an inertial is not supported; give the pose "
+                         "in the link frame"};
+    }
+    const auto v = parse_numbers(pose->GetText(), 6, "<pose>");
+    xyz = vec3(v, 0);
+    rpy = vec3(v, 3);
+  }
+  entry.mass = sdf_child(inertial, "mass", 1.0);  // SDF defaults
+  Eigen::Matrix3d I_in = Eigen::Matrix3d::Identity();
+  if (const auto* in = inertial->FirstChildElement("inertia")) {
+    I_in = tensor(sdf_child(in, "ixx", 1.0), sdf_child(in, "iyy", 1.0), sdf_child(in, "izz", 1.0),
+                  sdf_child(in, "ixy", 0.0), sdf_child(in, "ixz", 0.0), sdf_child(in, "iyz", 0.0));
+  }
+  const Eigen::Matrix3d R = rotation_from_rpy(rpy);
+  entry.com = xyz;
+  entry.inertia_com = R * I_in * R.transpose();
+}
+
+void collect(const tinyxml2::XMLElement* e, InertialFormat format,
+             std::vector<InertialEntry>& out) {
+  for (const auto* child = e->FirstChildElement(); child != nullptr;
+       child = child->NextSiblingElement()) {
+    if (std::string_view(child->Name()) == "inertial") {
+      InertialEntry entry;
+      const char* name = e->Attribute("name");
+      entry.name = name == nullptr ? "" : name;
+      entry.line = child->GetLineNum();
+      try {
+        switch (format) {
+          case InertialFormat::urdf: read_urdf(child, entry); break;
+          case InertialFormat::mjcf: read_mjcf(child, entry); break;
+          case InertialFormat::sdf: read_sdf(child, entry); break;
+        }
+        entry.problem = MassProperties::check(entry.mass, entry.com, entry.inertia_com);
+      } catch (const EntryProblem& p) {
+        entry.problem = p.text;
+      }
+      out.push_back(std::move(entry));
+    } else {
+      collect(child, format, out);
+    }
+  }
+}
+
+const tinyxml2::XMLElement* parse_root(tinyxml2::XMLDocument& doc, const std::string& xml,
+                                       const std::string& source) {
+  if (doc.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS) {
+    detail::throw_error_at(SourceLocation{source, doc.ErrorLineNum(), 0},
+                           fmt::format("malformed XML: {}", doc.ErrorStr()));
+  }
+  const auto* root = doc.RootElement();
+  if (root == nullptr) {
+    detail::throw_error_at(SourceLocation{source, 0, 0}, "the document has no root element");
+  }
+  return root;
+}
+
+InertialFormat format_of(const tinyxml2::XMLElement* root, const std::string& source) {
+  const std::string_view name = root->Name();
+  if (name == "robot") return InertialFormat::urdf;
+  if (name == "mujoco") return InertialFormat::mjcf;
+  if (name == "sdf") return InertialFormat::sdf;
+  detail::throw_error_at(SourceLocation{source, root->GetLineNum(), 0},
+                         fmt::format("unknown root element <{}>; expected <robot> (URDF), "
+                                     "<mujoco> (MJCF) or <sdf> (SDF)",
+                                     name));
+}
+
+std::string num(double v) { return fmt::format("{}", v); }
+
+std::string vec(const Eigen::Vector3d& v) {
+  return fmt::format("{} {} {}", v.x(), v.y(), v.z());
+}
+
+}  // namespace
+
+const char* to_string(InertialFormat format) {
+  switch (format) {
+    case InertialFormat::urdf: return "urdf";
+    case InertialFormat::mjcf: return "mjcf";
+    case InertialFormat::sdf: return "sdf";
+  }
+  return "?";
+}
+
+Eigen::Matrix3d rotation_from_rpy(const Eigen::Vector3d& rpy) {
+  return (Eigen::AngleAxisd(rpy.z(), Eigen::Vector3d::UnitZ()) *
+          Eigen::AngleAxisd(rpy.y(), Eigen::Vector3d::UnitY()) *
+          Eigen::AngleAxisd(rpy.x(), Eigen::Vector3d::UnitX()))
+      .toRotationMatrix();
+}
+
+Eigen::Vector3d rpy_from_rotation(const Eigen::Matrix3d& R) {
+  // R = Rz(y) Ry(p) Rx(r): R20 = −sin p, R21 = cos p sin r, R22 = cos p cos r,
+  // R10 = sin y cos p, R00 = cos y cos p.
+  const double c = std::hypot(R(2, 1), R(2, 2));
+  const double pitch = std::atan2(-R(2, 0), c);
+  if (c > 1e-12) {
+    return Eigen::Vector3d(std::atan2(R(2, 1), R(2, 2)), pitch, std::atan2(R(1, 0), R(0, 0)));
+  }
+  // gimbal lock (pitch = ±π/2): only r ∓ y is defined; take r = 0.
+  return Eigen::Vector3d(0.0, pitch, std::atan2(-R(0, 1), R(1, 1)));
+}
+
+std::string write_inertial_document(const MassProperties& mp, InertialFormat format,
+                                    const InertialWriteOptions& options) {
+  RIGID_REQUIRE(!options.name.empty() &&
+                    options.name.find_first_of("<>&\"'") == std::string::npos,
+                "name must be non-empty and free of XML special characters (<>&\"'), got '{}'",
+                options.name);
+  const Eigen::Vector3d& c = mp.com();
+  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+  Eigen::Matrix3d I = mp.inertia_com();
+  if (options.principal) {
+    const PrincipalAxes pa = mp.principal_axes();
+    R = pa.R_BP;
+    I = pa.moments.asDiagonal();
+  }
+  const std::string& n = options.name;
+  switch (format) {
+    case InertialFormat::urdf:
+      return fmt::format(
+          "<?xml version=\"1.0\"?>\n"
+          "<robot name=\"{0}\">\n"
+          "  <link name=\"{0}\">\n"
+          "    <inertial>\n"
+          "      <origin xyz=\"{1}\" rpy=\"{2}\"/>\n"
+          "      <mass value=\"{3}\"/>\n"
+          "      <inertia ixx=\"{4}\" ixy=\"{5}\" ixz=\"{6}\" iyy=\"{7}\" iyz=\"{8}\" izz=\"{9}\"/>\n"
+          "    </inertial>\n"
+          "  </link>\n"
+          "</robot>\n",
+          n, vec(c), vec(rpy_from_rotation(R)), num(mp.mass()), num(I(0, 0)), num(I(0, 1)),
+          num(I(0, 2)), num(I(1, 1)), num(I(1, 2)), num(I(2, 2)));
+    case InertialFormat::mjcf: {
+      std::string inertia;
+      if (options.principal) {
+        const Eigen::Quaterniond q(R);
+        inertia = fmt::format("quat=\"{} {} {} {}\" diaginertia=\"{} {} {}\"", q.w(), q.x(), q.y(),
+                              q.z(), I(0, 0), I(1, 1), I(2, 2));
+      } else {
+        inertia = fmt::format("fullinertia=\"{} {} {} {} {} {}\"", I(0, 0), I(1, 1), I(2, 2),
+                              I(0, 1), I(0, 2), I(1, 2));
+      }
+      return fmt::format(
+          "<mujoco model=\"{0}\">\n"
+          "  <worldbody>\n"
+          "    <body name=\"{0}\">\n"
+          "      <inertial pos=\"{1}\" mass=\"{2}\" {3}/>\n"
+          "    </body>\n"
+          "  </worldbody>\n"
+          "</mujoco>\n",
+          n, vec(c), num(mp.mass()), inertia);
+    }
+    case InertialFormat::sdf:
+      return fmt::format(
+          "<?xml version=\"1.0\"?>\n"
+          "<sdf version=\"1.7\">\n"
+          "  <model name=\"{0}\">\n"
+          "    <link name=\"{0}\">\n"
+          "      <inertial>\n"
+          "        <pose>{1} {2}</pose>\n"
+          "        <mass>{3}</mass>\n"
+          "        <inertia>\n"
+          "          <ixx>{4}</ixx>\n"
+          "          <ixy>{5}</ixy>\n"
+          "          <ixz>{6}</ixz>\n"
+          "          <iyy>{7}</iyy>\n"
+          "          <iyz>{8}</iyz>\n"
+          "          <izz>{9}</izz>\n"
+          "        </inertia>\n"
+          "      </inertial>\n"
+          "    </link>\n"
+          "  </model>\n"
+          "</sdf>\n",
+          n, vec(c), vec(rpy_from_rotation(R)), num(mp.mass()), num(I(0, 0)), num(I(0, 1)),
+          num(I(0, 2)), num(I(1, 1)), num(I(1, 2)), num(I(2, 2)));
+  }
+  RIGID_THROW("unknown format");
+}
+
+MassProperties InertialEntry::mass_properties() const {
+  if (problem) {
+    RIGID_THROW("inertial of '{}' (line {}) is not usable: {}", name, line, *problem);
+  }
+  return MassProperties(mass, com, inertia_com);
+}
+
+InertialFormat detect_inertial_format(const std::string& xml, const std::string& source) {
+  tinyxml2::XMLDocument doc;
+  return format_of(parse_root(doc, xml, source), source);
+}
+
+std::vector<InertialEntry> read_inertials(const std::string& xml, const std::string& source) {
+  tinyxml2::XMLDocument doc;
+  const auto* root = parse_root(doc, xml, source);
+  const InertialFormat format = format_of(root, source);
+  std::vector<InertialEntry> out;
+  collect(root, format, out);
+  return out;
+}
+
+std::vector<InertialEntry> read_inertials_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  RIGID_REQUIRE(in.good(), "cannot open '{}' for reading", path);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return read_inertials(text.str(), path);
+}
+
+}  // namespace rigid::io

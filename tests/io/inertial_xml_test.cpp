@@ -1,0 +1,165 @@
+#include "rigid/io/inertial_xml.hpp"
+
+#include <cmath>
+#include <numbers>
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+
+#include "rigid/mass/primitives.hpp"
+#include "support/expect_error.hpp"
+#include "support/tolerance.hpp"
+
+namespace rigid::io {
+namespace {
+
+using test::ulps;
+
+// A body with no symmetry, in a rotated frame, with its COM off the origin.
+MassProperties generic_body() {
+  const Eigen::Matrix3d R =
+      Eigen::AngleAxisd(0.9, Eigen::Vector3d(1, -2, 0.5).normalized()).toRotationMatrix();
+  return mass::solid_box_with_mass(2.5, 0.3, 0.5, 0.7).transformed(R, Eigen::Vector3d(0.1, -0.2, 0.3));
+}
+
+void expect_same(const MassProperties& a, const MassProperties& b, double tol) {
+  EXPECT_NEAR(a.mass(), b.mass(), ulps(1, a.mass()));
+  EXPECT_TRUE((a.com() - b.com()).cwiseAbs().maxCoeff() <= tol) << a.com().transpose();
+  EXPECT_TRUE((a.inertia_com() - b.inertia_com()).cwiseAbs().maxCoeff() <= tol * a.inertia_com().trace())
+      << a.inertia_com() << "\nvs\n" << b.inertia_com();
+}
+
+TEST(InertialXml, RoundTripEveryFormatAndFrame) {
+  const MassProperties mp = generic_body();
+  for (const auto format : {InertialFormat::urdf, InertialFormat::mjcf, InertialFormat::sdf}) {
+    for (const bool principal : {false, true}) {
+      SCOPED_TRACE(fmt::format("{} principal={}", to_string(format), principal));
+      const std::string doc = write_inertial_document(mp, format, {.name = "link1", .principal = principal});
+      const auto entries = read_inertials(doc, "test");
+      ASSERT_EQ(entries.size(), 1u);
+      EXPECT_EQ(entries[0].name, "link1");
+      EXPECT_FALSE(entries[0].problem.has_value()) << *entries[0].problem;
+      // the body frame is written with shortest round-trip doubles: exact. The principal
+      // frame goes through an eigen-decomposition and rpy/quaternion: a few hundred ε.
+      expect_same(entries[0].mass_properties(), mp, principal ? ulps(512) : 0.0);
+      EXPECT_EQ(detect_inertial_format(doc, "test"), format);
+    }
+  }
+}
+
+TEST(InertialXml, UrdfOffDiagonalsAreTensorElements) {
+  // two unit masses at (1, 1, 0) and (−1, −1, 0): ∫xy dm = 2, so the tensor's ixy = −2.
+  Eigen::Matrix3Xd pts(3, 2);
+  pts << 1, -1, 1, -1, 0, 0;
+  const double masses[] = {1.0, 1.0};
+  const auto mp = mass::point_masses(masses, pts);
+  const std::string urdf = write_inertial_document(mp, InertialFormat::urdf);
+  EXPECT_NE(urdf.find("ixx=\"2\" ixy=\"-2\" ixz=\"0\" iyy=\"2\" iyz=\"0\" izz=\"4\""), std::string::npos)
+      << urdf;
+}
+
+TEST(InertialXml, MjcfFullInertiaOrder) {
+  Eigen::Matrix3d I;
+  I << 4, -0.1, -0.2, -0.1, 5, -0.3, -0.2, -0.3, 6;
+  const MassProperties mp(1.0, Eigen::Vector3d(1, 2, 3), I);
+  const std::string mjcf = write_inertial_document(mp, InertialFormat::mjcf);
+  EXPECT_NE(mjcf.find("pos=\"1 2 3\" mass=\"1\" fullinertia=\"4 5 6 -0.1 -0.2 -0.3\""),
+            std::string::npos)
+      << mjcf;
+}
+
+TEST(InertialXml, ReadersApplyTheInertialRotation) {
+  // 90° yaw swaps x and y: diag(1, 2, 3) in the inertial frame is diag(2, 1, 3) in the link.
+  const std::string urdf = R"(<robot name="r"><link name="a"><inertial>
+      <origin xyz="1 2 3" rpy="0 0 1.5707963267948966"/><mass value="2"/>
+      <inertia ixx="1" ixy="0" ixz="0" iyy="2" iyz="0" izz="3"/></inertial></link></robot>)";
+  const auto u = read_inertials(urdf, "a.urdf");
+  ASSERT_EQ(u.size(), 1u);
+  EXPECT_TRUE(u[0].inertia_com.isApprox(Eigen::Vector3d(2, 1, 3).asDiagonal().toDenseMatrix(), ulps(8)))
+      << u[0].inertia_com;
+  EXPECT_EQ(u[0].com, Eigen::Vector3d(1, 2, 3));
+  // MJCF quat (w x y z) of the same yaw
+  const std::string mjcf = R"(<mujoco><worldbody><body name="b">
+      <inertial pos="0 0 0" mass="1" quat="0.7071067811865476 0 0 0.7071067811865476" diaginertia="1 2 3"/>
+      </body></worldbody></mujoco>)";
+  const auto m = read_inertials(mjcf, "b.xml");
+  ASSERT_EQ(m.size(), 1u);
+  EXPECT_TRUE(m[0].inertia_com.isApprox(Eigen::Vector3d(2, 1, 3).asDiagonal().toDenseMatrix(), ulps(8)));
+  // SDF pose roll 90° swaps y and z: diag(1, 3, 2)
+  const std::string sdf = R"(<sdf version="1.7"><model name="m"><link name="c"><inertial>
+      <pose>0 0 0 1.5707963267948966 0 0</pose><mass>1</mass>
+      <inertia><ixx>1</ixx><iyy>2</iyy><izz>3</izz></inertia></inertial></link></model></sdf>)";
+  const auto s = read_inertials(sdf, "c.sdf");
+  ASSERT_EQ(s.size(), 1u);
+  EXPECT_TRUE(s[0].inertia_com.isApprox(Eigen::Vector3d(1, 3, 2).asDiagonal().toDenseMatrix(), ulps(8)));
+}
+
+TEST(InertialXml, RpyRoundTripIncludingGimbalLock) {
+  for (const Eigen::Vector3d& rpy : {Eigen::Vector3d(0.1, -0.4, 2.9), Eigen::Vector3d(-3.0, 1.2, -0.3),
+                                    Eigen::Vector3d(0.0, std::numbers::pi / 2, 0.7)}) {
+    const Eigen::Matrix3d R = rotation_from_rpy(rpy);
+    EXPECT_TRUE(rotation_from_rpy(rpy_from_rotation(R)).isApprox(R, ulps(16)));
+  }
+  // R = Rz Ry Rx: a pure yaw about z, checked against the textbook matrix
+  const Eigen::Matrix3d Rz = rotation_from_rpy(Eigen::Vector3d(0, 0, 0.3));
+  EXPECT_NEAR(Rz(1, 0), std::sin(0.3), ulps(2));
+}
+
+TEST(InertialXml, CheckReportsEachInvalidInertialWithLine) {
+  const std::string urdf =
+      "<robot name=\"r\">\n"
+      "  <link name=\"good\"><inertial><mass value=\"1\"/>"
+      "<inertia ixx=\"1\" ixy=\"0\" ixz=\"0\" iyy=\"1\" iyz=\"0\" izz=\"1\"/></inertial></link>\n"
+      "  <link name=\"bad\">\n"
+      "    <inertial><mass value=\"1\"/>"
+      "<inertia ixx=\"1\" ixy=\"0\" ixz=\"0\" iyy=\"2\" iyz=\"0\" izz=\"4\"/></inertial></link>\n"
+      "  <link name=\"typo\"><inertial><mass value=\"1x\"/>"
+      "<inertia ixx=\"1\" ixy=\"0\" ixz=\"0\" iyy=\"1\" iyz=\"0\" izz=\"1\"/></inertial></link>\n"
+      "  <link name=\"nomass\"><inertial><mass value=\"0\"/>"
+      "<inertia ixx=\"1\" ixy=\"0\" ixz=\"0\" iyy=\"1\" iyz=\"0\" izz=\"1\"/></inertial></link>\n"
+      "</robot>\n";
+  const auto e = read_inertials(urdf, "r.urdf");
+  ASSERT_EQ(e.size(), 4u);
+  EXPECT_FALSE(e[0].problem.has_value());
+  EXPECT_EQ(e[1].name, "bad");
+  EXPECT_EQ(e[1].line, 4);
+  ASSERT_TRUE(e[1].problem.has_value());
+  EXPECT_THAT(*e[1].problem, ::testing::HasSubstr("violate I₁ + I₂ ≥ I₃ by 1 kg·m²"));
+  EXPECT_THAT(*e[2].problem, ::testing::HasSubstr("<mass> attribute 'value': expected a number, got '1x'"));
+  EXPECT_THAT(*e[3].problem, ::testing::HasSubstr("mass must be positive and finite, got 0 kg"));
+  EXPECT_RIGID_ERROR((void)e[1].mass_properties(), "inertial of 'bad' (line 4) is not usable");
+}
+
+TEST(InertialXml, MjcfAndSdfProblems) {
+  const std::string mjcf = R"(<mujoco><worldbody><body name="b">
+      <inertial pos="0 0 0" mass="1" euler="0 0 90" diaginertia="1 1 1"/>
+      <body name="c"><inertial pos="0 0" mass="1" diaginertia="1 1 1"/></body>
+      <body name="d"><inertial pos="0 0 0" mass="1" diaginertia="1 1 1" fullinertia="1 1 1 0 0 0"/></body>
+      </body></worldbody></mujoco>)";
+  const auto m = read_inertials(mjcf, "m.xml");
+  ASSERT_EQ(m.size(), 3u);
+  EXPECT_THAT(*m[0].problem, ::testing::HasSubstr("orientation attribute 'euler' is not supported"));
+  EXPECT_EQ(m[1].name, "c");
+  EXPECT_THAT(*m[1].problem, ::testing::HasSubstr("'pos': expected 3 numbers, got 2"));
+  EXPECT_THAT(*m[2].problem, ::testing::HasSubstr("exactly one of 'diaginertia' and 'fullinertia'"));
+  // SDF defaults: no <inertia> gives the unit tensor, no <mass> gives 1 kg
+  const auto s = read_inertials("<sdf><model><link name=\"l\"><inertial/></link></model></sdf>", "s.sdf");
+  ASSERT_EQ(s.size(), 1u);
+  EXPECT_EQ(s[0].mass, 1.0);
+  EXPECT_EQ(s[0].inertia_com, Eigen::Matrix3d::Identity());
+}
+
+TEST(InertialXml, MalformedAndUnknownDocuments) {
+  EXPECT_RIGID_ERROR((void)read_inertials("<robot>\n<link name=\"a\">\n</robot>", "bad.urdf"),
+                     "bad.urdf:2: malformed XML");
+  EXPECT_RIGID_ERROR((void)read_inertials("<model/>", "x.xml"),
+                     "x.xml:1: unknown root element <model>; expected <robot> (URDF), <mujoco> "
+                     "(MJCF) or <sdf> (SDF)");
+  EXPECT_RIGID_ERROR((void)read_inertials_file("/nonexistent/file.urdf"),
+                     "cannot open '/nonexistent/file.urdf' for reading");
+  EXPECT_RIGID_ERROR((void)write_inertial_document(generic_body(), InertialFormat::urdf, {.name = "a<b"}),
+                     "name must be non-empty and free of XML special characters");
+}
+
+}  // namespace
+}  // namespace rigid::io
