@@ -9,6 +9,7 @@
 
 // One header per subcommand, each defining add_<verb>_command(CLI::App&).
 #include "cli_demo.hpp"
+#include "cli_inertia.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{
@@ -18,6 +19,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(0, 1);
 
   add_demo_command(app);
+  add_inertia_command(app);
 
   try {
     app.parse(argc, argv);

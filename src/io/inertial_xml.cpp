@@ -212,7 +212,7 @@ InertialFormat format_of(const tinyxml2::XMLElement* root, const std::string& so
 std::string num(double v) { return fmt::format("{}", v); }
 
 std::string vec(const Eigen::Vector3d& v) {
-  return fmt::format("{} {} {}", v.x(), v.y(), v.z());
+  return fmt::format("{} {} {}", v.x() + 0.0, v.y() + 0.0, v.z() + 0.0);  // no "-0"
 }
 
 }  // namespace

@@ -1,0 +1,60 @@
+#pragma once
+// Included by main.cpp only (the one translation unit that sees CLI11).
+//
+// `rigid inertia <primitive> ...` and `rigid inertia check FILE`. A positional SOURCE that is
+// not a subcommand name (e.g. a mesh file: `rigid inertia part.stl --density 2700`) reaches
+// rigid::cli::run_inertia_source with the output options of the `inertia` command itself;
+// a mesh source plugs in there (cmd_inertia.cpp) and adds its own options next to SOURCE.
+#include <memory>
+
+#include "cmd_inertia.hpp"
+
+/// --about, --frame, --format, --name, --output (shared by every inertia source).
+inline void add_inertia_output_options(CLI::App* cmd, rigid::cli::InertiaOutputOptions& out) {
+  cmd->add_option("--about", out.about,
+                  "point the inertia is about: com, origin, or x,y,z in metres (text/json)")
+      ->default_str("com");
+  cmd->add_option("--frame", out.frame, "body (the primitive's frame) or principal")
+      ->default_str("body");
+  cmd->add_option("--format", out.format, "text, json, urdf, mjcf or sdf")->default_str("text");
+  cmd->add_option("--name", out.name, "link/body name in urdf/mjcf/sdf output")->default_str("body");
+  cmd->add_option("-o,--output", out.output, "write to this file instead of standard output");
+}
+
+inline void add_inertia_command(CLI::App& app) {
+  auto* inertia = app.add_subcommand(
+      "inertia", "Mass properties of a primitive, or check the inertials of a URDF/MJCF/SDF file");
+  inertia->require_subcommand(0, 1);
+
+  for (const auto& spec : rigid::cli::inertia_primitives()) {
+    auto opts = std::make_shared<rigid::cli::InertiaPrimitiveOptions>();
+    opts->primitive = spec.name;
+    auto* cmd = inertia->add_subcommand(spec.name, spec.help);
+    for (const auto& [name, help] : spec.sizes) {
+      cmd->add_option_function<double>(
+          "--" + name, [opts, key = name](double v) { opts->sizes[key] = v; }, help);
+    }
+    cmd->add_option_function<double>(
+        "--mass", [opts](double v) { opts->mass = v; }, "mass (kg)");
+    cmd->add_option_function<double>(
+        "--density", [opts](double v) { opts->density = v; }, "density (" + spec.density_unit + ")");
+    add_inertia_output_options(cmd, opts->output);
+    cmd->callback([opts] { rigid::cli::run_inertia_primitive(*opts); });
+  }
+
+  auto check = std::make_shared<rigid::cli::InertiaCheckOptions>();
+  auto* cmd = inertia->add_subcommand(
+      "check", "Validate every <inertial> of a URDF, MJCF or SDF file (exit 1 if any is invalid)");
+  cmd->add_option("FILE", check->file, "URDF, MJCF or SDF file")->required();
+  cmd->callback([check] { rigid::cli::run_inertia_check(*check); });
+
+  // anything else: `rigid inertia SOURCE [options]` (mesh files plug in here)
+  auto source = std::make_shared<rigid::cli::InertiaSourceOptions>();
+  inertia->add_option("SOURCE", source->source, "a primitive name (see above) or a file");
+  add_inertia_output_options(inertia, source->output);
+  // unknown words after an unknown SOURCE reach the callback, which names the real problem
+  inertia->allow_extras();
+  inertia->callback([inertia, source] {
+    if (inertia->get_subcommands().empty()) rigid::cli::run_inertia_source(*source);
+  });
+}

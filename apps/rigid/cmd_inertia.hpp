@@ -1,0 +1,71 @@
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "rigid/mass/mass_properties.hpp"
+
+namespace rigid::cli {
+
+/// How `rigid inertia` prints mass properties; shared by every source of mass properties
+/// (primitives here, mesh files, ...).
+struct InertiaOutputOptions {
+  std::string about = "com";    ///< "com", "origin" or "x,y,z" (m): point the inertia is about
+  std::string frame = "body";   ///< "body" or "principal"
+  std::string format = "text";  ///< "text", "json", "urdf", "mjcf" or "sdf"
+  std::string name = "body";    ///< link/body name in URDF/MJCF/SDF
+  std::string output;           ///< file to write (atomically); empty: standard output
+};
+
+/// The text of `mp` in the requested format (see InertiaOutputOptions).
+/// @throws rigid::Error for an unknown format/frame, a malformed --about, or --about other
+/// than com with urdf/mjcf/sdf (those formats store the inertia about the COM).
+[[nodiscard]] std::string format_inertia(const MassProperties& mp, const InertiaOutputOptions& out);
+
+/// Writes format_inertia(mp, out) to out.output or standard output.
+void emit_inertia(const MassProperties& mp, const InertiaOutputOptions& out);
+
+/// One primitive of `rigid inertia <primitive>`: its sizes (option names without "--").
+struct PrimitiveSpec {
+  std::string name;
+  std::string help;
+  std::vector<std::pair<std::string, std::string>> sizes;  ///< (option, help)
+  std::string density_unit;                                ///< kg/m³, kg/m² or kg/m
+};
+
+/// The primitives `rigid inertia` knows, in help order.
+[[nodiscard]] const std::vector<PrimitiveSpec>& inertia_primitives();
+
+/// Options of `rigid inertia <primitive>`.
+struct InertiaPrimitiveOptions {
+  std::string primitive;
+  std::map<std::string, double> sizes;  ///< option name → value (m)
+  std::optional<double> mass;           ///< kg
+  std::optional<double> density;        ///< kg/m³ (kg/m² shells and plates, kg/m rods)
+  InertiaOutputOptions output;
+};
+
+/// `rigid inertia <primitive> ...`.
+void run_inertia_primitive(const InertiaPrimitiveOptions& opts);
+
+/// Options of `rigid inertia SOURCE` when SOURCE is not a primitive or `check`.
+struct InertiaSourceOptions {
+  std::string source;
+  InertiaOutputOptions output;
+};
+
+/// `rigid inertia SOURCE`: SOURCE names no primitive; reports the choices.
+void run_inertia_source(const InertiaSourceOptions& opts);
+
+/// Options of `rigid inertia check FILE`.
+struct InertiaCheckOptions {
+  std::string file;
+};
+
+/// `rigid inertia check FILE`: lists every invalid inertial (file:line, link/body, reason);
+/// throws rigid::Error (non-zero exit) when any is invalid.
+void run_inertia_check(const InertiaCheckOptions& opts);
+
+}  // namespace rigid::cli
