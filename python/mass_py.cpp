@@ -1,0 +1,184 @@
+// Python bindings of the mass module (rigid.MassProperties, rigid.mass.*) and of the
+// inertial XML writers/readers.
+#include <pybind11/eigen.h>
+#include <pybind11/functional.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include "rigid/common/error.hpp"
+#include "rigid/common/format.hpp"
+#include "rigid/io/inertial_xml.hpp"
+#include "rigid/mass.hpp"
+
+namespace py = pybind11;
+
+void bind_mass(py::module_& m) {
+  using rigid::MassProperties;
+  using rigid::MassProperties2;
+  using rigid::SecondMoments;
+
+  py::class_<MassProperties>(m, "MassProperties",
+                             "Mass (kg), center of mass p_OC_B (m) and inertia about the COM "
+                             "I_C_B (kg·m²) of a 3D body, validated when built.")
+      .def(py::init<double, const Eigen::Vector3d&, const Eigen::Matrix3d&>(), py::arg("mass"),
+           py::arg("p_OC_B"), py::arg("I_C_B"))
+      .def_property_readonly("mass", &MassProperties::mass)
+      .def_property_readonly("com", &MassProperties::com)
+      .def_property_readonly("inertia_com", &MassProperties::inertia_com)
+      .def("inertia_about", &MassProperties::inertia_about, py::arg("p_OQ_B"),
+           "Inertia about the point Q, expressed in B (parallel-axis theorem).")
+      .def("inertia_about_axis", &MassProperties::inertia_about_axis, py::arg("p_OQ_B"),
+           py::arg("unit_B"), "Moment of inertia about the line through Q along unit_B.")
+      .def("shifted", &MassProperties::shifted, py::arg("d_B"), "The same body moved by d_B.")
+      .def("rotated", &MassProperties::rotated, py::arg("R_AB"),
+           "The same body re-expressed in frame A.")
+      .def("transformed", &MassProperties::transformed, py::arg("R_AB"), py::arg("p_AB_A"),
+           "The same body expressed in frame A, given the pose of B in A.")
+      .def(
+          "principal_axes",
+          [](const MassProperties& mp) {
+            const auto pa = mp.principal_axes();
+            return py::make_tuple(pa.moments, pa.R_BP);
+          },
+          "(ascending principal moments, R_BP with the principal axes as columns, det +1).")
+      .def("invalidity_report", &MassProperties::invalidity_report)
+      .def_static("check", &MassProperties::check, py::arg("mass"), py::arg("p_OC_B"),
+                  py::arg("I_C_B"), "Why (mass, com, inertia) is not physical, or None.")
+      .def("__repr__", [](const MassProperties& mp) { return fmt::format("{}", mp); });
+
+  m.def(
+      "combine",
+      [](const std::vector<MassProperties>& parts) { return rigid::combine(parts); },
+      py::arg("parts"), "Mass properties of the union of bodies in one frame.");
+  m.def("subtract", &rigid::subtract, py::arg("whole"), py::arg("hole"),
+        "The body with a hole removed; refuses non-physical results.");
+
+  py::class_<MassProperties2>(m, "MassProperties2", "Planar mass, COM and moment about the COM.")
+      .def(py::init<double, const Eigen::Vector2d&, double>(), py::arg("mass"), py::arg("p_OC_B"),
+           py::arg("moment_com"))
+      .def_property_readonly("mass", &MassProperties2::mass)
+      .def_property_readonly("com", &MassProperties2::com)
+      .def_property_readonly("moment_com", &MassProperties2::moment_com)
+      .def("moment_about", &MassProperties2::moment_about, py::arg("p_OQ_B"))
+      .def("__repr__", [](const MassProperties2& mp) { return fmt::format("{}", mp); });
+
+  py::class_<SecondMoments>(m, "SecondMoments",
+                            "n-D mass, COM and second-moment matrix J about the COM.")
+      .def(py::init<double, const Eigen::VectorXd&, const Eigen::MatrixXd&>(), py::arg("mass"),
+           py::arg("com"), py::arg("J_com"))
+      .def_property_readonly("mass", &SecondMoments::mass)
+      .def_property_readonly("com", &SecondMoments::com)
+      .def_property_readonly("J_com", &SecondMoments::J_com)
+      .def_property_readonly("dimension", &SecondMoments::dimension)
+      .def("J_about", &SecondMoments::J_about, py::arg("q"))
+      .def("apply", &SecondMoments::apply, py::arg("Omega"), "M = J Ω + Ω J for Ω in so(n).")
+      .def("to_mass_properties", &SecondMoments::to_mass_properties)
+      .def_static("from_mass_properties", &SecondMoments::from_mass_properties, py::arg("mp"));
+
+  auto mass = m.def_submodule("mass", "Primitive bodies, laminae, n-D bodies, density cubature.");
+  namespace rm = rigid::mass;
+#define RIGID_BIND_PRIMITIVE(name, ...)                                 \
+  mass.def(#name "_with_mass", &rm::name##_with_mass, py::arg("m"), __VA_ARGS__); \
+  mass.def(#name "_with_density", &rm::name##_with_density, py::arg("rho"), __VA_ARGS__)
+  RIGID_BIND_PRIMITIVE(solid_sphere, py::arg("r"));
+  RIGID_BIND_PRIMITIVE(thick_spherical_shell, py::arg("r_inner"), py::arg("r_outer"));
+  RIGID_BIND_PRIMITIVE(thin_spherical_shell, py::arg("r"));
+  RIGID_BIND_PRIMITIVE(solid_ellipsoid, py::arg("a"), py::arg("b"), py::arg("c"));
+  RIGID_BIND_PRIMITIVE(solid_box, py::arg("lx"), py::arg("ly"), py::arg("lz"));
+  RIGID_BIND_PRIMITIVE(solid_cylinder, py::arg("r"), py::arg("h"));
+  RIGID_BIND_PRIMITIVE(thick_tube, py::arg("r_inner"), py::arg("r_outer"), py::arg("h"));
+  RIGID_BIND_PRIMITIVE(thin_cylindrical_shell, py::arg("r"), py::arg("h"));
+  RIGID_BIND_PRIMITIVE(capped_cylindrical_shell, py::arg("r"), py::arg("h"));
+  RIGID_BIND_PRIMITIVE(solid_cone, py::arg("r"), py::arg("h"));
+  RIGID_BIND_PRIMITIVE(solid_frustum, py::arg("r_bottom"), py::arg("r_top"), py::arg("h"));
+  RIGID_BIND_PRIMITIVE(solid_capsule, py::arg("r"), py::arg("l"));
+  RIGID_BIND_PRIMITIVE(solid_torus, py::arg("R"), py::arg("a"));
+  RIGID_BIND_PRIMITIVE(thin_rod, py::arg("l"));
+  RIGID_BIND_PRIMITIVE(thin_rectangular_plate, py::arg("lx"), py::arg("ly"));
+  RIGID_BIND_PRIMITIVE(thin_disk, py::arg("r"));
+  RIGID_BIND_PRIMITIVE(solid_tetrahedron, py::arg("v0"), py::arg("v1"), py::arg("v2"), py::arg("v3"));
+  RIGID_BIND_PRIMITIVE(disk_lamina, py::arg("r"));
+  RIGID_BIND_PRIMITIVE(annulus_lamina, py::arg("r_inner"), py::arg("r_outer"));
+  RIGID_BIND_PRIMITIVE(rectangle_lamina, py::arg("lx"), py::arg("ly"));
+  RIGID_BIND_PRIMITIVE(polygon_lamina, py::arg("vertices"));
+#undef RIGID_BIND_PRIMITIVE
+  mass.def("n_ball_with_mass", &rm::n_ball_with_mass, py::arg("n"), py::arg("m"), py::arg("r"));
+  mass.def("n_ball_with_density", &rm::n_ball_with_density, py::arg("n"), py::arg("rho"), py::arg("r"));
+  mass.def("n_box_with_mass", &rm::n_box_with_mass, py::arg("m"), py::arg("sizes"));
+  mass.def("n_box_with_density", &rm::n_box_with_density, py::arg("rho"), py::arg("sizes"));
+  mass.def("point_mass", &rm::point_mass, py::arg("m"), py::arg("p"));
+  mass.def(
+      "point_masses",
+      [](const std::vector<double>& masses, const Eigen::Matrix3Xd& points) {
+        return rm::point_masses(masses, points);
+      },
+      py::arg("masses"), py::arg("points"), "Point masses at the columns of a 3 × n array.");
+
+  py::class_<rm::DensityIntegration>(mass, "DensityIntegration")
+      .def_readonly("mass_properties", &rm::DensityIntegration::mass_properties)
+      .def_readonly("mass_error", &rm::DensityIntegration::mass_error)
+      .def_readonly("com_error", &rm::DensityIntegration::com_error)
+      .def_readonly("inertia_error", &rm::DensityIntegration::inertia_error)
+      .def_readonly("cells", &rm::DensityIntegration::cells)
+      .def_readonly("converged", &rm::DensityIntegration::converged);
+  auto opts = [](double tol, int cells) {
+    return rm::CubatureOptions{.relative_tolerance = tol, .max_cells = cells};
+  };
+  mass.def(
+      "integrate_density_over_box",
+      [opts](const rm::DensityFunction& rho, double lx, double ly, double lz, double tol, int cells) {
+        return rm::integrate_density_over_box(rho, lx, ly, lz, opts(tol, cells));
+      },
+      py::arg("rho"), py::arg("lx"), py::arg("ly"), py::arg("lz"),
+      py::arg("relative_tolerance") = 1e-10, py::arg("max_cells") = 2000);
+  mass.def(
+      "integrate_density_over_cylinder",
+      [opts](const rm::DensityFunction& rho, double r, double h, double tol, int cells) {
+        return rm::integrate_density_over_cylinder(rho, r, h, opts(tol, cells));
+      },
+      py::arg("rho"), py::arg("r"), py::arg("h"), py::arg("relative_tolerance") = 1e-10,
+      py::arg("max_cells") = 2000);
+  mass.def(
+      "integrate_density_over_sphere",
+      [opts](const rm::DensityFunction& rho, double r, double tol, int cells) {
+        return rm::integrate_density_over_sphere(rho, r, opts(tol, cells));
+      },
+      py::arg("rho"), py::arg("r"), py::arg("relative_tolerance") = 1e-10,
+      py::arg("max_cells") = 2000);
+
+  // inertial XML
+  auto parse_format = [](const std::string& f) {
+    for (auto k : {rigid::io::InertialFormat::urdf, rigid::io::InertialFormat::mjcf,
+                   rigid::io::InertialFormat::sdf}) {
+      if (f == rigid::io::to_string(k)) return k;
+    }
+    throw rigid::Error(fmt::format("format must be 'urdf', 'mjcf' or 'sdf', got '{}'", f));
+  };
+  mass.def(
+      "write_inertial_document",
+      [parse_format](const MassProperties& mp, const std::string& format, const std::string& name,
+                     bool principal) {
+        return rigid::io::write_inertial_document(mp, parse_format(format),
+                                                  {.name = name, .principal = principal});
+      },
+      py::arg("mp"), py::arg("format"), py::arg("name") = "body", py::arg("principal") = false,
+      "A minimal URDF/MJCF/SDF document holding one inertial.");
+  mass.def(
+      "read_inertials",
+      [](const std::string& xml, const std::string& source) {
+        py::list out;
+        for (const auto& e : rigid::io::read_inertials(xml, source)) {
+          py::dict d;
+          d["name"] = e.name;
+          d["line"] = e.line;
+          d["mass"] = e.mass;
+          d["com"] = e.com;
+          d["inertia_com"] = e.inertia_com;
+          d["problem"] = e.problem;
+          out.append(d);
+        }
+        return out;
+      },
+      py::arg("xml"), py::arg("source") = "<string>",
+      "Every inertial of a URDF/MJCF/SDF document as dicts (link frame, rotation applied).");
+}

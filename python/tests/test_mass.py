@@ -1,0 +1,91 @@
+"""rigid.MassProperties and rigid.mass: closed forms, identities, errors, XML round trip."""
+import math
+
+import numpy as np
+import pytest
+
+import rigid
+
+EPS = np.finfo(float).eps
+
+
+def test_cone_closed_form():
+    m, r, h = 2.5, 0.3, 1.2
+    cone = rigid.mass.solid_cone_with_mass(m, r, h)
+    assert cone.mass == m
+    np.testing.assert_allclose(cone.com, [0, 0, h / 4], rtol=0, atol=16 * EPS)
+    ixx = m * (3 * r * r / 20 + 3 * h * h / 80)
+    np.testing.assert_allclose(np.diag(cone.inertia_com), [ixx, ixx, 0.3 * m * r * r], rtol=1e-12)
+
+
+def test_parallel_axis_and_axis_moment():
+    s = rigid.mass.solid_sphere_with_mass(2.0, 0.5)
+    I_q = s.inertia_about(np.array([0.0, 0.0, 1.0]))
+    # 2/5 m r² + m d² about x and y, unchanged about z
+    np.testing.assert_allclose(np.diag(I_q), [0.2 + 2, 0.2 + 2, 0.2], rtol=1e-14)
+    assert s.inertia_about_axis([1.0, 0, 0], [0, 0, 1.0]) == pytest.approx(0.2 + 2, rel=1e-14)
+
+
+def test_tube_is_cylinder_minus_cylinder():
+    tube = rigid.mass.thick_tube_with_density(800, 0.02, 0.06, 0.3)
+    diff = rigid.subtract(rigid.mass.solid_cylinder_with_density(800, 0.06, 0.3),
+                          rigid.mass.solid_cylinder_with_density(800, 0.02, 0.3))
+    assert diff.mass == pytest.approx(tube.mass, rel=1e-13)
+    np.testing.assert_allclose(diff.inertia_com, tube.inertia_com, rtol=1e-12, atol=1e-18)
+
+
+def test_principal_axes_right_handed_and_rotation_invariant():
+    box = rigid.mass.solid_box_with_mass(2.0, 0.3, 0.5, 0.7)
+    c, s = math.cos(0.4), math.sin(0.4)
+    R = np.array([[c, -s, 0], [s, c, 0], [0, 0, 1.0]])
+    moments, R_BP = box.rotated(R).principal_axes()
+    np.testing.assert_allclose(moments, np.sort(np.diag(box.inertia_com)), rtol=1e-13)
+    assert np.linalg.det(R_BP) == pytest.approx(1.0, abs=1e-14)
+
+
+def test_combine_point_masses_and_numpy_shapes():
+    pts = np.array([[1.0, -1.0], [0.0, 0.0], [0.0, 0.0]])
+    mp = rigid.mass.point_masses([1.0, 1.0], pts)
+    np.testing.assert_allclose(mp.inertia_com, np.diag([0.0, 2.0, 2.0]), atol=8 * EPS)
+    both = rigid.combine([mp, rigid.mass.point_mass(2.0, [0.0, 0.0, 1.0])])
+    assert both.mass == 4.0
+    assert both.inertia_com.shape == (3, 3)
+
+
+def test_second_moments_and_laminae():
+    ball = rigid.mass.n_ball_with_mass(4, 1.0, 1.0)
+    np.testing.assert_allclose(ball.J_com, np.eye(4) / 6, rtol=1e-15)
+    Omega = np.zeros((4, 4))
+    Omega[0, 1], Omega[1, 0] = 1.0, -1.0
+    np.testing.assert_allclose(ball.apply(Omega), Omega / 3, rtol=1e-15)
+    sq = rigid.mass.polygon_lamina_with_mass(1.0, np.array([[0, 1, 1, 0], [0, 0, 1, 1.0]]))
+    assert sq.moment_com == pytest.approx(1 / 6, rel=1e-14)  # m (a² + b²)/12
+
+
+def test_density_cubature_linear_density():
+    # ρ = 1 + x on the unit cube centred at 0: m = 1, x_C = 1/12
+    res = rigid.mass.integrate_density_over_box(lambda p: 1.0 + p[0], 1.0, 1.0, 1.0)
+    assert res.converged
+    assert res.mass_properties.mass == pytest.approx(1.0, abs=res.mass_error + 1e-14)
+    assert res.mass_properties.com[0] == pytest.approx(1 / 12, abs=res.com_error + 1e-14)
+
+
+def test_xml_round_trip_with_rotated_frame():
+    c, s = math.cos(0.7), math.sin(0.7)
+    R = np.array([[1.0, 0, 0], [0, c, -s], [0, s, c]])
+    mp = rigid.mass.solid_box_with_mass(2.0, 0.3, 0.5, 0.7).transformed(R, np.array([0.1, 0.2, 0.3]))
+    for fmt in ("urdf", "mjcf", "sdf"):
+        doc = rigid.mass.write_inertial_document(mp, fmt, name="link", principal=True)
+        (entry,) = rigid.mass.read_inertials(doc)
+        assert entry["name"] == "link" and entry["problem"] is None
+        np.testing.assert_allclose(entry["inertia_com"], mp.inertia_com, rtol=0, atol=1e-15)
+
+
+def test_errors_are_rigid_errors():
+    with pytest.raises(rigid.Error, match="radius must be positive and finite, got -1 m"):
+        rigid.mass.solid_sphere_with_mass(1.0, -1.0)
+    with pytest.raises(ValueError, match=r"violate I₁ \+ I₂ ≥ I₃ by 1 kg·m²"):
+        rigid.MassProperties(1.0, np.zeros(3), np.diag([1.0, 2.0, 4.0]))
+    assert "violate" in rigid.MassProperties.check(1.0, np.zeros(3), np.diag([1.0, 2.0, 4.0]))
+    with pytest.raises(rigid.Error, match="format must be 'urdf', 'mjcf' or 'sdf'"):
+        rigid.mass.write_inertial_document(rigid.mass.point_mass(1.0, np.zeros(3)), "obj")
