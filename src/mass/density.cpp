@@ -113,7 +113,8 @@ void evaluate(const Integrand& f, Cell& cell) {
     }
   }
   cell.kronrod = k;
-  // the Gauss–Kronrod difference overestimates the Kronrod error for smooth integrands,
+  // the Gauss–Kronrod difference [Piessens1983] overestimates the Kronrod error for smooth
+  // integrands,
   // which is what makes it a safe estimate
   cell.error = (k - g).cwiseAbs();
 }

@@ -141,7 +141,8 @@ PolygonMoments polygon_moments(const Eigen::Matrix2Xd& v) {
       }
     }
   }
-  // vertex 0 is the local origin (reduces round-off for polygons far from the origin)
+  // shoelace moment sums [Steger1996]; vertex 0 is the local origin (reduces round-off for
+  // polygons far from the origin)
   double A2 = 0.0;  // 2A
   Eigen::Vector2d F6 = Eigen::Vector2d::Zero();  // 6 A c
   double Sxx12 = 0.0;

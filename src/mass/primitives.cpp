@@ -245,7 +245,8 @@ UnitBody tetrahedron(const char* fn, const Eigen::Vector3d& v0, const Eigen::Vec
   }
   const double V = std::abs(det) / 6.0;
   // S = V/20 (Σ e eᵀ + (Σ e)(Σ e)ᵀ): the exact second moment of a uniform simplex about
-  // a vertex, from ∫ x xᵀ over the simplex = V (Σ_i e_i e_iᵀ + s sᵀ)/20 with s = Σ e_i.
+  // a vertex, from ∫ x xᵀ over the simplex = V (Σ_i e_i e_iᵀ + s sᵀ)/20 with s = Σ e_i
+  // [Tonon2005].
   const Eigen::Vector3d s = E.rowwise().sum();
   const Eigen::Matrix3d S = V / 20.0 * (E * E.transpose() + s * s.transpose());
   const Eigen::Vector3d c = s / 4.0;
