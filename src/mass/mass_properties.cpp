@@ -5,6 +5,7 @@
 #include <utility>
 #include <vector>
 
+#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 
@@ -88,6 +89,18 @@ std::optional<std::string> MassProperties::check(double mass, const Eigen::Vecto
         i, j, j, i, worst, tol, to_string(I_C_B));
   }
   const Eigen::Matrix3d sym = 0.5 * (I_C_B + I_C_B.transpose());
+  // fast path: I₁ + I₂ ≥ I₃ for every ordering ⇔ J = ½ tr(I) 1 − I is positive semidefinite
+  // (its eigenvalues are (I₁ + I₂ − I₃)/2 and permutations). So both conditions hold with the
+  // margin tol exactly when I + tol·1 and J + tol·1 have Cholesky factors; the eigenvalues
+  // (for the message with the margin) are only computed when one of them fails.
+  if (tol > 0.0) {
+    const Eigen::Matrix3d shift = tol * Eigen::Matrix3d::Identity();
+    const Eigen::Matrix3d J = 0.5 * sym.trace() * Eigen::Matrix3d::Identity() - sym;
+    if (Eigen::LLT<Eigen::Matrix3d>(sym + shift).info() == Eigen::Success &&
+        Eigen::LLT<Eigen::Matrix3d>(J + 0.5 * shift).info() == Eigen::Success) {
+      return std::nullopt;
+    }
+  }
   const Eigen::Vector3d moments =
       Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(sym, Eigen::EigenvaluesOnly).eigenvalues();
   if (moments(0) < -tol) {

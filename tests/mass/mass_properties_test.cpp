@@ -4,6 +4,7 @@
 #include <limits>
 
 #include <Eigen/Geometry>
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "support/expect_error.hpp"
@@ -75,6 +76,24 @@ TEST(MassProperties, RejectsTriangleInequalityWithMargin) {
   // the boundary case (a flat plate) is legal.
   const Eigen::Matrix3d plate = Eigen::Vector3d(1, 2, 3).asDiagonal();
   EXPECT_NO_THROW(MassProperties(1.0, Eigen::Vector3d::Zero(), plate));
+}
+
+TEST(MassProperties, ToleranceBoundaryIsTheStatedOne) {
+  // tol = 1e-10·tr I ≈ 6e-10 here. Rotated so that the check cannot rely on a diagonal.
+  const Eigen::Matrix3d R =
+      Eigen::AngleAxisd(1.1, Eigen::Vector3d(1, -1, 2).normalized()).toRotationMatrix();
+  auto tensor = [&](double I3) {
+    return Eigen::Matrix3d(R * Eigen::Vector3d(1, 2, I3).asDiagonal() * R.transpose());
+  };
+  EXPECT_FALSE(MassProperties::check(1.0, Eigen::Vector3d::Zero(), tensor(3.0 + 1e-10)).has_value());
+  EXPECT_THAT(MassProperties::check(1.0, Eigen::Vector3d::Zero(), tensor(3.0 + 2e-9)).value_or(""),
+              ::testing::HasSubstr("violate I₁ + I₂ ≥ I₃ by 2e-09 kg·m²"));
+  // a smallest moment of −1e-10 is inside the tolerance, −1e-8 is not
+  const Eigen::Matrix3d near_zero = R * Eigen::Vector3d(-1e-10, 2, 2).asDiagonal() * R.transpose();
+  EXPECT_FALSE(MassProperties::check(1.0, Eigen::Vector3d::Zero(), near_zero).has_value());
+  const Eigen::Matrix3d negative = R * Eigen::Vector3d(-1e-8, 2, 2).asDiagonal() * R.transpose();
+  EXPECT_THAT(MassProperties::check(1.0, Eigen::Vector3d::Zero(), negative).value_or(""),
+              ::testing::HasSubstr("not positive semidefinite"));
 }
 
 TEST(MassProperties, PointMassHasZeroInertia) {
