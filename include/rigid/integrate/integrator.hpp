@@ -1,0 +1,70 @@
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace rigid::integrate {
+
+/// The integration methods on R^n.
+enum class Method {
+  kRk4,               ///< classical Runge–Kutta, order 4, fixed step (Boost.odeint)
+  kDopri5,            ///< Dormand–Prince 5(4), adaptive step, dense output (Boost.odeint)
+  kImplicitMidpoint,  ///< y1 = y0 + h f(t + h/2, (y0 + y1)/2): order 2, symplectic for any L
+  kStormerVerlet,     ///< velocity Verlet for y = (q, v), a = a(t, q): order 2, symplectic
+};
+
+/// "rk4", "dopri5", "implicit_midpoint", "stormer_verlet".
+[[nodiscard]] std::string_view to_string(Method method);
+/// Inverse of to_string(). @throws rigid::Error naming the accepted names.
+[[nodiscard]] Method parse_method(std::string_view name);
+
+/// dy/dt = rhs(t, y). The right-hand side writes into `dydt` (already sized like y) and may
+/// throw rigid::Error (e.g. a singular mass matrix), which ends the run.
+using Rhs = std::function<void(double t, const Eigen::VectorXd& y, Eigen::VectorXd& dydt)>;
+
+/// An initial-value problem y(t0) = y0, dy/dt = rhs(t, y) on [t0, t_end].
+struct Problem {
+  Rhs rhs;
+  Eigen::VectorXd y0;
+  double t0 = 0.0;   ///< s
+  double t_end = 0;  ///< s, > t0
+  /// Störmer–Verlet only: y = (q, v) with q the first n_position components, dq/dt = v
+  /// and dv/dt = a(t, q) not depending on v. -1: half of y.
+  int n_position = -1;
+  /// Names of the components of y for error messages (empty: y[i]).
+  std::vector<std::string> names;
+};
+
+/// Integration settings. Units: seconds.
+struct Options {
+  Method method = Method::kDopri5;
+  double dt = 1e-3;          ///< fixed step; initial step of dopri5
+  double rtol = 1e-10;       ///< dopri5 relative tolerance
+  double atol = 1e-10;       ///< dopri5 absolute tolerance
+  double output_dt = 0.0;    ///< spacing of output samples; 0: every step (and t_end)
+  int max_newton = 30;       ///< implicit midpoint: Newton iterations per step
+  double newton_tol = 1e-14; ///< implicit midpoint: relative correction at convergence
+  std::size_t max_steps = 500'000'000;
+};
+
+/// Output samples y(t[k]) = y[k] and counters.
+struct Solution {
+  std::vector<double> t;
+  std::vector<Eigen::VectorXd> y;
+  std::size_t steps = 0;
+  std::size_t rhs_evaluations = 0;
+};
+
+/// Integrates `problem` with `options`. Every step is checked for a non-finite state.
+/// @throws rigid::Error for bad options (non-positive dt, t_end ≤ t0, ...), a non-finite
+///         state (naming the step, t and the component), a diverging Newton iteration, or
+///         whatever the right-hand side throws.
+[[nodiscard]] Solution integrate(const Problem& problem, const Options& options);
+
+}  // namespace rigid::integrate

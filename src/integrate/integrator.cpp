@@ -1,0 +1,300 @@
+#include "rigid/integrate/integrator.hpp"
+
+#include <cmath>
+#include <vector>
+
+#include <Eigen/LU>
+#include <boost/numeric/odeint/integrate/null_observer.hpp>
+#include <boost/numeric/odeint/stepper/generation.hpp>
+#include <boost/numeric/odeint/stepper/runge_kutta4.hpp>
+#include <boost/numeric/odeint/stepper/runge_kutta_dopri5.hpp>
+#include <fmt/format.h>
+
+#include "rigid/common/error.hpp"
+
+namespace rigid::integrate {
+namespace {
+
+namespace odeint = boost::numeric::odeint;
+using StdState = std::vector<double>;
+
+std::string component_name(const Problem& p, Eigen::Index i) {
+  if (static_cast<std::size_t>(i) < p.names.size()) return p.names[static_cast<std::size_t>(i)];
+  return fmt::format("y[{}]", i);
+}
+
+// cheap per-step check (as MuJoCo's mj_checkPos): the first non-finite component is named
+void check_finite(const Problem& p, std::size_t step, double t, const Eigen::VectorXd& y) {
+  for (Eigen::Index i = 0; i < y.size(); ++i) {
+    if (!std::isfinite(y[i])) [[unlikely]] {
+      std::string state;
+      for (Eigen::Index j = 0; j < y.size(); ++j) {
+        state += fmt::format("{}{}={}", j ? ", " : "", component_name(p, j), y[j]);
+      }
+      detail::throw_error("integrate",
+                          fmt::format("non-finite state at step {}, t = {} s: {} = {} ({}); "
+                                      "reduce the step or check the model",
+                                      step, t, component_name(p, i), y[i], state));
+    }
+  }
+}
+
+// adapts the Eigen right-hand side to odeint's std::vector state
+struct OdeintSystem {
+  const Problem* problem;
+  Eigen::VectorXd* y;
+  Eigen::VectorXd* dydt;
+  std::size_t* evaluations;
+  void operator()(const StdState& x, StdState& dxdt, double t) const {
+    *y = Eigen::Map<const Eigen::VectorXd>(x.data(), static_cast<Eigen::Index>(x.size()));
+    problem->rhs(t, *y, *dydt);
+    ++*evaluations;
+    Eigen::Map<Eigen::VectorXd>(dxdt.data(), static_cast<Eigen::Index>(dxdt.size())) = *dydt;
+  }
+};
+
+// number of fixed steps of size ≈ dt covering [t0, t_end] (the last one shortened) and the
+// number of steps between output samples
+struct FixedGrid {
+  std::size_t steps;
+  std::size_t stride;
+};
+
+FixedGrid make_grid(const Problem& p, const Options& o) {
+  const double span = p.t_end - p.t0;
+  const double n = std::ceil(span / o.dt * (1.0 - 1e-12));
+  RIGID_REQUIRE(n <= static_cast<double>(o.max_steps),
+                "(t_end - t0)/dt = {} steps exceeds max_steps = {}", n, o.max_steps);
+  std::size_t stride = 1;
+  if (o.output_dt > 0) {
+    const double k = std::round(o.output_dt / o.dt);
+    RIGID_REQUIRE(k >= 1 && std::abs(k * o.dt - o.output_dt) <= 1e-9 * o.output_dt,
+                  "output_dt = {} s must be a whole multiple of the fixed step dt = {} s",
+                  o.output_dt, o.dt);
+    stride = static_cast<std::size_t>(k);
+  }
+  return {static_cast<std::size_t>(n), stride};
+}
+
+// one implicit-midpoint step y1 = y0 + h f(t + h/2, (y0 + y1)/2), solved by a simplified
+// Newton iteration on k = (y1 - y0)/h with a finite-difference Jacobian J ≈ ∂f/∂y taken once
+// per step: (1 - h/2 J) δk = f(t + h/2, y0 + h/2 k) - k
+class ImplicitMidpoint {
+ public:
+  ImplicitMidpoint(const Problem& p, const Options& o, std::size_t* evals)
+      : p_(p), o_(o), evals_(evals) {
+    const auto n = p.y0.size();
+    k_.resize(n);
+    f_.resize(n);
+    f0_.resize(n);
+    fp_.resize(n);
+    ym_.resize(n);
+    J_.resize(n, n);
+  }
+
+  void step(double t, double h, Eigen::VectorXd& y, std::size_t step_index) {
+    const auto n = y.size();
+    const double tm = t + 0.5 * h;
+    // explicit predictor k = f(t + h/2, y0)
+    p_.rhs(tm, y, f0_);
+    ++*evals_;
+    k_ = f0_;
+    // forward-difference Jacobian at y0, step √ε·max(1, |y_j|)
+    for (Eigen::Index j = 0; j < n; ++j) {
+      ym_ = y;
+      const double e = 1.4901161193847656e-08 * std::max(1.0, std::abs(y[j]));
+      ym_[j] += e;
+      p_.rhs(tm, ym_, fp_);
+      ++*evals_;
+      J_.col(j) = (fp_ - f0_) / e;
+    }
+    lu_.compute(Eigen::MatrixXd::Identity(n, n) - 0.5 * h * J_);
+    double prev = std::numeric_limits<double>::infinity();
+    for (int it = 0; it < o_.max_newton; ++it) {
+      ym_ = y + 0.5 * h * k_;
+      p_.rhs(tm, ym_, f_);
+      ++*evals_;
+      const Eigen::VectorXd dk = lu_.solve(f_ - k_);
+      k_ += dk;
+      const double size = h * dk.lpNorm<Eigen::Infinity>();
+      const double scale = std::max(1.0, y.lpNorm<Eigen::Infinity>());
+      if (size <= o_.newton_tol * scale || (size >= prev && size <= 1e3 * o_.newton_tol * scale)) {
+        y += h * k_;
+        return;
+      }
+      prev = size;
+    }
+    detail::throw_error("integrate",
+                        fmt::format("implicit midpoint: Newton iteration did not converge in {} "
+                                    "iterations at step {}, t = {} s; reduce dt = {} s",
+                                    o_.max_newton, step_index, t, h));
+  }
+
+ private:
+  const Problem& p_;
+  const Options& o_;
+  std::size_t* evals_;
+  Eigen::VectorXd k_, f_, f0_, fp_, ym_;
+  Eigen::MatrixXd J_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
+};
+
+Solution run_fixed(const Problem& p, const Options& o) {
+  const FixedGrid grid = make_grid(p, o);
+  Solution sol;
+  Eigen::VectorXd y = p.y0;
+  sol.t.push_back(p.t0);
+  sol.y.push_back(y);
+  const auto n = y.size();
+  Eigen::VectorXd a(n), work(n);
+
+  Eigen::Index np = p.n_position;
+  if (o.method == Method::kStormerVerlet) {
+    if (np < 0) {
+      RIGID_REQUIRE(n % 2 == 0,
+                    "Störmer–Verlet needs y = (q, v) of even size or n_position, got size {}", n);
+      np = n / 2;
+    }
+    RIGID_REQUIRE(2 * np == n, "Störmer–Verlet needs y = (q, v) with |q| = |v|, got n_position "
+                  "= {} for a state of size {}", np, n);
+  }
+
+  odeint::runge_kutta4<StdState> rk4;
+  StdState x(static_cast<std::size_t>(n));
+  Eigen::VectorXd ybuf(n), dbuf(n);
+  OdeintSystem sys{&p, &ybuf, &dbuf, &sol.rhs_evaluations};
+  ImplicitMidpoint midpoint(p, o, &sol.rhs_evaluations);
+
+  bool have_accel = false;  // Störmer–Verlet reuses a(t1, q1) as the next step's a(t0, q0)
+  for (std::size_t k = 0; k < grid.steps; ++k) {
+    const double t = p.t0 + static_cast<double>(k) * o.dt;
+    const double t1 = (k + 1 == grid.steps) ? p.t_end : p.t0 + static_cast<double>(k + 1) * o.dt;
+    const double h = t1 - t;
+    switch (o.method) {
+      case Method::kRk4: {
+        Eigen::Map<Eigen::VectorXd>(x.data(), n) = y;
+        rk4.do_step(sys, x, t, h);
+        y = Eigen::Map<const Eigen::VectorXd>(x.data(), n);
+        break;
+      }
+      case Method::kImplicitMidpoint:
+        midpoint.step(t, h, y, k);
+        break;
+      case Method::kStormerVerlet: {
+        // v_{1/2} = v0 + h/2 a(t0, q0); q1 = q0 + h v_{1/2}; v1 = v_{1/2} + h/2 a(t1, q1)
+        if (!have_accel) {
+          p.rhs(t, y, a);
+          ++sol.rhs_evaluations;
+        }
+        y.tail(np) += 0.5 * h * a.tail(np);
+        y.head(np) += h * y.tail(np);
+        p.rhs(t1, y, a);
+        ++sol.rhs_evaluations;
+        y.tail(np) += 0.5 * h * a.tail(np);
+        have_accel = true;
+        break;
+      }
+      case Method::kDopri5:
+        RIGID_ASSERT(false);
+        break;
+    }
+    ++sol.steps;
+    check_finite(p, k + 1, t1, y);
+    if ((k + 1) % grid.stride == 0 || k + 1 == grid.steps) {
+      sol.t.push_back(t1);
+      sol.y.push_back(y);
+    }
+  }
+  return sol;
+}
+
+Solution run_dopri5(const Problem& p, const Options& o) {
+  Solution sol;
+  const auto n = p.y0.size();
+  Eigen::VectorXd ybuf(n), dbuf(n);
+  OdeintSystem sys{&p, &ybuf, &dbuf, &sol.rhs_evaluations};
+  auto stepper = odeint::make_dense_output(o.atol, o.rtol, odeint::runge_kutta_dopri5<StdState>());
+  StdState x0(p.y0.data(), p.y0.data() + n);
+  stepper.initialize(x0, p.t0, std::min(o.dt, p.t_end - p.t0));
+  sol.t.push_back(p.t0);
+  sol.y.push_back(p.y0);
+  StdState xo(static_cast<std::size_t>(n));
+  std::size_t next_output = 1;
+  auto output_time = [&](std::size_t k) {
+    return std::min(p.t_end, p.t0 + static_cast<double>(k) * o.output_dt);
+  };
+  while (stepper.current_time() < p.t_end) {
+    RIGID_REQUIRE(sol.steps < o.max_steps, "dopri5 took more than max_steps = {} steps before "
+                  "t_end = {} s (at t = {} s)", o.max_steps, p.t_end, stepper.current_time());
+    stepper.do_step(sys);
+    ++sol.steps;
+    const StdState& xc = stepper.current_state();
+    const double tc = stepper.current_time();
+    check_finite(p, sol.steps, tc, Eigen::Map<const Eigen::VectorXd>(xc.data(), n));
+    if (o.output_dt > 0) {
+      // dense output at every sample time passed by this step
+      while (next_output >= 1 && sol.t.back() < p.t_end && output_time(next_output) <= tc) {
+        const double to = output_time(next_output);
+        stepper.calc_state(to, xo);
+        sol.t.push_back(to);
+        sol.y.emplace_back(Eigen::Map<const Eigen::VectorXd>(xo.data(), n));
+        ++next_output;
+      }
+    } else if (tc <= p.t_end) {
+      sol.t.push_back(tc);
+      sol.y.emplace_back(Eigen::Map<const Eigen::VectorXd>(xc.data(), n));
+    } else {
+      stepper.calc_state(p.t_end, xo);
+      sol.t.push_back(p.t_end);
+      sol.y.emplace_back(Eigen::Map<const Eigen::VectorXd>(xo.data(), n));
+    }
+  }
+  if (sol.t.back() < p.t_end) {  // round-off in the sample times: close on t_end exactly
+    stepper.calc_state(p.t_end, xo);
+    sol.t.push_back(p.t_end);
+    sol.y.emplace_back(Eigen::Map<const Eigen::VectorXd>(xo.data(), n));
+  }
+  return sol;
+}
+
+}  // namespace
+
+std::string_view to_string(Method method) {
+  switch (method) {
+    case Method::kRk4: return "rk4";
+    case Method::kDopri5: return "dopri5";
+    case Method::kImplicitMidpoint: return "implicit_midpoint";
+    case Method::kStormerVerlet: return "stormer_verlet";
+  }
+  return "?";
+}
+
+Method parse_method(std::string_view name) {
+  for (Method m : {Method::kRk4, Method::kDopri5, Method::kImplicitMidpoint,
+                   Method::kStormerVerlet}) {
+    if (name == to_string(m)) return m;
+  }
+  RIGID_THROW("unknown integrator '{}'; expected one of rk4, dopri5, implicit_midpoint, "
+              "stormer_verlet", name);
+}
+
+Solution integrate(const Problem& problem, const Options& options) {
+  RIGID_REQUIRE(static_cast<bool>(problem.rhs), "the problem has no right-hand side");
+  RIGID_REQUIRE(problem.y0.size() > 0, "the initial state is empty");
+  RIGID_REQUIRE(std::isfinite(problem.t0) && std::isfinite(problem.t_end) &&
+                    problem.t_end > problem.t0,
+                "t_end = {} s must be finite and greater than t0 = {} s", problem.t_end,
+                problem.t0);
+  RIGID_REQUIRE(std::isfinite(options.dt) && options.dt > 0,
+                "dt must be positive and finite, got {} s", options.dt);
+  RIGID_REQUIRE(std::isfinite(options.output_dt) && options.output_dt >= 0,
+                "output_dt must be ≥ 0 (0: every step), got {} s", options.output_dt);
+  RIGID_REQUIRE(options.rtol > 0 && options.atol > 0,
+                "tolerances must be positive, got rtol = {}, atol = {}", options.rtol,
+                options.atol);
+  check_finite(problem, 0, problem.t0, problem.y0);
+  if (options.method == Method::kDopri5) return run_dopri5(problem, options);
+  return run_fixed(problem, options);
+}
+
+}  // namespace rigid::integrate

@@ -1,0 +1,119 @@
+#include "rigid/integrate/integrator.hpp"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "support/expect_error.hpp"
+#include "support/tolerance.hpp"
+
+namespace rigid::integrate {
+namespace {
+
+using test::ulps;
+
+// harmonic oscillator q'' = -q, q(0) = 1, v(0) = 0: q = cos t, v = -sin t
+Problem oscillator(double t_end) {
+  Problem p;
+  p.rhs = [](double, const Eigen::VectorXd& y, Eigen::VectorXd& d) {
+    d[0] = y[1];
+    d[1] = -y[0];
+  };
+  p.y0 = Eigen::Vector2d(1.0, 0.0);
+  p.t_end = t_end;
+  return p;
+}
+
+double final_error(Method m, double dt) {
+  const Solution s = integrate(oscillator(2.0), Options{.method = m, .dt = dt});
+  const double t = s.t.back();
+  return std::hypot(s.y.back()[0] - std::cos(t), s.y.back()[1] + std::sin(t));
+}
+
+// measured order: err(dt)/err(dt/2) = 2^p within ±10% (the leading error term dominates at
+// these step sizes; the errors stay far above round-off, ≥ 1e-10)
+void expect_order(Method m, double dt, double p) {
+  const double ratio = final_error(m, dt) / final_error(m, dt / 2);
+  EXPECT_NEAR(ratio, std::pow(2.0, p), 0.1 * std::pow(2.0, p)) << to_string(m);
+}
+
+TEST(Integrator, Rk4IsFourthOrder) { expect_order(Method::kRk4, 0.05, 4); }
+TEST(Integrator, ImplicitMidpointIsSecondOrder) {
+  expect_order(Method::kImplicitMidpoint, 0.02, 2);
+}
+TEST(Integrator, StormerVerletIsSecondOrder) { expect_order(Method::kStormerVerlet, 0.02, 2); }
+
+TEST(Integrator, Dopri5MeetsItsToleranceWithDenseOutput) {
+  const Solution s = integrate(oscillator(10.0), Options{.method = Method::kDopri5,
+                                                         .rtol = 1e-12, .atol = 1e-12,
+                                                         .output_dt = 0.1});
+  ASSERT_EQ(s.t.size(), 101u);
+  for (std::size_t k = 0; k < s.t.size(); ++k) {
+    EXPECT_NEAR(s.t[k], 0.1 * static_cast<double>(k), ulps(64, 10.0));
+    // global error of a 1e-12 local tolerance over ~10 s of a stable oscillator: < 1e-10
+    EXPECT_NEAR(s.y[k][0], std::cos(s.t[k]), 1e-10);
+    EXPECT_NEAR(s.y[k][1], -std::sin(s.t[k]), 1e-10);
+  }
+  EXPECT_EQ(s.t.back(), 10.0);
+}
+
+TEST(Integrator, Dopri5ErrorShrinksWithTolerance) {
+  auto err = [](double tol) {
+    const Solution s = integrate(oscillator(5.0), Options{.method = Method::kDopri5,
+                                                          .rtol = tol, .atol = tol});
+    return std::abs(s.y.back()[0] - std::cos(5.0));
+  };
+  // a 5th-order method: 1e4 smaller tolerance gives ≥ 100× smaller error
+  EXPECT_LT(err(1e-10), err(1e-6) / 100);
+}
+
+TEST(Integrator, SymplecticMethodsBoundTheEnergyError) {
+  // 1000 periods with 63 steps per period: the energy ½(q² + v²) oscillates but does not drift
+  for (Method m : {Method::kImplicitMidpoint, Method::kStormerVerlet}) {
+    const Solution s = integrate(oscillator(2000 * M_PI), Options{.method = m, .dt = 0.1,
+                                                                  .output_dt = 1.0});
+    double worst = 0;
+    for (const auto& y : s.y) worst = std::max(worst, std::abs(0.5 * y.squaredNorm() - 0.5));
+    // implicit midpoint conserves quadratic invariants exactly (up to the Newton tolerance);
+    // Verlet's modified energy differs from H by O(h²) = h²/8 ≈ 1.3e-3
+    EXPECT_LT(worst, m == Method::kImplicitMidpoint ? 1e-10 : 2e-3) << to_string(m);
+  }
+}
+
+TEST(Integrator, OutputSpacingOfFixedSteps) {
+  const Solution s = integrate(oscillator(1.05), Options{.method = Method::kRk4, .dt = 0.01,
+                                                         .output_dt = 0.1});
+  ASSERT_EQ(s.t.size(), 12u);  // 0, 0.1, ..., 1.0 and the final t_end
+  EXPECT_EQ(s.t.back(), 1.05);
+  EXPECT_EQ(s.steps, 105u);
+}
+
+TEST(Integrator, ParsesMethodNames) {
+  EXPECT_EQ(parse_method("implicit_midpoint"), Method::kImplicitMidpoint);
+  EXPECT_RIGID_ERROR((void)parse_method("euler"), "unknown integrator 'euler'");
+}
+
+TEST(Integrator, RejectsBadOptions) {
+  EXPECT_RIGID_ERROR((void)integrate(oscillator(1.0), Options{.dt = -1}),
+                     "dt must be positive and finite, got -1 s");
+  EXPECT_RIGID_ERROR((void)integrate(oscillator(-1.0), Options{}),
+                     "t_end = -1 s must be finite and greater than t0 = 0 s");
+  EXPECT_RIGID_ERROR((void)integrate(oscillator(1.0), Options{.method = Method::kRk4,
+                                                              .dt = 0.03, .output_dt = 0.1}),
+                     "output_dt = 0.1 s must be a whole multiple of the fixed step");
+}
+
+TEST(Integrator, StopsOnNonFiniteStateNamingTheComponent) {
+  // y' = y², y(0) = 1 blows up at t = 1
+  Problem p;
+  p.rhs = [](double, const Eigen::VectorXd& y, Eigen::VectorXd& d) { d[0] = y[0] * y[0]; };
+  p.y0 = Eigen::VectorXd::Constant(1, 1.0);
+  p.t_end = 2.0;
+  p.names = {"x"};
+  EXPECT_RIGID_ERROR((void)integrate(p, Options{.method = Method::kRk4, .dt = 0.1}),
+                     "non-finite state at step");
+  EXPECT_RIGID_ERROR((void)integrate(p, Options{.method = Method::kRk4, .dt = 0.1}), "x = ");
+}
+
+}  // namespace
+}  // namespace rigid::integrate
