@@ -50,7 +50,7 @@ inline void add_inertia_command(CLI::App& app) {
 
   // anything else: `rigid inertia SOURCE [options]` (mesh files plug in here)
   auto source = std::make_shared<rigid::cli::InertiaSourceOptions>();
-  inertia->add_option("SOURCE", source->source, "a primitive name (see above) or a file");
+  inertia->add_option("SOURCE", source->source, "a file with a body to measure (the primitives are the subcommands below)");
   add_inertia_output_options(inertia, source->output);
   // unknown words after an unknown SOURCE reach the callback, which names the real problem
   inertia->allow_extras();

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include "mass/reference_quadrature.hpp"
 #include "rigid/mass/primitives.hpp"
 #include "support/expect_error.hpp"
 #include "support/tolerance.hpp"
@@ -24,6 +25,38 @@ TEST(MassProperties2, LaminaeClosedForms) {
   EXPECT_NEAR(ring.moment_com(), 1.5 * (0.01 + 0.09), ulps(4));
   const auto rect = mass::rectangle_lamina_with_mass(3.0, 0.4, 0.2);
   EXPECT_NEAR(rect.moment_com(), 3.0 * (0.16 + 0.04) / 12, ulps(4));
+}
+
+TEST(MassProperties2, LaminaeAgainstQuadrature) {
+  // the lamina's polar moment is I_zz of the same planar region mapped into z = 0
+  const double sigma = 3.0;
+  const double r1 = 0.1;
+  const double r2 = 0.4;
+  const auto ring = mass::annulus_lamina_with_density(sigma, r1, r2);
+  const auto ref = test::reference_moments({[=](const Eigen::Vector3d& u) {
+    const double s = r1 + (r2 - r1) * u(0);
+    const double th = 2 * pi * u(1);
+    return test::MappedPoint{Eigen::Vector3d(s * std::cos(th), s * std::sin(th), 0),
+                             sigma * (r2 - r1) * 2 * pi * s};
+  }});
+  EXPECT_NEAR(ring.mass(), ref.mass, ref.mass_error);
+  EXPECT_NEAR(ring.moment_com(), ref.inertia_com(2, 2), ref.inertia_error);
+  // an L-shaped (non-convex) polygon: two rectangles [0,2]×[0,1] and [0,1]×[1,3]
+  Eigen::Matrix2Xd L(2, 6);
+  L << 0, 2, 2, 1, 1, 0,  //
+      0, 0, 1, 1, 3, 3;
+  const auto poly = mass::polygon_lamina_with_density(sigma, L);
+  const auto refL = test::reference_moments(
+      {[=](const Eigen::Vector3d& u) {
+         return test::MappedPoint{Eigen::Vector3d(2 * u(0), u(1), 0), sigma * 2};
+       },
+       [=](const Eigen::Vector3d& u) {
+         return test::MappedPoint{Eigen::Vector3d(u(0), 1 + 2 * u(1), 0), sigma * 2};
+       }});
+  EXPECT_NEAR(poly.mass(), refL.mass, refL.mass_error);
+  EXPECT_NEAR(poly.com().x(), refL.com.x(), refL.com_error);
+  EXPECT_NEAR(poly.com().y(), refL.com.y(), refL.com_error);
+  EXPECT_NEAR(poly.moment_com(), refL.inertia_com(2, 2), refL.inertia_error);
 }
 
 TEST(MassProperties2, PerpendicularAxisTheorem) {
