@@ -34,6 +34,10 @@ inline void add_inertia_command(CLI::App& app) {
       cmd->add_option_function<double>(
           "--" + name, [opts, key = name](double v) { opts->sizes[key] = v; }, help);
     }
+    for (const auto& [name, help] : spec.points) {
+      cmd->add_option_function<std::string>(
+          "--" + name, [opts, key = name](const std::string& v) { opts->points[key] = v; }, help);
+    }
     cmd->add_option_function<double>(
         "--mass", [opts](double v) { opts->mass = v; }, "mass (kg)");
     cmd->add_option_function<double>(

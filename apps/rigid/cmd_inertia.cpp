@@ -1,6 +1,7 @@
 #include "cmd_inertia.hpp"
 
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <functional>
 
@@ -16,7 +17,8 @@ namespace rigid::cli {
 namespace {
 
 using Sizes = std::map<std::string, double>;
-using Factory = std::function<MassProperties(double, const Sizes&)>;
+using Points = std::map<std::string, Eigen::Vector3d>;
+using Factory = std::function<MassProperties(double, const Sizes&, const Points&)>;
 
 struct Primitive {
   PrimitiveSpec spec;
@@ -31,98 +33,111 @@ const std::vector<Primitive>& primitives() {
     const std::string A = "kg/m²";
     auto add = [&](std::string name, std::string help,
                    std::vector<std::pair<std::string, std::string>> sizes, std::string unit,
-                   Factory m, Factory d) {
+                   Factory m, Factory d,
+                   std::vector<std::pair<std::string, std::string>> points = {}) {
       t.push_back(Primitive{PrimitiveSpec{std::move(name), std::move(help), std::move(sizes),
-                                          std::move(unit)},
+                                          std::move(unit), std::move(points)},
                             std::move(m), std::move(d)});
     };
     auto s = [](const Sizes& z, const char* k) { return z.at(k); };
     add("sphere", "solid sphere, centred", {{"radius", "radius (m)"}}, V,
-        [=](double m, const Sizes& z) { return mass::solid_sphere_with_mass(m, s(z, "radius")); },
-        [=](double d, const Sizes& z) { return mass::solid_sphere_with_density(d, s(z, "radius")); });
+        [=](double m, const Sizes& z, const Points&) { return mass::solid_sphere_with_mass(m, s(z, "radius")); },
+        [=](double d, const Sizes& z, const Points&) { return mass::solid_sphere_with_density(d, s(z, "radius")); });
     add("thick-spherical-shell", "solid shell between two spheres, centred",
         {{"inner-radius", "inner radius (m)"}, {"outer-radius", "outer radius (m)"}}, V,
-        [=](double m, const Sizes& z) { return mass::thick_spherical_shell_with_mass(m, s(z, "inner-radius"), s(z, "outer-radius")); },
-        [=](double d, const Sizes& z) { return mass::thick_spherical_shell_with_density(d, s(z, "inner-radius"), s(z, "outer-radius")); });
+        [=](double m, const Sizes& z, const Points&) { return mass::thick_spherical_shell_with_mass(m, s(z, "inner-radius"), s(z, "outer-radius")); },
+        [=](double d, const Sizes& z, const Points&) { return mass::thick_spherical_shell_with_density(d, s(z, "inner-radius"), s(z, "outer-radius")); });
     add("thin-spherical-shell", "spherical surface, centred (density in kg/m²)",
         {{"radius", "radius (m)"}}, A,
-        [=](double m, const Sizes& z) { return mass::thin_spherical_shell_with_mass(m, s(z, "radius")); },
-        [=](double d, const Sizes& z) { return mass::thin_spherical_shell_with_density(d, s(z, "radius")); });
+        [=](double m, const Sizes& z, const Points&) { return mass::thin_spherical_shell_with_mass(m, s(z, "radius")); },
+        [=](double d, const Sizes& z, const Points&) { return mass::thin_spherical_shell_with_density(d, s(z, "radius")); });
     add("ellipsoid", "solid ellipsoid, semi-axes along x, y, z, centred",
         {{"semi-x", "semi-axis along x (m)"}, {"semi-y", "semi-axis along y (m)"}, {"semi-z", "semi-axis along z (m)"}}, V,
-        [=](double m, const Sizes& z) { return mass::solid_ellipsoid_with_mass(m, s(z, "semi-x"), s(z, "semi-y"), s(z, "semi-z")); },
-        [=](double d, const Sizes& z) { return mass::solid_ellipsoid_with_density(d, s(z, "semi-x"), s(z, "semi-y"), s(z, "semi-z")); });
+        [=](double m, const Sizes& z, const Points&) { return mass::solid_ellipsoid_with_mass(m, s(z, "semi-x"), s(z, "semi-y"), s(z, "semi-z")); },
+        [=](double d, const Sizes& z, const Points&) { return mass::solid_ellipsoid_with_density(d, s(z, "semi-x"), s(z, "semi-y"), s(z, "semi-z")); });
     add("box", "solid box, edges along x, y, z, centred",
         {{"lx", "edge along x (m)"}, {"ly", "edge along y (m)"}, {"lz", "edge along z (m)"}}, V,
-        [=](double m, const Sizes& z) { return mass::solid_box_with_mass(m, s(z, "lx"), s(z, "ly"), s(z, "lz")); },
-        [=](double d, const Sizes& z) { return mass::solid_box_with_density(d, s(z, "lx"), s(z, "ly"), s(z, "lz")); });
+        [=](double m, const Sizes& z, const Points&) { return mass::solid_box_with_mass(m, s(z, "lx"), s(z, "ly"), s(z, "lz")); },
+        [=](double d, const Sizes& z, const Points&) { return mass::solid_box_with_density(d, s(z, "lx"), s(z, "ly"), s(z, "lz")); });
     add("cylinder", "solid cylinder, axis z, centred", {{"radius", "radius (m)"}, {"height", "height (m)"}}, V,
-        [=](double m, const Sizes& z) { return mass::solid_cylinder_with_mass(m, s(z, "radius"), s(z, "height")); },
-        [=](double d, const Sizes& z) { return mass::solid_cylinder_with_density(d, s(z, "radius"), s(z, "height")); });
+        [=](double m, const Sizes& z, const Points&) { return mass::solid_cylinder_with_mass(m, s(z, "radius"), s(z, "height")); },
+        [=](double d, const Sizes& z, const Points&) { return mass::solid_cylinder_with_density(d, s(z, "radius"), s(z, "height")); });
     add("tube", "thick-walled tube, axis z, centred",
         {{"inner-radius", "inner radius (m)"}, {"outer-radius", "outer radius (m)"}, {"height", "height (m)"}}, V,
-        [=](double m, const Sizes& z) { return mass::thick_tube_with_mass(m, s(z, "inner-radius"), s(z, "outer-radius"), s(z, "height")); },
-        [=](double d, const Sizes& z) { return mass::thick_tube_with_density(d, s(z, "inner-radius"), s(z, "outer-radius"), s(z, "height")); });
+        [=](double m, const Sizes& z, const Points&) { return mass::thick_tube_with_mass(m, s(z, "inner-radius"), s(z, "outer-radius"), s(z, "height")); },
+        [=](double d, const Sizes& z, const Points&) { return mass::thick_tube_with_density(d, s(z, "inner-radius"), s(z, "outer-radius"), s(z, "height")); });
     add("cylindrical-shell", "thin open cylindrical surface, axis z, centred (density in kg/m²)",
         {{"radius", "radius (m)"}, {"height", "height (m)"}}, A,
-        [=](double m, const Sizes& z) { return mass::thin_cylindrical_shell_with_mass(m, s(z, "radius"), s(z, "height")); },
-        [=](double d, const Sizes& z) { return mass::thin_cylindrical_shell_with_density(d, s(z, "radius"), s(z, "height")); });
+        [=](double m, const Sizes& z, const Points&) { return mass::thin_cylindrical_shell_with_mass(m, s(z, "radius"), s(z, "height")); },
+        [=](double d, const Sizes& z, const Points&) { return mass::thin_cylindrical_shell_with_density(d, s(z, "radius"), s(z, "height")); });
     add("capped-cylindrical-shell", "thin cylindrical surface with end disks, axis z, centred (kg/m²)",
         {{"radius", "radius (m)"}, {"height", "height (m)"}}, A,
-        [=](double m, const Sizes& z) { return mass::capped_cylindrical_shell_with_mass(m, s(z, "radius"), s(z, "height")); },
-        [=](double d, const Sizes& z) { return mass::capped_cylindrical_shell_with_density(d, s(z, "radius"), s(z, "height")); });
+        [=](double m, const Sizes& z, const Points&) { return mass::capped_cylindrical_shell_with_mass(m, s(z, "radius"), s(z, "height")); },
+        [=](double d, const Sizes& z, const Points&) { return mass::capped_cylindrical_shell_with_density(d, s(z, "radius"), s(z, "height")); });
     add("cone", "solid cone, base at z = 0, apex at z = height", {{"radius", "base radius (m)"}, {"height", "height (m)"}}, V,
-        [=](double m, const Sizes& z) { return mass::solid_cone_with_mass(m, s(z, "radius"), s(z, "height")); },
-        [=](double d, const Sizes& z) { return mass::solid_cone_with_density(d, s(z, "radius"), s(z, "height")); });
+        [=](double m, const Sizes& z, const Points&) { return mass::solid_cone_with_mass(m, s(z, "radius"), s(z, "height")); },
+        [=](double d, const Sizes& z, const Points&) { return mass::solid_cone_with_density(d, s(z, "radius"), s(z, "height")); });
     add("frustum", "solid conical frustum, bottom at z = 0, top at z = height",
         {{"bottom-radius", "radius at z = 0 (m)"}, {"top-radius", "radius at z = height (m)"}, {"height", "height (m)"}}, V,
-        [=](double m, const Sizes& z) { return mass::solid_frustum_with_mass(m, s(z, "bottom-radius"), s(z, "top-radius"), s(z, "height")); },
-        [=](double d, const Sizes& z) { return mass::solid_frustum_with_density(d, s(z, "bottom-radius"), s(z, "top-radius"), s(z, "height")); });
+        [=](double m, const Sizes& z, const Points&) { return mass::solid_frustum_with_mass(m, s(z, "bottom-radius"), s(z, "top-radius"), s(z, "height")); },
+        [=](double d, const Sizes& z, const Points&) { return mass::solid_frustum_with_density(d, s(z, "bottom-radius"), s(z, "top-radius"), s(z, "height")); });
     add("capsule", "solid capsule, axis z, centred (total length = length + 2 radius)",
         {{"radius", "radius (m)"}, {"length", "length of the cylindrical part (m)"}}, V,
-        [=](double m, const Sizes& z) { return mass::solid_capsule_with_mass(m, s(z, "radius"), s(z, "length")); },
-        [=](double d, const Sizes& z) { return mass::solid_capsule_with_density(d, s(z, "radius"), s(z, "length")); });
+        [=](double m, const Sizes& z, const Points&) { return mass::solid_capsule_with_mass(m, s(z, "radius"), s(z, "length")); },
+        [=](double d, const Sizes& z, const Points&) { return mass::solid_capsule_with_density(d, s(z, "radius"), s(z, "length")); });
     add("torus", "solid torus, axis z, centred",
         {{"major-radius", "radius of the centre circle (m)"}, {"minor-radius", "radius of the tube (m)"}}, V,
-        [=](double m, const Sizes& z) { return mass::solid_torus_with_mass(m, s(z, "major-radius"), s(z, "minor-radius")); },
-        [=](double d, const Sizes& z) { return mass::solid_torus_with_density(d, s(z, "major-radius"), s(z, "minor-radius")); });
+        [=](double m, const Sizes& z, const Points&) { return mass::solid_torus_with_mass(m, s(z, "major-radius"), s(z, "minor-radius")); },
+        [=](double d, const Sizes& z, const Points&) { return mass::solid_torus_with_density(d, s(z, "major-radius"), s(z, "minor-radius")); });
     add("rod", "thin rod along z, centred (density in kg/m)", {{"length", "length (m)"}}, "kg/m",
-        [=](double m, const Sizes& z) { return mass::thin_rod_with_mass(m, s(z, "length")); },
-        [=](double d, const Sizes& z) { return mass::thin_rod_with_density(d, s(z, "length")); });
+        [=](double m, const Sizes& z, const Points&) { return mass::thin_rod_with_mass(m, s(z, "length")); },
+        [=](double d, const Sizes& z, const Points&) { return mass::thin_rod_with_density(d, s(z, "length")); });
     add("plate", "thin rectangular plate in the xy-plane, centred (kg/m²)",
         {{"lx", "edge along x (m)"}, {"ly", "edge along y (m)"}}, A,
-        [=](double m, const Sizes& z) { return mass::thin_rectangular_plate_with_mass(m, s(z, "lx"), s(z, "ly")); },
-        [=](double d, const Sizes& z) { return mass::thin_rectangular_plate_with_density(d, s(z, "lx"), s(z, "ly")); });
+        [=](double m, const Sizes& z, const Points&) { return mass::thin_rectangular_plate_with_mass(m, s(z, "lx"), s(z, "ly")); },
+        [=](double d, const Sizes& z, const Points&) { return mass::thin_rectangular_plate_with_density(d, s(z, "lx"), s(z, "ly")); });
     add("disk", "thin disk in the xy-plane, centred (kg/m²)", {{"radius", "radius (m)"}}, A,
-        [=](double m, const Sizes& z) { return mass::thin_disk_with_mass(m, s(z, "radius")); },
-        [=](double d, const Sizes& z) { return mass::thin_disk_with_density(d, s(z, "radius")); });
+        [=](double m, const Sizes& z, const Points&) { return mass::thin_disk_with_mass(m, s(z, "radius")); },
+        [=](double d, const Sizes& z, const Points&) { return mass::thin_disk_with_density(d, s(z, "radius")); });
+    auto v = [](const Points& z, const char* k) { return z.at(k); };
+    add("tetrahedron", "solid tetrahedron with the given vertices (coordinates kept)", {}, V,
+        [=](double m, const Sizes&, const Points& z) { return mass::solid_tetrahedron_with_mass(m, v(z, "v0"), v(z, "v1"), v(z, "v2"), v(z, "v3")); },
+        [=](double d, const Sizes&, const Points& z) { return mass::solid_tetrahedron_with_density(d, v(z, "v0"), v(z, "v1"), v(z, "v2"), v(z, "v3")); },
+        {{"v0", "vertex 0 as x,y,z (m)"}, {"v1", "vertex 1 as x,y,z (m)"}, {"v2", "vertex 2 as x,y,z (m)"}, {"v3", "vertex 3 as x,y,z (m)"}});
     return t;
   }();
   return table;
 }
 
-Eigen::Vector3d parse_about(const std::string& about, const MassProperties& mp) {
-  if (about == "com") return mp.com();
-  if (about == "origin") return Eigen::Vector3d::Zero();
+// "x,y,z" in metres; `what` names the option in the message
+Eigen::Vector3d parse_xyz(const std::string& text, const std::string& what) {
   Eigen::Vector3d p;
   std::size_t start = 0;
   for (int i = 0; i < 3; ++i) {
-    const std::size_t end = i < 2 ? about.find(',', start) : about.size();
+    const std::size_t end = i < 2 ? text.find(',', start) : text.size();
     const bool ok_sep = end != std::string::npos;
-    double v = 0.0;
-    const char* first = about.data() + start;
-    const char* last = about.data() + (ok_sep ? end : about.size());
-    const auto [ptr, ec] = std::from_chars(first, last, v);
-    if (!ok_sep || ec != std::errc() || ptr != last || !std::isfinite(v)) {
-      RIGID_THROW("--about must be 'com', 'origin' or a point 'x,y,z' in metres, got '{}'", about);
+    double value = 0.0;
+    const char* first = text.data() + start;
+    const char* last = text.data() + (ok_sep ? end : text.size());
+    const auto [ptr, ec] = std::from_chars(first, last, value);
+    if (!ok_sep || ec != std::errc() || ptr != last || !std::isfinite(value)) {
+      RIGID_THROW("{} must be a point 'x,y,z' in metres, got '{}'", what, text);
     }
-    p(i) = v;
+    p(i) = value;
     start = end + 1;
   }
   return p;
 }
 
-// + 0.0 turns −0 into 0 in the output
+Eigen::Vector3d parse_about(const std::string& about, const MassProperties& mp) {
+  if (about == "com") return mp.com();
+  if (about == "origin") return Eigen::Vector3d::Zero();
+  if (about.find(',') == std::string::npos) {
+    RIGID_THROW("--about must be 'com', 'origin' or a point 'x,y,z' in metres, got '{}'", about);
+  }
+  return parse_xyz(about, "--about");
+}
+
 std::string json_vec(const Eigen::Vector3d& v) {
   return fmt::format("[{}, {}, {}]", v(0) + 0.0, v(1) + 0.0, v(2) + 0.0);
 }
@@ -221,8 +236,14 @@ void run_inertia_primitive(const InertiaPrimitiveOptions& opts) {
   for (const auto& [name, help] : prim->spec.sizes) {
     RIGID_REQUIRE(opts.sizes.count(name) == 1, "{} needs --{} ({})", opts.primitive, name, help);
   }
-  const MassProperties mp = opts.mass ? prim->with_mass(*opts.mass, opts.sizes)
-                                      : prim->with_density(*opts.density, opts.sizes);
+  Points points;
+  for (const auto& [name, help] : prim->spec.points) {
+    const auto it = opts.points.find(name);
+    RIGID_REQUIRE(it != opts.points.end(), "{} needs --{} ({})", opts.primitive, name, help);
+    points[name] = parse_xyz(it->second, "--" + name);
+  }
+  const MassProperties mp = opts.mass ? prim->with_mass(*opts.mass, opts.sizes, points)
+                                      : prim->with_density(*opts.density, opts.sizes, points);
   emit_inertia(mp, opts.output);
 }
 

@@ -33,6 +33,7 @@ struct PrimitiveSpec {
   std::string help;
   std::vector<std::pair<std::string, std::string>> sizes;  ///< (option, help)
   std::string density_unit;                                ///< kg/m³, kg/m² or kg/m
+  std::vector<std::pair<std::string, std::string>> points;  ///< (option, help): "x,y,z" values
 };
 
 /// The primitives `rigid inertia` knows, in help order.
@@ -41,7 +42,8 @@ struct PrimitiveSpec {
 /// Options of `rigid inertia <primitive>`.
 struct InertiaPrimitiveOptions {
   std::string primitive;
-  std::map<std::string, double> sizes;  ///< option name → value (m)
+  std::map<std::string, double> sizes;        ///< option name → value (m)
+  std::map<std::string, std::string> points;  ///< option name → "x,y,z" (m)
   std::optional<double> mass;           ///< kg
   std::optional<double> density;        ///< kg/m³ (kg/m² shells and plates, kg/m rods)
   InertiaOutputOptions output;

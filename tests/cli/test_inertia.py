@@ -50,6 +50,16 @@ def test_about_point_uses_parallel_axis(run):
     assert j["about"] == [0, 0, 1]
 
 
+def test_tetrahedron_about_origin(run):
+    # unit corner tetrahedron of mass 1: about the origin ∫x² dm = 1/10, ∫xy dm = 1/20
+    j = json.loads(run("inertia", "tetrahedron", "--v0", "0,0,0", "--v1", "1,0,0", "--v2", "0,1,0",
+                       "--v3", "0,0,1", "--mass", 1, "--about", "origin", "--format", "json",
+                       check=True).stdout)
+    assert j["com"] == pytest.approx([0.25] * 3, rel=REL)
+    assert j["inertia"][0][0] == pytest.approx(0.2, rel=REL)
+    assert j["inertia"][0][1] == pytest.approx(-0.05, rel=REL)
+
+
 def test_principal_frame_json_and_mjcf(run):
     j = json.loads(run("inertia", "box", "--lx", 3, "--ly", 1, "--lz", 2, "--mass", 12,
                        "--frame", "principal", "--format", "json", check=True).stdout)
@@ -91,7 +101,10 @@ def test_sdf_output_parses(run):
     (("tube", "--inner-radius", 0.2, "--outer-radius", 0.1, "--height", 1, "--mass", 1), "inner radius must be less than outer radius"),
     (("disk", "--radius", 1, "--density", -1), "density must be positive and finite, got -1 kg/m²"),
     (("blob", "--radius", 1), "unknown primitive 'blob'; expected one of sphere"),
-    (("sphere", "--radius", 1, "--mass", 1, "--about", "1,2"), "--about must be 'com', 'origin' or a point 'x,y,z'"),
+    (("sphere", "--radius", 1, "--mass", 1, "--about", "1,2"), "--about must be a point 'x,y,z' in metres, got '1,2'"),
+    (("sphere", "--radius", 1, "--mass", 1, "--about", "centre"), "--about must be 'com', 'origin' or a point 'x,y,z'"),
+    (("tetrahedron", "--v0", "0,0,0", "--v1", "1,0,0", "--v2", "0,1,0", "--mass", 1), "tetrahedron needs --v3"),
+    (("tetrahedron", "--v0", "0,0,0", "--v1", "1,0,0", "--v2", "0,1,0", "--v3", "1,1,0", "--mass", 1), "the tetrahedron is degenerate"),
     (("sphere", "--radius", 1, "--mass", 1, "--format", "yaml"), "--format must be one of text, json, urdf, mjcf, sdf; got 'yaml'"),
     (("sphere", "--radius", 1, "--mass", 1, "--frame", "world"), "--frame must be 'body' or 'principal'"),
     (("sphere", "--radius", 1, "--mass", 1, "--format", "urdf", "--about", "origin"), "urdf stores the inertia about the center of mass"),
