@@ -77,9 +77,13 @@ void bind_mass(py::module_& m) {
 
   auto mass = m.def_submodule("mass", "Primitive bodies, laminae, n-D bodies, density cubature.");
   namespace rm = rigid::mass;
-#define RIGID_BIND_PRIMITIVE(name, ...)                                 \
-  mass.def(#name "_with_mass", &rm::name##_with_mass, py::arg("m"), __VA_ARGS__); \
-  mass.def(#name "_with_density", &rm::name##_with_density, py::arg("rho"), __VA_ARGS__)
+  // docstrings: the frames and formulas of every primitive are in docs/mass.md
+#define RIGID_BIND_PRIMITIVE(name, ...)                                                     \
+  mass.def(#name "_with_mass", &rm::name##_with_mass, py::arg("m"), __VA_ARGS__,            \
+           "Uniform " #name " of mass m (kg); sizes in m (frame and formula: docs/mass.md)."); \
+  mass.def(#name "_with_density", &rm::name##_with_density, py::arg("rho"), __VA_ARGS__,    \
+           "Uniform " #name " of density rho (kg/m³, kg/m² for shells/plates/laminae, kg/m "  \
+           "for the rod); sizes in m.")
   RIGID_BIND_PRIMITIVE(solid_sphere, py::arg("r"));
   RIGID_BIND_PRIMITIVE(thick_spherical_shell, py::arg("r_inner"), py::arg("r_outer"));
   RIGID_BIND_PRIMITIVE(thin_spherical_shell, py::arg("r"));

@@ -142,7 +142,7 @@ UnitBody capped_thin_cylinder(const char* fn, double r, double h) {
   return diagonal_body(A, Ixx / A, Ixx / A, Izz / A);
 }
 
-UnitBody frustum(const char* fn, double r1, double r2, double h) {
+UnitBody frustum(double r1, double r2, double h) {
   // ρ = 1; radius r(z) = r₁ + d z/h, d = r₂ − r₁.
   //   V    = ∫ π r² dz            = π h (r₁² + r₁r₂ + r₂²)/3
   //   F_z  = ∫ π r² z dz          = π h² (r₁²/2 + 2r₁d/3 + d²/4)
@@ -159,7 +159,6 @@ UnitBody frustum(const char* fn, double r1, double r2, double h) {
   const double zc = Fz / V;
   // about the base origin I_xx = S_yy + S_zz; shift to the COM.
   const double Ixx = 0.5 * Izz + Szz - V * zc * zc;
-  (void)fn;
   return diagonal_body(V, Ixx / V, Ixx / V, Izz / V, Eigen::Vector3d(0, 0, zc));
 }
 
@@ -175,7 +174,7 @@ UnitBody checked_frustum(const char* fn, double r1, double r2, double h) {
   require_size(fn, "bottom radius", r1);
   require_size(fn, "top radius", r2);
   require_size(fn, "height", h);
-  return frustum(fn, r1, r2, h);
+  return frustum(r1, r2, h);
 }
 
 UnitBody capsule(const char* fn, double r, double l) {
