@@ -1,0 +1,193 @@
+#pragma once
+
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "rigid/common/error.hpp"
+#include "rigid/integrate/integrator.hpp"
+#include "rigid/mass/mass_properties.hpp"
+
+namespace rigid::lagrange {
+
+/// An expression string with, optionally, where it came from. Expressions use the names of
+/// the parameters, the coordinates `q`, their velocities `q_dot`, the time `t`, `pi`,
+/// numbers, `+ - * / ^ ( )` and sin cos tan asin acos atan exp log sqrt abs sinh cosh tanh.
+/// When `where` names a file, errors inside the expression are reported as
+/// `file:line:col` with col = where.column + offset; otherwise as the column in the text.
+struct Expression {
+  std::string text;
+  SourceLocation where;
+  Expression() = default;
+  Expression(std::string text_) : text(std::move(text_)) {}   // NOLINT: implicit on purpose
+  Expression(const char* text_) : text(text_) {}             // NOLINT: implicit on purpose
+  Expression(std::string text_, SourceLocation where_)
+      : text(std::move(text_)), where(std::move(where_)) {}
+};
+
+/// A named constant of the model (value in SI units).
+struct Parameter {
+  std::string name;
+  double value = 0.0;
+};
+
+/// A generalized coordinate with its initial value q(0) (m or rad) and velocity q̇(0).
+struct Coordinate {
+  std::string name;
+  double initial = 0.0;
+  double velocity = 0.0;
+};
+
+/// One rotation exp(θ [a]ₓ) about the fixed unit axis a (normalised on use) by angle θ (rad).
+struct AxisRotation {
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
+  Expression angle;
+};
+
+/// A rigid body whose pose is a function of q and t: p_WB (m) and R_WB = R₁ R₂ ⋯ R_k.
+/// Kinetic energy T = ½ m |ċ|² + ½ ω_Bᵀ I_C_B ω_B with c = p_WB + R_WB p_BC and ω_B read off
+/// R_WBᵀ Ṙ_WB; gravity adds V = −m g_W · c.
+struct Body {
+  std::string name;
+  MassProperties mass;
+  std::array<Expression, 3> position{Expression("0"), Expression("0"), Expression("0")};
+  std::vector<AxisRotation> rotations;
+};
+
+/// A named expression: potential V(q, t) (J), constraint g(q, t) = 0, or, for a force, the
+/// generalized force Q(q, q̇, t) on the coordinate called `name`.
+struct NamedExpression {
+  std::string name;
+  Expression expression;
+};
+
+/// Everything that defines a system. L = lagrangian + Σ_bodies (T − V_gravity) − Σ potentials;
+/// the equations are M(q, t) q̈ = f(q, q̇, t) + Q + Gᵀ λ, G q̈ = γ.
+struct SystemSpec {
+  std::vector<Parameter> parameters;
+  std::vector<Coordinate> coordinates;
+  Expression lagrangian;  ///< optional (empty text: 0), J
+  std::vector<Body> bodies;
+  Eigen::Vector3d gravity_W = Eigen::Vector3d::Zero();  ///< m/s², acts on the bodies
+  std::vector<NamedExpression> potentials;
+  std::vector<NamedExpression> forces;
+  std::vector<NamedExpression> constraints;
+};
+
+/// The derived equations as text and LaTeX, one line per coordinate / constraint.
+struct Equations {
+  std::string lagrangian_text, lagrangian_latex;   ///< L
+  std::vector<std::string> text;    ///< "Σ_j M_ij q̈_j = f_i + Σ_k λ_k ∂g_k/∂q_i" per coordinate
+  std::vector<std::string> latex;   ///< the same in LaTeX
+  std::vector<std::string> constraints_text;  ///< g_k(q, t) = 0
+  std::vector<std::string> constraints_latex;
+  std::string energy_text;          ///< Jacobi integral h = q̇·∂L/∂q̇ − L
+  std::vector<std::string> cyclic;  ///< names of cyclic coordinates
+};
+
+/// How to run a simulation (seconds).
+struct SimulationOptions {
+  double t_end = 1.0;
+  integrate::Method method = integrate::Method::kDopri5;
+  double dt = 1e-3;          ///< fixed step, initial step of dopri5
+  double tolerance = 1e-10;  ///< dopri5 relative and absolute tolerance
+  double output_dt = 0.0;    ///< spacing of output rows; 0: every step
+  /// Baumgarte stabilisation rate α (1/s) of the constraints: the solver enforces
+  /// g̈ + 2α ġ + α² g = 0 instead of g̈ = 0. 0 switches it off.
+  double stabilization = 10.0;
+  /// Initial conditions violating a constraint by more than this (m or rad, m/s or rad/s)
+  /// are refused ...
+  double consistency_tolerance = 1e-9;
+  /// ... unless this is set: then q(0) is projected onto g = 0 (minimum-norm Newton) and
+  /// q̇(0) onto ġ = 0.
+  bool project_initial = false;
+};
+
+/// A simulated trajectory; row k of every matrix is the sample at time t[k].
+struct Trajectory {
+  std::vector<std::string> coordinate_names, constraint_names, cyclic_names;
+  Eigen::VectorXd t;          ///< s
+  Eigen::MatrixXd q, q_dot;   ///< samples × n
+  Eigen::MatrixXd lambda;     ///< samples × m: multipliers (constraint forces, N or N·m)
+  Eigen::VectorXd energy;     ///< T + V (J)
+  Eigen::VectorXd jacobi;     ///< h = q̇·∂L/∂q̇ − L (J)
+  Eigen::MatrixXd cyclic_momenta;  ///< samples × #cyclic: p_i = ∂L/∂q̇_i
+  Eigen::VectorXd residual;        ///< max_k |g_k(q, t)| per sample
+  Eigen::VectorXd velocity_residual;  ///< max_k |ġ_k| per sample
+  std::size_t steps = 0, rhs_evaluations = 0;
+};
+
+/// A Lagrangian system: symbols, the Euler–Lagrange equations derived once (GiNaC) and
+/// compiled into a flat, common-subexpression-eliminated instruction tape evaluated in
+/// double; no symbolic work happens after construction.
+///
+/// Equations [Goldstein2002, eq. 1.57]: with p = ∂L/∂q̇,
+///   M = ∂²L/∂q̇∂q̇,  f = ∂L/∂q − (∂²L/∂q̇∂q) q̇ − ∂²L/∂q̇∂t + Q,
+///   M q̈ = f + Gᵀ λ,  G = ∂g/∂q,  G q̈ = γ = −(∂(G q̇ + g_t)/∂q q̇ + ∂(G q̇ + g_t)/∂t).
+class System {
+ public:
+  /// Parses, assembles and derives.
+  /// @throws rigid::Error for a parse error (with its column or file:line:col), an undefined
+  ///   symbol, a duplicate or invalid name, a velocity inside a position/constraint/potential,
+  ///   a force on an unknown coordinate, or a Lagrangian with a velocity it does not depend
+  ///   on quadratically (∂²L/∂q̇ᵢ² ≡ 0: singular mass matrix).
+  explicit System(const SystemSpec& spec);
+  ~System();
+  System(System&&) noexcept;
+  System& operator=(System&&) noexcept;
+  System(const System&) = delete;
+  System& operator=(const System&) = delete;
+
+  [[nodiscard]] int num_coordinates() const;
+  [[nodiscard]] int num_constraints() const;
+  [[nodiscard]] const std::vector<std::string>& coordinate_names() const;
+  [[nodiscard]] const std::vector<std::string>& constraint_names() const;
+  /// Names of coordinates with ∂L/∂qᵢ ≡ 0, no force and no constraint on them: their
+  /// momenta pᵢ = ∂L/∂q̇ᵢ are conserved.
+  [[nodiscard]] const std::vector<std::string>& cyclic_coordinates() const;
+  [[nodiscard]] Eigen::VectorXd initial_q() const;
+  [[nodiscard]] Eigen::VectorXd initial_q_dot() const;
+
+  /// Changes a parameter's value without re-deriving. @throws rigid::Error if unknown.
+  void set_parameter(const std::string& name, double value);
+
+  /// The equations for printing.
+  [[nodiscard]] Equations equations() const;
+
+  /// Evaluates M(q, t) (n × n) and f(q, q̇, t) + Q (n).
+  void mass_matrix_and_forces(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& q_dot,
+                              Eigen::MatrixXd& M, Eigen::VectorXd& f) const;
+  /// q̈ and λ at (t, q, q̇), with Baumgarte rate `stabilization` (1/s).
+  /// @throws rigid::Error naming t and q for a singular mass matrix or dependent constraints.
+  void accelerations(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& q_dot,
+                     Eigen::VectorXd& q_ddot, Eigen::VectorXd& lambda,
+                     double stabilization = 0.0) const;
+  /// T + V and the Jacobi integral h at (t, q, q̇).
+  [[nodiscard]] double energy(double t, const Eigen::VectorXd& q,
+                              const Eigen::VectorXd& q_dot) const;
+  [[nodiscard]] double jacobi_integral(double t, const Eigen::VectorXd& q,
+                                       const Eigen::VectorXd& q_dot) const;
+  /// g(q, t).
+  [[nodiscard]] Eigen::VectorXd constraint_residual(double t, const Eigen::VectorXd& q) const;
+
+  /// Number of instructions of the compiled dynamics tape (M, f, G, γ, g, ġ).
+  [[nodiscard]] std::size_t tape_size() const;
+
+  /// Simulates from the initial state of the spec (or the given q0, q̇0).
+  /// @throws rigid::Error for inconsistent initial conditions (with the residual) unless
+  ///   project_initial, dependent constraints (redundant or inconsistent, named), a mass
+  ///   matrix that is not positive definite, a singular mass matrix or non-finite state
+  ///   during the run (naming t and q), and bad options.
+  [[nodiscard]] Trajectory simulate(const SimulationOptions& options) const;
+  [[nodiscard]] Trajectory simulate(const SimulationOptions& options, const Eigen::VectorXd& q0,
+                                    const Eigen::VectorXd& q_dot0) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace rigid::lagrange

@@ -1,0 +1,215 @@
+#include "detail/tape.hpp"
+
+#include <cmath>
+
+#include "rigid/common/error.hpp"
+
+namespace rigid::lagrange::detail {
+namespace {
+
+constexpr std::int32_t kResultBase = 1 << 28;
+
+}  // namespace
+
+void Tape::evaluate(const double* inputs, double* outputs) const {
+  double* s = slots_.data();
+  std::copy(inputs, inputs + num_inputs_, s);
+  double* r = s + num_inputs_ + constants_.size();
+  for (const Instruction& in : code_) {
+    const double x = s[in.a];
+    double v;
+    switch (in.op) {
+      case Op::kAdd: v = x + s[in.b]; break;
+      case Op::kSub: v = x - s[in.b]; break;
+      case Op::kMul: v = x * s[in.b]; break;
+      case Op::kDiv: v = x / s[in.b]; break;
+      case Op::kNeg: v = -x; break;
+      case Op::kInv: v = 1.0 / x; break;
+      case Op::kSquare: v = x * x; break;
+      case Op::kPow: v = std::pow(x, s[in.b]); break;
+      case Op::kPowInt: {
+        // binary powering: ⌈log₂ k⌉ multiplications
+        int k = in.b;
+        double base = x;
+        v = 1.0;
+        while (k > 0) {
+          if (k & 1) v *= base;
+          base *= base;
+          k >>= 1;
+        }
+        break;
+      }
+      case Op::kSqrt: v = std::sqrt(x); break;
+      case Op::kInvSqrt: v = 1.0 / std::sqrt(x); break;
+      case Op::kSin: v = std::sin(x); break;
+      case Op::kCos: v = std::cos(x); break;
+      case Op::kTan: v = std::tan(x); break;
+      case Op::kAsin: v = std::asin(x); break;
+      case Op::kAcos: v = std::acos(x); break;
+      case Op::kAtan: v = std::atan(x); break;
+      case Op::kExp: v = std::exp(x); break;
+      case Op::kLog: v = std::log(x); break;
+      case Op::kAbs: v = std::abs(x); break;
+      case Op::kSinh: v = std::sinh(x); break;
+      case Op::kCosh: v = std::cosh(x); break;
+      case Op::kTanh: v = std::tanh(x); break;
+      default: v = 0.0; break;
+    }
+    *r++ = v;
+  }
+  for (std::size_t k = 0; k < outputs_.size(); ++k) outputs[k] = s[outputs_[k]];
+}
+
+TapeBuilder::TapeBuilder(const std::vector<GiNaC::symbol>& inputs) : num_inputs_(inputs.size()) {
+  for (std::size_t k = 0; k < inputs.size(); ++k) memo_[inputs[k]] = static_cast<std::int32_t>(k);
+}
+
+std::size_t TapeBuilder::add_output(const GiNaC::ex& e) {
+  outputs_.push_back(slot_of(e));
+  return outputs_.size() - 1;
+}
+
+std::int32_t TapeBuilder::constant_slot(double value) {
+  auto it = constant_slots_.find(value);
+  if (it != constant_slots_.end()) return it->second;
+  constants_.push_back(value);
+  const auto slot = -static_cast<std::int32_t>(constants_.size());
+  constant_slots_.emplace(value, slot);
+  return slot;
+}
+
+std::int32_t TapeBuilder::emit(Op op, std::int32_t a, std::int32_t b) {
+  code_.push_back({op, a, b});
+  return kResultBase + static_cast<std::int32_t>(code_.size() - 1);
+}
+
+std::int32_t TapeBuilder::emit_power(std::int32_t base, const GiNaC::ex& exponent) {
+  using GiNaC::numeric;
+  if (GiNaC::is_a<numeric>(exponent)) {
+    const numeric k = GiNaC::ex_to<numeric>(exponent);
+    if (k.is_integer()) {
+      const long n = k.to_long();
+      if (n == 1) return base;
+      if (n == 2) return emit(Op::kSquare, base);
+      if (n == -1) return emit(Op::kInv, base);
+      if (n > 0) return emit(Op::kPowInt, base, static_cast<std::int32_t>(n));
+      if (n == -2) return emit(Op::kInv, emit(Op::kSquare, base));
+      return emit(Op::kInv, emit(Op::kPowInt, base, static_cast<std::int32_t>(-n)));
+    }
+    if (k == numeric(1, 2)) return emit(Op::kSqrt, base);
+    if (k == numeric(-1, 2)) return emit(Op::kInvSqrt, base);
+    if (k == numeric(3, 2)) return emit(Op::kMul, base, emit(Op::kSqrt, base));
+    if (k == numeric(-3, 2)) return emit(Op::kInv, emit(Op::kMul, base, emit(Op::kSqrt, base)));
+  }
+  return emit(Op::kPow, base, slot_of(exponent));
+}
+
+std::int32_t TapeBuilder::slot_of(const GiNaC::ex& e) {
+  using namespace GiNaC;
+  auto found = memo_.find(e);
+  if (found != memo_.end()) return found->second;
+  std::int32_t s = 0;
+  if (is_a<numeric>(e)) {
+    RIGID_REQUIRE(ex_to<numeric>(e).is_real(), "complex constant {} in an expression",
+                  ex_to<numeric>(e).to_double());
+    s = constant_slot(ex_to<numeric>(e).to_double());
+  } else if (is_a<constant>(e)) {
+    s = constant_slot(ex_to<numeric>(e.evalf()).to_double());
+  } else if (is_a<symbol>(e)) {
+    std::ostringstream os;
+    os << e;
+    RIGID_ASSERT(false && "symbol without an input slot");
+    RIGID_THROW("internal: symbol '{}' has no input slot", os.str());
+  } else if (is_a<add>(e)) {
+    // a sum: positive terms added, terms with a negative numeric factor subtracted
+    std::int32_t acc = 0;
+    bool have = false;
+    for (std::size_t k = 0; k < e.nops(); ++k) {
+      ex term = e.op(k);
+      bool negative = false;
+      if (is_a<mul>(term)) {
+        const ex c = term.op(term.nops() - 1);
+        if (is_a<numeric>(c) && ex_to<numeric>(c).is_negative()) {
+          negative = true;
+          term = -term;
+        }
+      } else if (is_a<numeric>(term) && ex_to<numeric>(term).is_negative()) {
+        negative = true;
+        term = -term;
+      }
+      const std::int32_t t = slot_of(term);
+      if (!have) {
+        acc = negative ? emit(Op::kNeg, t) : t;
+        have = true;
+      } else {
+        acc = emit(negative ? Op::kSub : Op::kAdd, acc, t);
+      }
+    }
+    s = acc;
+  } else if (is_a<mul>(e)) {
+    // a product: factors with negative powers divide
+    std::int32_t num = 0, den = 0;
+    bool have_num = false, have_den = false;
+    for (std::size_t k = 0; k < e.nops(); ++k) {
+      const ex f = e.op(k);
+      if (is_a<power>(f) && is_a<numeric>(f.op(1)) && ex_to<numeric>(f.op(1)).is_negative()) {
+        const std::int32_t d = slot_of(pow(f.op(0), -f.op(1)));
+        den = have_den ? emit(Op::kMul, den, d) : d;
+        have_den = true;
+        continue;
+      }
+      const std::int32_t t = slot_of(f);
+      num = have_num ? emit(Op::kMul, num, t) : t;
+      have_num = true;
+    }
+    if (!have_num) {
+      s = emit(Op::kInv, den);
+    } else {
+      s = have_den ? emit(Op::kDiv, num, den) : num;
+    }
+  } else if (is_a<power>(e)) {
+    s = emit_power(slot_of(e.op(0)), e.op(1));
+  } else if (is_a<function>(e)) {
+    const std::string name = ex_to<function>(e).get_name();
+    static const std::map<std::string, Op> kFunctions = {
+        {"sin", Op::kSin},   {"cos", Op::kCos},   {"tan", Op::kTan},   {"asin", Op::kAsin},
+        {"acos", Op::kAcos}, {"atan", Op::kAtan}, {"exp", Op::kExp},   {"log", Op::kLog},
+        {"abs", Op::kAbs},   {"sinh", Op::kSinh}, {"cosh", Op::kCosh}, {"tanh", Op::kTanh}};
+    auto it = kFunctions.find(name);
+    RIGID_REQUIRE(it != kFunctions.end() && e.nops() == 1,
+                  "function '{}' cannot be compiled; supported: sin cos tan asin acos atan exp "
+                  "log sqrt abs sinh cosh tanh", name);
+    s = emit(it->second, slot_of(e.op(0)));
+  } else {
+    std::ostringstream os;
+    os << e;
+    RIGID_THROW("cannot compile the expression '{}'", os.str());
+  }
+  memo_.emplace(e, s);
+  return s;
+}
+
+Tape TapeBuilder::build() const {
+  Tape tape;
+  tape.num_inputs_ = num_inputs_;
+  tape.constants_ = constants_;
+  const auto nc = static_cast<std::int32_t>(constants_.size());
+  const auto ni = static_cast<std::int32_t>(num_inputs_);
+  auto resolve = [&](std::int32_t s) {
+    if (s >= kResultBase) return ni + nc + (s - kResultBase);
+    if (s < 0) return ni + (-1 - s);
+    return s;
+  };
+  tape.code_.reserve(code_.size());
+  for (const Instruction& in : code_) {
+    const bool binary = in.op == Op::kAdd || in.op == Op::kSub || in.op == Op::kMul ||
+                        in.op == Op::kDiv || in.op == Op::kPow;
+    tape.code_.push_back({in.op, resolve(in.a), binary ? resolve(in.b) : in.b});
+  }
+  for (std::int32_t o : outputs_) tape.outputs_.push_back(resolve(o));
+  tape.slots_.assign(num_inputs_ + constants_.size() + code_.size(), 0.0);
+  std::copy(constants_.begin(), constants_.end(), tape.slots_.begin() + ni);
+  return tape;
+}
+
+}  // namespace rigid::lagrange::detail

@@ -1,0 +1,1 @@
+#include "rigid/lagrange/system.hpp"
