@@ -1,1 +1,240 @@
 #include "rigid/lagrange/system.hpp"
+
+#include <cmath>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "support/expect_error.hpp"
+#include "support/tolerance.hpp"
+
+namespace rigid::lagrange {
+namespace {
+
+using integrate::Method;
+using ::testing::HasSubstr;
+
+SystemSpec pendulum_spec() {
+  SystemSpec spec;
+  spec.parameters = {{"m", 2.0}, {"l", 0.5}, {"g", 9.81}};
+  spec.coordinates = {{"theta", 0.3, 0.0}};
+  spec.lagrangian = "m*l^2/2*theta_dot^2 + m*g*l*cos(theta)";
+  return spec;
+}
+
+TEST(System, PendulumMassMatrixAndForce) {
+  const System sys(pendulum_spec());
+  Eigen::MatrixXd M;
+  Eigen::VectorXd f;
+  sys.mass_matrix_and_forces(0.0, Eigen::VectorXd::Constant(1, 0.7), Eigen::VectorXd::Zero(1), M,
+                             f);
+  // M = m l², f = −m g l sin θ
+  EXPECT_NEAR(M(0, 0), 2.0 * 0.25, test::ulps(4, 0.5));
+  EXPECT_NEAR(f[0], -2.0 * 9.81 * 0.5 * std::sin(0.7), test::ulps(8, 10.0));
+  EXPECT_TRUE(sys.cyclic_coordinates().empty());
+}
+
+TEST(System, SetParameterChangesTheNumbersWithoutRederiving) {
+  System sys(pendulum_spec());
+  sys.set_parameter("m", 3.0);
+  Eigen::MatrixXd M;
+  Eigen::VectorXd f;
+  sys.mass_matrix_and_forces(0.0, Eigen::VectorXd::Zero(1), Eigen::VectorXd::Zero(1), M, f);
+  EXPECT_NEAR(M(0, 0), 3.0 * 0.25, test::ulps(4, 1.0));
+  EXPECT_RIGID_ERROR(sys.set_parameter("mass", 1.0), "unknown parameter 'mass'");
+}
+
+TEST(System, EquationsPrintAsTextAndLatex) {
+  const Equations eq = System(pendulum_spec()).equations();
+  ASSERT_EQ(eq.text.size(), 1u);
+  // m l² θ̈ = −m g l sin θ, in GiNaC's canonical term order
+  EXPECT_THAT(eq.text[0], HasSubstr("theta_ddot"));
+  EXPECT_THAT(eq.text[0], HasSubstr("sin(theta)"));
+  EXPECT_THAT(eq.text[0], HasSubstr("l^2"));
+  EXPECT_THAT(eq.latex[0], HasSubstr("\\ddot{\\theta}"));
+  EXPECT_THAT(eq.latex[0], HasSubstr("\\sin(\\theta)"));
+  EXPECT_THAT(eq.energy_text, HasSubstr("theta_dot^2"));
+}
+
+TEST(System, ConstraintEquationsCarryMultipliers) {
+  SystemSpec spec;
+  spec.coordinates = {{"x", 1.0}, {"y"}};
+  spec.lagrangian = "(x_dot^2 + y_dot^2)/2";
+  spec.constraints = {{"line", "x + y - 1"}};
+  const Equations eq = System(spec).equations();
+  EXPECT_THAT(eq.text[0], HasSubstr("lambda_line"));
+  EXPECT_THAT(eq.latex[1], HasSubstr("\\lambda_{\\mathrm{line}}"));
+  ASSERT_EQ(eq.constraints_text.size(), 1u);
+  EXPECT_THAT(eq.constraints_text[0], HasSubstr("= 0"));
+}
+
+TEST(System, TrigonometricIdentitiesCancelInBodyKineticEnergy) {
+  // a point mass on a circle of radius l: |ċ|² = l² θ̇² (cos² + sin²) must print as l² θ̇²
+  SystemSpec spec;
+  spec.parameters = {{"l", 0.5}};
+  spec.coordinates = {{"theta"}};
+  spec.bodies.push_back(Body{"bob", MassProperties(2.0, Eigen::Vector3d::Zero(),
+                                                   Eigen::Matrix3d::Zero()),
+                             {"l*sin(theta)", "-l*cos(theta)", "0"}, {}});
+  const Equations eq = System(spec).equations();
+  EXPECT_THAT(eq.text[0], ::testing::Not(HasSubstr("cos")));
+  EXPECT_THAT(eq.text[0], ::testing::Not(HasSubstr("sin")));
+}
+
+TEST(System, CyclicCoordinatesAreDetected) {
+  SystemSpec spec;
+  spec.coordinates = {{"x"}, {"y"}, {"z"}};
+  spec.lagrangian = "(x_dot^2 + y_dot^2 + z_dot^2)/2 - 9.81*z";
+  spec.forces = {{"y", "-0.1*y_dot"}};  // damping makes y not cyclic
+  const System sys(spec);
+  EXPECT_EQ(sys.cyclic_coordinates(), std::vector<std::string>{"x"});
+}
+
+TEST(System, GeneralizedForceDampsTheMotion) {
+  // ẍ = −c ẋ: ẋ(t) = v0 e^{−c t}
+  SystemSpec spec;
+  spec.parameters = {{"c", 0.5}};
+  spec.coordinates = {{"x", 0.0, 2.0}};
+  spec.lagrangian = "x_dot^2/2";
+  spec.forces = {{"x", "-c*x_dot"}};
+  const Trajectory tr = System(spec).simulate({.t_end = 2.0, .tolerance = 1e-12});
+  EXPECT_NEAR(tr.q_dot(tr.t.size() - 1, 0), 2.0 * std::exp(-1.0), 1e-10);
+  EXPECT_NEAR(tr.q(tr.t.size() - 1, 0), 4.0 * (1 - std::exp(-1.0)), 1e-10);
+}
+
+TEST(System, TapeSharesCommonSubexpressions) {
+  // a 4-link chain repeats sin/cos of each angle across every entry of M and f
+  SystemSpec spec;
+  std::string x = "0", y = "0";
+  for (int i = 1; i <= 4; ++i) {
+    const std::string th = fmt::format("th{}", i);
+    spec.coordinates.push_back({th, 0.1 * i, 0.0});
+    x = fmt::format("{}+sin({})", x, th);
+    y = fmt::format("{}-cos({})", y, th);
+    spec.bodies.push_back(Body{fmt::format("b{}", i),
+                               MassProperties(1.0, Eigen::Vector3d::Zero(), Eigen::Matrix3d::Zero()),
+                               {x, y, "0"}, {}});
+  }
+  spec.gravity_W = Eigen::Vector3d(0, -9.81, 0);
+  const System sys(spec);
+  // without sharing M alone would need > 10 entries × several trig calls each; the whole
+  // tape (M, f) of the 4-link chain stays a few hundred instructions
+  EXPECT_LT(sys.tape_size(), 600u);
+  EXPECT_GT(sys.tape_size(), 20u);
+}
+
+// ---------------------------------------------------------------------------------------------
+// bad input
+
+TEST(SystemErrors, ParseErrorsSayWhere) {
+  SystemSpec spec = pendulum_spec();
+  spec.lagrangian = "m*l^2/2*theta_dot^2 + * cos(theta)";
+  EXPECT_RIGID_ERROR(System{spec}, "Lagrangian: unexpected '*'; expected a number, a name or "
+                                   "'(' at column 23");
+  spec.lagrangian = "m*(theta_dot^2";
+  EXPECT_RIGID_ERROR(System{spec}, "missing ')'");
+  spec.lagrangian = "m*theta_dot^2 + cosh(theta) + foo(theta)";
+  EXPECT_RIGID_ERROR(System{spec}, "unknown function 'foo'");
+  spec.lagrangian = "m*theta_dot^2 2";
+  EXPECT_RIGID_ERROR(System{spec}, "unexpected '2'; expected an operator or the end at column 15");
+  spec.lagrangian = "m*theta_dot^2/0";
+  EXPECT_RIGID_ERROR(System{spec}, "division by zero");
+}
+
+TEST(SystemErrors, UndefinedSymbolNamesTheKnownOnes) {
+  SystemSpec spec = pendulum_spec();
+  spec.lagrangian = "m*l^2/2*theta_dot^2 + m*g*l*cos(thta)";
+  EXPECT_RIGID_ERROR(System{spec}, "Lagrangian: undefined symbol 'thta'; known names: g, l, m, "
+                                   "t, theta, theta_dot, pi at column 33");
+}
+
+TEST(SystemErrors, SourceLocationsPointIntoTheFile) {
+  SystemSpec spec = pendulum_spec();
+  spec.potentials = {{"spring", Expression("k*theta^2", SourceLocation{"scene.toml", 12, 9})}};
+  EXPECT_RIGID_ERROR(System{spec}, "scene.toml:12:9: potential 'spring': undefined symbol 'k'");
+}
+
+TEST(SystemErrors, VelocitiesAreRefusedWherePositionsAreExpected) {
+  SystemSpec spec = pendulum_spec();
+  spec.constraints = {{"c", "theta_dot - 1"}};
+  EXPECT_RIGID_ERROR(System{spec}, "constraint 'c': depends on the velocity 'theta_dot'");
+  spec = pendulum_spec();
+  spec.potentials = {{"V", "theta*theta_dot"}};
+  EXPECT_RIGID_ERROR(System{spec}, "potential 'V': depends on the velocity 'theta_dot'");
+}
+
+TEST(SystemErrors, BadNames) {
+  SystemSpec spec = pendulum_spec();
+  spec.parameters.push_back({"theta", 1.0});
+  spec.coordinates = {{"theta"}};
+  EXPECT_RIGID_ERROR(System{spec}, "coordinate name 'theta' is already used by a parameter");
+  spec = pendulum_spec();
+  spec.coordinates.push_back({"t"});
+  EXPECT_RIGID_ERROR(System{spec}, "coordinate name 't' is reserved");
+  spec = pendulum_spec();
+  spec.coordinates.push_back({"2x"});
+  EXPECT_RIGID_ERROR(System{spec}, "coordinate name '2x' is not a valid name");
+  spec = pendulum_spec();
+  spec.forces = {{"phi", "1"}};
+  EXPECT_RIGID_ERROR(System{spec}, "force on 'phi': no coordinate of that name; coordinates: theta");
+  EXPECT_RIGID_ERROR(System{SystemSpec{}}, "a system needs at least one coordinate");
+}
+
+TEST(SystemErrors, LagrangianWithoutAVelocityTermIsSingular) {
+  SystemSpec spec = pendulum_spec();
+  spec.coordinates.push_back({"x"});
+  EXPECT_RIGID_ERROR(System{spec}, "the Lagrangian is not quadratic in the velocity 'x_dot'");
+}
+
+TEST(SystemErrors, NegativeKineticEnergyIsNotPositiveDefinite) {
+  SystemSpec spec;
+  spec.coordinates = {{"x", 0.5}};
+  spec.lagrangian = "-x_dot^2/2";
+  EXPECT_RIGID_ERROR((void)System(spec).simulate({.t_end = 1.0}),
+                     "mass matrix M = ∂²L/∂q̇∂q̇ is singular or not positive definite at "
+                     "t = 0 s, q = (x = 0.5)");
+}
+
+TEST(SystemErrors, MassMatrixBecomingSingularStopsTheRun) {
+  // M = x², reaching x = 0 at t = 1 (ẋ = −1 while M ẍ = f = −x ẋ² keeps x ẋ constant)
+  SystemSpec spec;
+  spec.coordinates = {{"x", 1.0, -1.0}};
+  spec.lagrangian = "x^2*x_dot^2/2";
+  try {
+    (void)System(spec).simulate({.t_end = 2.0, .method = Method::kRk4, .dt = 0.01});
+    ADD_FAILURE() << "expected an error";
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    EXPECT_TRUE(what.find("singular or not positive definite at t = ") != std::string::npos ||
+                what.find("non-finite state") != std::string::npos) << what;
+    EXPECT_THAT(what, HasSubstr("x = "));
+  }
+}
+
+TEST(SystemErrors, RedundantAndInconsistentConstraints) {
+  SystemSpec spec;
+  spec.coordinates = {{"x", 1.0}, {"y"}};
+  spec.lagrangian = "(x_dot^2 + y_dot^2)/2";
+  spec.constraints = {{"a", "x - 1"}, {"b", "2*x - 2"}};
+  EXPECT_RIGID_ERROR((void)System(spec).simulate({.t_end = 1.0}),
+                     "constraints 'a', 'b' are redundant");
+  spec.constraints = {{"a", "x - 1"}, {"b", "x - 2"}};
+  EXPECT_RIGID_ERROR((void)System(spec).simulate({.t_end = 1.0}),
+                     "constraints 'a', 'b' are inconsistent");
+  spec.constraints = {{"a", "t - 1"}};
+  EXPECT_RIGID_ERROR(System{spec}, "constraint 'a' = -1+t does not depend on any coordinate");
+  spec.constraints = {{"a", "x - 1"}, {"a", "y"}};
+  EXPECT_RIGID_ERROR(System{spec}, "constraint name 'a' is used twice");
+}
+
+TEST(SystemErrors, StormerVerletNeedsConstantMassMatrix) {
+  SystemSpec spec;
+  spec.coordinates = {{"r", 1.0}, {"phi", 0.0, 1.0}};
+  spec.lagrangian = "(r_dot^2 + r^2*phi_dot^2)/2 + 1/r";
+  EXPECT_RIGID_ERROR(
+      (void)System(spec).simulate({.t_end = 1.0, .method = Method::kStormerVerlet}),
+      "stormer_verlet needs T = ½ q̇ᵀ M q̇ with a constant M");
+}
+
+}  // namespace
+}  // namespace rigid::lagrange
