@@ -92,10 +92,33 @@ std::string to_latex(const ex& e) {
   return os.str();
 }
 
-// an exact GiNaC number for doubles that are integers (axes like (0, 0, 1)), else a float
+// a double as the exact rational of its shortest round-trip decimal (0.7 → 7/10), so that
+// printed equations show 7/10 rather than 0.6999999999999999556 and products stay exact
 ex number(double v) {
   if (v == std::round(v) && std::abs(v) < 1e15) return GiNaC::numeric(static_cast<long>(v));
-  return GiNaC::numeric(v);
+  const std::string text = fmt::format("{}", v);
+  std::string digits;
+  long scale = 0;
+  bool fraction = false, negative = false;
+  std::size_t k = 0;
+  if (k < text.size() && text[k] == '-') {
+    negative = true;
+    ++k;
+  }
+  for (; k < text.size(); ++k) {
+    const char c = text[k];
+    if (c == '.') {
+      fraction = true;
+    } else if (c == 'e' || c == 'E') {
+      scale += std::stol(text.substr(k + 1));
+      break;
+    } else {
+      digits += c;
+      if (fraction) --scale;
+    }
+  }
+  const GiNaC::numeric r = GiNaC::numeric(digits.c_str()) * GiNaC::numeric(10).power(scale);
+  return negative ? -r : r;
 }
 
 using Mat3 = std::array<std::array<ex, 3>, 3>;
@@ -162,6 +185,7 @@ struct System::Impl {
   mutable Eigen::VectorXd fw, gammaw, cw, gw, Minv_f, rhs_m;
   mutable Eigen::LLT<Eigen::MatrixXd> llt_M;
   mutable Eigen::LDLT<Eigen::MatrixXd> ldlt_S;
+  mutable double mass_scale = 0.0;  // largest pivot of M at the start of a run
 
   void load_inputs(double time, const Eigen::VectorXd& qv, const Eigen::VectorXd& qdv) const {
     for (int i = 0; i < n; ++i) {
@@ -201,8 +225,9 @@ struct System::Impl {
     if (!singular) {
       // pivots of the Cholesky factor: M is numerically singular when the smallest squared
       // pivot falls below 1e-13 of the largest (condition number ≳ 1e13)
-      const Eigen::VectorXd d = llt_M.matrixLLT().diagonal();
-      singular = !(d.minCoeff() * d.minCoeff() > 1e-13 * d.maxCoeff() * d.maxCoeff());
+      // (or since the start of the run)
+      const Eigen::VectorXd d = llt_M.matrixLLT().diagonal().cwiseAbs2();
+      singular = !(d.minCoeff() > 1e-13 * std::max(d.maxCoeff(), mass_scale));
     }
     if (singular) {
       rigid::detail::throw_error(
@@ -310,7 +335,11 @@ System::System(const SystemSpec& spec) : impl_(std::make_unique<Impl>()) {
   for (const Body& b : spec.bodies) {
     const std::string ctx = fmt::format("body '{}'", b.name);
     Vec3 p;
-    for (int k = 0; k < 3; ++k) p[k] = parse(b.position[k], fmt::format("{} position[{}]", ctx, k), false);
+    // an empty position component means 0
+    for (int k = 0; k < 3; ++k) {
+      const bool empty = b.position[k].text.find_first_not_of(" \t") == std::string::npos;
+      p[k] = empty ? ex(0) : parse(b.position[k], fmt::format("{} position[{}]", ctx, k), false);
+    }
     // R_WB = R₁ ⋯ R_k; ω_B of a product: ω ← R_jᵀ ω + a_j θ̇_j, left to right
     Mat3 R = identity3();
     Vec3 w{0, 0, 0};
@@ -647,9 +676,12 @@ Trajectory System::simulate(const SimulationOptions& o, const Eigen::VectorXd& q
       qd0 -= s.Gw.transpose() * GGt.ldlt().solve(s.cw);
     }
   }
-  // the mass matrix at the start (named error if not positive definite)
+  // the mass matrix at the start (named error if not positive definite) sets the scale
+  // against which it is called singular during the run
   Eigen::VectorXd qdd(s.n), lam(s.m);
+  s.mass_scale = 0.0;
   accelerations(t0, q0, qd0, qdd, lam, o.stabilization);
+  s.mass_scale = s.llt_M.matrixLLT().diagonal().cwiseAbs2().maxCoeff();
 
   integrate::Problem problem;
   const Eigen::Index n = s.n;
@@ -665,6 +697,16 @@ Trajectory System::simulate(const SimulationOptions& o, const Eigen::VectorXd& q
   problem.rhs = [&, alpha](double t, const Eigen::VectorXd& y, Eigen::VectorXd& dydt) {
     qv = y.head(n);
     qdv = y.tail(n);
+    if (!y.allFinite()) [[unlikely]] {
+      std::string velocities;
+      for (Eigen::Index i = 0; i < n; ++i) {
+        velocities += fmt::format("{}{}_dot = {}", i ? ", " : "", s.coord_names[static_cast<std::size_t>(i)], qdv[i]);
+      }
+      rigid::detail::throw_error(
+          "lagrange::System",
+          fmt::format("non-finite state at {}, q̇ = ({}); the motion diverged: reduce the step "
+                      "or check the model", s.state_text(t, qv), velocities));
+    }
     s.evaluate_dynamics(t, qv, qdv);
     s.solve(t, qv, acc, lw, alpha);
     dydt.head(n) = qdv;

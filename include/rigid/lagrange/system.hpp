@@ -53,7 +53,7 @@ struct AxisRotation {
 struct Body {
   std::string name;
   MassProperties mass;
-  std::array<Expression, 3> position{Expression("0"), Expression("0"), Expression("0")};
+  std::array<Expression, 3> position{Expression("0"), Expression("0"), Expression("0")};  ///< empty: 0
   std::vector<AxisRotation> rotations;
 };
 

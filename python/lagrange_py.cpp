@@ -1,0 +1,166 @@
+// Python bindings of the Lagrangian engine: rigid.lagrange.System (derive once, simulate with
+// numpy arrays out) and the integrator names.
+#include <pybind11/eigen.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include "rigid/lagrange/system.hpp"
+
+namespace py = pybind11;
+
+namespace {
+
+using rigid::lagrange::AxisRotation;
+using rigid::lagrange::Body;
+using rigid::lagrange::NamedExpression;
+using rigid::lagrange::System;
+using rigid::lagrange::SystemSpec;
+
+std::vector<NamedExpression> named(const std::vector<std::pair<std::string, std::string>>& items) {
+  std::vector<NamedExpression> out;
+  for (const auto& [name, text] : items) out.push_back({name, text});
+  return out;
+}
+
+Body body_from_dict(const py::dict& d) {
+  for (auto item : d) {
+    const auto key = item.first.cast<std::string>();
+    if (key != "name" && key != "mass" && key != "position" && key != "rotations") {
+      throw rigid::Error(fmt::format("lagrange.System(): unknown body key '{}'; expected name, "
+                                     "mass, position, rotations", key));
+    }
+  }
+  if (!d.contains("mass")) {
+    throw rigid::Error("lagrange.System(): a body needs 'mass' (a rigid.MassProperties)");
+  }
+  Body b{d.contains("name") ? d["name"].cast<std::string>() : std::string("body"),
+         d["mass"].cast<rigid::MassProperties>(), {}, {}};
+  if (d.contains("position")) {
+    const auto p = d["position"].cast<std::vector<std::string>>();
+    if (p.size() != 3) {
+      throw rigid::Error(fmt::format("lagrange.System(): body '{}' position needs 3 expressions, "
+                                     "got {}", b.name, p.size()));
+    }
+    for (int k = 0; k < 3; ++k) b.position[static_cast<std::size_t>(k)] = p[static_cast<std::size_t>(k)];
+  }
+  if (d.contains("rotations")) {
+    for (const auto& [axis, angle] :
+         d["rotations"].cast<std::vector<std::pair<Eigen::Vector3d, std::string>>>()) {
+      b.rotations.push_back(AxisRotation{axis, angle});
+    }
+  }
+  return b;
+}
+
+}  // namespace
+
+void bind_lagrange(py::module_& root) {
+  py::module_ m = root.def_submodule(
+      "lagrange", "Euler–Lagrange equations derived symbolically, compiled, and integrated.");
+
+  py::class_<System>(m, "System",
+                     "A Lagrangian system: L = lagrangian + Σ bodies (T − V_gravity) − Σ "
+                     "potentials, with generalized forces and holonomic constraints.")
+      .def(py::init([](const std::vector<std::tuple<std::string, double, double>>& coordinates,
+                       const std::map<std::string, double>& parameters,
+                       const std::string& lagrangian, const std::vector<py::dict>& bodies,
+                       const Eigen::Vector3d& gravity,
+                       const std::vector<std::pair<std::string, std::string>>& potentials,
+                       const std::vector<std::pair<std::string, std::string>>& forces,
+                       const std::vector<std::pair<std::string, std::string>>& constraints) {
+             SystemSpec spec;
+             for (const auto& [name, value] : parameters) spec.parameters.push_back({name, value});
+             for (const auto& [name, q0, v0] : coordinates) spec.coordinates.push_back({name, q0, v0});
+             spec.lagrangian = lagrangian;
+             for (const py::dict& b : bodies) spec.bodies.push_back(body_from_dict(b));
+             spec.gravity_W = gravity;
+             spec.potentials = named(potentials);
+             spec.forces = named(forces);
+             spec.constraints = named(constraints);
+             return System(spec);
+           }),
+           py::arg("coordinates"), py::arg("parameters") = std::map<std::string, double>{},
+           py::arg("lagrangian") = "", py::arg("bodies") = std::vector<py::dict>{},
+           py::arg("gravity") = Eigen::Vector3d::Zero(),
+           py::arg("potentials") = std::vector<std::pair<std::string, std::string>>{},
+           py::arg("forces") = std::vector<std::pair<std::string, std::string>>{},
+           py::arg("constraints") = std::vector<std::pair<std::string, std::string>>{},
+           "coordinates: [(name, q0, q_dot0)]; parameters: {name: value}; bodies: [{'name', "
+           "'mass': rigid.MassProperties, 'position': [3 expressions], 'rotations': [(axis, "
+           "angle expression)]}]; potentials/forces/constraints: [(name, expression)] (a force's "
+           "name is its coordinate).")
+      .def_property_readonly("coordinate_names", &System::coordinate_names)
+      .def_property_readonly("constraint_names", &System::constraint_names)
+      .def_property_readonly("cyclic_coordinates", &System::cyclic_coordinates)
+      .def_property_readonly("tape_size", &System::tape_size)
+      .def("set_parameter", &System::set_parameter, py::arg("name"), py::arg("value"))
+      .def(
+          "equations",
+          [](const System& s) {
+            const auto eq = s.equations();
+            py::dict d;
+            d["lagrangian"] = eq.lagrangian_text;
+            d["lagrangian_latex"] = eq.lagrangian_latex;
+            d["text"] = eq.text;
+            d["latex"] = eq.latex;
+            d["constraints"] = eq.constraints_text;
+            d["constraints_latex"] = eq.constraints_latex;
+            d["jacobi_integral"] = eq.energy_text;
+            d["cyclic"] = eq.cyclic;
+            return d;
+          },
+          "The Euler–Lagrange equations as text and LaTeX (dict).")
+      .def(
+          "mass_matrix_and_forces",
+          [](const System& s, double t, const Eigen::VectorXd& q, const Eigen::VectorXd& q_dot) {
+            Eigen::MatrixXd M;
+            Eigen::VectorXd f;
+            s.mass_matrix_and_forces(t, q, q_dot, M, f);
+            return py::make_tuple(M, f);
+          },
+          py::arg("t"), py::arg("q"), py::arg("q_dot"), "(M, f) at (t, q, q̇).")
+      .def(
+          "accelerations",
+          [](const System& s, double t, const Eigen::VectorXd& q, const Eigen::VectorXd& q_dot) {
+            Eigen::VectorXd qdd, lambda;
+            s.accelerations(t, q, q_dot, qdd, lambda);
+            return py::make_tuple(qdd, lambda);
+          },
+          py::arg("t"), py::arg("q"), py::arg("q_dot"), "(q̈, λ) at (t, q, q̇).")
+      .def(
+          "simulate",
+          [](const System& s, double t_end, const std::string& method, double dt,
+             double tolerance, double output_dt, double stabilization, bool project_initial,
+             std::optional<Eigen::VectorXd> q0, std::optional<Eigen::VectorXd> q_dot0) {
+            rigid::lagrange::SimulationOptions o{
+                .t_end = t_end, .method = rigid::integrate::parse_method(method), .dt = dt,
+                .tolerance = tolerance, .output_dt = output_dt, .stabilization = stabilization,
+                .project_initial = project_initial};
+            rigid::lagrange::Trajectory tr;
+            {
+              py::gil_scoped_release release;
+              tr = s.simulate(o, q0 ? *q0 : s.initial_q(), q_dot0 ? *q_dot0 : s.initial_q_dot());
+            }
+            py::dict d;
+            d["t"] = tr.t;
+            d["q"] = tr.q;
+            d["q_dot"] = tr.q_dot;
+            d["lambda"] = tr.lambda;
+            d["energy"] = tr.energy;
+            d["jacobi"] = tr.jacobi;
+            d["cyclic_momenta"] = tr.cyclic_momenta;
+            d["residual"] = tr.residual;
+            d["velocity_residual"] = tr.velocity_residual;
+            d["coordinate_names"] = tr.coordinate_names;
+            d["constraint_names"] = tr.constraint_names;
+            d["cyclic_names"] = tr.cyclic_names;
+            d["steps"] = tr.steps;
+            return d;
+          },
+          py::arg("t_end"), py::arg("method") = "dopri5", py::arg("dt") = 1e-3,
+          py::arg("tolerance") = 1e-10, py::arg("output_dt") = 0.0,
+          py::arg("stabilization") = 10.0, py::arg("project_initial") = false,
+          py::arg("q0") = py::none(), py::arg("q_dot0") = py::none(),
+          "Integrates; returns a dict of numpy arrays (rows are samples): t, q, q_dot, lambda, "
+          "energy, jacobi, cyclic_momenta, residual, velocity_residual.");
+}

@@ -1,0 +1,77 @@
+"""rigid.lagrange: derive, print and simulate from Python; numpy arrays out."""
+import math
+
+import numpy as np
+import pytest
+
+import rigid
+
+G = 9.81
+
+
+def pendulum(theta0=0.5):
+    return rigid.lagrange.System(
+        coordinates=[("theta", theta0, 0.0)],
+        parameters={"m": 2.0, "l": 0.5, "g": G},
+        lagrangian="m*l^2/2*theta_dot^2 + m*g*l*cos(theta)",
+    )
+
+
+def test_equations_print_as_text_and_latex():
+    eq = pendulum().equations()
+    assert "theta_ddot" in eq["text"][0]
+    assert r"\ddot{\theta}" in eq["latex"][0]
+    assert eq["cyclic"] == []
+
+
+def test_simulate_returns_numpy_arrays_and_conserves_energy():
+    out = pendulum().simulate(2.0, tolerance=1e-12, output_dt=0.1)
+    assert isinstance(out["q"], np.ndarray) and out["q"].shape == (21, 1)
+    assert out["t"][-1] == 2.0
+    # dopri5 at 1e-12 over 2 s: energy constant to ~1e-10 relative
+    assert np.ptp(out["energy"]) < 1e-9 * abs(out["energy"][0])
+
+
+def test_small_angle_period_matches_two_pi_sqrt_l_over_g():
+    theta0 = 1e-6
+    period = 2 * math.pi * math.sqrt(0.5 / G)
+    out = pendulum(theta0).simulate(period, tolerance=1e-13, output_dt=period / 2)
+    # the amplitude correction θ0²/16 is 6e-14; the bound is the integration tolerance
+    assert out["q"][1, 0] == pytest.approx(-theta0, rel=1e-6)
+    assert out["q"][2, 0] == pytest.approx(theta0, rel=1e-6)
+
+
+def test_atwood_tensions_from_multipliers():
+    m1, m2, mp, r = 1.0, 3.0, 2.0, 0.2
+    zero = np.zeros(3)
+    bodies = [
+        {"name": "a", "mass": rigid.MassProperties(m1, zero, np.zeros((3, 3))), "position": ["-R", "y1", "0"]},
+        {"name": "b", "mass": rigid.MassProperties(m2, zero, np.zeros((3, 3))), "position": ["R", "y2", "0"]},
+        {"name": "pulley", "mass": rigid.MassProperties(mp, zero, np.diag([1.0, 1.0, 0.5 * mp * r * r])),
+         "rotations": [([0, 0, 1], "phi")]},
+    ]
+    sys_ = rigid.lagrange.System(
+        coordinates=[("y1", 0, 0), ("y2", 0, 0), ("phi", 0, 0)], parameters={"R": r},
+        bodies=bodies, gravity=[0, -G, 0],
+        constraints=[("left", "y1 + R*phi"), ("right", "y2 - R*phi")])
+    out = sys_.simulate(0.5, tolerance=1e-12, output_dt=0.5)
+    a = (m2 - m1) * G / (m1 + m2 + mp / 2)
+    np.testing.assert_allclose(out["lambda"][-1], [m1 * (G + a), m2 * (G - a)], rtol=1e-9)
+    assert out["residual"].max() < 1e-12
+
+
+def test_kepler_reports_the_cyclic_momentum():
+    sys_ = rigid.lagrange.System(coordinates=[("r", 1.0, 0.0), ("phi", 0.0, 1.1)],
+                                 lagrangian="(r_dot^2 + r^2*phi_dot^2)/2 + 1/r")
+    assert sys_.cyclic_coordinates == ["phi"]
+    out = sys_.simulate(3.0, tolerance=1e-12, output_dt=0.5)
+    np.testing.assert_allclose(out["cyclic_momenta"][:, 0], 1.1, rtol=1e-10)
+
+
+def test_errors_are_rigid_errors_with_positions():
+    with pytest.raises(rigid.Error, match="undefined symbol 'thta'"):
+        rigid.lagrange.System(coordinates=[("theta", 0, 0)], lagrangian="theta_dot^2 + cos(thta)")
+    with pytest.raises(rigid.Error, match="unknown integrator 'euler'"):
+        pendulum().simulate(1.0, method="euler")
+    with pytest.raises(rigid.Error, match="unknown body key 'masss'"):
+        rigid.lagrange.System(coordinates=[("x", 0, 0)], bodies=[{"masss": 1}])
