@@ -76,6 +76,54 @@ struct ReduceSines : GiNaC::map_function {
   }
 };
 
+// ∂e/∂x by the sum, product, power and chain rules. GiNaC's own ex::diff signals "no explicit
+// derivative" of sin/cos by throwing and catching an exception per call, which dominated the
+// derivation time; subtrees free of x are skipped.
+ex d(const ex& e, const symbol& x) {
+  using namespace GiNaC;
+  if (is_a<symbol>(e)) return e.is_equal(x) ? 1 : 0;
+  if (is_a<numeric>(e) || is_a<constant>(e) || !e.has(x)) return 0;
+  if (is_a<add>(e)) {
+    exvector terms;
+    terms.reserve(e.nops());
+    for (const ex& term : e) terms.push_back(d(term, x));
+    return add(terms);
+  }
+  if (is_a<mul>(e)) {
+    exvector terms;
+    const exvector factors(e.begin(), e.end());
+    for (std::size_t i = 0; i < factors.size(); ++i) {
+      ex di = d(factors[i], x);
+      if (di.is_zero()) continue;
+      exvector f = factors;
+      f[i] = di;
+      terms.push_back(mul(f));
+    }
+    return add(terms);
+  }
+  if (is_a<power>(e)) {
+    const ex b = e.op(0), p = e.op(1);
+    if (!p.has(x)) return p * pow(b, p - 1) * d(b, x);
+    return e * (d(p, x) * log(b) + p * d(b, x) / b);
+  }
+  if (is_a<function>(e) && e.nops() == 1) {
+    const std::string name = ex_to<function>(e).get_name();
+    const ex a = e.op(0), da = d(a, x);
+    if (name == "sin") return cos(a) * da;
+    if (name == "cos") return -sin(a) * da;
+    if (name == "tan") return (1 + pow(tan(a), 2)) * da;
+    if (name == "asin") return da / sqrt(1 - pow(a, 2));
+    if (name == "acos") return -da / sqrt(1 - pow(a, 2));
+    if (name == "atan") return da / (1 + pow(a, 2));
+    if (name == "exp") return exp(a) * da;
+    if (name == "log") return da / a;
+    if (name == "sinh") return cosh(a) * da;
+    if (name == "cosh") return sinh(a) * da;
+    if (name == "tanh") return (1 - pow(tanh(a), 2)) * da;
+  }
+  return e.diff(x);
+}
+
 ex simplify(const ex& e) {
   ReduceSines reduce;
   return reduce(e.expand()).expand();
@@ -322,9 +370,9 @@ System::System(const SystemSpec& spec) : impl_(std::make_unique<Impl>()) {
   };
   // total time derivative d/dt e(q, t) = Σ ∂e/∂qᵢ q̇ᵢ + ∂e/∂t
   auto dt = [&](const ex& e) {
-    ex d = e.diff(s.t);
-    for (int i = 0; i < s.n; ++i) d += e.diff(s.q[static_cast<std::size_t>(i)]) * s.qd[static_cast<std::size_t>(i)];
-    return d;
+    ex r = d(e, s.t);
+    for (int i = 0; i < s.n; ++i) r += d(e, s.q[static_cast<std::size_t>(i)]) * s.qd[static_cast<std::size_t>(i)];
+    return r;
   };
 
   // assemble T and V
@@ -417,16 +465,16 @@ System::System(const SystemSpec& spec) : impl_(std::make_unique<Impl>()) {
   s.p.resize(n);
   s.M.assign(n * n, 0);
   s.f.resize(n);
-  for (std::size_t i = 0; i < n; ++i) s.p[i] = s.L.diff(s.qd[i]);
+  for (std::size_t i = 0; i < n; ++i) s.p[i] = d(s.L, s.qd[i]);
   for (std::size_t i = 0; i < n; ++i) {
-    for (std::size_t j = 0; j < n; ++j) s.M[i * n + j] = s.p[i].diff(s.qd[j]);
+    for (std::size_t j = 0; j < n; ++j) s.M[i * n + j] = d(s.p[i], s.qd[j]);
     if (s.M[i * n + i].expand().is_zero()) {
       RIGID_THROW("the Lagrangian is not quadratic in the velocity '{}_dot' (∂²L/∂{}_dot² ≡ 0), "
                   "so the mass matrix is singular; L = {}", s.coord_names[i], s.coord_names[i],
                   to_text(s.L));
     }
-    ex fi = s.L.diff(s.q[i]) - s.p[i].diff(s.t) + Q[i];
-    for (std::size_t j = 0; j < n; ++j) fi -= s.p[i].diff(s.q[j]) * s.qd[j];
+    ex fi = d(s.L, s.q[i]) - d(s.p[i], s.t) + Q[i];
+    for (std::size_t j = 0; j < n; ++j) fi -= d(s.p[i], s.q[j]) * s.qd[j];
     s.f[i] = fi.expand();
   }
   s.h = 0;
@@ -443,15 +491,15 @@ System::System(const SystemSpec& spec) : impl_(std::make_unique<Impl>()) {
     const ex gk = parse(con.expression, fmt::format("constraint '{}'", con.name), false).expand();
     bool depends = false;
     for (std::size_t i = 0; i < n; ++i) {
-      const ex Gki = gk.diff(s.q[i]);
+      const ex Gki = d(gk, s.q[i]);
       s.G.push_back(Gki);
       if (!Gki.is_zero()) depends = constrained[i] = true;
     }
     RIGID_REQUIRE(depends, "constraint '{}' = {} does not depend on any coordinate; it is either "
                   "always or never satisfied", con.name, to_text(gk));
     const ex ck = dt(gk).expand();
-    ex gamma = -ck.diff(s.t);
-    for (std::size_t j = 0; j < n; ++j) gamma -= ck.diff(s.q[j]) * s.qd[j];
+    ex gamma = -d(ck, s.t);
+    for (std::size_t j = 0; j < n; ++j) gamma -= d(ck, s.q[j]) * s.qd[j];
     s.g.push_back(gk);
     s.c.push_back(ck);
     s.gamma.push_back(gamma.expand());
@@ -461,7 +509,7 @@ System::System(const SystemSpec& spec) : impl_(std::make_unique<Impl>()) {
 
   // cyclic coordinates
   for (std::size_t i = 0; i < n; ++i) {
-    if (!forced[i] && !constrained[i] && s.L.diff(s.q[i]).expand().is_zero()) {
+    if (!forced[i] && !constrained[i] && d(s.L, s.q[i]).expand().is_zero()) {
       s.cyclic_index.push_back(static_cast<int>(i));
       s.cyclic_names.push_back(s.coord_names[i]);
     }

@@ -177,7 +177,7 @@ TEST(PhysicalPendulum, DiskOnRodSmallAnglePeriod) {
 }
 
 TEST(PhysicalPendulum, LargeAmplitudePeriodFromEllipticK) {
-  // T = 4 K(k) / ω0, k = sin(θ0/2), ω0² = m g d / I_p  [Goldstein2002, §3.? ; Landau1976, §11]
+  // T = 4 K(k) / ω0, k = sin(θ0/2), ω0² = m g d / I_p  [Landau1976, §11, problem 1]
   const double m = 0.4, l = 0.9, theta0 = 2.5;
   const double omega0 = std::sqrt((m * kG * l / 2) / (m * l * l / 3));
   const double T = 4 * boost::math::ellint_1(std::sin(theta0 / 2)) / omega0;
@@ -336,7 +336,7 @@ TEST(BeadOnRotatingHoop, TimeDependentConstraintWithMultiplier) {
 
 // ---------------------------------------------------------------------------------------------
 // Kepler problem L = ½ m (ṙ² + r² φ̇²) + k m / r: φ is cyclic, p_φ = m r² φ̇ is conserved;
-// the period is 2π √(a³/k) with a = −k m/(2E)  [Goldstein2002, eq. 3.71]
+// the period is 2π √(a³/k) with a = −k m/(2E)  [Goldstein2002, §3.7]
 TEST(Kepler, AngularMomentumIsTheCyclicMomentumAndThePeriodIsKeplers) {
   const double m = 2.0, k = 1.0, r0 = 1.0, v0 = 1.2;
   SystemSpec spec;

@@ -14,9 +14,9 @@ namespace rigid::integrate {
 /// The integration methods on R^n.
 enum class Method {
   kRk4,               ///< classical Runge–Kutta, order 4, fixed step (Boost.odeint)
-  kDopri5,            ///< Dormand–Prince 5(4), adaptive step, dense output (Boost.odeint)
-  kImplicitMidpoint,  ///< y1 = y0 + h f(t + h/2, (y0 + y1)/2): order 2, symplectic for any L
-  kStormerVerlet,     ///< velocity Verlet for y = (q, v), a = a(t, q): order 2, symplectic
+  kDopri5,            ///< Dormand–Prince 5(4) [Dormand1980], adaptive step, dense output (Boost.odeint)
+  kImplicitMidpoint,  ///< y1 = y0 + h f(t + h/2, (y0 + y1)/2): order 2, symplectic [Hairer2006, §VI.3]
+  kStormerVerlet,     ///< velocity Verlet for y = (q, v), a = a(t, q): order 2, symplectic [Hairer2006, §I.1.4]
 };
 
 /// "rk4", "dopri5", "implicit_midpoint", "stormer_verlet".

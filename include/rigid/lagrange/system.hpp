@@ -96,7 +96,7 @@ struct SimulationOptions {
   double tolerance = 1e-10;  ///< dopri5 relative and absolute tolerance
   double output_dt = 0.0;    ///< spacing of output rows; 0: every step
   /// Baumgarte stabilisation rate α (1/s) of the constraints: the solver enforces
-  /// g̈ + 2α ġ + α² g = 0 instead of g̈ = 0. 0 switches it off.
+  /// g̈ + 2α ġ + α² g = 0 instead of g̈ = 0 [Baumgarte1972]. 0 switches it off.
   double stabilization = 10.0;
   /// Initial conditions violating a constraint by more than this (m or rad, m/s or rad/s)
   /// are refused ...
@@ -124,7 +124,7 @@ struct Trajectory {
 /// compiled into a flat, common-subexpression-eliminated instruction tape evaluated in
 /// double; no symbolic work happens after construction.
 ///
-/// Equations [Goldstein2002, eq. 1.57]: with p = ∂L/∂q̇,
+/// Equations [Goldstein2002, §1.4]: with p = ∂L/∂q̇,
 ///   M = ∂²L/∂q̇∂q̇,  f = ∂L/∂q − (∂²L/∂q̇∂q) q̇ − ∂²L/∂q̇∂t + Q,
 ///   M q̈ = f + Gᵀ λ,  G = ∂g/∂q,  G q̈ = γ = −(∂(G q̇ + g_t)/∂q q̇ + ∂(G q̇ + g_t)/∂t).
 class System {
