@@ -1,6 +1,8 @@
 #include "detail/tape.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include "rigid/common/error.hpp"
 
@@ -104,6 +106,41 @@ std::int32_t TapeBuilder::emit_power(std::int32_t base, const GiNaC::ex& exponen
   return emit(Op::kPow, base, slot_of(exponent));
 }
 
+// A key that depends only on the structure and the names, not on GiNaC's term order (which
+// follows hash values and symbol serial numbers and so differs between two Systems built in
+// one process). Sums and products are emitted in key order, so the same model always gives
+// the same tape and bitwise the same trajectories.
+const std::string& TapeBuilder::key_of(const GiNaC::ex& e) {
+  using namespace GiNaC;
+  auto found = keys_.find(e);
+  if (found != keys_.end()) return found->second;
+  std::string key;
+  if (is_a<symbol>(e) || is_a<numeric>(e) || is_a<constant>(e)) {
+    std::ostringstream os;
+    os << e;
+    key = os.str();
+  } else {
+    std::vector<std::string> parts;
+    for (std::size_t k = 0; k < e.nops(); ++k) parts.push_back(key_of(e.op(k)));
+    if (is_a<add>(e) || is_a<mul>(e)) std::sort(parts.begin(), parts.end());
+    key = is_a<add>(e) ? "+(" : is_a<mul>(e) ? "*(" : is_a<power>(e) ? "^(" :
+          is_a<function>(e) ? ex_to<function>(e).get_name() + "(" : "?(";
+    for (const auto& part : parts) key += part + ",";
+    key += ")";
+  }
+  return keys_.emplace(e, std::move(key)).first->second;
+}
+
+GiNaC::exvector TapeBuilder::sorted_operands(const GiNaC::ex& e) {
+  GiNaC::exvector ops(e.begin(), e.end());
+  std::vector<std::pair<std::string, std::size_t>> order;
+  for (std::size_t k = 0; k < ops.size(); ++k) order.emplace_back(key_of(ops[k]), k);
+  std::sort(order.begin(), order.end());
+  GiNaC::exvector out;
+  for (const auto& [key, k] : order) out.push_back(ops[k]);
+  return out;
+}
+
 std::int32_t TapeBuilder::slot_of(const GiNaC::ex& e) {
   using namespace GiNaC;
   auto found = memo_.find(e);
@@ -124,8 +161,8 @@ std::int32_t TapeBuilder::slot_of(const GiNaC::ex& e) {
     // a sum: positive terms added, terms with a negative numeric factor subtracted
     std::int32_t acc = 0;
     bool have = false;
-    for (std::size_t k = 0; k < e.nops(); ++k) {
-      ex term = e.op(k);
+    for (const ex& operand : sorted_operands(e)) {
+      ex term = operand;
       bool negative = false;
       if (is_a<mul>(term)) {
         const ex c = term.op(term.nops() - 1);
@@ -150,8 +187,7 @@ std::int32_t TapeBuilder::slot_of(const GiNaC::ex& e) {
     // a product: factors with negative powers divide
     std::int32_t num = 0, den = 0;
     bool have_num = false, have_den = false;
-    for (std::size_t k = 0; k < e.nops(); ++k) {
-      const ex f = e.op(k);
+    for (const ex& f : sorted_operands(e)) {
       if (is_a<power>(f) && is_a<numeric>(f.op(1)) && ex_to<numeric>(f.op(1)).is_negative()) {
         const std::int32_t d = slot_of(pow(f.op(0), -f.op(1)));
         den = have_den ? emit(Op::kMul, den, d) : d;

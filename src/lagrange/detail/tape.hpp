@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <map>
+#include <string>
 #include <vector>
 
 #include <ginac/ginac.h>
@@ -55,9 +56,12 @@ class TapeBuilder {
   std::int32_t constant_slot(double value);
   std::int32_t emit(Op op, std::int32_t a, std::int32_t b = 0);
   std::int32_t emit_power(std::int32_t base, const GiNaC::ex& exponent);
+  const std::string& key_of(const GiNaC::ex& e);
+  GiNaC::exvector sorted_operands(const GiNaC::ex& e);
 
   std::size_t num_inputs_;
   std::map<GiNaC::ex, std::int32_t, GiNaC::ex_is_less> memo_;
+  std::map<GiNaC::ex, std::string, GiNaC::ex_is_less> keys_;
   std::map<double, std::int32_t> constant_slots_;
   std::vector<double> constants_;
   // instructions with operand slots encoded as: input k → k, constant k → -1 - k,

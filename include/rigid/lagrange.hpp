@@ -1,0 +1,3 @@
+#pragma once
+/// The Lagrangian engine: symbolic Euler–Lagrange equations, compiled, with constraints.
+#include "rigid/lagrange/system.hpp"
