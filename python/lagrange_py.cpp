@@ -52,6 +52,25 @@ Body body_from_dict(const py::dict& d) {
   return b;
 }
 
+rigid::lagrange::Spring spring_from_dict(const py::dict& d) {
+  rigid::lagrange::Spring sp;
+  for (auto item : d) {
+    const auto key = item.first.cast<std::string>();
+    if (key == "body_a") sp.body_a = item.second.cast<std::string>();
+    else if (key == "point_a") sp.point_a_B = item.second.cast<Eigen::Vector3d>();
+    else if (key == "body_b") sp.body_b = item.second.cast<std::string>();
+    else if (key == "point_b") sp.point_b_B = item.second.cast<Eigen::Vector3d>();
+    else if (key == "stiffness") sp.stiffness = py::str(item.second).cast<std::string>();
+    else if (key == "rest_length") sp.rest_length = py::str(item.second).cast<std::string>();
+    else {
+      throw rigid::Error(fmt::format("lagrange.System(): unknown spring key '{}'; expected "
+                                     "body_a, point_a, body_b, point_b, stiffness, rest_length",
+                                     key));
+    }
+  }
+  return sp;
+}
+
 }  // namespace
 
 void bind_lagrange(py::module_& root) {
@@ -67,7 +86,8 @@ void bind_lagrange(py::module_& root) {
                        const Eigen::Vector3d& gravity,
                        const std::vector<std::pair<std::string, std::string>>& potentials,
                        const std::vector<std::pair<std::string, std::string>>& forces,
-                       const std::vector<std::pair<std::string, std::string>>& constraints) {
+                       const std::vector<std::pair<std::string, std::string>>& constraints,
+                       const std::vector<py::dict>& springs) {
              SystemSpec spec;
              for (const auto& [name, value] : parameters) spec.parameters.push_back({name, value});
              for (const auto& [name, q0, v0] : coordinates) spec.coordinates.push_back({name, q0, v0});
@@ -77,6 +97,7 @@ void bind_lagrange(py::module_& root) {
              spec.potentials = named(potentials);
              spec.forces = named(forces);
              spec.constraints = named(constraints);
+             for (const py::dict& sp : springs) spec.springs.push_back(spring_from_dict(sp));
              return System(spec);
            }),
            py::arg("coordinates"), py::arg("parameters") = std::map<std::string, double>{},
@@ -85,10 +106,12 @@ void bind_lagrange(py::module_& root) {
            py::arg("potentials") = std::vector<std::pair<std::string, std::string>>{},
            py::arg("forces") = std::vector<std::pair<std::string, std::string>>{},
            py::arg("constraints") = std::vector<std::pair<std::string, std::string>>{},
+           py::arg("springs") = std::vector<py::dict>{},
            "coordinates: [(name, q0, q_dot0)]; parameters: {name: value}; bodies: [{'name', "
            "'mass': rigid.MassProperties, 'position': [3 expressions], 'rotations': [(axis, "
            "angle expression)]}]; potentials/forces/constraints: [(name, expression)] (a force's "
-           "name is its coordinate).")
+           "name is its coordinate); springs: [{'body_a', 'point_a', 'body_b' (omit: world), "
+           "'point_b', 'stiffness', 'rest_length'}].")
       .def_property_readonly("coordinate_names", &System::coordinate_names)
       .def_property_readonly("constraint_names", &System::constraint_names)
       .def_property_readonly("cyclic_coordinates", &System::cyclic_coordinates)
@@ -136,11 +159,9 @@ void bind_lagrange(py::module_& root) {
                 .t_end = t_end, .method = rigid::integrate::parse_method(method), .dt = dt,
                 .tolerance = tolerance, .output_dt = output_dt, .stabilization = stabilization,
                 .project_initial = project_initial};
-            rigid::lagrange::Trajectory tr;
-            {
-              py::gil_scoped_release release;
-              tr = s.simulate(o, q0 ? *q0 : s.initial_q(), q_dot0 ? *q_dot0 : s.initial_q_dot());
-            }
+            // the GIL stays held: a System's compiled tape has one scratch buffer
+            const rigid::lagrange::Trajectory tr =
+                s.simulate(o, q0 ? *q0 : s.initial_q(), q_dot0 ? *q_dot0 : s.initial_q_dot());
             py::dict d;
             d["t"] = tr.t;
             d["q"] = tr.q;

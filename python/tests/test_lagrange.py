@@ -68,6 +68,20 @@ def test_kepler_reports_the_cyclic_momentum():
     np.testing.assert_allclose(out["cyclic_momenta"][:, 0], 1.1, rtol=1e-10)
 
 
+def test_spring_oscillator_period():
+    m, k = 0.5, 80.0
+    bob = rigid.MassProperties(m, np.zeros(3), np.zeros((3, 3)))
+    y_eq = -(0.3 + m * G / k)
+    sys_ = rigid.lagrange.System(
+        coordinates=[("y", y_eq + 0.01, 0.0)], bodies=[{"name": "bob", "mass": bob, "position": ["0", "y", "0"]}],
+        gravity=[0, -G, 0], springs=[{"body_a": "bob", "stiffness": k, "rest_length": 0.3}])
+    period = 2 * math.pi * math.sqrt(m / k)
+    out = sys_.simulate(period, tolerance=1e-13, output_dt=period / 2)
+    # linear oscillation about y_eq: half a period later at the other turning point
+    assert out["q"][1, 0] == pytest.approx(y_eq - 0.01, abs=1e-9)
+    assert out["q"][2, 0] == pytest.approx(y_eq + 0.01, abs=1e-9)
+
+
 def test_errors_are_rigid_errors_with_positions():
     with pytest.raises(rigid.Error, match="undefined symbol 'thta'"):
         rigid.lagrange.System(coordinates=[("theta", 0, 0)], lagrangian="theta_dot^2 + cos(thta)")

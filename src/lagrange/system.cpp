@@ -380,8 +380,10 @@ System::System(const SystemSpec& spec) : impl_(std::make_unique<Impl>()) {
   if (spec.lagrangian.text.find_first_not_of(" \t") != std::string::npos) {
     L_given = parse(spec.lagrangian, "Lagrangian", true).expand();
   }
+  std::map<std::string, std::pair<Vec3, Mat3>> poses;  // body name → (p_WB, R_WB)
   for (const Body& b : spec.bodies) {
     const std::string ctx = fmt::format("body '{}'", b.name);
+    RIGID_REQUIRE(!poses.count(b.name), "body name '{}' is used twice", b.name);
     Vec3 p;
     // an empty position component means 0
     for (int k = 0; k < 3; ++k) {
@@ -424,6 +426,36 @@ System::System(const SystemSpec& spec) : impl_(std::make_unique<Impl>()) {
     for (int k = 0; k < 3; ++k) {
       if (spec.gravity_W[k] != 0) V -= number(mass) * number(spec.gravity_W[k]) * c[k];
     }
+    poses.emplace(b.name, std::make_pair(p, R));
+  }
+  // springs: V = ½ k (|p_a − p_b| − L)², points carried by their bodies' poses
+  auto world_point = [&](const std::string& body, const Eigen::Vector3d& point, std::size_t s_index,
+                         const char* which) {
+    const Vec3 local{number(point.x()), number(point.y()), number(point.z())};
+    if (body.empty()) return local;
+    auto it = poses.find(body);
+    if (it == poses.end()) {
+      std::string known;
+      for (const auto& [name, _] : poses) known += (known.empty() ? "" : ", ") + name;
+      rigid::detail::throw_error("System", fmt::format("spring {}: {} names the unknown body "
+                                 "'{}'; bodies: {}", s_index, which, body,
+                                 known.empty() ? "none" : known));
+    }
+    Vec3 w = mat_vec(it->second.second, local);
+    for (int k = 0; k < 3; ++k) w[k] = (w[k] + it->second.first[k]).expand();
+    return w;
+  };
+  for (std::size_t j = 0; j < spec.springs.size(); ++j) {
+    const Spring& sp = spec.springs[j];
+    RIGID_REQUIRE(!sp.body_a.empty(), "spring {}: body_a must name a body", j);
+    const Vec3 a = world_point(sp.body_a, sp.point_a_B, j, "body_a");
+    const Vec3 b = world_point(sp.body_b, sp.point_b_B, j, "body_b");
+    const ex k = parse(sp.stiffness, fmt::format("spring {} stiffness", j), false);
+    const ex rest = parse(sp.rest_length, fmt::format("spring {} rest_length", j), false);
+    ex d2 = 0;
+    for (int i = 0; i < 3; ++i) d2 += GiNaC::pow(a[i] - b[i], 2);
+    d2 = d2.expand();
+    V += rest.is_zero() ? k / 2 * d2 : k / 2 * GiNaC::pow(GiNaC::sqrt(d2) - rest, 2);
   }
   for (const NamedExpression& pot : spec.potentials) {
     V += parse(pot.expression, fmt::format("potential '{}'", pot.name), false);

@@ -364,6 +364,44 @@ TEST(Kepler, AngularMomentumIsTheCyclicMomentumAndThePeriodIsKeplers) {
 }
 
 // ---------------------------------------------------------------------------------------------
+// a mass hanging from a world point on a spring (k, rest length L) in a pendulum-free vertical
+// line: equilibrium y = −(L + m g/k), period 2π √(m/k), independent of gravity
+TEST(Spring, VerticalOscillatorPeriodAndEquilibrium) {
+  const double m = 0.5, k = 80.0, L = 0.3;
+  const double y_eq = -(L + m * kG / k), amplitude = 0.02;
+  SystemSpec spec;
+  spec.parameters = {{"k", k}};
+  spec.coordinates = {{"y", y_eq + amplitude, 0.0}};
+  spec.bodies.push_back(Body{"bob", point_mass(m), {"0", "y", "0"}, {}});
+  spec.springs.push_back(Spring{.body_a = "bob", .stiffness = "k", .rest_length = "0.3"});
+  spec.gravity_W = Eigen::Vector3d(0, -kG, 0);
+  const System sys(spec);
+  const double T = 2 * M_PI * std::sqrt(m / k);
+  const Trajectory tr = sys.simulate({.t_end = T, .tolerance = 1e-13, .output_dt = T / 2});
+  // linear oscillation about y_eq (the spring stays stretched, |p_a − p_b| = −y)
+  EXPECT_NEAR(tr.q(1, 0), y_eq - amplitude, 1e-9);
+  EXPECT_NEAR(tr.q(2, 0), y_eq + amplitude, 1e-9);
+  // T + V with V = ½ k (|y| − L)² + m g y is conserved
+  EXPECT_NEAR(tr.energy(2), tr.energy(0), 1e-10);
+  const double y0 = y_eq + amplitude;
+  EXPECT_NEAR(tr.energy(0), 0.5 * k * (-y0 - L) * (-y0 - L) + m * kG * y0, test::ulps(64, 10.0));
+}
+
+TEST(Spring, UnknownBodyIsNamed) {
+  SystemSpec spec;
+  spec.coordinates = {{"y"}};
+  spec.bodies.push_back(Body{"bob", point_mass(1.0), {"0", "y", "0"}, {}});
+  spec.springs.push_back(Spring{.body_a = "bob", .body_b = "bobb", .stiffness = "1"});
+  try {
+    System sys(spec);
+    ADD_FAILURE() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("spring 0: body_b names the unknown body 'bobb'; "
+                                         "bodies: bob"), std::string::npos) << e.what();
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
 // measured convergence orders on a pendulum with constant M (so Störmer–Verlet applies):
 // error at t = 2 against a dopri5 reference at 1e-13, dt vs dt/2, ratio 2^p within ±10%
 TEST(Convergence, OrdersOfEachIntegratorOnAPendulum) {

@@ -64,8 +64,19 @@ struct NamedExpression {
   Expression expression;
 };
 
+/// A linear spring between a point of a body and a point of another body (or of the world):
+/// V = ½ k (|p_a − p_b| − rest_length)².
+struct Spring {
+  std::string body_a{};
+  Eigen::Vector3d point_a_B = Eigen::Vector3d::Zero();  ///< in body a's frame (m)
+  std::string body_b{};                                 ///< empty: the world
+  Eigen::Vector3d point_b_B = Eigen::Vector3d::Zero();  ///< in body b's frame, or world (m)
+  Expression stiffness;                                 ///< k (N/m)
+  Expression rest_length = "0";                         ///< m
+};
+
 /// Everything that defines a system. L = lagrangian + Σ_bodies (T − V_gravity) − Σ potentials;
-/// the equations are M(q, t) q̈ = f(q, q̇, t) + Q + Gᵀ λ, G q̈ = γ.
+/// − Σ springs; the equations are M(q, t) q̈ = f(q, q̇, t) + Q + Gᵀ λ, G q̈ = γ.
 struct SystemSpec {
   std::vector<Parameter> parameters;
   std::vector<Coordinate> coordinates;
@@ -73,6 +84,7 @@ struct SystemSpec {
   std::vector<Body> bodies;
   Eigen::Vector3d gravity_W = Eigen::Vector3d::Zero();  ///< m/s², acts on the bodies
   std::vector<NamedExpression> potentials;
+  std::vector<Spring> springs;
   std::vector<NamedExpression> forces;
   std::vector<NamedExpression> constraints;
 };

@@ -31,6 +31,12 @@ class Tape {
   [[nodiscard]] std::size_t size() const { return code_.size(); }
   [[nodiscard]] std::size_t num_inputs() const { return num_inputs_; }
   [[nodiscard]] std::size_t num_outputs() const { return outputs_.size(); }
+  /// How many instructions perform `op` (for tests of the sharing).
+  [[nodiscard]] std::size_t count(Op op) const {
+    std::size_t k = 0;
+    for (const Instruction& in : code_) k += in.op == op ? 1 : 0;
+    return k;
+  }
 
  private:
   friend class TapeBuilder;
