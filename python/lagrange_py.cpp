@@ -22,7 +22,7 @@ std::vector<NamedExpression> named(const std::vector<std::pair<std::string, std:
   return out;
 }
 
-Body body_from_dict(const py::dict& d) {
+Body body_from_dict(const py::dict& d, std::size_t index) {
   for (auto item : d) {
     const auto key = item.first.cast<std::string>();
     if (key != "name" && key != "mass" && key != "position" && key != "rotations") {
@@ -33,7 +33,7 @@ Body body_from_dict(const py::dict& d) {
   if (!d.contains("mass")) {
     throw rigid::Error("lagrange.System(): a body needs 'mass' (a rigid.MassProperties)");
   }
-  Body b{d.contains("name") ? d["name"].cast<std::string>() : std::string("body"),
+  Body b{d.contains("name") ? d["name"].cast<std::string>() : fmt::format("body{}", index),
          d["mass"].cast<rigid::MassProperties>(), {}, {}};
   if (d.contains("position")) {
     const auto p = d["position"].cast<std::vector<std::string>>();
@@ -92,7 +92,9 @@ void bind_lagrange(py::module_& root) {
              for (const auto& [name, value] : parameters) spec.parameters.push_back({name, value});
              for (const auto& [name, q0, v0] : coordinates) spec.coordinates.push_back({name, q0, v0});
              spec.lagrangian = lagrangian;
-             for (const py::dict& b : bodies) spec.bodies.push_back(body_from_dict(b));
+             for (std::size_t i = 0; i < bodies.size(); ++i) {
+               spec.bodies.push_back(body_from_dict(bodies[i], i));
+             }
              spec.gravity_W = gravity;
              spec.potentials = named(potentials);
              spec.forces = named(forces);

@@ -60,6 +60,16 @@ def test_atwood_tensions_from_multipliers():
     assert out["residual"].max() < 1e-12
 
 
+def test_unnamed_bodies_and_duplicate_names():
+    pm = rigid.MassProperties(1.0, np.zeros(3), np.zeros((3, 3)))
+    two = [{"mass": pm, "position": ["x", "0", "0"]}, {"mass": pm, "position": ["0", "x", "0"]}]
+    sys_ = rigid.lagrange.System(coordinates=[("x", 0, 0)], bodies=two)
+    m, _ = sys_.mass_matrix_and_forces(0.0, np.zeros(1), np.zeros(1))
+    assert m[0, 0] == 2.0  # two unit masses both moving with x
+    with pytest.raises(rigid.Error, match="body name 'a' is used twice"):
+        rigid.lagrange.System(coordinates=[("x", 0, 0)], bodies=[{"name": "a", **b} for b in two])
+
+
 def test_kepler_reports_the_cyclic_momentum():
     sys_ = rigid.lagrange.System(coordinates=[("r", 1.0, 0.0), ("phi", 0.0, 1.1)],
                                  lagrangian="(r_dot^2 + r^2*phi_dot^2)/2 + 1/r")

@@ -77,8 +77,10 @@ FixedGrid make_grid(const Problem& p, const Options& o) {
 }
 
 // one implicit-midpoint step y1 = y0 + h f(t + h/2, (y0 + y1)/2), solved by a simplified
-// Newton iteration on k = (y1 - y0)/h with a finite-difference Jacobian J ≈ ∂f/∂y taken once
-// per step: (1 - h/2 J) δk = f(t + h/2, y0 + h/2 k) - k
+// Newton iteration on k = (y1 - y0)/h: (1 - h/2 J) δk = f(t + h/2, y0 + h/2 k) - k, with a
+// forward-difference Jacobian J ≈ ∂f/∂y. J and its LU factors are kept from step to step and
+// refreshed when the step size changes or the iteration converges slowly (> 4 iterations)
+// or fails; the fixed point does not depend on J, only the speed of convergence does.
 class ImplicitMidpoint {
  public:
   ImplicitMidpoint(const Problem& p, const Options& o, std::size_t* evals)
@@ -93,13 +95,31 @@ class ImplicitMidpoint {
   }
 
   void step(double t, double h, Eigen::VectorXd& y, std::size_t step_index) {
-    const auto n = y.size();
     const double tm = t + 0.5 * h;
     // explicit predictor k = f(t + h/2, y0)
     p_.rhs(tm, y, f0_);
     ++*evals_;
-    k_ = f0_;
-    // forward-difference Jacobian at y0, step √ε·max(1, |y_j|)
+    if (!have_jacobian_ || h != h_) refresh(tm, h, y);
+    for (int attempt = 0; attempt < 2; ++attempt) {
+      k_ = f0_;
+      const int iterations = newton(tm, h, y);
+      if (iterations >= 0) {
+        y += h * k_;
+        if (iterations > 4) have_jacobian_ = false;
+        return;
+      }
+      refresh(tm, h, y);  // a stale Jacobian may be the cause: retry once with a fresh one
+    }
+    detail::throw_error("integrate",
+                        fmt::format("implicit midpoint: Newton iteration did not converge in {} "
+                                    "iterations at step {}, t = {} s; reduce dt = {} s",
+                                    o_.max_newton, step_index, t, h));
+  }
+
+ private:
+  // forward-difference Jacobian at y0 (step √ε·max(1, |y_j|)) and the LU of 1 - h/2 J
+  void refresh(double tm, double h, const Eigen::VectorXd& y) {
+    const auto n = y.size();
     for (Eigen::Index j = 0; j < n; ++j) {
       ym_ = y;
       const double e = 1.4901161193847656e-08 * std::max(1.0, std::abs(y[j]));
@@ -109,34 +129,39 @@ class ImplicitMidpoint {
       J_.col(j) = (fp_ - f0_) / e;
     }
     lu_.compute(Eigen::MatrixXd::Identity(n, n) - 0.5 * h * J_);
+    have_jacobian_ = true;
+    h_ = h;
+  }
+
+  // iterations used, or -1 when not converged
+  int newton(double tm, double h, const Eigen::VectorXd& y) {
     double prev = std::numeric_limits<double>::infinity();
-    for (int it = 0; it < o_.max_newton; ++it) {
+    const double scale = std::max(1.0, y.lpNorm<Eigen::Infinity>());
+    for (int it = 1; it <= o_.max_newton; ++it) {
       ym_ = y + 0.5 * h * k_;
       p_.rhs(tm, ym_, f_);
       ++*evals_;
-      const Eigen::VectorXd dk = lu_.solve(f_ - k_);
-      k_ += dk;
-      const double size = h * dk.lpNorm<Eigen::Infinity>();
-      const double scale = std::max(1.0, y.lpNorm<Eigen::Infinity>());
+      dk_ = lu_.solve(f_ - k_);
+      k_ += dk_;
+      const double size = h * dk_.lpNorm<Eigen::Infinity>();
+      if (!std::isfinite(size)) return -1;
+      // converged at the tolerance, or stalled at round-off just above it
       if (size <= o_.newton_tol * scale || (size >= prev && size <= 1e3 * o_.newton_tol * scale)) {
-        y += h * k_;
-        return;
+        return it;
       }
       prev = size;
     }
-    detail::throw_error("integrate",
-                        fmt::format("implicit midpoint: Newton iteration did not converge in {} "
-                                    "iterations at step {}, t = {} s; reduce dt = {} s",
-                                    o_.max_newton, step_index, t, h));
+    return -1;
   }
 
- private:
   const Problem& p_;
   const Options& o_;
   std::size_t* evals_;
-  Eigen::VectorXd k_, f_, f0_, fp_, ym_;
+  Eigen::VectorXd k_, f_, f0_, fp_, ym_, dk_;
   Eigen::MatrixXd J_;
   Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
+  bool have_jacobian_ = false;
+  double h_ = 0.0;
 };
 
 Solution run_fixed(const Problem& p, const Options& o) {

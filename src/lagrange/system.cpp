@@ -383,7 +383,8 @@ System::System(const SystemSpec& spec) : impl_(std::make_unique<Impl>()) {
   std::map<std::string, std::pair<Vec3, Mat3>> poses;  // body name → (p_WB, R_WB)
   for (const Body& b : spec.bodies) {
     const std::string ctx = fmt::format("body '{}'", b.name);
-    RIGID_REQUIRE(!poses.count(b.name), "body name '{}' is used twice", b.name);
+    RIGID_REQUIRE(b.name.empty() || !poses.count(b.name), "body name '{}' is used twice",
+                  b.name);
     Vec3 p;
     // an empty position component means 0
     for (int k = 0; k < 3; ++k) {
@@ -426,7 +427,7 @@ System::System(const SystemSpec& spec) : impl_(std::make_unique<Impl>()) {
     for (int k = 0; k < 3; ++k) {
       if (spec.gravity_W[k] != 0) V -= number(mass) * number(spec.gravity_W[k]) * c[k];
     }
-    poses.emplace(b.name, std::make_pair(p, R));
+    if (!b.name.empty()) poses.emplace(b.name, std::make_pair(p, R));
   }
   // springs: V = ½ k (|p_a − p_b| − L)², points carried by their bodies' poses
   auto world_point = [&](const std::string& body, const Eigen::Vector3d& point, std::size_t s_index,
