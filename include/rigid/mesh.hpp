@@ -1,0 +1,7 @@
+#pragma once
+
+/// The mesh module: triangle meshes, readers, repair and exact mass properties.
+#include "rigid/mesh/mesh_mass.hpp"
+#include "rigid/mesh/read_mesh.hpp"
+#include "rigid/mesh/repair.hpp"
+#include "rigid/mesh/triangle_mesh.hpp"

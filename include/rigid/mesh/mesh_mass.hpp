@@ -1,0 +1,60 @@
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "rigid/mass/mass_properties.hpp"
+#include "rigid/mesh/triangle_mesh.hpp"
+
+namespace rigid::mesh {
+
+/// Integrals of a mesh about a reference point R (p_OR_M): the zeroth, first and second
+/// moments ∫1, ∫r, ∫r rᵀ with r = p − p_OR, over the enclosed volume (solid) or the surface
+/// (shell). Exact for the polyhedron up to round-off.
+struct MeshMoments {
+  Eigen::Vector3d p_OR_M = Eigen::Vector3d::Zero();  ///< reference point (m)
+  double measure = 0.0;                              ///< volume (m³) or area (m²)
+  Eigen::Vector3d first = Eigen::Vector3d::Zero();   ///< ∫ r (m⁴ or m³)
+  Eigen::Matrix3d second = Eigen::Matrix3d::Zero();  ///< ∫ r rᵀ (m⁵ or m⁴)
+};
+
+/// Volume moments by the divergence theorem: each triangle (a, b, c) with the reference
+/// point spans a signed tetrahedron of volume det[a b c]/6, first moment det·(a+b+c)/24 and
+/// second moment det/120 · (a aᵀ + b bᵀ + c cᵀ + s sᵀ), s = a + b + c [Tonon2005, eq. 2–4].
+/// The reference point is the bounding-box centre unless given, so that a mesh far from the
+/// origin keeps its precision.
+[[nodiscard]] MeshMoments volume_moments(const TriangleMesh& mesh,
+                                         std::optional<Eigen::Vector3d> p_OR_M = std::nullopt);
+
+/// Surface moments: area A = |(b−a)×(c−a)|/2, first moment A·s/3, second moment
+/// A/12 · (a aᵀ + b bᵀ + c cᵀ + s sᵀ) per triangle.
+[[nodiscard]] MeshMoments surface_moments(const TriangleMesh& mesh,
+                                          std::optional<Eigen::Vector3d> p_OR_M = std::nullopt);
+
+/// How the body's mass is given: exactly one of mass (kg) and density (kg/m³ for a solid,
+/// kg/m² for a shell; with thickness, kg/m³ of the shell material).
+struct MassSpec {
+  std::optional<double> mass;
+  std::optional<double> density;
+  bool shell = false;
+  std::optional<double> thickness;  ///< m, shell only: surface density = thickness × density
+};
+
+/// Mass properties and the plausibility warnings that go with them.
+struct MeshMassResult {
+  MassProperties properties;
+  double measure = 0.0;  ///< volume (m³) or area (m²)
+  std::vector<std::string> warnings;
+};
+
+/// Mass properties of a repaired mesh (see repair_mesh). A solid must be closed: otherwise
+/// rigid::Error counts the boundary and non-manifold edges and points to --shell.
+/// Warns when the implied density or size is implausible (e.g. a part in millimetres read
+/// as metres: 10⁹ times the mass), naming --units mm.
+/// @throws rigid::Error for a bad MassSpec, an open solid or a zero volume/area.
+[[nodiscard]] MeshMassResult mesh_mass_properties(const TriangleMesh& mesh, const MassSpec& spec);
+
+}  // namespace rigid::mesh

@@ -1,0 +1,666 @@
+#include "rigid/mesh/read_mesh.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <Eigen/Geometry>
+#include <tiny_obj_loader.h>
+
+#include "rigid/common/error.hpp"
+
+namespace rigid::mesh {
+namespace {
+
+using Index = std::uint32_t;
+
+[[noreturn]] void fail_line(const std::string& path, int line, const std::string& msg) {
+  detail::throw_error_at(SourceLocation{path, line, 0}, msg);
+}
+
+[[noreturn]] void fail_byte(const std::string& path, std::size_t byte, const std::string& msg) {
+  detail::throw_error_at(SourceLocation{path, 0, 0}, fmt::format("byte {}: {}", byte, msg));
+}
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) detail::throw_error_at(SourceLocation{path, 0, 0}, "cannot open the file for reading");
+  in.seekg(0, std::ios::end);
+  const std::streamoff size = in.tellg();
+  in.seekg(0, std::ios::beg);
+  std::string data(static_cast<std::size_t>(std::max<std::streamoff>(size, 0)), '\0');
+  if (!data.empty() && !in.read(data.data(), static_cast<std::streamsize>(data.size()))) {
+    detail::throw_error_at(SourceLocation{path, 0, 0}, "reading the file failed");
+  }
+  if (data.empty()) {
+    detail::throw_error_at(SourceLocation{path, 0, 0}, "the file is empty: expected a mesh");
+  }
+  return data;
+}
+
+// Whitespace-separated tokens with their line numbers; '#' comments optional.
+class Tokens {
+ public:
+  Tokens(const std::string& path, const std::string& text, std::size_t pos, int line,
+         bool hash_comments)
+      : path_(path), text_(text), pos_(pos), line_(line), hash_(hash_comments) {}
+
+  std::optional<std::string_view> next() {
+    skip();
+    if (pos_ >= text_.size()) return std::nullopt;
+    const std::size_t start = pos_;
+    while (pos_ < text_.size() && !std::isspace(static_cast<unsigned char>(text_[pos_]))) ++pos_;
+    token_line_ = line_;
+    return std::string_view(text_).substr(start, pos_ - start);
+  }
+
+  std::string_view expect(const char* what) {
+    auto t = next();
+    if (!t) fail_line(path_, line_, fmt::format("unexpected end of file: expected {}", what));
+    return *t;
+  }
+
+  double number(const char* what) {
+    const std::string_view t = expect(what);
+    double v = 0;
+    // from_chars rejects "nan"/"inf" spelled differently on some inputs; parse via strtod.
+    std::string s(t);
+    char* end = nullptr;
+    v = std::strtod(s.c_str(), &end);
+    if (end != s.c_str() + s.size() || s.empty()) {
+      fail_line(path_, token_line_, fmt::format("'{}' is not a number: expected {}", s, what));
+    }
+    if (!std::isfinite(v)) {
+      fail_line(path_, token_line_, fmt::format("{} is {}: expected a finite number", what, s));
+    }
+    return v;
+  }
+
+  long long integer(const char* what) {
+    const std::string_view t = expect(what);
+    long long v = 0;
+    const auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+    if (ec != std::errc() || p != t.data() + t.size()) {
+      fail_line(path_, token_line_, fmt::format("'{}' is not an integer: expected {}", t, what));
+    }
+    return v;
+  }
+
+  [[nodiscard]] int line() const { return token_line_; }
+  [[nodiscard]] std::size_t pos() const { return pos_; }
+
+ private:
+  void skip() {
+    while (pos_ < text_.size()) {
+      const char c = text_[pos_];
+      if (c == '\n') {
+        ++line_;
+        ++pos_;
+      } else if (std::isspace(static_cast<unsigned char>(c))) {
+        ++pos_;
+      } else if (hash_ && c == '#') {
+        while (pos_ < text_.size() && text_[pos_] != '\n') ++pos_;
+      } else {
+        break;
+      }
+    }
+  }
+
+  const std::string& path_;
+  const std::string& text_;
+  std::size_t pos_;
+  int line_;
+  int token_line_ = 0;
+  bool hash_;
+};
+
+void add_polygon(TriangleMesh& mesh, const std::vector<Index>& poly) {
+  for (std::size_t k = 1; k + 1 < poly.size(); ++k) {
+    mesh.triangles.push_back({poly[0], poly[k], poly[k + 1]});
+  }
+}
+
+template <class T>
+T load(const char* p, bool big_endian) {
+  T v;
+  std::memcpy(&v, p, sizeof(T));
+  if (big_endian != (std::endian::native == std::endian::big)) {
+    auto* b = reinterpret_cast<unsigned char*>(&v);
+    std::reverse(b, b + sizeof(T));
+  }
+  return v;
+}
+
+TriangleMesh read_stl_binary(const std::string& path, const std::string& data, double scale) {
+  if (data.size() < 84) {
+    fail_byte(path, data.size(),
+              fmt::format("truncated binary STL: {} bytes, expected at least 84 (header and "
+                          "triangle count)",
+                          data.size()));
+  }
+  const auto n = load<std::uint32_t>(data.data() + 80, false);
+  const std::uint64_t expected = 84 + 50ull * n;
+  if (expected != data.size()) {
+    fail_byte(path, 80,
+              fmt::format("binary STL triangle count {} needs {} bytes but the file has {}: "
+                          "truncated or corrupt",
+                          n, expected, data.size()));
+  }
+  TriangleMesh mesh;
+  mesh.vertices.reserve(3ull * n);
+  mesh.triangles.reserve(n);
+  for (std::uint32_t t = 0; t < n; ++t) {
+    const std::size_t base = 84 + 50ull * t + 12;  // skip the normal
+    for (Index k = 0; k < 3; ++k) {
+      Eigen::Vector3d p;
+      for (int c = 0; c < 3; ++c) {
+        const std::size_t at = base + 12 * k + 4 * c;
+        const float f = load<float>(data.data() + at, false);
+        if (!std::isfinite(f)) {
+          fail_byte(path, at, fmt::format("coordinate of triangle {} is {}: expected a finite "
+                                          "number",
+                                          t + 1, f));
+        }
+        p[c] = static_cast<double>(f) * scale;
+      }
+      mesh.vertices.push_back(p);
+    }
+    mesh.triangles.push_back({3 * t, 3 * t + 1, 3 * t + 2});
+  }
+  return mesh;
+}
+
+TriangleMesh read_stl_ascii(const std::string& path, const std::string& data, double scale) {
+  Tokens tok(path, data, 0, 1, false);
+  tok.expect("'solid'");
+  // The solid's name runs to the end of the first line.
+  std::size_t pos = data.find('\n');
+  Tokens body(path, data, pos == std::string::npos ? data.size() : pos, 1, false);
+  TriangleMesh mesh;
+  for (;;) {
+    const auto t = body.next();
+    if (!t) fail_line(path, body.line(), "unexpected end of file: expected 'endsolid'");
+    if (*t == "endsolid") break;
+    if (*t != "facet") {
+      fail_line(path, body.line(), fmt::format("'{}': expected 'facet' or 'endsolid'", *t));
+    }
+    if (body.expect("'normal'") != "normal") fail_line(path, body.line(), "expected 'normal'");
+    for (int c = 0; c < 3; ++c) (void)body.expect("normal component");
+    if (body.expect("'outer'") != "outer") fail_line(path, body.line(), "expected 'outer loop'");
+    if (body.expect("'loop'") != "loop") fail_line(path, body.line(), "expected 'outer loop'");
+    std::vector<Index> poly;
+    for (;;) {
+      const auto w = body.expect("'vertex' or 'endloop'");
+      if (w == "endloop") break;
+      if (w != "vertex") {
+        fail_line(path, body.line(), fmt::format("'{}': expected 'vertex' or 'endloop'", w));
+      }
+      Eigen::Vector3d p;
+      for (int c = 0; c < 3; ++c) p[c] = body.number("a vertex coordinate") * scale;
+      poly.push_back(static_cast<Index>(mesh.vertices.size()));
+      mesh.vertices.push_back(p);
+    }
+    if (poly.size() < 3) {
+      fail_line(path, body.line(),
+                fmt::format("facet with {} vertices: expected at least 3", poly.size()));
+    }
+    add_polygon(mesh, poly);
+    if (body.expect("'endfacet'") != "endfacet") fail_line(path, body.line(), "expected 'endfacet'");
+  }
+  return mesh;
+}
+
+std::string extension(const std::string& path) {
+  const auto dot = path.find_last_of('.');
+  const auto slash = path.find_last_of("/\\");
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
+  std::string e = path.substr(dot + 1);
+  for (auto& c : e) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return e;
+}
+
+void check_indices(const std::string& path, const TriangleMesh& mesh) {
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    for (Index i : mesh.triangles[f]) {
+      if (i >= mesh.vertices.size()) {
+        detail::throw_error_at(SourceLocation{path, 0, 0},
+                               fmt::format("face {} uses vertex index {}: the file has {} "
+                                           "vertices (indices 0 to {})",
+                                           f + 1, i, mesh.vertices.size(),
+                                           static_cast<long long>(mesh.vertices.size()) - 1));
+      }
+    }
+  }
+}
+
+// PLY scalar types.
+enum class PlyType { i8, u8, i16, u16, i32, u32, f32, f64 };
+
+std::optional<PlyType> ply_type(std::string_view s) {
+  if (s == "char" || s == "int8") return PlyType::i8;
+  if (s == "uchar" || s == "uint8") return PlyType::u8;
+  if (s == "short" || s == "int16") return PlyType::i16;
+  if (s == "ushort" || s == "uint16") return PlyType::u16;
+  if (s == "int" || s == "int32") return PlyType::i32;
+  if (s == "uint" || s == "uint32") return PlyType::u32;
+  if (s == "float" || s == "float32") return PlyType::f32;
+  if (s == "double" || s == "float64") return PlyType::f64;
+  return std::nullopt;
+}
+
+std::size_t ply_size(PlyType t) {
+  switch (t) {
+    case PlyType::i8:
+    case PlyType::u8: return 1;
+    case PlyType::i16:
+    case PlyType::u16: return 2;
+    case PlyType::i32:
+    case PlyType::u32:
+    case PlyType::f32: return 4;
+    case PlyType::f64: return 8;
+  }
+  return 0;
+}
+
+double ply_load(PlyType t, const char* p, bool big) {
+  switch (t) {
+    case PlyType::i8: return load<std::int8_t>(p, big);
+    case PlyType::u8: return load<std::uint8_t>(p, big);
+    case PlyType::i16: return load<std::int16_t>(p, big);
+    case PlyType::u16: return load<std::uint16_t>(p, big);
+    case PlyType::i32: return load<std::int32_t>(p, big);
+    case PlyType::u32: return load<std::uint32_t>(p, big);
+    case PlyType::f32: return load<float>(p, big);
+    case PlyType::f64: return load<double>(p, big);
+  }
+  return 0;
+}
+
+struct PlyProperty {
+  std::string name;
+  PlyType type = PlyType::f32;
+  bool list = false;
+  PlyType count_type = PlyType::u8;
+};
+
+struct PlyElement {
+  std::string name;
+  std::size_t count = 0;
+  std::vector<PlyProperty> props;
+};
+
+}  // namespace
+
+double unit_scale(std::string_view unit) {
+  if (unit == "m") return 1.0;
+  if (unit == "cm") return 0.01;
+  if (unit == "mm") return 0.001;
+  if (unit == "in") return 0.0254;
+  RIGID_THROW("unknown unit '{}': expected m, cm, mm or in", unit);
+}
+
+TriangleMesh read_stl(const std::string& path, double scale) {
+  const std::string data = slurp(path);
+  // A binary file is recognised by its size (84 + 50 n), whatever its header says.
+  if (data.size() >= 84) {
+    const auto n = load<std::uint32_t>(data.data() + 80, false);
+    if (84 + 50ull * n == data.size()) return read_stl_binary(path, data, scale);
+  }
+  std::size_t i = 0;
+  while (i < data.size() && std::isspace(static_cast<unsigned char>(data[i]))) ++i;
+  if (data.compare(i, 5, "solid") == 0) {
+    // ASCII unless it contains bytes no text STL has.
+    const bool text = std::none_of(data.begin(), data.end(), [](char c) {
+      return c == '\0';
+    });
+    if (text) return read_stl_ascii(path, data, scale);
+  }
+  return read_stl_binary(path, data, scale);
+}
+
+TriangleMesh read_off(const std::string& path, double scale) {
+  const std::string data = slurp(path);
+  Tokens tok(path, data, 0, 1, true);
+  const auto magic = tok.expect("'OFF'");
+  if (magic != "OFF") {
+    fail_line(path, tok.line(), fmt::format("'{}': expected the OFF header 'OFF'",
+                                            std::string(magic.substr(0, 20))));
+  }
+  const long long nv = tok.integer("the vertex count");
+  const long long nf = tok.integer("the face count");
+  (void)tok.integer("the edge count");
+  if (nv < 0 || nf < 0 || nv > (1ll << 31) || nf > (1ll << 31)) {
+    fail_line(path, tok.line(), fmt::format("counts {} vertices, {} faces: expected 0 to 2^31",
+                                            nv, nf));
+  }
+  TriangleMesh mesh;
+  mesh.vertices.reserve(static_cast<std::size_t>(std::min(nv, 1ll << 24)));
+  for (long long i = 0; i < nv; ++i) {
+    Eigen::Vector3d p;
+    for (int c = 0; c < 3; ++c) p[c] = tok.number("a vertex coordinate") * scale;
+    mesh.vertices.push_back(p);
+  }
+  std::vector<Index> poly;
+  for (long long f = 0; f < nf; ++f) {
+    const long long k = tok.integer("a face's vertex count");
+    const int line = tok.line();
+    if (k < 3 || k > 1'000'000) {
+      fail_line(path, line, fmt::format("face with {} vertices: expected at least 3", k));
+    }
+    poly.clear();
+    for (long long j = 0; j < k; ++j) {
+      const long long i = tok.integer("a vertex index");
+      if (i < 0 || i >= nv) {
+        fail_line(path, tok.line(),
+                  fmt::format("vertex index {} out of range: the file has {} vertices", i, nv));
+      }
+      poly.push_back(static_cast<Index>(i));
+    }
+    add_polygon(mesh, poly);
+    // Colour values may follow on the same line: skip to its end.
+  }
+  return mesh;
+}
+
+TriangleMesh read_ply(const std::string& path, const std::string& data, double scale);
+
+TriangleMesh read_ply(const std::string& path, double scale) {
+  return read_ply(path, slurp(path), scale);
+}
+
+TriangleMesh read_ply(const std::string& path, const std::string& data, double scale) {
+  // Header: lines up to "end_header".
+  std::vector<PlyElement> elements;
+  std::string format;
+  std::size_t pos = 0;
+  int line = 0;
+  bool ended = false;
+  while (pos < data.size()) {
+    std::size_t eol = data.find('\n', pos);
+    if (eol == std::string::npos) eol = data.size();
+    std::string text = data.substr(pos, eol - pos);
+    if (!text.empty() && text.back() == '\r') text.pop_back();
+    pos = eol + 1;
+    ++line;
+    std::istringstream ls(text);
+    std::string word;
+    ls >> word;
+    if (line == 1) {
+      if (word != "ply") fail_line(path, 1, "missing 'ply' magic line: not a PLY file");
+      continue;
+    }
+    if (word == "format") {
+      ls >> format;
+      if (format != "ascii" && format != "binary_little_endian" && format != "binary_big_endian") {
+        fail_line(path, line, fmt::format("format '{}': expected ascii, binary_little_endian or "
+                                          "binary_big_endian",
+                                          format));
+      }
+    } else if (word == "element") {
+      PlyElement e;
+      long long n = -1;
+      ls >> e.name >> n;
+      if (!ls || n < 0) fail_line(path, line, "expected 'element <name> <count>'");
+      e.count = static_cast<std::size_t>(n);
+      elements.push_back(e);
+    } else if (word == "property") {
+      if (elements.empty()) fail_line(path, line, "property before any element");
+      PlyProperty p;
+      std::string t;
+      ls >> t;
+      if (t == "list") {
+        std::string ct, it;
+        ls >> ct >> it >> p.name;
+        const auto a = ply_type(ct);
+        const auto b = ply_type(it);
+        if (!a || !b) fail_line(path, line, fmt::format("unknown list types '{} {}'", ct, it));
+        p.list = true;
+        p.count_type = *a;
+        p.type = *b;
+      } else {
+        ls >> p.name;
+        const auto a = ply_type(t);
+        if (!a) fail_line(path, line, fmt::format("unknown property type '{}'", t));
+        p.type = *a;
+      }
+      elements.back().props.push_back(p);
+    } else if (word == "end_header") {
+      ended = true;
+      break;
+    } else if (word == "comment" || word == "obj_info" || word.empty()) {
+      continue;
+    } else {
+      fail_line(path, line, fmt::format("unknown header keyword '{}'", word));
+    }
+  }
+  if (!ended) fail_line(path, line, "no 'end_header': truncated PLY header");
+  if (format.empty()) fail_line(path, line, "no 'format' line in the PLY header");
+
+  TriangleMesh mesh;
+  std::size_t nv = 0;
+  const bool ascii = format == "ascii";
+  const bool big = format == "binary_big_endian";
+  Tokens tok(path, data, pos, line + 1, false);
+  std::vector<Index> poly;
+  for (const auto& e : elements) {
+    const bool is_vertex = e.name == "vertex";
+    const bool is_face = e.name == "face";
+    int xyz[3] = {-1, -1, -1};
+    int index_prop = -1;
+    for (std::size_t k = 0; k < e.props.size(); ++k) {
+      const auto& p = e.props[k];
+      if (is_vertex && !p.list) {
+        if (p.name == "x") xyz[0] = static_cast<int>(k);
+        if (p.name == "y") xyz[1] = static_cast<int>(k);
+        if (p.name == "z") xyz[2] = static_cast<int>(k);
+      }
+      if (is_face && p.list && (p.name == "vertex_indices" || p.name == "vertex_index")) {
+        index_prop = static_cast<int>(k);
+      }
+    }
+    if (is_vertex && (xyz[0] < 0 || xyz[1] < 0 || xyz[2] < 0)) {
+      fail_line(path, line, "element vertex lacks x, y or z properties");
+    }
+    if (is_face && index_prop < 0) {
+      fail_line(path, line, "element face lacks a vertex_indices list");
+    }
+    if (is_vertex) {
+      nv = e.count;
+      mesh.vertices.reserve(std::min<std::size_t>(e.count, data.size()));
+    }
+    for (std::size_t r = 0; r < e.count; ++r) {
+      Eigen::Vector3d p = Eigen::Vector3d::Zero();
+      poly.clear();
+      for (std::size_t k = 0; k < e.props.size(); ++k) {
+        const auto& prop = e.props[k];
+        if (prop.list) {
+          std::size_t n = 0;
+          if (ascii) {
+            const long long c = tok.integer("a list length");
+            if (c < 0 || c > 1'000'000) {
+              fail_line(path, tok.line(), fmt::format("list length {}: expected 0 to 10^6", c));
+            }
+            n = static_cast<std::size_t>(c);
+          } else {
+            if (pos + ply_size(prop.count_type) > data.size()) {
+              fail_byte(path, pos, fmt::format("truncated PLY: element {} {} of {}", e.name,
+                                               r + 1, e.count));
+            }
+            const double c = ply_load(prop.count_type, data.data() + pos, big);
+            pos += ply_size(prop.count_type);
+            if (!(c >= 0 && c <= 1e6)) {
+              fail_byte(path, pos, fmt::format("list length {}: expected 0 to 10^6", c));
+            }
+            n = static_cast<std::size_t>(c);
+          }
+          for (std::size_t j = 0; j < n; ++j) {
+            double v = 0;
+            if (ascii) {
+              v = static_cast<double>(tok.integer("a list entry"));
+            } else {
+              if (pos + ply_size(prop.type) > data.size()) {
+                fail_byte(path, pos, fmt::format("truncated PLY: element {} {} of {}", e.name,
+                                                 r + 1, e.count));
+              }
+              v = ply_load(prop.type, data.data() + pos, big);
+              pos += ply_size(prop.type);
+            }
+            if (is_face && static_cast<int>(k) == index_prop) {
+              if (!(v >= 0 && v < static_cast<double>(nv))) {
+                const std::string msg = fmt::format(
+                    "face {} uses vertex index {}: the file has {} vertices", r + 1, v, nv);
+                if (ascii) fail_line(path, tok.line(), msg);
+                fail_byte(path, pos - ply_size(prop.type), msg);
+              }
+              poly.push_back(static_cast<Index>(v));
+            }
+          }
+        } else {
+          double v = 0;
+          std::size_t at = pos;
+          if (ascii) {
+            v = tok.number("a property value");
+          } else {
+            if (pos + ply_size(prop.type) > data.size()) {
+              fail_byte(path, pos, fmt::format("truncated PLY: element {} {} of {}", e.name,
+                                               r + 1, e.count));
+            }
+            v = ply_load(prop.type, data.data() + pos, big);
+            pos += ply_size(prop.type);
+            if (!std::isfinite(v)) {
+              fail_byte(path, at, fmt::format("{} of {} {} is {}: expected a finite number",
+                                              prop.name, e.name, r + 1, v));
+            }
+          }
+          for (int c = 0; c < 3; ++c) {
+            if (is_vertex && static_cast<int>(k) == xyz[c]) p[c] = v * scale;
+          }
+        }
+      }
+      if (is_vertex) mesh.vertices.push_back(p);
+      if (is_face) {
+        if (poly.size() < 3) {
+          const std::string msg =
+              fmt::format("face {} has {} vertices: expected at least 3", r + 1, poly.size());
+          if (ascii) fail_line(path, tok.line(), msg);
+          fail_byte(path, pos, msg);
+        }
+        add_polygon(mesh, poly);
+      }
+    }
+  }
+  if (mesh.triangles.empty()) fail_line(path, line, "the PLY file has no faces");
+  return mesh;
+}
+
+TriangleMesh read_obj(const std::string& path, double scale) {
+  (void)slurp(path);  // named errors for missing and empty files
+  tinyobj::ObjReaderConfig config;
+  config.triangulate = false;  // fan-triangulate here, keeping the face order
+  config.vertex_color = false;
+  tinyobj::ObjReader reader;
+  if (!reader.ParseFromFile(path, config)) {
+    detail::throw_error_at(SourceLocation{path, 0, 0},
+                           fmt::format("not a readable OBJ file: {}", reader.Error()));
+  }
+  const auto& attrib = reader.GetAttrib();
+  TriangleMesh mesh;
+  const std::size_t nv = attrib.vertices.size() / 3;
+  mesh.vertices.reserve(nv);
+  for (std::size_t i = 0; i < nv; ++i) {
+    Eigen::Vector3d p(attrib.vertices[3 * i], attrib.vertices[3 * i + 1],
+                      attrib.vertices[3 * i + 2]);
+    if (!p.allFinite()) {
+      detail::throw_error_at(SourceLocation{path, 0, 0},
+                             fmt::format("vertex {} is ({}, {}, {}): expected finite coordinates",
+                                         i + 1, p.x(), p.y(), p.z()));
+    }
+    mesh.vertices.push_back(p * scale);
+  }
+  std::vector<Index> poly;
+  for (const auto& shape : reader.GetShapes()) {
+    std::size_t offset = 0;
+    for (std::size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f) {
+      const std::size_t n = shape.mesh.num_face_vertices[f];
+      poly.clear();
+      for (std::size_t j = 0; j < n; ++j) {
+        const int i = shape.mesh.indices[offset + j].vertex_index;
+        if (i < 0 || static_cast<std::size_t>(i) >= nv) {
+          detail::throw_error_at(
+              SourceLocation{path, 0, 0},
+              fmt::format("face {} of '{}' uses vertex {}: the file has {} vertices", f + 1,
+                          shape.name, i + 1, nv));
+        }
+        poly.push_back(static_cast<Index>(i));
+      }
+      offset += n;
+      add_polygon(mesh, poly);
+    }
+  }
+  if (mesh.triangles.empty()) {
+    detail::throw_error_at(SourceLocation{path, 0, 0}, "no faces: not a mesh OBJ file");
+  }
+  return mesh;
+}
+
+TriangleMesh read_mesh(const std::string& path, double scale) {
+  RIGID_REQUIRE(std::isfinite(scale) && scale > 0, "scale {}: expected a positive finite number",
+                scale);
+  const std::string ext = extension(path);
+  TriangleMesh mesh;
+  if (ext == "stl") {
+    mesh = read_stl(path, scale);
+  } else if (ext == "obj") {
+    mesh = read_obj(path, scale);
+  } else if (ext == "ply") {
+    mesh = read_ply(path, scale);
+  } else if (ext == "off") {
+    mesh = read_off(path, scale);
+  } else {
+    RIGID_THROW("{}: unknown mesh extension '{}': expected .stl, .obj, .ply or .off", path, ext);
+  }
+  check_indices(path, mesh);
+  if (mesh.triangles.empty()) {
+    detail::throw_error_at(SourceLocation{path, 0, 0}, "the mesh has no triangles");
+  }
+  return mesh;
+}
+
+void write_stl_binary(const TriangleMesh& mesh, const std::string& path) {
+  std::ofstream out(path, std::ios::binary);
+  RIGID_REQUIRE(out.good(), "cannot open {} for writing", path);
+  char header[80] = {};
+  std::memcpy(header, "binary STL written by rigid", 27);
+  out.write(header, 80);
+  const auto n = static_cast<std::uint32_t>(mesh.triangles.size());
+  out.write(reinterpret_cast<const char*>(&n), 4);
+  for (const auto& t : mesh.triangles) {
+    float buf[12] = {};
+    const Eigen::Vector3d& a = mesh.vertices[t[0]];
+    const Eigen::Vector3d& b = mesh.vertices[t[1]];
+    const Eigen::Vector3d& c = mesh.vertices[t[2]];
+    const Eigen::Vector3d nrm = (b - a).cross(c - a).normalized();
+    for (int k = 0; k < 3; ++k) {
+      buf[k] = static_cast<float>(nrm[k]);
+      buf[3 + k] = static_cast<float>(a[k]);
+      buf[6 + k] = static_cast<float>(b[k]);
+      buf[9 + k] = static_cast<float>(c[k]);
+    }
+    out.write(reinterpret_cast<const char*>(buf), sizeof(buf));
+    const std::uint16_t attr = 0;
+    out.write(reinterpret_cast<const char*>(&attr), 2);
+  }
+  RIGID_REQUIRE(out.good(), "writing {} failed", path);
+}
+
+}  // namespace rigid::mesh

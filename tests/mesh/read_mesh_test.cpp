@@ -1,0 +1,260 @@
+#include "rigid/mesh/read_mesh.hpp"
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "mesh/mesh_builders.hpp"
+#include "rigid/mesh/mesh_mass.hpp"
+#include "rigid/mesh/repair.hpp"
+#include "support/expect_error.hpp"
+
+namespace rigid::mesh {
+namespace {
+
+std::string temp_path(const std::string& name) {
+  return (std::filesystem::path(testing::TempDir()) / ("rigid_mesh_" + name)).string();
+}
+
+std::string write(const std::string& name, const std::string& bytes) {
+  const std::string p = temp_path(name);
+  std::ofstream(p, std::ios::binary) << bytes;
+  return p;
+}
+
+// The box [0,1]×[0,2]×[0,3] in each format, written by hand from test::box_mesh's faces.
+constexpr double kBoxVolume = 6.0;
+
+double solid_volume(TriangleMesh m) {
+  repair_mesh(m);
+  return mesh_mass_properties(m, {std::nullopt, 1.0, false, {}}).measure;
+}
+
+std::string ascii_stl(const TriangleMesh& m, const std::string& name = "box") {
+  std::string s = "solid " + name + "\n";
+  for (const auto& t : m.triangles) {
+    s += "  facet normal 0 0 0\n    outer loop\n";
+    for (auto i : t) {
+      s += fmt::format("      vertex {} {} {}\n", m.vertices[i].x(), m.vertices[i].y(),
+                       m.vertices[i].z());
+    }
+    s += "    endloop\n  endfacet\n";
+  }
+  return s + "endsolid " + name + "\n";
+}
+
+std::string binary_stl(const TriangleMesh& m, const std::string& header) {
+  std::string s(80, '\0');
+  std::memcpy(s.data(), header.data(), std::min<std::size_t>(header.size(), 80));
+  const auto n = static_cast<std::uint32_t>(m.triangles.size());
+  s.append(reinterpret_cast<const char*>(&n), 4);
+  for (const auto& t : m.triangles) {
+    float f[12] = {};
+    for (int k = 0; k < 3; ++k) {
+      for (int c = 0; c < 3; ++c) f[3 + 3 * k + c] = static_cast<float>(m.vertices[t[k]][c]);
+    }
+    s.append(reinterpret_cast<const char*>(f), 48);
+    s.append(2, '\0');
+  }
+  return s;
+}
+
+// Box faces as quads (counter-clockwise from outside), for OBJ/OFF/PLY polygons.
+const std::uint32_t kQuads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                                    {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+
+TEST(ReadMesh, AsciiAndBinaryStlAgree) {
+  const auto box = test::box_mesh(1, 2, 3);
+  const auto a = read_mesh(write("a.stl", ascii_stl(box)));
+  const auto b = read_mesh(write("b.stl", binary_stl(box, "exported by a CAD tool")));
+  // A binary file whose header starts with "solid", as several exporters write.
+  const auto c = read_mesh(write("c.STL", binary_stl(box, "solid part")));
+  EXPECT_EQ(a.triangles.size(), 12u);
+  EXPECT_EQ(b.triangles.size(), 12u);
+  EXPECT_EQ(c.triangles.size(), 12u);
+  // Integer coordinates are exact in float32 and in text: the volumes are the polyhedron's.
+  EXPECT_NEAR(solid_volume(a), kBoxVolume, 1e-12);
+  EXPECT_NEAR(solid_volume(b), kBoxVolume, 1e-12);
+  EXPECT_NEAR(solid_volume(c), kBoxVolume, 1e-12);
+}
+
+TEST(ReadMesh, UnitsScaleTheVertices) {
+  const auto box = test::box_mesh(10, 20, 30);
+  const auto m = read_mesh(write("mm.stl", ascii_stl(box)), unit_scale("mm"));
+  EXPECT_NEAR(solid_volume(m), 6e-6, 1e-18);  // (10·20·30 mm³ = 6e-6 m³), exact up to round-off
+  EXPECT_DOUBLE_EQ(unit_scale("in"), 0.0254);
+  EXPECT_DOUBLE_EQ(unit_scale("cm"), 0.01);
+  EXPECT_RIGID_ERROR((void)unit_scale("ft"), "unknown unit 'ft': expected m, cm, mm or in");
+}
+
+std::string box_obj() {
+  const auto box = test::box_mesh(1, 2, 3);
+  std::string s = "# box\no box\n";
+  for (const auto& p : box.vertices) s += fmt::format("v {} {} {}\n", p.x(), p.y(), p.z());
+  for (const auto& q : kQuads) {
+    s += fmt::format("f {} {} {} {}\n", q[0] + 1, q[1] + 1, q[2] + 1, q[3] + 1);
+  }
+  return s;
+}
+
+TEST(ReadMesh, ObjQuadsAreTriangulated) {
+  const auto m = read_mesh(write("box.obj", box_obj()));
+  EXPECT_EQ(m.vertices.size(), 8u);
+  EXPECT_EQ(m.triangles.size(), 12u);
+  EXPECT_NEAR(solid_volume(m), kBoxVolume, 1e-12);
+}
+
+std::string box_off() {
+  const auto box = test::box_mesh(1, 2, 3);
+  std::string s = "OFF\n# a comment\n8 6 12\n";
+  for (const auto& p : box.vertices) s += fmt::format("{} {} {}\n", p.x(), p.y(), p.z());
+  for (const auto& q : kQuads) s += fmt::format("4 {} {} {} {}\n", q[0], q[1], q[2], q[3]);
+  return s;
+}
+
+TEST(ReadMesh, Off) {
+  const auto m = read_mesh(write("box.off", box_off()));
+  EXPECT_EQ(m.triangles.size(), 12u);
+  EXPECT_NEAR(solid_volume(m), kBoxVolume, 1e-12);
+}
+
+template <class T>
+void put(std::string& s, T v, bool big) {
+  char b[sizeof(T)];
+  std::memcpy(b, &v, sizeof(T));
+  if (big) std::reverse(b, b + sizeof(T));
+  s.append(b, sizeof(T));
+}
+
+std::string box_ply(const std::string& format) {
+  const auto box = test::box_mesh(1, 2, 3);
+  std::string s = "ply\nformat " + format +
+                  " 1.0\ncomment made in a test\nelement vertex 8\nproperty float x\nproperty "
+                  "float y\nproperty float z\nproperty uchar red\nelement face 6\nproperty list "
+                  "uchar int vertex_indices\nend_header\n";
+  if (format == "ascii") {
+    for (const auto& p : box.vertices) s += fmt::format("{} {} {} 255\n", p.x(), p.y(), p.z());
+    for (const auto& q : kQuads) s += fmt::format("4 {} {} {} {}\n", q[0], q[1], q[2], q[3]);
+    return s;
+  }
+  const bool big = format == "binary_big_endian";
+  for (const auto& p : box.vertices) {
+    for (int c = 0; c < 3; ++c) put(s, static_cast<float>(p[c]), big);
+    put(s, std::uint8_t{255}, big);
+  }
+  for (const auto& q : kQuads) {
+    put(s, std::uint8_t{4}, big);
+    for (auto i : q) put(s, static_cast<std::int32_t>(i), big);
+  }
+  return s;
+}
+
+TEST(ReadMesh, PlyAsciiAndBothByteOrdersAgree) {
+  for (const std::string f : {"ascii", "binary_little_endian", "binary_big_endian"}) {
+    const auto m = read_mesh(write(f + ".ply", box_ply(f)));
+    EXPECT_EQ(m.triangles.size(), 12u) << f;
+    EXPECT_NEAR(solid_volume(m), kBoxVolume, 1e-12) << f;
+  }
+}
+
+// Malformed files: each error names the file and the line or byte.
+TEST(ReadMesh, EmptyFile) {
+  for (const std::string ext : {"stl", "obj", "ply", "off"}) {
+    const auto p = write("empty." + ext, "");
+    EXPECT_RIGID_ERROR((void)read_mesh(p), p + ": the file is empty");
+  }
+}
+
+TEST(ReadMesh, MissingFileAndUnknownExtension) {
+  EXPECT_RIGID_ERROR((void)read_mesh(temp_path("nope.stl")), "nope.stl: cannot open the file");
+  EXPECT_RIGID_ERROR((void)read_mesh(write("x.dae", "x")), "unknown mesh extension 'dae'");
+}
+
+TEST(ReadMesh, TruncatedBinaryStl) {
+  const auto box = test::box_mesh(1, 2, 3);
+  std::string bytes = binary_stl(box, "binary");
+  bytes.resize(84 + 50 * 5 + 17);
+  const auto p = write("trunc.stl", bytes);
+  EXPECT_RIGID_ERROR((void)read_mesh(p), p + ": byte 80: binary STL triangle count 12 needs 684 "
+                                             "bytes but the file has 351");
+  const auto q = write("short.stl", std::string(40, 'x'));
+  EXPECT_RIGID_ERROR((void)read_mesh(q), q + ": byte 40: truncated binary STL: 40 bytes");
+}
+
+TEST(ReadMesh, NaNCoordinates) {
+  auto box = test::box_mesh(1, 2, 3);
+  std::string bytes = binary_stl(box, "binary");
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  std::memcpy(bytes.data() + 84 + 50 * 2 + 12 + 4, &nan, 4);  // triangle 3, first vertex, y
+  const auto p = write("nan.stl", bytes);
+  EXPECT_RIGID_ERROR((void)read_mesh(p), p + ": byte 200: coordinate of triangle 3 is nan");
+  std::string off = box_off();
+  off.replace(off.find("0 0 0"), 5, "0 nan 0");
+  const auto q = write("nan.off", off);
+  EXPECT_RIGID_ERROR((void)read_mesh(q), q + ":4: a vertex coordinate is nan");
+  std::string ply = box_ply("ascii");
+  ply.replace(ply.find("0 0 0 255"), 9, "0 0 inf 255");
+  const auto r = write("nan.ply", ply);
+  EXPECT_RIGID_ERROR((void)read_mesh(r), r + ":12: a property value is inf");
+  std::string stl = ascii_stl(box);
+  stl.replace(stl.find("vertex 0 0 0"), 12, "vertex 0 0 NaN");
+  const auto s = write("nan_ascii.stl", stl);
+  EXPECT_RIGID_ERROR((void)read_mesh(s), s + ":4: a vertex coordinate is NaN");
+}
+
+TEST(ReadMesh, IndicesOutOfRange) {
+  std::string off = box_off();
+  off.replace(off.rfind("4 1 3 7 5"), 9, "4 1 3 7 8");
+  const auto p = write("range.off", off);
+  EXPECT_RIGID_ERROR((void)read_mesh(p), p + ":17: vertex index 8 out of range: the file has 8");
+  std::string ply = box_ply("ascii");
+  ply.replace(ply.rfind("4 1 3 7 5"), 9, "4 1 3 7 9");
+  const auto q = write("range.ply", ply);
+  EXPECT_RIGID_ERROR((void)read_mesh(q), q + ":25: face 6 uses vertex index 9: the file has 8");
+  std::string obj = box_obj();
+  obj.replace(obj.rfind("f 2 4 8 6"), 9, "f 2 4 8 60");
+  const auto r = write("range.obj", obj);
+  EXPECT_RIGID_ERROR((void)read_mesh(r), r + ":");
+  std::string bin = box_ply("binary_little_endian");
+  const std::int32_t big_index = 1000;
+  std::memcpy(bin.data() + bin.size() - 4, &big_index, 4);
+  const auto s = write("range_bin.ply", bin);
+  EXPECT_RIGID_ERROR((void)read_mesh(s), s + ": byte " + std::to_string(bin.size() - 4) +
+                                             ": face 6 uses vertex index 1000");
+}
+
+TEST(ReadMesh, CountMismatches) {
+  std::string off = box_off();
+  off.replace(off.find("8 6 12"), 6, "8 7 12");
+  const auto p = write("count.off", off);
+  EXPECT_RIGID_ERROR((void)read_mesh(p), p + ":18: unexpected end of file: expected a face's "
+                                             "vertex count");
+  std::string ply = box_ply("binary_big_endian");
+  ply.resize(ply.size() - 10);
+  const auto q = write("count.ply", ply);
+  EXPECT_RIGID_ERROR((void)read_mesh(q), q + ": byte ");
+  EXPECT_RIGID_ERROR((void)read_mesh(q), "truncated PLY: element face 6 of 6");
+}
+
+TEST(ReadMesh, TextThatIsNotAMesh) {
+  const std::string text = "Dear user,\nthis is a letter, not a mesh.\n";
+  const auto p = write("letter.stl", text);
+  EXPECT_RIGID_ERROR((void)read_mesh(p), p + ": byte 41: truncated binary STL: 41 bytes, expected at least 84");
+  const auto q = write("letter.off", text);
+  EXPECT_RIGID_ERROR((void)read_mesh(q), q + ":1: 'Dear': expected the OFF header 'OFF'");
+  const auto r = write("letter.ply", text);
+  EXPECT_RIGID_ERROR((void)read_mesh(r), r + ":1: missing 'ply' magic line");
+  const auto s = write("letter.obj", text);
+  EXPECT_RIGID_ERROR((void)read_mesh(s), s + ": no faces: not a mesh OBJ file");
+  const auto t = write("solid.stl", "solid thing\n  facet normal 0 0 1\n  outer loop\n  oops\n");
+  EXPECT_RIGID_ERROR((void)read_mesh(t), t + ":4: 'oops': expected 'vertex' or 'endloop'");
+}
+
+}  // namespace
+}  // namespace rigid::mesh
