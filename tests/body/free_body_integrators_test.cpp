@@ -1,0 +1,114 @@
+#include "rigid/body/free_body_integrators.hpp"
+
+#include <cmath>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "rigid/body/free_body_exact.hpp"
+#include "support/expect_error.hpp"
+#include "support/tolerance.hpp"
+
+namespace rigid::body {
+namespace {
+
+using test::ulps;
+
+const Eigen::Vector3d kI(1, 2, 3);
+const Eigen::Vector3d kW0(0.01, 1, 0.01);  // tennis racket
+
+double omega_error(FreeBodyMethod m, double h, double t_end) {
+  FreeBodyState s;
+  s.w_B = kW0;
+  const int n = static_cast<int>(std::lround(t_end / h));
+  for (int i = 0; i < n; ++i) s = step_free_body(m, kI, s, h);
+  return (s.w_B - FreeBodyExact(kI, kW0).omega_body(t_end)).lpNorm<Eigen::Infinity>();
+}
+
+TEST(FreeBodyIntegrators, ConvergeAtTheirOrderAgainstTheExactFlow) {
+  // t_end = 10 s covers the first flip. Observed order log2(e(h)/e(h/2)) must be
+  // within 0.3 of the classical order (asymptotic regime chosen per method so the
+  // error is far above round-off and below O(1)).
+  struct Row {
+    FreeBodyMethod m;
+    double h;
+  };
+  for (const Row& r : {Row{FreeBodyMethod::kRk4, 0.02}, Row{FreeBodyMethod::kSplitting2, 0.005},
+                       Row{FreeBodyMethod::kSplitting4, 0.02}, Row{FreeBodyMethod::kSplitting6, 0.05},
+                       Row{FreeBodyMethod::kLiePoissonMidpoint, 0.005}}) {
+    const double e1 = omega_error(r.m, r.h, 10.0);
+    const double e2 = omega_error(r.m, r.h / 2, 10.0);
+    const double p = std::log2(e1 / e2);
+    EXPECT_NEAR(p, order_of(r.m), 0.3) << name_of(r.m) << " e(h) = " << e1 << " e(h/2) = " << e2;
+  }
+}
+
+TEST(FreeBodyIntegrators, SplittingKeepsWorldMomentumAndOrthonormalityToRoundOff) {
+  FreeBodyState s;
+  s.w_B = kW0;
+  const FreeBodyDiagnostics d0 = diagnose(kI, s);
+  double max_energy_err = 0;
+  const int n = 100000;
+  for (int i = 0; i < n; ++i) {
+    s = step_free_body(FreeBodyMethod::kSplitting4, kI, s, 0.01);
+    if (i % 1000 == 0)
+      max_energy_err = std::max(max_energy_err, std::abs(diagnose(kI, s).energy - d0.energy));
+  }
+  const FreeBodyDiagnostics d = diagnose(kI, s);
+  const double L = d0.L_W.norm();
+  // Each sub-flow is an exact rotation: only round-off accumulates, as a random
+  // walk ≈ √(15 n) ε per component; 1e-12 allows ~ 4500 ulps.
+  EXPECT_LT((d.L_W - d0.L_W).norm(), 1e-12 * L);
+  EXPECT_LT(d.orthonormality_error, 1e-13);
+  // Symplectic: energy error bounded by C h⁴ (no drift); C ≈ 1 for this motion.
+  EXPECT_LT(max_energy_err, 1e-7);
+}
+
+TEST(FreeBodyIntegrators, MidpointKeepsQuadraticInvariants) {
+  FreeBodyState s;
+  s.w_B = kW0;
+  const FreeBodyDiagnostics d0 = diagnose(kI, s);
+  const double L0 = kI.cwiseProduct(kW0).norm();
+  for (int i = 0; i < 20000; ++i) s = step_free_body(FreeBodyMethod::kLiePoissonMidpoint, kI, s, 0.01);
+  // Fixed point solved to 1e-16 relative per step; round-off random walk over 2e4 steps.
+  EXPECT_NEAR(kI.cwiseProduct(s.w_B).norm(), L0, 1e-12 * L0);
+  EXPECT_NEAR(diagnose(kI, s).energy, d0.energy, 1e-12 * d0.energy);
+  EXPECT_LT(diagnose(kI, s).orthonormality_error, 1e-13);
+}
+
+TEST(FreeBodyIntegrators, Rk4DriftsWhichTheDiagnosticsShow) {
+  // Baseline without structure: the unit-norm defect of q grows (it is a check
+  // that the diagnostics can fail).
+  FreeBodyState s;
+  s.w_B = kW0;
+  for (int i = 0; i < 1000; ++i) s = step_free_body(FreeBodyMethod::kRk4, kI, s, 0.1);
+  EXPECT_GT(diagnose(kI, s).orthonormality_error, 1e-10);
+}
+
+TEST(FreeBodyIntegrators, SimulateReturnsRequestedTimes) {
+  FreeBodyState s;
+  s.w_B = kW0;
+  const auto traj = simulate_free_body(FreeBodyMethod::kSplitting6, kI, s, 0.05, {0.0, 1.0, 2.5});
+  ASSERT_EQ(traj.t.size(), 3u);
+  EXPECT_EQ(traj.t[2], 2.5);
+  const Eigen::Vector3d exact = FreeBodyExact(kI, kW0).omega_body(2.5);
+  // 6th order at h = 0.05 over 2.5 s: error ≈ 1e-9 (from the convergence test scale).
+  EXPECT_LT((traj.states[2].w_B - exact).lpNorm<Eigen::Infinity>(), 1e-8);
+}
+
+TEST(FreeBodyIntegrators, NamesAndBadInput) {
+  EXPECT_EQ(free_body_method_from_name("splitting4"), FreeBodyMethod::kSplitting4);
+  EXPECT_EQ(name_of(FreeBodyMethod::kLiePoissonMidpoint), "midpoint");
+  EXPECT_RIGID_ERROR((void)free_body_method_from_name("euler"), "unknown free-body method 'euler'");
+  FreeBodyState s;
+  EXPECT_RIGID_ERROR((void)simulate_free_body(FreeBodyMethod::kRk4, kI, s, 0.0, {1.0}),
+                     "step h_max must be finite and > 0 s, got 0");
+  EXPECT_RIGID_ERROR((void)simulate_free_body(FreeBodyMethod::kRk4, kI, s, 0.1, {1.0, 0.5}),
+                     "entry 1 is 0.5 after 1");
+  s.q_WB.coeffs() *= 2.0;
+  EXPECT_RIGID_ERROR((void)simulate_free_body(FreeBodyMethod::kRk4, kI, s, 0.1, {1.0}),
+                     "unit quaternion, got |q| = 2");
+}
+
+}  // namespace
+}  // namespace rigid::body
