@@ -1,0 +1,109 @@
+#pragma once
+
+#include <random>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>  // cross
+
+#include "rigid/common/scalars.hpp"
+
+namespace rigid {
+
+/// Rotation group SO(3), stored as a unit quaternion q = (w, x, y, z).
+///
+/// Class invariant: |q| = 1 within a few ulps. q and −q are the same rotation; the
+/// stored sign is whatever construction produced. Tangent vectors ω ∈ R³ are rotation
+/// vectors (axis · angle, radians); hat(ω) is the skew matrix with hat(ω) v = ω × v.
+/// Jacobians follow [Sola2018]: exp(ω + δ) ≈ exp(ω) · exp(Jr(ω) δ) ≈ exp(Jl(ω) δ) · exp(ω).
+template <typename Scalar>
+class SO3 {
+ public:
+  using Vector3 = Eigen::Matrix<Scalar, 3, 1>;
+  using Vector4 = Eigen::Matrix<Scalar, 4, 1>;
+  using Matrix3 = Eigen::Matrix<Scalar, 3, 3>;
+  static constexpr int kDim = 3;   ///< n(n−1)/2 with n = 3
+  static constexpr int kDof = 3;
+  using Tangent = Vector3;
+
+  /// The identity rotation.
+  [[nodiscard]] static SO3 identity() { return SO3(Scalar(1), Scalar(0), Scalar(0), Scalar(0)); }
+  /// Unit quaternion (w, x, y, z); a non-unit input is normalised.
+  /// @throws rigid::Error if a component is not finite or the norm is below 1e-12.
+  [[nodiscard]] static SO3 from_quaternion(const Scalar& w, const Scalar& x, const Scalar& y,
+                                           const Scalar& z);
+  /// Rotation matrix R_AB. @throws rigid::Error if R is not finite, |RᵀR − I|_max > tol or
+  /// det R < 0 (the message gives the defect and the determinant). Use nearest_rotation first
+  /// for a matrix that is only roughly orthonormal.
+  [[nodiscard]] static SO3 from_matrix(const Matrix3& R, double tol = 1e-9);
+  /// Rotation of `angle` radians about `axis` (normalised). @throws rigid::Error on a zero
+  /// or non-finite axis, or a non-finite angle.
+  [[nodiscard]] static SO3 from_axis_angle(const Vector3& axis, const Scalar& angle);
+
+  /// Exponential map: rotation vector ω → rotation (accurate for small |ω|).
+  [[nodiscard]] static SO3 exp(const Vector3& omega);
+  /// Skew matrix hat(ω), hat(ω) v = ω × v.
+  [[nodiscard]] static Matrix3 hat(const Vector3& w) {
+    Matrix3 m;
+    m << Scalar(0), -w(2), w(1), w(2), Scalar(0), -w(0), -w(1), w(0), Scalar(0);
+    return m;
+  }
+  /// Inverse of hat (reads the lower-triangle entries).
+  [[nodiscard]] static Vector3 vee(const Matrix3& m) { return Vector3(m(2, 1), m(0, 2), m(1, 0)); }
+  /// Right Jacobian Jr(ω) and its inverse [Sola2018].
+  [[nodiscard]] static Matrix3 right_jacobian(const Vector3& omega);
+  [[nodiscard]] static Matrix3 right_jacobian_inverse(const Vector3& omega);
+  /// Left Jacobian Jl(ω) = Jr(−ω) [Sola2018] and its inverse.
+  [[nodiscard]] static Matrix3 left_jacobian(const Vector3& omega);
+  [[nodiscard]] static Matrix3 left_jacobian_inverse(const Vector3& omega);
+  /// Haar-uniform random rotation (normalised 4-D Gaussian quaternion).
+  [[nodiscard]] static SO3 sample(std::mt19937_64& rng);
+
+  /// Logarithm: rotation vector with angle in [0, π], accurate near 0 and near π.
+  [[nodiscard]] Vector3 log() const;
+  /// Rotation angle in [0, π].
+  [[nodiscard]] Scalar angle() const;
+  /// Rotation matrix (for SO3 the adjoint equals the matrix).
+  [[nodiscard]] Matrix3 matrix() const;
+  [[nodiscard]] Matrix3 adjoint() const { return matrix(); }
+  /// Homogeneous 4×4 form [[R, 0], [0, 1]].
+  [[nodiscard]] Eigen::Matrix<Scalar, 4, 4> homogeneous() const;
+  /// Quaternion as (w, x, y, z).
+  [[nodiscard]] Vector4 quaternion() const { return q_; }
+  [[nodiscard]] const Scalar& w() const { return q_(0); }
+  [[nodiscard]] const Scalar& x() const { return q_(1); }
+  [[nodiscard]] const Scalar& y() const { return q_(2); }
+  [[nodiscard]] const Scalar& z() const { return q_(3); }
+
+  [[nodiscard]] SO3 inverse() const { return SO3(q_(0), -q_(1), -q_(2), -q_(3)); }
+  /// Composition (Hamilton product of the quaternions).
+  [[nodiscard]] SO3 operator*(const SO3& b) const {
+    const Scalar &aw = q_(0), &ax = q_(1), &ay = q_(2), &az = q_(3);
+    const Scalar &bw = b.q_(0), &bx = b.q_(1), &by = b.q_(2), &bz = b.q_(3);
+    return SO3(aw * bw - ax * bx - ay * by - az * bz, aw * bx + ax * bw + ay * bz - az * by,
+               aw * by - ax * bz + ay * bw + az * bx, aw * bz + ax * by - ay * bx + az * bw);
+  }
+  SO3& operator*=(const SO3& b) { return *this = *this * b; }
+  /// Rotates a point or vector: v' = v + 2w (u × v) + 2 u × (u × v), u = (x, y, z).
+  [[nodiscard]] Vector3 operator*(const Vector3& v) const {
+    const Vector3 u = q_.template tail<3>();
+    const Vector3 t = Scalar(2) * u.cross(v);
+    return v + q_(0) * t + u.cross(t);
+  }
+  /// Geodesic interpolation a · exp(s · log(a⁻¹ b)), s ∈ [0, 1] (any s allowed).
+  [[nodiscard]] SO3 interpolate(const SO3& b, const Scalar& s) const {
+    return *this * exp(s * (inverse() * b).log());
+  }
+  /// True if the two represent the same rotation within `tol` (angle of a⁻¹ b, radians).
+  [[nodiscard]] bool is_approx(const SO3& b, double tol = 1e-12) const;
+
+ private:
+  SO3(const Scalar& w, const Scalar& x, const Scalar& y, const Scalar& z) : q_(w, x, y, z) {}
+  Vector4 q_;
+};
+
+using SO3d = SO3<double>;
+
+extern template class SO3<double>;
+extern template class SO3<AutoDiffXd>;
+
+}  // namespace rigid
