@@ -56,6 +56,17 @@ inline void add_inertia_command(CLI::App& app) {
   auto source = std::make_shared<rigid::cli::InertiaSourceOptions>();
   inertia->add_option("SOURCE", source->source, "a file with a body to measure (the primitives are the subcommands below)");
   add_inertia_output_options(inertia, source->output);
+  inertia->add_option_function<double>(
+      "--mass", [source](double v) { source->mass = v; }, "mesh files: total mass (kg)");
+  inertia->add_option_function<double>(
+      "--density", [source](double v) { source->density = v; },
+      "mesh files: density (kg/m³; kg/m² with --shell, kg/m³ with --shell --thickness)");
+  inertia->add_option("--units", source->units, "mesh files: length unit m, cm, mm or in")
+      ->default_str("m");
+  inertia->add_flag("--shell", source->shell, "mesh files: a thin shell, not a solid");
+  inertia->add_option_function<double>(
+      "--thickness", [source](double v) { source->thickness = v; },
+      "mesh files with --shell: wall thickness (m)");
   // unknown words after an unknown SOURCE reach the callback, which names the real problem
   inertia->allow_extras();
   inertia->callback([inertia, source] {

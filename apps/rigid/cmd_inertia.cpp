@@ -1,4 +1,5 @@
 #include "cmd_inertia.hpp"
+#include "cmd_mesh.hpp"
 
 #include <charconv>
 #include <cmath>
@@ -251,6 +252,11 @@ void run_inertia_source(const InertiaSourceOptions& opts) {
   std::string names;
   for (const auto& p : primitives()) names += (names.empty() ? "" : ", ") + p.spec.name;
   RIGID_REQUIRE(!opts.source.empty(), "give a primitive ({}) or `check FILE`", names);
+  if (is_mesh_file(opts.source)) {
+    run_inertia_mesh(opts.source, {opts.mass, opts.density, opts.units, opts.shell, opts.thickness},
+                     opts.output);
+    return;
+  }
   RIGID_THROW("unknown primitive '{}'; expected one of {}, or `check FILE`", opts.source, names);
 }
 

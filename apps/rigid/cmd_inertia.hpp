@@ -56,6 +56,11 @@ void run_inertia_primitive(const InertiaPrimitiveOptions& opts);
 struct InertiaSourceOptions {
   std::string source;
   InertiaOutputOptions output;
+  std::optional<double> mass;       ///< kg (mesh files)
+  std::optional<double> density;    ///< kg/m³ solid, kg/m² shell (kg/m³ with thickness)
+  std::string units = "m";          ///< mesh file unit: m, cm, mm or in
+  bool shell = false;               ///< mesh as a thin shell
+  std::optional<double> thickness;  ///< m, with shell
 };
 
 /// `rigid inertia SOURCE`: SOURCE names no primitive; reports the choices.

@@ -10,6 +10,7 @@
 // One header per subcommand, each defining add_<verb>_command(CLI::App&).
 #include "cli_demo.hpp"
 #include "cli_inertia.hpp"
+#include "cli_mesh.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{
@@ -20,6 +21,7 @@ int main(int argc, char** argv) {
 
   add_demo_command(app);
   add_inertia_command(app);
+  add_mesh_command(app);
 
   try {
     app.parse(argc, argv);
