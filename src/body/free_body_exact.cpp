@@ -72,7 +72,7 @@ FreeBodyExact::FreeBodyExact(const Eigen::Vector3d& I_B, const Eigen::Vector3d& 
     return;
   }
   case_ = FreeBodyCase::kAsymmetric;
-  // [Landau–Lifshitz, §37, eq. 37.10]: for L² > 2E I2, ω1 ∝ cn, ω2 ∝ sn, ω3 ∝ dn;
+  // [Landau1976, §37, eq. 37.10]: for L² > 2E I2, ω1 ∝ cn, ω2 ∝ sn, ω3 ∝ dn;
   // for L² < 2E I2 the roles of axes 1 and 3 swap.
   const bool about3 = L2 >= E2 * I(1);
   axis_cn_ = about3 ? 0 : 2;

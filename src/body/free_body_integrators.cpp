@@ -71,7 +71,7 @@ void strang(const Eigen::Vector3d& I_B, Eigen::Quaterniond& q, Eigen::Vector3d& 
   axis_flow(0, I_B, q, L, 0.5 * h);
 }
 
-// Triple-jump composition [Yoshida 1990]: order p → p + 2 with
+// Triple-jump composition [Yoshida1990]: order p → p + 2 with
 // γ1 = 1/(2 − 2^{1/(p+1)}), γ0 = 1 − 2γ1.
 void yoshida4(const Eigen::Vector3d& I_B, Eigen::Quaterniond& q, Eigen::Vector3d& L, double h) {
   const double g1 = 1.0 / (2.0 - std::cbrt(2.0));

@@ -73,7 +73,7 @@ TEST(FreeBodyExact, ConservesEnergyAndMomentumNormToRoundOff) {
 }
 
 TEST(FreeBodyExact, TennisRacketFlipsWithTheEllipticPeriod) {
-  // Independent closed form [Landau–Lifshitz §37, eq. 37.10]: here L² > 2E I2
+  // Independent closed form [Landau1976, §37, eq. 37.10]: here L² > 2E I2
   // (4.001 > 4.0008), so ω3 ∝ dn and the period of ω is T = 4K(k)/λ with
   // λ² = (I3−I2)(L² − 2E I1)/(I1 I2 I3), k² = (I2−I1)(2E I3 − L²)/((I3−I2)(L² − 2E I1)).
   // ω2 changes sign twice per T.

@@ -1,6 +1,6 @@
 #pragma once
 
-/// Euler–Arnold equations of the generalised rigid body on SO(n) [Ratiu 1980]:
+/// Euler–Arnold equations of the generalised rigid body on SO(n) [Ratiu1980]:
 ///   Ṁ = [M, Ω],  M = JΩ + ΩJ,
 /// with J = diag(J_1 … J_n) > 0 the mass matrix (Σ m x xᵀ for a body of particles),
 /// Ω ∈ so(n) the body angular velocity and M ∈ so(n) the body angular momentum.

@@ -1,7 +1,7 @@
 #pragma once
 
 /// Exact solution of the torque-free Euler equations (the free rigid body), body
-/// angular velocity ω_B(t) in Jacobi elliptic functions [Landau–Lifshitz, §37].
+/// angular velocity ω_B(t) in Jacobi elliptic functions [Landau1976, §37].
 ///
 /// Cases: asymmetric body on either side of the separatrix (L² > 2E·I2: the dn
 /// component is ω3; L² < 2E·I2: it is ω1), the separatrix itself (modulus 1,

@@ -13,7 +13,7 @@
 ///
 /// Splitting: H = Σ L_i²/(2 I_i) is split into the three body-axis Hamiltonians;
 /// each flow rotates L_B about e_i by −h L_i/I_i and the body by +h L_i/I_i
-/// [McLachlan 1993; Yoshida 1990 for the compositions].
+/// [McLachlan1993; Yoshida1990 for the compositions].
 
 #include <string>
 #include <string_view>
