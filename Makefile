@@ -4,7 +4,7 @@ PRESET ?= ci
 BUILD  := build/$(PRESET)
 PYTHON := /usr/bin/python3
 
-.PHONY: all deps configure build test test-cpp test-python demo bench asan clean
+.PHONY: all deps configure build test test-cpp test-python test-asan demo bench asan clean
 
 all: build
 
@@ -17,7 +17,7 @@ configure: deps
 build: configure
 	cmake --build --preset $(PRESET)
 
-test: build
+test: build test-asan
 	ctest --preset $(PRESET)
 	RIGID_PYTHON_DIR=$(CURDIR)/$(BUILD)/python RIGID_EXE=$(CURDIR)/$(BUILD)/bin/rigid \
 	  $(PYTHON) -m pytest -q python/tests tests/cli
@@ -30,6 +30,13 @@ bench:
 	cmake --preset bench >/dev/null
 	cmake --build --preset bench
 	scripts/run-benchmarks.sh build/bench
+
+# The mesh readers' tests under AddressSanitizer + UBSan (malformed files must not read out
+# of bounds); builds only that test binary.
+test-asan: deps
+	cmake --preset asan >/dev/null
+	cmake --build --preset asan --target rigid_mesh_tests
+	build/asan/bin/rigid_mesh_tests --gtest_brief=1
 
 asan: deps
 	cmake --preset asan >/dev/null

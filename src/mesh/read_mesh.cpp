@@ -96,6 +96,11 @@ class Tokens {
     return v;
   }
 
+  /// Skips the rest of the current line (trailing per-vertex colours, normals, ...).
+  void skip_line() {
+    while (pos_ < text_.size() && text_[pos_] != '\n') ++pos_;
+  }
+
   [[nodiscard]] int line() const { return token_line_; }
   [[nodiscard]] std::size_t pos() const { return pos_; }
 
@@ -332,7 +337,10 @@ TriangleMesh read_off(const std::string& path, double scale) {
   const std::string data = slurp(path);
   Tokens tok(path, data, 0, 1, true);
   const auto magic = tok.expect("'OFF'");
-  if (magic != "OFF") {
+  // [ST][C][N]OFF: texture coordinates, colours and normals follow the coordinates on each
+  // vertex line; only the coordinates are read.
+  if (magic.size() < 3 || magic.substr(magic.size() - 3) != "OFF" ||
+      magic.find_first_not_of("STCN") < magic.size() - 3) {
     fail_line(path, tok.line(), fmt::format("'{}': expected the OFF header 'OFF'",
                                             std::string(magic.substr(0, 20))));
   }
@@ -349,6 +357,7 @@ TriangleMesh read_off(const std::string& path, double scale) {
     Eigen::Vector3d p;
     for (int c = 0; c < 3; ++c) p[c] = tok.number("a vertex coordinate") * scale;
     mesh.vertices.push_back(p);
+    tok.skip_line();
   }
   std::vector<Index> poly;
   for (long long f = 0; f < nf; ++f) {
@@ -367,7 +376,7 @@ TriangleMesh read_off(const std::string& path, double scale) {
       poly.push_back(static_cast<Index>(i));
     }
     add_polygon(mesh, poly);
-    // Colour values may follow on the same line: skip to its end.
+    tok.skip_line();  // face colours may follow the indices
   }
   return mesh;
 }

@@ -1,0 +1,121 @@
+// Meshes this project did not write: the data set of the CGAL demos (Debian libcgal-demo,
+// /usr/share/doc/libcgal-demo/data.tar.gz; scripts/install-deps.sh installs it). The expected
+// values come from the files' own geometry (a 2 m cube, a sphere of radius 0.5 m), not from
+// this code.
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include "rigid/mesh.hpp"
+#include "support/expect_error.hpp"
+
+namespace rigid::mesh {
+namespace {
+
+constexpr const char* kArchive = "/usr/share/doc/libcgal-demo/data.tar.gz";
+
+// Extracts the named members of data/meshes once per test binary and returns the folder.
+std::string cgal_meshes() {
+  static const std::string dir = [] {
+    const std::string out = (std::filesystem::path(testing::TempDir()) / "rigid_cgal").string();
+    std::filesystem::create_directories(out);
+    const std::string cmd = fmt::format(
+        "tar -xzf {} -C {} data/meshes/cube.off data/meshes/cube-shuffled.off "
+        "data/meshes/cube-ouvert.off data/meshes/blobby_3cc.off data/meshes/sphere.stl "
+        "data/meshes/sphere.ply data/meshes/boeing.off data/meshes/bones.off",
+        kArchive, out);
+    return std::system(cmd.c_str()) == 0 ? out + "/data/meshes/" : std::string();
+  }();
+  return dir;
+}
+
+MassSpec unit_density() { return {std::nullopt, 1.0, false, {}}; }
+
+class RealFiles : public testing::Test {
+ protected:
+  void SetUp() override {
+    ASSERT_FALSE(cgal_meshes().empty())
+        << kArchive << " could not be extracted: install libcgal-demo (scripts/install-deps.sh)";
+  }
+};
+
+TEST_F(RealFiles, CubeIsExact) {
+  auto m = read_mesh(cgal_meshes() + "cube.off");
+  const auto rep = repair_mesh(m);
+  EXPECT_TRUE(rep.closed());
+  const auto r = mesh_mass_properties(m, unit_density());
+  // [-1, 1]³: V = 8, I = m (2² + 2²)/12 = 16/3 about each axis.
+  EXPECT_NEAR(r.measure, 8.0, 1e-12);
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(r.properties.inertia_com()(i, i), 16.0 / 3, 1e-12);
+}
+
+TEST_F(RealFiles, ShuffledWindingIsRepaired) {
+  // The same cube with its triangles' winding shuffled (comments before the header, too).
+  auto m = read_mesh(cgal_meshes() + "cube-shuffled.off");
+  EXPECT_GT(count_edges(m).misoriented, 0u);
+  const auto rep = repair_mesh(m);
+  EXPECT_GT(rep.reoriented_triangles, 0u);
+  EXPECT_EQ(count_edges(m).misoriented, 0u);
+  const auto r = mesh_mass_properties(m, unit_density());
+  EXPECT_NEAR(r.measure, 8.0, 1e-12);
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(r.properties.inertia_com()(i, i), 16.0 / 3, 1e-12);
+}
+
+TEST_F(RealFiles, OpenCubeIsRefusedAsASolid) {
+  // cube-ouvert: the cube with one square face (two triangles) missing: the four edges of
+  // that face are boundary edges (10 triangles in the file, read by hand).
+  auto m = read_mesh(cgal_meshes() + "cube-ouvert.off");
+  const auto rep = repair_mesh(m);
+  EXPECT_EQ(rep.boundary_edges, 4u);
+  EXPECT_RIGID_ERROR((void)mesh_mass_properties(m, unit_density()),
+                     "not closed (4 boundary edges, 0 non-manifold edges)");
+  EXPECT_GT(mesh_mass_properties(m, {std::nullopt, 1.0, true, {}}).measure, 0.0);
+}
+
+TEST_F(RealFiles, MultiComponentMeshesListEachComponent) {
+  auto blobby = read_mesh(cgal_meshes() + "blobby_3cc.off");
+  EXPECT_EQ(repair_mesh(blobby).components.size(), 3u);  // "3cc": three connected components
+  auto bones = read_mesh(cgal_meshes() + "bones.off");
+  const auto rep = repair_mesh(bones);
+  EXPECT_TRUE(rep.closed());
+  ASSERT_GT(rep.components.size(), 1u);
+  double sum = 0;
+  for (const auto& c : rep.components) {
+    EXPECT_GT(c.signed_volume, 0.0);
+    sum += c.signed_volume;
+  }
+  // The whole mesh's volume is the sum of its components' (each summed about one point).
+  EXPECT_NEAR(mesh_mass_properties(bones, unit_density()).measure, sum, 1e-12 * sum);
+}
+
+TEST_F(RealFiles, InvertedClosedMeshIsFlipped) {
+  auto m = read_mesh(cgal_meshes() + "boeing.off");
+  const auto rep = repair_mesh(m);
+  EXPECT_TRUE(rep.closed());
+  EXPECT_GT(rep.reoriented_triangles + rep.inverted_components, 0u);
+  EXPECT_GT(mesh_mass_properties(m, unit_density()).measure, 0.0);
+}
+
+TEST_F(RealFiles, BinaryStlAndAsciiPlyOfOneSphereAgree) {
+  auto stl = read_mesh(cgal_meshes() + "sphere.stl");  // binary, float32
+  auto ply = read_mesh(cgal_meshes() + "sphere.ply");  // ASCII, doubles
+  repair_mesh(stl);
+  repair_mesh(ply);
+  EXPECT_EQ(stl.vertices.size(), ply.vertices.size());
+  const auto a = mesh_mass_properties(stl, unit_density());
+  const auto b = mesh_mass_properties(ply, unit_density());
+  // float32 storage: relative 6e-8 per coordinate, so 1e-6 on volume and inertia.
+  EXPECT_NEAR(a.measure, b.measure, 1e-6 * b.measure);
+  EXPECT_LT((a.properties.inertia_com() - b.properties.inertia_com()).norm(),
+            1e-6 * b.properties.inertia_com().norm());
+  // An inscribed polyhedron of a sphere of radius 0.5: below 4/3 π r³ and within 5% of it.
+  const double v = 4.0 / 3 * 3.141592653589793 * 0.125;
+  EXPECT_LT(b.measure, v);
+  EXPECT_GT(b.measure, 0.95 * v);
+}
+
+}  // namespace
+}  // namespace rigid::mesh
