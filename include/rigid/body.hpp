@@ -5,3 +5,4 @@
 #include "rigid/body/euler_arnold.hpp"
 #include "rigid/body/free_body_exact.hpp"
 #include "rigid/body/free_body_integrators.hpp"
+#include "rigid/body/heavy_top.hpp"
