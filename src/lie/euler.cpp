@@ -12,7 +12,9 @@ namespace rigid {
 
 namespace {
 
-constexpr double kGimbalLock = 1e-10;
+// Below this |cos b| (|sin b| for proper sequences) the outer angles are treated as locked; the
+// information dropped is of this size, i.e. at rounding level.
+constexpr double kGimbalLock = 1e-15;
 
 // +1 if (i, j, k) is a cyclic permutation of (0, 1, 2), −1 otherwise.
 double parity(int i, int j) { return ((j - i + 3) % 3 == 1) ? 1.0 : -1.0; }

@@ -32,7 +32,7 @@ struct EulerConvention {
 
 /// Euler angles (radians) of R. The middle angle is in [−π/2, π/2] (Tait–Bryan) or [0, π]
 /// (proper Euler); the others in (−π, π]. Gimbal lock (middle-angle cosine, resp. sine, below
-/// 1e-10 in magnitude, where only the sum or difference of the outer angles is defined): the
+/// 1e-15 in magnitude, where only the sum or difference of the outer angles is defined): the
 /// third intrinsic angle (for extrinsic conventions: the first angle) is set to 0 and the
 /// other outer angle carries the whole rotation.
 [[nodiscard]] Eigen::Vector3d to_euler(const SO3d& R, const EulerConvention& convention);
