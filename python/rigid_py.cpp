@@ -9,6 +9,7 @@ namespace py = pybind11;
 
 void bind_mass(py::module_& m);
 void bind_lagrange(py::module_& m);
+void bind_body(py::module_& m);
 
 PYBIND11_MODULE(rigid, m) {
   m.doc() = "rigid: rigid-body mechanics from isometries and inertia tensors to Euler's equations";
@@ -16,4 +17,5 @@ PYBIND11_MODULE(rigid, m) {
   py::register_exception<rigid::Error>(m, "Error", PyExc_ValueError);
   bind_mass(m);
   bind_lagrange(m);
+  bind_body(m);
 }
