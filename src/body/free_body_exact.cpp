@@ -5,6 +5,8 @@
 #include <limits>
 #include <numbers>
 
+// Double in, double out: no internal promotion to long double (x87 is slow).
+#define BOOST_MATH_PROMOTE_DOUBLE_POLICY false
 #include <boost/math/special_functions/ellint_1.hpp>
 #include <boost/math/special_functions/jacobi_elliptic.hpp>
 
