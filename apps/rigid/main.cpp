@@ -10,6 +10,7 @@
 // One header per subcommand, each defining add_<verb>_command(CLI::App&).
 #include "cli_demo.hpp"
 #include "cli_inertia.hpp"
+#include "cli_rotation.hpp"
 #include "cli_mesh.hpp"
 
 int main(int argc, char** argv) {
@@ -21,6 +22,7 @@ int main(int argc, char** argv) {
 
   add_demo_command(app);
   add_inertia_command(app);
+  add_rotation_command(app);
   add_mesh_command(app);
 
   try {

@@ -1,0 +1,99 @@
+#include "cmd_rotation.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <numbers>
+#include <string_view>
+#include <vector>
+
+#include <fmt/core.h>
+
+#include "rigid/common/error.hpp"
+#include "rigid/lie.hpp"
+
+namespace rigid::cli {
+
+namespace {
+
+std::vector<double> parse_numbers(std::string_view text, std::size_t count, std::string_view option) {
+  std::vector<double> out;
+  std::size_t start = 0;
+  for (;;) {
+    const std::size_t end = std::min(text.find(',', start), text.size());
+    std::string_view item = text.substr(start, end - start);
+    while (!item.empty() && item.front() == ' ') item.remove_prefix(1);
+    while (!item.empty() && item.back() == ' ') item.remove_suffix(1);
+    double v = 0;
+    const auto [ptr, ec] = std::from_chars(item.data(), item.data() + item.size(), v);
+    RIGID_REQUIRE(ec == std::errc() && ptr == item.data() + item.size() && !item.empty(),
+                  "{}: '{}' is not a number", option, item);
+    RIGID_REQUIRE(std::isfinite(v), "{}: value {} is not finite", option, item);
+    out.push_back(v);
+    if (end == text.size()) break;
+    start = end + 1;
+  }
+  RIGID_REQUIRE(out.size() == count, "{} takes {} comma-separated numbers, got {} in '{}'", option, count,
+                out.size(), text);
+  return out;
+}
+
+std::string list(const Eigen::VectorXd& v) {
+  std::string s = "[";
+  for (Eigen::Index i = 0; i < v.size(); ++i) s += fmt::format("{}{}", i ? ", " : "", v(i) + 0.0);  // + 0.0 prints −0 as 0
+  return s + "]";
+}
+
+}  // namespace
+
+void run_rotation(const RotationOptions& o) {
+  RIGID_REQUIRE(o.unit == "deg" || o.unit == "rad", "--unit is '{}', expected deg or rad", o.unit);
+  RIGID_REQUIRE(o.order == "wxyz" || o.order == "xyzw", "--order is '{}', expected wxyz or xyzw", o.order);
+  const double to_rad = o.unit == "deg" ? std::numbers::pi / 180.0 : 1.0;
+  const EulerConvention conv = EulerConvention::parse(o.convention, !o.extrinsic);
+  const EulerConvention out_conv =
+      o.out_convention.empty() ? conv : EulerConvention::parse(o.out_convention, !o.extrinsic);
+
+  SO3d R = SO3d::identity();
+  if (!o.axis_angle.empty()) {
+    const auto v = parse_numbers(o.axis_angle, 4, "--axis-angle");
+    R = SO3d::from_axis_angle(Eigen::Vector3d(v[0], v[1], v[2]), v[3] * to_rad);
+  } else if (!o.quaternion.empty()) {
+    const auto v = parse_numbers(o.quaternion, 4, "--quaternion");
+    R = o.order == "wxyz" ? SO3d::from_quaternion(v[0], v[1], v[2], v[3])
+                          : SO3d::from_quaternion(v[3], v[0], v[1], v[2]);
+  } else if (!o.matrix.empty()) {
+    const auto v = parse_numbers(o.matrix, 9, "--matrix");
+    Eigen::Matrix3d M;
+    M << v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8];
+    R = SO3d::from_matrix(M);
+  } else if (!o.euler.empty()) {
+    const auto v = parse_numbers(o.euler, 3, "--euler");
+    R = from_euler(Eigen::Vector3d(v[0], v[1], v[2]) * to_rad, conv);
+  } else {
+    const auto v = parse_numbers(o.rotvec, 3, "--rotvec");
+    R = SO3d::exp(Eigen::Vector3d(v[0], v[1], v[2]));
+  }
+
+  const Eigen::Vector3d w = R.log();
+  const double angle = w.norm();
+  const Eigen::Vector3d axis = angle > 0 ? Eigen::Vector3d(w / angle) : Eigen::Vector3d(1, 0, 0);
+  fmt::print("axis-angle: axis {}, angle {} {}{}\n", list(axis), angle / to_rad, o.unit,
+             angle > 0 ? "" : " (identity: axis arbitrary)");
+  fmt::print("rotation vector (rad): {}\n", list(w));
+  const Eigen::Vector4d q = R.quaternion();
+  // Sign chosen with w ≥ 0 (q and −q are the same rotation).
+  const Eigen::Vector4d qp = q(0) < 0 ? Eigen::Vector4d(-q) : q;
+  if (o.order == "wxyz") {
+    fmt::print("quaternion (w, x, y, z): {}\n", list(qp));
+  } else {
+    fmt::print("quaternion (x, y, z, w): {}\n", list(Eigen::Vector4d(qp(1), qp(2), qp(3), qp(0))));
+  }
+  const Eigen::Matrix3d M = R.matrix();
+  fmt::print("matrix:\n");
+  for (int i = 0; i < 3; ++i) fmt::print("  {}\n", list(M.row(i).transpose()));
+  const Eigen::Vector3d e = to_euler(R, out_conv) / to_rad;
+  fmt::print("euler {} {} ({}): {}\n", out_conv.name(), out_conv.intrinsic ? "intrinsic" : "extrinsic", o.unit,
+             list(e));
+}
+
+}  // namespace rigid::cli
