@@ -10,6 +10,7 @@ namespace py = pybind11;
 void bind_mass(py::module_& m);
 void bind_lagrange(py::module_& m);
 void bind_body(py::module_& m);
+void bind_mesh(py::module_& m);
 
 PYBIND11_MODULE(rigid, m) {
   m.doc() = "rigid: rigid-body mechanics from isometries and inertia tensors to Euler's equations";
@@ -18,4 +19,5 @@ PYBIND11_MODULE(rigid, m) {
   bind_mass(m);
   bind_lagrange(m);
   bind_body(m);
+  bind_mesh(m);
 }

@@ -1,0 +1,107 @@
+// rigid.mesh: triangle meshes from files or numpy arrays, repair, exact mass properties.
+#include <pybind11/eigen.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include "rigid/common/error.hpp"
+#include "rigid/mesh.hpp"
+
+namespace py = pybind11;
+
+namespace {
+
+using rigid::mesh::TriangleMesh;
+
+TriangleMesh from_arrays(const py::array_t<double, py::array::c_style | py::array::forcecast>& v,
+                         const py::array_t<long long, py::array::c_style | py::array::forcecast>& f) {
+  RIGID_REQUIRE(v.ndim() == 2 && v.shape(1) == 3, "vertices: expected an (n, 3) array, got {} dimensions", v.ndim());
+  RIGID_REQUIRE(f.ndim() == 2 && f.shape(1) == 3, "triangles: expected an (m, 3) array, got {} dimensions", f.ndim());
+  TriangleMesh m;
+  const auto vv = v.unchecked<2>();
+  for (py::ssize_t i = 0; i < vv.shape(0); ++i) {
+    m.vertices.emplace_back(vv(i, 0), vv(i, 1), vv(i, 2));
+    RIGID_REQUIRE(m.vertices.back().allFinite(), "vertex {} is not finite", i);
+  }
+  const auto ff = f.unchecked<2>();
+  for (py::ssize_t i = 0; i < ff.shape(0); ++i) {
+    std::array<std::uint32_t, 3> t{};
+    for (int k = 0; k < 3; ++k) {
+      RIGID_REQUIRE(ff(i, k) >= 0 && ff(i, k) < static_cast<long long>(m.vertices.size()),
+                    "triangle {} uses vertex {}: expected 0 to {}", i, ff(i, k),
+                    static_cast<long long>(m.vertices.size()) - 1);
+      t[static_cast<std::size_t>(k)] = static_cast<std::uint32_t>(ff(i, k));
+    }
+    m.triangles.push_back(t);
+  }
+  return m;
+}
+
+}  // namespace
+
+void bind_mesh(py::module_& m) {
+  namespace rm = rigid::mesh;
+  auto mesh = m.def_submodule("mesh", "Triangle meshes: readers, repair, exact mass properties.");
+
+  py::class_<TriangleMesh>(mesh, "TriangleMesh", "Indexed triangle mesh (vertices in m).")
+      .def(py::init(&from_arrays), py::arg("vertices"), py::arg("triangles"))
+      .def_property_readonly("vertices",
+                             [](const TriangleMesh& t) {
+                               py::array_t<double> a({static_cast<py::ssize_t>(t.vertices.size()), py::ssize_t{3}});
+                               auto w = a.mutable_unchecked<2>();
+                               for (std::size_t i = 0; i < t.vertices.size(); ++i)
+                                 for (int k = 0; k < 3; ++k) w(static_cast<py::ssize_t>(i), k) = t.vertices[i][k];
+                               return a;
+                             })
+      .def_property_readonly("triangles",
+                             [](const TriangleMesh& t) {
+                               py::array_t<long long> a({static_cast<py::ssize_t>(t.triangles.size()), py::ssize_t{3}});
+                               auto w = a.mutable_unchecked<2>();
+                               for (std::size_t i = 0; i < t.triangles.size(); ++i)
+                                 for (int k = 0; k < 3; ++k) w(static_cast<py::ssize_t>(i), k) = t.triangles[i][static_cast<std::size_t>(k)];
+                               return a;
+                             })
+      .def("__len__", &TriangleMesh::size);
+
+  py::class_<rm::ComponentReport>(mesh, "ComponentReport")
+      .def_readonly("triangles", &rm::ComponentReport::triangles)
+      .def_readonly("boundary_edges", &rm::ComponentReport::boundary_edges)
+      .def_readonly("volume", &rm::ComponentReport::signed_volume)
+      .def_readonly("area", &rm::ComponentReport::area);
+
+  py::class_<rm::RepairReport>(mesh, "RepairReport")
+      .def_readonly("welded_vertices", &rm::RepairReport::welded_vertices)
+      .def_readonly("degenerate_triangles", &rm::RepairReport::degenerate_triangles)
+      .def_readonly("boundary_edges", &rm::RepairReport::boundary_edges)
+      .def_readonly("non_manifold_edges", &rm::RepairReport::non_manifold_edges)
+      .def_readonly("reoriented_triangles", &rm::RepairReport::reoriented_triangles)
+      .def_readonly("inverted_components", &rm::RepairReport::inverted_components)
+      .def_readonly("components", &rm::RepairReport::components)
+      .def_readonly("warnings", &rm::RepairReport::warnings)
+      .def_property_readonly("closed", &rm::RepairReport::closed)
+      .def("__str__", &rm::describe);
+
+  mesh.def("read", &rm::read_mesh, py::arg("path"), py::arg("scale") = 1.0,
+           "Read an STL/OBJ/PLY/OFF file; coordinates multiplied by scale (m per file unit).");
+  mesh.def("unit_scale", &rm::unit_scale, py::arg("unit"), "Metres per unit: m, cm, mm or in.");
+  mesh.def(
+      "repair",
+      [](TriangleMesh& t, double weld_tolerance) {
+        rm::RepairOptions o;
+        o.weld_tolerance = weld_tolerance;
+        return rm::repair_mesh(t, o);
+      },
+      py::arg("mesh"), py::arg("weld_tolerance") = 1e-7,
+      "Weld, drop degenerate triangles, orient each component outward (in place); returns the report.");
+  mesh.def(
+      "mass_properties",
+      [](const TriangleMesh& t, std::optional<double> mass, std::optional<double> density,
+         bool shell, std::optional<double> thickness) {
+        auto r = rm::mesh_mass_properties(t, {mass, density, shell, thickness});
+        return py::make_tuple(r.properties, r.warnings);
+      },
+      py::arg("mesh"), py::kw_only(), py::arg("mass") = py::none(),
+      py::arg("density") = py::none(), py::arg("shell") = false,
+      py::arg("thickness") = py::none(),
+      "(rigid.MassProperties, warnings) of a solid or thin shell; exactly one of mass, density.");
+}

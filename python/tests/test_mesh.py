@@ -1,0 +1,47 @@
+"""rigid.mesh: arrays in and out, repair, exact moments of a box, errors."""
+import numpy as np
+import pytest
+
+import rigid
+
+
+def box(a, b, c):
+    v = np.array([[(i & 1) * a, ((i >> 1) & 1) * b, ((i >> 2) & 1) * c] for i in range(8)], float)
+    quads = [(0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (2, 6, 7, 3), (0, 4, 6, 2), (1, 3, 7, 5)]
+    f = [t for q in quads for t in ((q[0], q[1], q[2]), (q[0], q[2], q[3]))]
+    return v, np.array(f)
+
+
+def test_box_closed_form():
+    a, b, c, rho = 0.3, 0.5, 0.7, 2700.0
+    mesh = rigid.mesh.TriangleMesh(*box(a, b, c))
+    mp, warnings = rigid.mesh.mass_properties(mesh, density=rho)
+    m = rho * a * b * c
+    assert warnings == []
+    assert mp.mass == pytest.approx(m, rel=1e-12)
+    np.testing.assert_allclose(mp.com, [a / 2, b / 2, c / 2], rtol=1e-12)
+    expected = m / 12 * np.diag([b * b + c * c, a * a + c * c, a * a + b * b])
+    np.testing.assert_allclose(mp.inertia_com, expected, rtol=0, atol=1e-12 * m)
+
+
+def test_reversed_box_is_repaired():
+    v, f = box(1, 2, 3)
+    mesh = rigid.mesh.TriangleMesh(v, f[:, ::-1])
+    report = rigid.mesh.repair(mesh)
+    assert report.closed and report.inverted_components == 1
+    assert report.components[0].volume == pytest.approx(6.0, rel=1e-12)
+    assert "inward normals" in report.warnings[0]
+    assert len(mesh) == 12 and mesh.vertices.shape == (8, 3)
+
+
+def test_open_mesh_and_bad_input_errors(tmp_path):
+    v, f = box(1, 1, 1)
+    with pytest.raises(rigid.Error, match="3 boundary edges"):
+        rigid.mesh.mass_properties(rigid.mesh.TriangleMesh(v, f[:-1]), density=1.0)
+    with pytest.raises(rigid.Error, match="triangle 0 uses vertex 9"):
+        rigid.mesh.TriangleMesh(v, np.array([[0, 1, 9]]))
+    p = tmp_path / "empty.stl"
+    p.write_bytes(b"")
+    with pytest.raises(rigid.Error, match="empty.stl: the file is empty"):
+        rigid.mesh.read(str(p))
+    assert rigid.mesh.unit_scale("mm") == 0.001
