@@ -1,0 +1,66 @@
+"""`rigid mesh check FILE` and `rigid inertia FILE` for mesh files."""
+import json
+import struct
+
+import pytest
+
+QUADS = [(0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (2, 6, 7, 3), (0, 4, 6, 2), (1, 3, 7, 5)]
+
+
+def box_triangles(a, b, c):
+    v = [((i & 1) * a, ((i >> 1) & 1) * b, ((i >> 2) & 1) * c) for i in range(8)]
+    return [(v[q[0]], v[q[1]], v[q[2]]) for q in QUADS] + [(v[q[0]], v[q[2]], v[q[3]]) for q in QUADS]
+
+
+def write_binary_stl(path, triangles, header=b"rigid test"):
+    data = header.ljust(80, b" ") + struct.pack("<I", len(triangles))
+    for t in triangles:
+        data += struct.pack("<12fH", 0, 0, 0, *t[0], *t[1], *t[2], 0)
+    path.write_bytes(data)
+    return path
+
+
+def test_check_closed_box(run, tmp_path):
+    p = write_binary_stl(tmp_path / "box.stl", box_triangles(1, 2, 3), header=b"solid box")
+    out = run("mesh", "check", p, check=True).stdout
+    assert "vertices: 36 read, 8 after welding" in out
+    assert "volume: 6 m³" in out
+    assert "mass properties: trustworthy as a solid" in out
+
+
+def test_check_open_mesh_fails(run, tmp_path):
+    p = write_binary_stl(tmp_path / "open.stl", box_triangles(1, 1, 1)[:-1])
+    proc = run("mesh", "check", p, check=False)
+    assert proc.returncode == 1
+    assert "mass properties: NOT trustworthy as a solid" in proc.stdout
+    assert "open.stl: the mesh is not closed (3 boundary edges, 0 non-manifold edges)" in proc.stderr
+    assert "--shell" in proc.stderr
+
+
+def test_check_bad_file(run, tmp_path):
+    p = tmp_path / "bad.stl"
+    p.write_bytes(b"\0" * 100)
+    proc = run("mesh", "check", p, check=False)
+    assert "bad.stl: byte 80: binary STL triangle count 0 needs 84 bytes but the file has 100" in proc.stderr
+
+
+def test_inertia_of_a_mesh_in_millimetres(run, tmp_path):
+    # 100 × 200 × 300 mm box of density 1000: m = 6 kg, I_xx = m (0.2² + 0.3²)/12 = 0.065 kg·m².
+    p = write_binary_stl(tmp_path / "box_mm.stl", box_triangles(100, 200, 300))
+    proc = run("inertia", p, "--density", 1000, "--units", "mm", "--format", "json", check=True)
+    d = json.loads(proc.stdout)
+    assert d["mass"] == pytest.approx(6.0, rel=1e-12)
+    assert d["inertia"][0][0] == pytest.approx(0.065, rel=1e-12)
+    assert proc.stderr == ""
+    # Forgetting --units mm: 10⁹ times the mass, and a warning naming the fix.
+    proc = run("inertia", p, "--mass", 6, check=True)
+    assert "implied density 1e-06 kg/m³" in proc.stderr and "--units mm" in proc.stderr
+
+
+def test_inertia_shell_and_open_solid(run, tmp_path):
+    p = write_binary_stl(tmp_path / "open.stl", box_triangles(1, 1, 1)[:-1])
+    proc = run("inertia", p, "--density", 1000, check=False)
+    assert "3 boundary edges" in proc.stderr and "use --shell" in proc.stderr
+    proc = run("inertia", p, "--shell", "--thickness", 0.001, "--density", 1000,
+               "--format", "json", check=True)
+    assert json.loads(proc.stdout)["mass"] == pytest.approx(5.5, rel=1e-12)  # 5.5 m² × 1 kg/m²
