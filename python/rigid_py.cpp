@@ -8,6 +8,7 @@
 namespace py = pybind11;
 
 void bind_mass(py::module_& m);
+void bind_lie(py::module_& m);
 void bind_lagrange(py::module_& m);
 void bind_body(py::module_& m);
 void bind_mesh(py::module_& m);
@@ -16,6 +17,7 @@ PYBIND11_MODULE(rigid, m) {
   m.doc() = "rigid: rigid-body mechanics from isometries and inertia tensors to Euler's equations";
   m.attr("__version__") = RIGID_VERSION_STRING;
   py::register_exception<rigid::Error>(m, "Error", PyExc_ValueError);
+  bind_lie(m);
   bind_mass(m);
   bind_lagrange(m);
   bind_body(m);
