@@ -78,7 +78,7 @@ SO3<Scalar> SO3<Scalar>::from_matrix(const Matrix3& R, double tol) {
                 "matrix {} is not a rotation: orthonormality defect max|RᵀR − I| = {:.3g} "
                 "(tolerance {:.3g}), determinant {:.17g} (expected +1)",
                 to_string(Rd), defect, tol, det);
-  // Shepperd's method: take the square root of the largest of 4w², 4x², 4y², 4z².
+  // [Shepperd1978]: take the square root of the largest of 4w², 4x², 4y², 4z².
   const Scalar tr = R(0, 0) + R(1, 1) + R(2, 2);
   const double trd = value_of(tr);
   int k = -1;
