@@ -118,8 +118,26 @@ void BM_ExactOmega(benchmark::State& st) {
   }
 }
 
+// 10⁷ steps (t = 1e5 s at dt = 0.01): drift of L_W, |L|, energy and ‖RᵀR − 1‖ of the
+// Lie–Poisson methods (one iteration; the counters are the point, not the time).
+void BM_LongRun(benchmark::State& st, FreeBodyMethod m) {
+  FreeBodyState s;
+  s.w_B = kW0;
+  const auto d0 = rigid::body::diagnose(kI, s);
+  for (auto _ : st) {
+    for (long i = 0; i < 10'000'000; ++i) s = rigid::body::step_free_body(m, kI, s, 0.01);
+  }
+  const auto d = rigid::body::diagnose(kI, s);
+  st.counters["LW_drift"] = (d.L_W - d0.L_W).norm() / d0.L_W.norm();
+  st.counters["absL_drift"] = std::abs(kI.cwiseProduct(s.w_B).norm() - d0.L_W.norm()) / d0.L_W.norm();
+  st.counters["E_drift"] = std::abs(d.energy - d0.energy) / d0.energy;
+  st.counters["orthonormality"] = d.orthonormality_error;
+}
+
 }  // namespace
 
+BENCHMARK_CAPTURE(BM_LongRun, splitting2, FreeBodyMethod::kSplitting2)->Iterations(1)->Unit(benchmark::kSecond);
+BENCHMARK_CAPTURE(BM_LongRun, midpoint, FreeBodyMethod::kLiePoissonMidpoint)->Iterations(1)->Unit(benchmark::kSecond);
 BENCHMARK(BM_ExactOmega);
 BENCHMARK_CAPTURE(BM_Rigid, rk4, FreeBodyMethod::kRk4)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Rigid, splitting2, FreeBodyMethod::kSplitting2)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);

@@ -107,6 +107,7 @@ FreeBodyState step_midpoint(const Eigen::Vector3d& I_B, const FreeBodyState& s, 
   FreeBodyState out;
   out.q_WB = angle > 0 ? s.q_WB * Eigen::Quaterniond(Eigen::AngleAxisd(angle, wm.normalized()))
                        : s.q_WB;
+  out.q_WB.normalize();
   out.w_B = L1.cwiseQuotient(I_B);
   return out;
 }
@@ -157,6 +158,9 @@ FreeBodyState step_free_body(FreeBodyMethod method, const Eigen::Vector3d& I_B,
   if (method == FreeBodyMethod::kSplitting2) strang(I_B, q, L, h);
   else if (method == FreeBodyMethod::kSplitting4) yoshida4(I_B, q, L, h);
   else yoshida6(I_B, q, L, h);
+  // Products of unit quaternions stay unit up to round-off, which would random-walk;
+  // renormalising keeps ‖RᵀR − 1‖ at a few ulps for any number of steps.
+  q.normalize();
   return {q, L.cwiseQuotient(I_B)};
 }
 
