@@ -10,7 +10,6 @@
 #include <Eigen/Geometry>
 #include <fmt/format.h>
 
-#include "rigid/mesh/mesh_mass.hpp"
 
 namespace rigid::mesh {
 namespace {
@@ -175,6 +174,8 @@ RepairReport repair_mesh(TriangleMesh& mesh, const RepairOptions& options) {
     }
     return false;
   };
+  const auto box = mesh.bounding_box();
+  const Eigen::Vector3d centre = 0.5 * (box[0] + box[1]);
   std::vector<int> component(nf, -1);
   std::vector<std::uint32_t> queue;
   int ncomp = 0;
@@ -208,15 +209,16 @@ RepairReport repair_mesh(TriangleMesh& mesh, const RepairOptions& options) {
         queue.push_back(g);
       }
     }
-    TriangleMesh part;
-    part.vertices = mesh.vertices;  // shared positions; only the member faces are summed
-    part.triangles.reserve(members.size());
-    for (auto f : members) part.triangles.push_back(mesh.triangles[f]);
     comp.triangles = members.size();
-    const auto box = mesh.bounding_box();
-    const Eigen::Vector3d centre = 0.5 * (box[0] + box[1]);
-    comp.signed_volume = volume_moments(part, centre).measure;
-    comp.area = surface_moments(part, centre).measure;
+    // Volume (signed tetrahedra with the box centre) and area of this component's faces.
+    for (auto f : members) {
+      const auto& t = mesh.triangles[f];
+      const Eigen::Vector3d a = mesh.vertices[t[0]] - centre;
+      const Eigen::Vector3d b = mesh.vertices[t[1]] - centre;
+      const Eigen::Vector3d c = mesh.vertices[t[2]] - centre;
+      comp.signed_volume += a.dot(b.cross(c)) / 6.0;
+      comp.area += 0.5 * (b - a).cross(c - a).norm();
+    }
     if (comp.boundary_edges == 0 && comp.signed_volume < 0) {
       for (auto f : members) std::swap(mesh.triangles[f][1], mesh.triangles[f][2]);
       comp.signed_volume = -comp.signed_volume;
