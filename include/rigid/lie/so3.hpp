@@ -85,9 +85,12 @@ class SO3 {
   SO3& operator*=(const SO3& b) { return *this = *this * b; }
   /// Rotates a point or vector: v' = v + 2w (u × v) + 2 u × (u × v), u = (x, y, z).
   [[nodiscard]] Vector3 operator*(const Vector3& v) const {
-    const Vector3 u = q_.template tail<3>();
-    const Vector3 t = Scalar(2) * u.cross(v);
-    return v + q_(0) * t + u.cross(t);
+    const Scalar &w = q_(0), &x = q_(1), &y = q_(2), &z = q_(3);
+    const Scalar tx = 2.0 * (y * v(2) - z * v(1));
+    const Scalar ty = 2.0 * (z * v(0) - x * v(2));
+    const Scalar tz = 2.0 * (x * v(1) - y * v(0));
+    return Vector3(v(0) + w * tx + (y * tz - z * ty), v(1) + w * ty + (z * tx - x * tz),
+                   v(2) + w * tz + (x * ty - y * tx));
   }
   /// Geodesic interpolation a · exp(s · log(a⁻¹ b)), s ∈ [0, 1] (any s allowed).
   [[nodiscard]] SO3 interpolate(const SO3& b, const Scalar& s) const {
