@@ -4,19 +4,13 @@
 
 #include "rigid/common/error.hpp"
 #include "rigid/common/format.hpp"
+#include "lie/detail/value_of.hpp"
 
 namespace rigid {
 
 namespace {
 
-template <typename Scalar>
-double value_of(const Scalar& s) {
-  if constexpr (std::is_same_v<Scalar, double>) {
-    return s;
-  } else {
-    return s.value();
-  }
-}
+using detail::value_of;
 
 // Below this angle the closed forms lose digits; the Taylor series used instead have a
 // truncation error O(θ⁶) < 1e-30 relative.

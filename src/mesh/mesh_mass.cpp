@@ -20,6 +20,22 @@ Eigen::Vector3d default_reference(const TriangleMesh& mesh) {
 struct Accumulator {
   double measure = 0, fx = 0, fy = 0, fz = 0;
   double xx = 0, yy = 0, zz = 0, xy = 0, xz = 0, yz = 0;
+
+  // Adds one triangle (solid: tetrahedron with the reference point) with weight w and
+  // vertices a, b, c relative to the reference; s = a + b + c.
+  void add(double w, const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+           const Eigen::Vector3d& s) {
+    measure += w;
+    fx += w * s.x();
+    fy += w * s.y();
+    fz += w * s.z();
+    xx += w * (a.x() * a.x() + b.x() * b.x() + c.x() * c.x() + s.x() * s.x());
+    yy += w * (a.y() * a.y() + b.y() * b.y() + c.y() * c.y() + s.y() * s.y());
+    zz += w * (a.z() * a.z() + b.z() * b.z() + c.z() * c.z() + s.z() * s.z());
+    xy += w * (a.x() * a.y() + b.x() * b.y() + c.x() * c.y() + s.x() * s.y());
+    xz += w * (a.x() * a.z() + b.x() * b.z() + c.x() * c.z() + s.x() * s.z());
+    yz += w * (a.y() * a.z() + b.y() * b.z() + c.y() * c.z() + s.y() * s.z());
+  }
 };
 
 MeshMoments finish(const Accumulator& a, const Eigen::Vector3d& p_OR, double k0, double k1,
@@ -48,16 +64,7 @@ MeshMoments volume_moments(const TriangleMesh& mesh, std::optional<Eigen::Vector
                        a.y() * (b.x() * c.z() - b.z() * c.x()) +
                        a.z() * (b.x() * c.y() - b.y() * c.x());
     const Eigen::Vector3d s = a + b + c;
-    acc.measure += det;
-    acc.fx += det * s.x();
-    acc.fy += det * s.y();
-    acc.fz += det * s.z();
-    acc.xx += det * (a.x() * a.x() + b.x() * b.x() + c.x() * c.x() + s.x() * s.x());
-    acc.yy += det * (a.y() * a.y() + b.y() * b.y() + c.y() * c.y() + s.y() * s.y());
-    acc.zz += det * (a.z() * a.z() + b.z() * b.z() + c.z() * c.z() + s.z() * s.z());
-    acc.xy += det * (a.x() * a.y() + b.x() * b.y() + c.x() * c.y() + s.x() * s.y());
-    acc.xz += det * (a.x() * a.z() + b.x() * b.z() + c.x() * c.z() + s.x() * s.z());
-    acc.yz += det * (a.y() * a.z() + b.y() * b.z() + c.y() * c.z() + s.y() * s.z());
+    acc.add(det, a, b, c, s);
   }
   // [Tonon2005, eq. 2–4]: V = det/6, ∫r = det·s/24, ∫r rᵀ = det/120 (Σ v vᵀ + s sᵀ).
   return finish(acc, r, 1.0 / 6.0, 1.0 / 24.0, 1.0 / 120.0);
@@ -73,16 +80,7 @@ MeshMoments surface_moments(const TriangleMesh& mesh, std::optional<Eigen::Vecto
     const Eigen::Vector3d c = v[t[2]] - r;
     const double area2 = (b - a).cross(c - a).norm();  // twice the area
     const Eigen::Vector3d s = a + b + c;
-    acc.measure += area2;
-    acc.fx += area2 * s.x();
-    acc.fy += area2 * s.y();
-    acc.fz += area2 * s.z();
-    acc.xx += area2 * (a.x() * a.x() + b.x() * b.x() + c.x() * c.x() + s.x() * s.x());
-    acc.yy += area2 * (a.y() * a.y() + b.y() * b.y() + c.y() * c.y() + s.y() * s.y());
-    acc.zz += area2 * (a.z() * a.z() + b.z() * b.z() + c.z() * c.z() + s.z() * s.z());
-    acc.xy += area2 * (a.x() * a.y() + b.x() * b.y() + c.x() * c.y() + s.x() * s.y());
-    acc.xz += area2 * (a.x() * a.z() + b.x() * b.z() + c.x() * c.z() + s.x() * s.z());
-    acc.yz += area2 * (a.y() * a.z() + b.y() * b.z() + c.y() * c.z() + s.y() * s.z());
+    acc.add(area2, a, b, c, s);
   }
   // Triangle: A, ∫r = A s/3, ∫r rᵀ = A/12 (Σ v vᵀ + s sᵀ); acc holds 2A.
   return finish(acc, r, 0.5, 1.0 / 6.0, 1.0 / 24.0);
