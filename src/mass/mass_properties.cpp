@@ -11,6 +11,8 @@
 
 #include "rigid/common/error.hpp"
 #include "rigid/common/format.hpp"
+#include "rigid/lie/se3.hpp"
+#include "rigid/lie/so3.hpp"
 
 namespace rigid {
 namespace {
@@ -142,6 +144,14 @@ MassProperties MassProperties::shifted(const Eigen::Vector3d& d_B) const {
 MassProperties MassProperties::rotated(const Eigen::Matrix3d& R_AB) const {
   require_rotation(R_AB, "rotated");
   return MassProperties(Unchecked{}, mass_, R_AB * p_OC_B_, R_AB * I_C_B_ * R_AB.transpose());
+}
+
+MassProperties MassProperties::rotated(const SO3<double>& R_AB) const {
+  return rotated(R_AB.matrix());
+}
+
+MassProperties MassProperties::transformed(const SE3<double>& X_AB) const {
+  return transformed(X_AB.rotation().matrix(), X_AB.translation());
 }
 
 MassProperties MassProperties::transformed(const Eigen::Matrix3d& R_AB,

@@ -7,6 +7,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "rigid/lie/se3.hpp"
+#include "rigid/lie/so3.hpp"
 #include "support/expect_error.hpp"
 #include "support/tolerance.hpp"
 
@@ -153,6 +155,18 @@ TEST(MassProperties, TransformMovesCom) {
   const MassProperties s = mp.shifted(p);
   EXPECT_TRUE(s.com().isApprox(mp.com() + p, ulps(4)));
   EXPECT_EQ(s.inertia_com(), mp.inertia_com());
+}
+
+TEST(MassProperties, TransformBySE3MatchesMatrixForm) {
+  const MassProperties mp = generic_body();
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  const Eigen::Vector3d p(-1, 0.5, 2);
+  const SE3d X(SO3d::from_matrix(R), p);
+  const MassProperties t = mp.transformed(X);
+  // The quaternion round trip perturbs R by a few ulps; compare with the closed form.
+  EXPECT_TRUE(t.com().isApprox(R * mp.com() + p, ulps(16)));
+  EXPECT_TRUE(t.inertia_com().isApprox(R * mp.inertia_com() * R.transpose(), ulps(32)));
+  EXPECT_TRUE(mp.rotated(SO3d::from_matrix(R)).com().isApprox(R * mp.com(), ulps(16)));
 }
 
 TEST(MassProperties, PrincipalAxesGeneric) {

@@ -9,6 +9,11 @@
 
 namespace rigid {
 
+template <typename Scalar>
+class SO3;
+template <typename Scalar>
+class SE3;
+
 /// Principal moments and axes of an inertia tensor I_C_B (about the COM C, in frame B).
 /// I_C_B = R_BP · diag(moments) · R_BPᵀ, with moments ascending and R_BP a proper rotation
 /// whose columns are the principal axes expressed in B.
@@ -80,6 +85,13 @@ class MassProperties {
   /// p_AC_A = R_AB p_OC_B + p_AB_A, I_C_A = R_AB I_C_B R_ABᵀ.
   [[nodiscard]] MassProperties transformed(const Eigen::Matrix3d& R_AB,
                                            const Eigen::Vector3d& p_AB_A) const;
+
+  /// rotated(R_AB.matrix()) for a rotation from the lie module.
+  [[nodiscard]] MassProperties rotated(const SO3<double>& R_AB) const;
+
+  /// transformed(X_AB.rotation().matrix(), X_AB.translation()): the body expressed in A,
+  /// where X_AB is the pose of B in A.
+  [[nodiscard]] MassProperties transformed(const SE3<double>& X_AB) const;
 
   /// Principal moments (ascending) and a right-handed principal frame. Repeated moments
   /// (within kRelativeTolerance·tr I) get a deterministic frame: identity for a spherical
