@@ -1,0 +1,32 @@
+"""`rigid demo` prints computed numbers; check them against independent closed forms."""
+import math
+import re
+
+from scipy.special import ellipk
+
+
+def _racket_period(I, w):
+    # Free asymmetric body, Landau & Lifshitz §37, I1 < I2 < I3, 2E = Σ I_i w_i²,
+    # L² = Σ I_i² w_i². The formulas below are the branch L² > 2E I2.
+    I1, I2, I3 = I
+    E2 = sum(i * x * x for i, x in zip(I, w))
+    L2 = sum(i * i * x * x for i, x in zip(I, w))
+    assert L2 > E2 * I2
+    lam = math.sqrt((I3 - I2) * (L2 - E2 * I1) / (I1 * I2 * I3))
+    m = (I2 - I1) * (E2 * I3 - L2) / ((I3 - I2) * (L2 - E2 * I1))
+    return 4 * ellipk(m) / lam
+
+
+def test_demo_tennis_racket_matches_elliptic_period(run):
+    p = run("demo", check=True)
+    period = float(re.search(r"4K\(k\)/lambda = ([0-9.]+) s", p.stdout).group(1))
+    expected = _racket_period((1.0, 2.0, 3.0), (0.01, 1.0, 0.01))
+    # printed with 6 decimals: half a unit in the last place
+    assert abs(period - expected) <= 5e-7 + 1e-12 * expected
+    flips = [float(x) for x in re.findall(r"t = +([0-9.]+) s +exact", p.stdout)]
+    assert len(flips) == 3
+    # successive flips are half a period apart (printed with 5 decimals)
+    for a, b in zip(flips, flips[1:]):
+        assert abs((b - a) - expected / 2) < 2e-5
+    drift = re.search(r"energy drift (\S+) J, \|L\| drift (\S+) kg", p.stdout)
+    assert abs(float(drift.group(1))) < 1e-12 and abs(float(drift.group(2))) < 1e-12
