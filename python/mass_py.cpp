@@ -30,9 +30,14 @@ void bind_mass(py::module_& m) {
       .def("inertia_about_axis", &MassProperties::inertia_about_axis, py::arg("p_OQ_B"),
            py::arg("unit_B"), "Moment of inertia about the line through Q along unit_B.")
       .def("shifted", &MassProperties::shifted, py::arg("d_B"), "The same body moved by d_B.")
-      .def("rotated", py::overload_cast<const Eigen::Matrix3d&>(&MassProperties::rotated, py::const_), py::arg("R_AB"),
+      .def("rotated",
+           py::overload_cast<const Eigen::Matrix3d&>(&MassProperties::rotated, py::const_),
+           py::arg("R_AB"),
            "The same body re-expressed in frame A.")
-      .def("transformed", py::overload_cast<const Eigen::Matrix3d&, const Eigen::Vector3d&>(&MassProperties::transformed, py::const_), py::arg("R_AB"), py::arg("p_AB_A"),
+      .def("transformed",
+           py::overload_cast<const Eigen::Matrix3d&, const Eigen::Vector3d&>(
+               &MassProperties::transformed, py::const_),
+           py::arg("R_AB"), py::arg("p_AB_A"),
            "The same body expressed in frame A, given the pose of B in A.")
       .def(
           "principal_axes",
