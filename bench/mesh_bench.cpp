@@ -13,40 +13,15 @@
 #include <benchmark/benchmark.h>
 #include <mujoco/mujoco.h>
 
+#include "mesh/mesh_builders.hpp"
 #include "rigid/mesh.hpp"
 
 namespace {
 
 using rigid::mesh::TriangleMesh;
 
-// UV sphere of radius r with n rings and 2n segments: 4n(n−1) triangles.
-TriangleMesh uv_sphere(double r, int n) {
-  TriangleMesh m;
-  const int seg = 2 * n;
-  m.vertices.emplace_back(0, 0, r);
-  for (int i = 1; i < n; ++i) {
-    const double th = std::numbers::pi * i / n;
-    for (int j = 0; j < seg; ++j) {
-      const double ph = 2 * std::numbers::pi * j / seg;
-      m.vertices.emplace_back(r * std::sin(th) * std::cos(ph), r * std::sin(th) * std::sin(ph),
-                              r * std::cos(th));
-    }
-  }
-  m.vertices.emplace_back(0, 0, -r);
-  const auto idx = [&](int ring, int j) {
-    return static_cast<std::uint32_t>(1 + (ring - 1) * seg + (j % seg));
-  };
-  const auto south = static_cast<std::uint32_t>(m.vertices.size() - 1);
-  for (int j = 0; j < seg; ++j) m.triangles.push_back({0, idx(1, j), idx(1, j + 1)});
-  for (int i = 1; i + 1 < n; ++i) {
-    for (int j = 0; j < seg; ++j) {
-      m.triangles.push_back({idx(i, j), idx(i + 1, j), idx(i + 1, j + 1)});
-      m.triangles.push_back({idx(i, j), idx(i + 1, j + 1), idx(i, j + 1)});
-    }
-  }
-  for (int j = 0; j < seg; ++j) m.triangles.push_back({south, idx(n - 1, j + 1), idx(n - 1, j)});
-  return m;
-}
+// The test suite's UV sphere (tests/mesh/mesh_builders.hpp): 4n(n−1) triangles.
+using rigid::test::uv_sphere;
 
 constexpr double kRadius = 0.1;     // m
 constexpr double kDensity = 1000;   // kg/m³
