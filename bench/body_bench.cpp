@@ -1,11 +1,24 @@
 // Tennis racket I = diag(1, 2, 3), ω0 = (0.01, 1, 0.01), t = 0 … 100 s: ns per step and,
 // as counters, the max body-ω error against the exact elliptic solution (sampled every
-// 0.1 s), the relative energy drift and the |L| drift; ODE (gyroscopic on/off) as peer.
-// ns per step = 1e9 / items_per_second.
+// 0.1 s), the relative energy drift and the |L| drift; peers in the same binary: ODE
+// (gyroscopic on/off), MuJoCo (Euler, RK4), Bullet (implicit gyroscopic term on/off).
+// ns per step = 1e9 / items_per_second. BM_Batch*: ns per body-step for many bodies.
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <memory>
+#include <random>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
+#include <BulletCollision/CollisionShapes/btEmptyShape.h>
 #include <benchmark/benchmark.h>
+#include <btBulletDynamicsCommon.h>
+#include <mujoco/mujoco.h>
 #include <ode/ode.h>
 
 #include "rigid/body.hpp"
@@ -134,6 +147,165 @@ void BM_LongRun(benchmark::State& st, FreeBodyMethod m) {
   st.counters["orthonormality"] = d.orthonormality_error;
 }
 
+// MuJoCo 2.2: the racket as a model with one free-joint body (diaginertia = I, no geoms,
+// gravity 0). The free joint's qvel is (v_W, ω_B): linear velocity in the world frame,
+// angular velocity in the body's local frame, so qvel[3..5] is ω_B directly.
+mjModel* load_mujoco(const std::string& xml) {
+  const auto file = std::filesystem::temp_directory_path() /
+                    ("rigid_body_bench_" + std::to_string(std::hash<std::string>{}(xml)) + ".xml");
+  std::ofstream(file) << xml;
+  char error[1000] = "";
+  mjModel* model = mj_loadXML(file.string().c_str(), nullptr, error, sizeof(error));
+  std::filesystem::remove(file);
+  if (model == nullptr) throw std::runtime_error(std::string("mj_loadXML: ") + error);
+  return model;
+}
+
+std::string mujoco_bodies_xml(const std::vector<Eigen::Vector3d>& inertias) {
+  std::ostringstream xml;
+  xml.precision(17);
+  xml << "<mujoco><option gravity=\"0 0 0\"/><worldbody>";
+  for (const auto& I : inertias)
+    xml << "<body><freejoint/><inertial pos=\"0 0 0\" mass=\"1\" diaginertia=\"" << I(0) << ' '
+        << I(1) << ' ' << I(2) << "\"/></body>";
+  xml << "</worldbody></mujoco>";
+  return xml.str();
+}
+
+struct MuJoCoRun {
+  mjModel* m;
+  mjData* d;
+  MuJoCoRun(const std::vector<Eigen::Vector3d>& inertias, const std::vector<Eigen::Vector3d>& w0,
+            int integrator, double dt)
+      : m(load_mujoco(mujoco_bodies_xml(inertias))), d(mj_makeData(m)) {
+    m->opt.integrator = integrator;
+    m->opt.timestep = dt;
+    for (std::size_t b = 0; b < w0.size(); ++b)
+      for (int c = 0; c < 3; ++c) d->qvel[6 * b + 3 + static_cast<std::size_t>(c)] = w0[b](c);
+  }
+  MuJoCoRun(const MuJoCoRun&) = delete;
+  MuJoCoRun& operator=(const MuJoCoRun&) = delete;
+  ~MuJoCoRun() {
+    mj_deleteData(d);
+    mj_deleteModel(m);
+  }
+  [[nodiscard]] Eigen::Vector3d omega_body(int b = 0) const {
+    return {d->qvel[6 * b + 3], d->qvel[6 * b + 4], d->qvel[6 * b + 5]};
+  }
+};
+
+void BM_MuJoCo(benchmark::State& st, int integrator) {
+  const double dt = 1.0 / static_cast<double>(st.range(0));
+  const long n = std::lround(kTEnd / dt);
+  try {
+    for (auto _ : st) {
+      st.PauseTiming();
+      MuJoCoRun r({kI}, {kW0}, integrator, dt);
+      st.ResumeTiming();
+      for (long i = 0; i < n; ++i) mj_step(r.m, r.d);
+      benchmark::DoNotOptimize(r.d->qvel[3]);
+    }
+    MuJoCoRun r({kI}, {kW0}, integrator, dt);
+    report(st, measure(dt, [&] {
+             mj_step(r.m, r.d);
+             return r.omega_body();
+           }),
+           n);
+  } catch (const std::exception& e) {
+    st.SkipWithError(e.what());
+  }
+}
+
+// Bullet 3.24, the double-precision build Debian ships as bullet-float64 (BT_USE_DOUBLE_PRECISION):
+// one btRigidBody (mass 1, local inertia I, empty shape) in a btDiscreteDynamicsWorld with zero
+// gravity, stepped by stepSimulation(dt, 0) (one step of exactly dt); sleeping disabled, since
+// |ω| ≈ 1 rad/s is at Bullet's default angular sleeping threshold. Bullet's angular velocity is
+// in the world frame: ω_B = Rᵀ ω_W.
+struct BulletBody {
+  btDefaultCollisionConfiguration config;
+  btCollisionDispatcher dispatcher{&config};
+  btDbvtBroadphase broadphase;
+  btSequentialImpulseConstraintSolver solver;
+  btDiscreteDynamicsWorld world{&dispatcher, &broadphase, &solver, &config};
+  btEmptyShape shape;
+  btDefaultMotionState motion;
+  btRigidBody body{btRigidBody::btRigidBodyConstructionInfo(1.0, &motion, &shape,
+                                                            btVector3(kI(0), kI(1), kI(2)))};
+  explicit BulletBody(int gyro_flags) {
+    world.setGravity(btVector3(0, 0, 0));
+    body.setFlags(gyro_flags);
+    body.setActivationState(DISABLE_DEACTIVATION);
+    body.setAngularVelocity(btVector3(kW0(0), kW0(1), kW0(2)));  // R = 1: world = body
+    world.addRigidBody(&body);
+  }
+  BulletBody(const BulletBody&) = delete;
+  BulletBody& operator=(const BulletBody&) = delete;
+  ~BulletBody() { world.removeRigidBody(&body); }
+  [[nodiscard]] Eigen::Vector3d omega_body() const {
+    const btVector3 wb = body.getWorldTransform().getBasis().transpose() * body.getAngularVelocity();
+    return {wb.x(), wb.y(), wb.z()};
+  }
+};
+
+void BM_Bullet(benchmark::State& st, int gyro_flags) {
+  const double dt = 1.0 / static_cast<double>(st.range(0));
+  const long n = std::lround(kTEnd / dt);
+  for (auto _ : st) {
+    st.PauseTiming();
+    auto b = std::make_unique<BulletBody>(gyro_flags);
+    st.ResumeTiming();
+    for (long i = 0; i < n; ++i) b->world.stepSimulation(dt, 0, dt);
+    benchmark::DoNotOptimize(b->body.getAngularVelocity());
+  }
+  const auto b = std::make_unique<BulletBody>(gyro_flags);
+  report(st, measure(dt, [&] {
+           b->world.stepSimulation(dt, 0, dt);
+           return b->omega_body();
+         }),
+         n);
+}
+
+// Batch: kBatch free bodies with random principal moments (those of random boxes with sides
+// in [0.1, 1] m and unit mass, so the triangle inequality holds) and random ω ∈ [−1, 1]³ rad/s;
+// one iteration steps every body once at dt = 0.01 s. ns per body-step = 1e9 / items_per_second.
+struct Batch {
+  std::vector<Eigen::Vector3d> I, w0;
+  explicit Batch(long n) {
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> side(0.1, 1.0), omega(-1.0, 1.0);
+    for (long i = 0; i < n; ++i) {
+      const double a = side(rng), b = side(rng), c = side(rng);
+      I.emplace_back((b * b + c * c) / 12, (a * a + c * c) / 12, (a * a + b * b) / 12);
+      w0.emplace_back(omega(rng), omega(rng), omega(rng));
+    }
+  }
+};
+
+void BM_BatchRigid(benchmark::State& st, FreeBodyMethod m) {
+  const Batch batch(st.range(0));
+  std::vector<FreeBodyState> s(batch.I.size());
+  for (std::size_t i = 0; i < s.size(); ++i) s[i].w_B = batch.w0[i];
+  for (auto _ : st) {
+    for (std::size_t i = 0; i < s.size(); ++i) s[i] = rigid::body::step_free_body(m, batch.I[i], s[i], 0.01);
+    benchmark::ClobberMemory();
+  }
+  st.SetItemsProcessed(st.iterations() * st.range(0));
+}
+
+void BM_BatchMuJoCo(benchmark::State& st, int integrator) {
+  const Batch batch(st.range(0));
+  try {
+    MuJoCoRun r(batch.I, batch.w0, integrator, 0.01);
+    for (auto _ : st) {
+      mj_step(r.m, r.d);
+      benchmark::ClobberMemory();
+    }
+  } catch (const std::exception& e) {
+    st.SkipWithError(e.what());
+  }
+  st.SetItemsProcessed(st.iterations() * st.range(0));
+}
+
 }  // namespace
 
 BENCHMARK_CAPTURE(BM_LongRun, splitting2, FreeBodyMethod::kSplitting2)->Iterations(1)->Unit(benchmark::kSecond);
@@ -146,3 +318,13 @@ BENCHMARK_CAPTURE(BM_Rigid, splitting6, FreeBodyMethod::kSplitting6)->Arg(100)->
 BENCHMARK_CAPTURE(BM_Rigid, midpoint, FreeBodyMethod::kLiePoissonMidpoint)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Ode, gyro_on, true)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Ode, gyro_off, false)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_MuJoCo, euler, static_cast<int>(mjINT_EULER))->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_MuJoCo, rk4, static_cast<int>(mjINT_RK4))->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Bullet, gyro_implicit_body, static_cast<int>(BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY))->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Bullet, gyro_off, 0)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_BatchRigid, rk4, FreeBodyMethod::kRk4)->Arg(100'000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_BatchRigid, splitting2, FreeBodyMethod::kSplitting2)->Arg(100'000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_BatchRigid, splitting4, FreeBodyMethod::kSplitting4)->Arg(100'000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_BatchRigid, midpoint, FreeBodyMethod::kLiePoissonMidpoint)->Arg(100'000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_BatchMuJoCo, euler, static_cast<int>(mjINT_EULER))->Arg(1000)->Arg(10'000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_BatchMuJoCo, rk4, static_cast<int>(mjINT_RK4))->Arg(1000)->Arg(10'000)->Unit(benchmark::kMillisecond);
