@@ -1,6 +1,7 @@
 #pragma once
 
 /// The mesh module: triangle meshes, readers, repair and exact mass properties.
+#include "rigid/mesh/fill_holes.hpp"
 #include "rigid/mesh/mesh_mass.hpp"
 #include "rigid/mesh/read_mesh.hpp"
 #include "rigid/mesh/repair.hpp"

@@ -1,53 +1,29 @@
 #include "rigid/mesh/repair.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdint>
-#include <numeric>
+#include <limits>
 #include <unordered_map>
 #include <utility>
 
 #include <Eigen/Geometry>
 #include <fmt/format.h>
 
+#include "rigid/common/error.hpp"
+#include "detail/edge_table.hpp"
 
 namespace rigid::mesh {
 namespace {
 
 using Index = std::uint32_t;
 
-std::uint64_t edge_key(Index a, Index b) {
-  if (a > b) std::swap(a, b);
-  return (std::uint64_t{a} << 32) | b;
-}
+using detail::EdgeTable;
+using detail::edge_table;
+constexpr std::uint32_t kNone = 0xffffffffu;
 
-// Per undirected edge: the triangles using it and whether each goes low→high.
-struct EdgeUse {
-  std::uint32_t count = 0;
-  std::uint32_t forward = 0;  // uses going from the lower to the higher index
-  std::uint32_t first_face = 0;
-  std::uint32_t second_face = 0;
-};
-
-std::unordered_map<std::uint64_t, EdgeUse> edge_uses(const TriangleMesh& mesh) {
-  std::unordered_map<std::uint64_t, EdgeUse> uses;
-  uses.reserve(mesh.triangles.size() * 3 / 2 + 1);
-  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
-    const auto& t = mesh.triangles[f];
-    for (int k = 0; k < 3; ++k) {
-      const Index a = t[k];
-      const Index b = t[(k + 1) % 3];
-      EdgeUse& u = uses[edge_key(a, b)];
-      if (u.count == 0) u.first_face = static_cast<std::uint32_t>(f);
-      if (u.count == 1) u.second_face = static_cast<std::uint32_t>(f);
-      ++u.count;
-      if (a < b) ++u.forward;
-    }
-  }
-  return uses;
-}
-
-// Grid hash of quantized positions for welding.
+// Grid hash of quantized positions for the tolerance weld.
 struct CellHash {
   std::size_t operator()(const std::array<std::int64_t, 3>& c) const {
     std::uint64_t h = 1469598103934665603ull;
@@ -56,15 +32,20 @@ struct CellHash {
   }
 };
 
-std::size_t weld(TriangleMesh& mesh, double tol) {
-  if (mesh.vertices.empty()) return 0;
+// Replaces every vertex index by remap[index] and keeps `kept` as the vertices.
+void apply_remap(TriangleMesh& mesh, const std::vector<Index>& remap) {
+  for (auto& t : mesh.triangles) {
+    for (auto& i : t) i = remap[i];
+  }
+}
+
+// Tolerance weld: each vertex merges into the first earlier kept vertex within `tol`
+// (grid of cell size tol, 27 neighbouring cells searched).
+std::size_t weld_tolerance(TriangleMesh& mesh, double tol) {
+  if (mesh.vertices.empty() || tol <= 0) return 0;
   std::vector<Index> remap(mesh.vertices.size());
   std::vector<Eigen::Vector3d> kept;
   kept.reserve(mesh.vertices.size());
-  if (tol <= 0) {
-    std::iota(remap.begin(), remap.end(), Index{0});
-    return 0;
-  }
   const Eigen::Vector3d lo = mesh.bounding_box()[0];
   std::unordered_map<std::array<std::int64_t, 3>, std::vector<Index>, CellHash> grid;
   grid.reserve(mesh.vertices.size());
@@ -75,10 +56,10 @@ std::size_t weld(TriangleMesh& mesh, double tol) {
     const std::array<std::int64_t, 3> c{static_cast<std::int64_t>(std::floor(q.x())),
                                          static_cast<std::int64_t>(std::floor(q.y())),
                                          static_cast<std::int64_t>(std::floor(q.z()))};
-    Index found = static_cast<Index>(-1);
-    for (int dx = -1; dx <= 1 && found == static_cast<Index>(-1); ++dx) {
-      for (int dy = -1; dy <= 1 && found == static_cast<Index>(-1); ++dy) {
-        for (int dz = -1; dz <= 1 && found == static_cast<Index>(-1); ++dz) {
+    Index found = kNone;
+    for (int dx = -1; dx <= 1 && found == kNone; ++dx) {
+      for (int dy = -1; dy <= 1 && found == kNone; ++dy) {
+        for (int dz = -1; dz <= 1 && found == kNone; ++dz) {
           const auto it = grid.find({c[0] + dx, c[1] + dy, c[2] + dz});
           if (it == grid.end()) continue;
           for (Index j : it->second) {
@@ -90,7 +71,7 @@ std::size_t weld(TriangleMesh& mesh, double tol) {
         }
       }
     }
-    if (found == static_cast<Index>(-1)) {
+    if (found == kNone) {
       found = static_cast<Index>(kept.size());
       kept.push_back(p);
       grid[c].push_back(found);
@@ -98,23 +79,85 @@ std::size_t weld(TriangleMesh& mesh, double tol) {
     remap[i] = found;
   }
   const std::size_t merged = mesh.vertices.size() - kept.size();
-  for (auto& t : mesh.triangles) {
-    for (auto& i : t) i = remap[i];
-  }
+  apply_remap(mesh, remap);
   mesh.vertices = std::move(kept);
   return merged;
+}
+
+// Bit pattern of a coordinate for exact comparison; −0 and +0 are one position.
+std::uint64_t coordinate_bits(double x) {
+  return std::bit_cast<std::uint64_t>(x == 0.0 ? 0.0 : x);
+}
+
+// Exact weld: vertices with bitwise equal coordinates (−0 = +0) become one, the first
+// occurrence, keeping the order of first occurrences. Open addressing with linear probing
+// on a hash of the three coordinates' bit patterns; the table holds indices of kept
+// vertices and doubles when it is half full. The kept vertices are compacted in place
+// (kept index ≤ input index).
+std::size_t weld_exact(TriangleMesh& mesh) {
+  const std::size_t n = mesh.vertices.size();
+  if (n == 0) return 0;
+  RIGID_REQUIRE(n < kNone, "{} vertices: at most 2³² − 2 are supported", n);
+  auto& v = mesh.vertices;
+  const auto hash = [&](const Eigen::Vector3d& p) {
+    // multiply-xorshift mix of the three 64-bit patterns (constants: odd, well-mixed)
+    std::uint64_t h = coordinate_bits(p.x()) * 0x9E3779B97F4A7C15ull;
+    h ^= coordinate_bits(p.y()) * 0xC2B2AE3D27D4EB4Full;
+    h ^= coordinate_bits(p.z()) * 0x165667B19E3779F9ull;
+    h ^= h >> 29;
+    h *= 0xBF58476D1CE4E5B9ull;
+    return h ^ (h >> 32);
+  };
+  const auto same = [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+    return a.x() == b.x() && a.y() == b.y() && a.z() == b.z();
+  };
+  // Soup files repeat each position ~6 times: start at about n/3 slots, grow as needed.
+  std::size_t capacity = 64;
+  while (capacity < n / 3) capacity *= 2;
+  std::vector<Index> table(capacity, kNone);
+  std::vector<Index> remap(n);
+  Index kept = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector3d p = v[i];
+    std::size_t mask = capacity - 1;
+    std::size_t slot = hash(p) & mask;
+    while (table[slot] != kNone && !same(v[table[slot]], p)) slot = (slot + 1) & mask;
+    if (table[slot] != kNone) {
+      remap[i] = table[slot];
+      continue;
+    }
+    v[kept] = p;
+    table[slot] = kept;
+    remap[i] = kept++;
+    if (2 * std::size_t{kept} > capacity) {  // rehash the kept vertices into twice the slots
+      capacity *= 2;
+      mask = capacity - 1;
+      table.assign(capacity, kNone);
+      for (Index k = 0; k < kept; ++k) {
+        std::size_t s = hash(v[k]) & mask;
+        while (table[s] != kNone) s = (s + 1) & mask;
+        table[s] = k;
+      }
+    }
+  }
+  v.resize(kept);
+  v.shrink_to_fit();
+  apply_remap(mesh, remap);
+  return n - kept;
+}
+
+// Twice the area of a triangle: |(b − a) × (c − a)|.
+double twice_area(const TriangleMesh& mesh, const std::array<Index, 3>& t) {
+  return (mesh.vertices[t[1]] - mesh.vertices[t[0]])
+      .cross(mesh.vertices[t[2]] - mesh.vertices[t[0]])
+      .norm();
 }
 
 }  // namespace
 
 EdgeCounts count_edges(const TriangleMesh& mesh) {
-  EdgeCounts counts;
-  for (const auto& [key, u] : edge_uses(mesh)) {
-    if (u.count == 1) ++counts.boundary;
-    if (u.count >= 3) ++counts.non_manifold;
-    if (u.count == 2 && u.forward != 1) ++counts.misoriented;
-  }
-  return counts;
+  const EdgeTable e = edge_table(mesh, false);
+  return {e.boundary, e.non_manifold, e.misoriented};
 }
 
 RepairReport repair_mesh(TriangleMesh& mesh, const RepairOptions& options) {
@@ -122,62 +165,59 @@ RepairReport repair_mesh(TriangleMesh& mesh, const RepairOptions& options) {
   report.input_vertices = mesh.vertices.size();
   report.input_triangles = mesh.triangles.size();
   const double diag = mesh.bounding_box_diagonal();
-  report.welded_vertices = weld(mesh, options.weld_tolerance * diag);
+  const double tol = options.weld_tolerance * diag;
 
   // Degenerate: a repeated index, or an area below round-off of the box size.
   const double min_area2 = 1e-14 * diag * diag;  // (twice the area) ~ 1e-7·diag squared
-  std::vector<std::array<Index, 3>> kept;
-  kept.reserve(mesh.triangles.size());
-  for (const auto& t : mesh.triangles) {
-    const bool repeated = t[0] == t[1] || t[1] == t[2] || t[0] == t[2];
-    const double area2 =
-        repeated ? 0.0
-                 : (mesh.vertices[t[1]] - mesh.vertices[t[0]])
-                       .cross(mesh.vertices[t[2]] - mesh.vertices[t[0]])
-                       .norm();
-    if (repeated || area2 <= min_area2) {
-      ++report.degenerate_triangles;
-    } else {
-      kept.push_back(t);
-    }
-  }
-  mesh.triangles = std::move(kept);
-
-  // Consistent winding per component: breadth-first over edges shared by exactly two faces.
-  const std::size_t nf = mesh.triangles.size();
-  std::vector<std::vector<std::uint32_t>> faces_of_edge;
-  std::vector<std::uint64_t> edge_keys;
-  std::unordered_map<std::uint64_t, std::uint32_t> edge_id;
-  edge_id.reserve(nf * 3 / 2 + 1);
-  std::vector<std::array<std::uint32_t, 3>> face_edges(nf);
-  for (std::size_t f = 0; f < nf; ++f) {
-    for (int k = 0; k < 3; ++k) {
-      const auto key = edge_key(mesh.triangles[f][k], mesh.triangles[f][(k + 1) % 3]);
-      auto [it, inserted] = edge_id.try_emplace(key, static_cast<std::uint32_t>(faces_of_edge.size()));
-      if (inserted) {
-        faces_of_edge.emplace_back();
-        edge_keys.push_back(key);
+  const auto remove_degenerate = [&] {
+    std::size_t removed = 0;
+    std::size_t out = 0;
+    for (const auto& t : mesh.triangles) {
+      const bool repeated = t[0] == t[1] || t[1] == t[2] || t[0] == t[2];
+      if (repeated || twice_area(mesh, t) <= min_area2) {
+        ++removed;
+      } else {
+        mesh.triangles[out++] = t;
       }
-      faces_of_edge[it->second].push_back(static_cast<std::uint32_t>(f));
-      face_edges[f][k] = it->second;
     }
-  }
-  for (const auto& fs : faces_of_edge) {
-    if (fs.size() == 1) ++report.boundary_edges;
-    if (fs.size() >= 3) ++report.non_manifold_edges;
-  }
-  // Does face f traverse edge (a, b) from a to b?
-  auto goes = [&](std::uint32_t f, Index a, Index b) {
-    const auto& t = mesh.triangles[f];
-    for (int k = 0; k < 3; ++k) {
-      if (t[k] == a && t[(k + 1) % 3] == b) return true;
-    }
-    return false;
+    mesh.triangles.resize(out);
+    return removed;
   };
+
+  // Weld: exactly equal positions first (cheap, and all an STL soup usually needs); the
+  // tolerance weld runs only if that leaves boundary edges or an edge within the tolerance
+  // (which the tolerance weld would collapse), so the two paths give the same mesh.
+  EdgeTable edges;
+  if (options.exact_weld_first) {
+    report.welded_vertices = weld_exact(mesh);
+    report.degenerate_triangles = remove_degenerate();
+    edges = edge_table(mesh, true);
+    if (tol > 0 && (edges.boundary > 0 || edges.min_length2 <= tol * tol)) {
+      report.tolerance_weld = true;
+      report.welded_vertices += weld_tolerance(mesh, tol);
+      report.degenerate_triangles += remove_degenerate();
+      edges = edge_table(mesh, false);
+    }
+  } else {
+    report.tolerance_weld = true;
+    report.welded_vertices = weld_tolerance(mesh, tol);
+    report.degenerate_triangles = remove_degenerate();
+    edges = edge_table(mesh, false);
+  }
+  report.boundary_edges = edges.boundary;
+  report.non_manifold_edges = edges.non_manifold;
+
+  // Consistent winding per component: depth-first over edges shared by exactly two faces.
+  // Flips are recorded and applied at the end, so half-edge h = 3f + k keeps naming the
+  // edge from the input corner k of f to corner k + 1.
+  const std::size_t nf = mesh.triangles.size();
+  std::vector<std::uint8_t> flipped(nf, 0);
+  const auto tail = [&](std::uint32_t h) { return mesh.triangles[h / 3][h % 3]; };
   const auto box = mesh.bounding_box();
   const Eigen::Vector3d centre = 0.5 * (box[0] + box[1]);
   std::vector<int> component(nf, -1);
   std::vector<std::uint32_t> queue;
+  std::vector<std::uint32_t> members;
   int ncomp = 0;
   for (std::size_t seed = 0; seed < nf; ++seed) {
     if (component[seed] >= 0) continue;
@@ -185,46 +225,50 @@ RepairReport repair_mesh(TriangleMesh& mesh, const RepairOptions& options) {
     component[seed] = id;
     queue.assign(1, static_cast<std::uint32_t>(seed));
     ComponentReport comp;
-    std::vector<std::uint32_t> members;
+    members.clear();
     while (!queue.empty()) {
       const std::uint32_t f = queue.back();
       queue.pop_back();
       members.push_back(f);
-      for (int k = 0; k < 3; ++k) {
-        const auto& fs = faces_of_edge[face_edges[f][k]];
-        if (fs.size() == 1) ++comp.boundary_edges;
-        if (fs.size() != 2) continue;  // non-manifold edges do not propagate orientation
-        const std::uint32_t g = fs[0] == f ? fs[1] : fs[0];
+      for (std::uint32_t k = 0; k < 3; ++k) {
+        const std::uint32_t h = 3 * f + k;
+        const std::uint32_t m = edges.mate[h];
+        if (m == EdgeTable::kBoundary) ++comp.boundary_edges;
+        if (m >= EdgeTable::kNonManifold) continue;  // non-manifold edges do not propagate
+        const std::uint32_t g = m / 3;
         if (component[g] >= 0) continue;
         component[g] = id;
-        // The edge's endpoints from its key (face_edges[f][k] was numbered before any flip).
-        const auto key = edge_keys[face_edges[f][k]];
-        Index a = static_cast<Index>(key >> 32);
-        Index b = static_cast<Index>(key & 0xffffffffu);
-        if (!goes(f, a, b)) std::swap(a, b);
-        if (goes(g, a, b)) {  // same direction as f: flip g
-          std::swap(mesh.triangles[g][1], mesh.triangles[g][2]);
+        // f as it stands traverses h forward unless flipped; g likewise with m. The same
+        // direction on both sides of the edge means g disagrees with f: flip g.
+        const bool same_input_direction = tail(h) == tail(m);
+        if (same_input_direction != (flipped[f] != 0)) {
+          flipped[g] = 1;
           ++report.reoriented_triangles;
         }
         queue.push_back(g);
       }
     }
     comp.triangles = members.size();
-    // Volume (signed tetrahedra with the box centre) and area of this component's faces.
+    // Volume (signed tetrahedra with the box centre) and area of this component's faces;
+    // a flipped face's determinant is exactly the negative of the input face's.
     for (auto f : members) {
       const auto& t = mesh.triangles[f];
       const Eigen::Vector3d a = mesh.vertices[t[0]] - centre;
       const Eigen::Vector3d b = mesh.vertices[t[1]] - centre;
       const Eigen::Vector3d c = mesh.vertices[t[2]] - centre;
-      comp.signed_volume += a.dot(b.cross(c)) / 6.0;
+      const double v = flipped[f] ? a.dot(c.cross(b)) : a.dot(b.cross(c));
+      comp.signed_volume += v / 6.0;
       comp.area += 0.5 * (b - a).cross(c - a).norm();
     }
     if (comp.boundary_edges == 0 && comp.signed_volume < 0) {
-      for (auto f : members) std::swap(mesh.triangles[f][1], mesh.triangles[f][2]);
+      for (auto f : members) flipped[f] ^= 1;
       comp.signed_volume = -comp.signed_volume;
       ++report.inverted_components;
     }
     report.components.push_back(comp);
+  }
+  for (std::size_t f = 0; f < nf; ++f) {
+    if (flipped[f]) std::swap(mesh.triangles[f][1], mesh.triangles[f][2]);
   }
 
   if (report.degenerate_triangles > 0) {
@@ -244,7 +288,8 @@ RepairReport repair_mesh(TriangleMesh& mesh, const RepairOptions& options) {
   }
   if (report.boundary_edges > 0) {
     report.warnings.push_back(fmt::format(
-        "the mesh is open: {} boundary edges; as a solid its volume is undefined (use --shell)",
+        "the mesh is open: {} boundary edges; as a solid its volume is undefined (use --shell, "
+        "or --fill-holes to close simple holes)",
         report.boundary_edges));
   }
   if (report.non_manifold_edges > 0) {

@@ -117,5 +117,48 @@ TEST_F(RealFiles, BinaryStlAndAsciiPlyOfOneSphereAgree) {
   EXPECT_GT(b.measure, 0.95 * v);
 }
 
+TEST_F(RealFiles, ExactWeldPathMatchesTheToleranceWeldPath) {
+  // Every file of the set through both repair paths: the same mesh bit for bit, hence the
+  // same mass properties.
+  for (const char* name : {"cube.off", "cube-shuffled.off", "cube-ouvert.off", "blobby_3cc.off",
+                           "sphere.stl", "sphere.ply", "boeing.off", "bones.off"}) {
+    SCOPED_TRACE(name);
+    auto exact = read_mesh(cgal_meshes() + name);
+    auto full = exact;
+    const auto a = repair_mesh(exact);
+    const auto b = repair_mesh(full, {.exact_weld_first = false});
+    EXPECT_EQ(exact.vertices, full.vertices);
+    EXPECT_EQ(exact.triangles, full.triangles);
+    EXPECT_EQ(a.welded_vertices, b.welded_vertices);
+    EXPECT_EQ(a.boundary_edges, b.boundary_edges);
+    EXPECT_EQ(a.reoriented_triangles, b.reoriented_triangles);
+    EXPECT_EQ(a.inverted_components, b.inverted_components);
+    EXPECT_EQ(a.components.size(), b.components.size());
+    if (a.closed()) {
+      const auto ma = mesh_mass_properties(exact, unit_density());
+      const auto mb = mesh_mass_properties(full, unit_density());
+      EXPECT_EQ(ma.measure, mb.measure);
+      EXPECT_EQ(ma.properties.inertia_com(), mb.properties.inertia_com());
+    }
+  }
+  // The binary STL soup of a closed sphere welds exactly: the fast path.
+  auto stl = read_mesh(cgal_meshes() + "sphere.stl");
+  EXPECT_FALSE(repair_mesh(stl).tolerance_weld);
+}
+
+TEST_F(RealFiles, OpenCubeIsFilledExactly) {
+  // cube-ouvert's missing square face is a planar hole: filled, it is the cube again.
+  auto m = read_mesh(cgal_meshes() + "cube-ouvert.off");
+  repair_mesh(m);
+  const HoleFillReport fill = fill_holes(m);
+  ASSERT_EQ(fill.holes.size(), 1u);
+  EXPECT_EQ(fill.holes[0].boundary_edges, 4u);
+  EXPECT_NEAR(fill.area, 4.0, 1e-12);  // a 2 m × 2 m face
+  EXPECT_TRUE(repair_mesh(m).closed());
+  const auto r = mesh_mass_properties(m, unit_density());
+  EXPECT_NEAR(r.measure, 8.0, 1e-12);
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(r.properties.inertia_com()(i, i), 16.0 / 3, 1e-12);
+}
+
 }  // namespace
 }  // namespace rigid::mesh

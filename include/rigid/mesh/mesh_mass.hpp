@@ -51,7 +51,8 @@ struct MeshMassResult {
 };
 
 /// Mass properties of a repaired mesh (see repair_mesh). A solid must be closed: otherwise
-/// rigid::Error counts the boundary and non-manifold edges and points to --shell.
+/// rigid::Error counts the boundary and non-manifold edges and points to --shell and to
+/// --fill-holes (fill_holes).
 /// Warns when the implied density or size is implausible (e.g. a part in millimetres read
 /// as metres: 10⁹ times the mass), naming --units mm.
 /// @throws rigid::Error for a bad MassSpec, an open solid or a zero volume/area.

@@ -26,6 +26,7 @@ struct RepairReport {
   std::size_t non_manifold_edges = 0;     ///< used by three or more triangles
   std::size_t reoriented_triangles = 0;   ///< flipped to agree with their neighbours
   std::size_t inverted_components = 0;    ///< closed components with negative volume, flipped
+  bool tolerance_weld = false;            ///< the tolerance weld ran (see RepairOptions)
   std::vector<ComponentReport> components;
   std::vector<std::string> warnings;      ///< one sentence each
 
@@ -48,9 +49,16 @@ struct RepairOptions {
   /// Vertices closer than weld_tolerance × (bounding box diagonal) are merged. Copies of one
   /// vertex stored as float32 agree exactly; 1e-7 is far below any feature of a real part.
   double weld_tolerance = 1e-7;
+  /// Weld bitwise-equal positions first (a hash of the coordinates' bit patterns) and run the
+  /// tolerance weld only when that leaves boundary edges or an edge no longer than the
+  /// tolerance. An STL soup of a closed part takes only the exact weld. false: always the
+  /// tolerance weld, on every input vertex. Both give the same mesh unless distinct,
+  /// non-adjacent vertices of a closed mesh lie within the tolerance (touching parts), which
+  /// the exact path keeps apart.
+  bool exact_weld_first = true;
 };
 
-/// Welds duplicate vertices, removes degenerate triangles, makes the winding of each
+/// Welds duplicate vertices (see RepairOptions), removes degenerate triangles, makes the winding of each
 /// edge-connected component consistent (breadth-first over manifold edges), flips closed
 /// components whose volume is negative (with a warning), and reports boundary and
 /// non-manifold edges and each component's volume. Modifies `mesh` in place.
