@@ -76,9 +76,13 @@ typename SE3<Scalar>::Matrix6 SE3<Scalar>::adjoint() const {
   return A;
 }
 
-// Jl(ξ) = [[Jl(ω), Q(ρ, ω)], [0, Jl(ω)]] with Q the closed form of [Barfoot2017] (the matrix Q), written as a function of θ = |ω|.
+namespace {
+
+// Barfoot's Q(ρ, ω), the top-right block of Jl(ξ).
 template <typename Scalar>
-typename SE3<Scalar>::Matrix6 SE3<Scalar>::left_jacobian(const Vector6& xi) {
+Eigen::Matrix<Scalar, 3, 3> barfoot_q(const Eigen::Matrix<Scalar, 6, 1>& xi) {
+  using Vector3 = Eigen::Matrix<Scalar, 3, 1>;
+  using Matrix3 = Eigen::Matrix<Scalar, 3, 3>;
   using std::cos;
   using std::sin;
   using std::sqrt;
@@ -108,13 +112,35 @@ typename SE3<Scalar>::Matrix6 SE3<Scalar>::left_jacobian(const Vector6& xi) {
   }
   // Q = ½P + c1 (WP + PW + WPW) + c2 (W²P + PW² − 3WPW) + c3 (WPW² + W²PW)
   const Matrix3 WP = W * P, PW = P * W, WPW = W * P * W;
-  const Matrix3 Q = 0.5 * P + c1 * (WP + PW + WPW) + c2 * (W * WP + PW * W - 3.0 * WPW) +
-                    c3 * (WPW * W + W * WPW);
-  const Matrix3 Jl = SO3<Scalar>::left_jacobian(omega);
+  return 0.5 * P + c1 * (WP + PW + WPW) + c2 * (W * WP + PW * W - 3.0 * WPW) +
+         c3 * (WPW * W + W * WPW);
+}
+
+}  // namespace
+
+// Jl(ξ) = [[Jl(ω), Q(ρ, ω)], [0, Jl(ω)]] with Q the closed form of [Barfoot2017] (the matrix
+// Q), written as a function of θ = |ω|.
+template <typename Scalar>
+typename SE3<Scalar>::Matrix6 SE3<Scalar>::left_jacobian(const Vector6& xi) {
+  const Matrix3 Q = barfoot_q<Scalar>(xi);
+  const Matrix3 Jl = SO3<Scalar>::left_jacobian(xi.template tail<3>());
   Matrix6 J = Matrix6::Zero();
   J.template topLeftCorner<3, 3>() = Jl;
   J.template topRightCorner<3, 3>() = Q;
   J.template bottomRightCorner<3, 3>() = Jl;
+  return J;
+}
+
+// Block inverse of [[A, Q], [0, A]]: [[A⁻¹, −A⁻¹ Q A⁻¹], [0, A⁻¹]], with A⁻¹ = Jl(ω)⁻¹ in
+// closed form [Barfoot2017, §7.1.5], [Sola2018, App. D]: no 6×6 factorisation.
+template <typename Scalar>
+typename SE3<Scalar>::Matrix6 SE3<Scalar>::left_jacobian_inverse(const Vector6& xi) {
+  const Matrix3 Q = barfoot_q<Scalar>(xi);
+  const Matrix3 Ai = SO3<Scalar>::left_jacobian_inverse(xi.template tail<3>());
+  Matrix6 J = Matrix6::Zero();
+  J.template topLeftCorner<3, 3>() = Ai;
+  J.template topRightCorner<3, 3>() = -(Ai * Q * Ai);
+  J.template bottomRightCorner<3, 3>() = Ai;
   return J;
 }
 

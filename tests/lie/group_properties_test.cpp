@@ -17,6 +17,14 @@ using test::random_tangent;
 
 // Each family gives the group for a scalar, so that the AutoDiffXd instance can be checked
 // against the double one.
+struct SO2Family {
+  template <typename S>
+  using G = SO2<S>;
+};
+struct SE2Family {
+  template <typename S>
+  using G = SE2<S>;
+};
 struct SO3Family {
   template <typename S>
   using G = SO3<S>;
@@ -28,7 +36,23 @@ struct SE3Family {
 
 template <typename F>
 class GroupProperties : public ::testing::Test {};
-using Families = ::testing::Types<SO3Family, SE3Family>;
+using Families = ::testing::Types<SO2Family, SE2Family, SO3Family, SE3Family>;
+
+// Random tangent vector of G: rotation angle uniform in [0, max_angle) (SO2: in
+// (−max_angle, max_angle)), translation part (if any) uniform in [−1, 1].
+template <typename G>
+typename G::Tangent tangent(std::mt19937_64& rng, double max_angle) {
+  using T = typename G::Tangent;
+  if constexpr (G::Point::RowsAtCompileTime == 2) {
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    T xi;
+    for (Eigen::Index i = 0; i < xi.size(); ++i) xi(i) = u(rng);
+    xi(xi.size() - 1) *= max_angle;
+    return xi;
+  } else {
+    return random_tangent<T>(rng, max_angle);
+  }
+}
 TYPED_TEST_SUITE(GroupProperties, Families);
 
 constexpr int kSamples = 10000;
@@ -50,7 +74,7 @@ TYPED_TEST(GroupProperties, LogOfExpIsIdentityBelowPi) {
   using T = typename G::Tangent;
   std::mt19937_64 rng(7);
   for (int i = 0; i < kSamples; ++i) {
-    const T xi = random_tangent<T>(rng, 3.1);
+    const T xi = tangent<G>(rng, 3.1);
     ASSERT_LE((G::exp(xi).log() - xi).cwiseAbs().maxCoeff(), kTol) << "xi " << xi.transpose();
   }
 }
@@ -73,9 +97,14 @@ TYPED_TEST(GroupProperties, ActionMatchesHomogeneousMatrix) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   for (int i = 0; i < kSamples; ++i) {
     const G g = G::sample(rng);
-    const Eigen::Vector3d p(u(rng), u(rng), u(rng));
-    const Eigen::Vector4d ph = g.homogeneous() * Eigen::Vector4d(p(0), p(1), p(2), 1.0);
-    ASSERT_LE(((g * p) - ph.head<3>()).cwiseAbs().maxCoeff(), kTol);
+    using P = typename G::Point;
+    constexpr int d = P::RowsAtCompileTime;
+    P p;
+    for (int k = 0; k < d; ++k) p(k) = u(rng);
+    Eigen::Matrix<double, d + 1, 1> ph;
+    ph << p, 1.0;
+    ph = g.homogeneous() * ph;
+    ASSERT_LE(((g * p) - ph.template head<d>()).cwiseAbs().maxCoeff(), kTol);
   }
 }
 
@@ -85,7 +114,7 @@ TYPED_TEST(GroupProperties, AdjointConjugatesExp) {
   std::mt19937_64 rng(17);
   for (int i = 0; i < kSamples; ++i) {
     const G g = G::sample(rng);
-    const T xi = random_tangent<T>(rng, 3.0);
+    const T xi = tangent<G>(rng, 3.0);
     const T ad_xi = g.adjoint() * xi;
     ASSERT_LE(matrix_distance(g * G::exp(xi) * g.inverse(), G::exp(ad_xi)), kTol);
     // Same identity at the Lie-algebra level: g hat(ξ) g⁻¹ = hat(Ad ξ).
@@ -101,7 +130,7 @@ TYPED_TEST(GroupProperties, JacobiansMatchCentralDifferences) {
   constexpr int n = T::RowsAtCompileTime;
   std::mt19937_64 rng(19);
   for (int i = 0; i < 500; ++i) {
-    const T xi = random_tangent<T>(rng, 3.0);
+    const T xi = tangent<G>(rng, 3.0);
     const auto Jr = G::right_jacobian(xi);
     const auto Jl = G::left_jacobian(xi);
     const G X = G::exp(xi);
@@ -131,7 +160,7 @@ TYPED_TEST(GroupProperties, RightJacobianMatchesAutoDiff) {
   constexpr int n = T::RowsAtCompileTime;
   std::mt19937_64 rng(23);
   for (int i = 0; i < 200; ++i) {
-    const T xi = random_tangent<T>(rng, 3.0);
+    const T xi = tangent<G>(rng, 3.0);
     Tad xi_const, xi_var;
     for (int k = 0; k < n; ++k) {
       xi_const(k) = AutoDiffXd(xi(k), Eigen::VectorXd::Zero(n));
@@ -163,8 +192,16 @@ TYPED_TEST(GroupProperties, InterpolationEndsAndMidpoint) {
 }
 
 TEST(GroupDimensions, MatchFormulas) {
-  EXPECT_EQ(SO3d::kDim, 3 * 2 / 2);  // n(n−1)/2
-  EXPECT_EQ(SE3d::kDim, 3 * 4 / 2);  // n(n+1)/2
+  EXPECT_EQ(SO2d::kDim, 2 * 1 / 2);  // n(n−1)/2
+  EXPECT_EQ(SE2d::kDim, 2 * 3 / 2);  // n(n+1)/2
+  EXPECT_EQ(SO3d::kDim, 3 * 2 / 2);
+  EXPECT_EQ(SE3d::kDim, 3 * 4 / 2);
+  for (int n = 2; n <= 8; ++n) {
+    EXPECT_EQ(SOn::identity(n).dimension(), n * (n - 1) / 2);
+    EXPECT_EQ(SEn::identity(n).dimension(), n * (n + 1) / 2);
+    EXPECT_EQ(SOn::n_from_dimension(n * (n - 1) / 2), n);
+    EXPECT_EQ(SEn::n_from_dimension(n * (n + 1) / 2), n);
+  }
 }
 
 }  // namespace

@@ -3,7 +3,6 @@
 #include <random>
 
 #include <Eigen/Core>
-#include <Eigen/LU>  // 6×6 inverse of the Jacobians
 
 #include "rigid/common/scalars.hpp"
 #include "rigid/lie/so3.hpp"
@@ -26,6 +25,7 @@ class SE3 {
   static constexpr int kDim = 6;  ///< n(n+1)/2 with n = 3
   static constexpr int kDof = 6;
   using Tangent = Vector6;
+  using Point = Vector3;
 
   SE3(const SO3<Scalar>& R, const Vector3& t) : R_(R), t_(t) {}
   [[nodiscard]] static SE3 identity() { return SE3(SO3<Scalar>::identity(), Vector3::Zero()); }
@@ -37,15 +37,15 @@ class SE3 {
   [[nodiscard]] static SE3 exp(const Vector6& xi);
   [[nodiscard]] static Matrix4 hat(const Vector6& xi);
   [[nodiscard]] static Vector6 vee(const Matrix4& m);
-  /// Right and left Jacobians of exp and their inverses (6×6, [Sola2018], [Barfoot2017]).
+  /// Right and left Jacobians of exp (6×6, [Sola2018], [Barfoot2017]).
   [[nodiscard]] static Matrix6 right_jacobian(const Vector6& xi);
   [[nodiscard]] static Matrix6 left_jacobian(const Vector6& xi);
+  /// Closed-form inverses: Jl(ξ)⁻¹ = [[Jl⁻¹, −Jl⁻¹ Q Jl⁻¹], [0, Jl⁻¹]] (block inverse of
+  /// Jl(ξ), Jl⁻¹ = Jl(ω)⁻¹ in closed form) [Barfoot2017, §7.1.5], Jr(ξ)⁻¹ = Jl(−ξ)⁻¹.
   [[nodiscard]] static Matrix6 right_jacobian_inverse(const Vector6& xi) {
-    return right_jacobian(xi).inverse();
+    return left_jacobian_inverse(-xi);
   }
-  [[nodiscard]] static Matrix6 left_jacobian_inverse(const Vector6& xi) {
-    return left_jacobian(xi).inverse();
-  }
+  [[nodiscard]] static Matrix6 left_jacobian_inverse(const Vector6& xi);
   /// Haar-uniform rotation; translation uniform in the cube [−half_extent, half_extent]³
   /// (SE(3) is not compact, so a bounded translation law must be chosen).
   [[nodiscard]] static SE3 sample(std::mt19937_64& rng, double half_extent = 1.0);

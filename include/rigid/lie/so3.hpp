@@ -24,6 +24,7 @@ class SO3 {
   static constexpr int kDim = 3;   ///< n(n−1)/2 with n = 3
   static constexpr int kDof = 3;
   using Tangent = Vector3;
+  using Point = Vector3;
 
   /// The identity rotation.
   [[nodiscard]] static SO3 identity() { return SO3(Scalar(1), Scalar(0), Scalar(0), Scalar(0)); }
