@@ -12,6 +12,7 @@
 #include "cli_inertia.hpp"
 #include "cli_rotation.hpp"
 #include "cli_mesh.hpp"
+#include "cli_run.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{
@@ -24,6 +25,7 @@ int main(int argc, char** argv) {
   add_inertia_command(app);
   add_rotation_command(app);
   add_mesh_command(app);
+  add_run_command(app);
 
   try {
     app.parse(argc, argv);

@@ -1,6 +1,8 @@
 #include "detail/parser.hpp"
 
 #include <cctype>
+#include <cmath>
+#include <sstream>
 #include <vector>
 
 #include <fmt/format.h>
@@ -165,8 +167,8 @@ class Parser {
       auto it = names_.find(name);
       if (it == names_.end()) {
         std::string known;
-        for (const auto& [n, _] : names_) known += (known.empty() ? "" : ", ") + n;
-        fail(start, fmt::format("undefined symbol '{}'; known names: {}, pi", name, known));
+        for (const auto& [n, _] : names_) known += n + ", ";
+        fail(start, fmt::format("undefined symbol '{}'; known names: {}pi", name, known));
       }
       return it->second;
     }
@@ -206,3 +208,29 @@ GiNaC::ex parse_expression(const Expression& expression,
 }
 
 }  // namespace rigid::lagrange::detail
+
+namespace rigid::lagrange {
+
+double evaluate_constant(const Expression& expression, const std::vector<Parameter>& parameters,
+                         std::string_view context) {
+  if (expression.text.find_first_not_of(" \t") == std::string::npos) {
+    detail::throw_at(expression, 0, context, "empty expression; expected a number, a name or '('");
+  }
+  std::map<std::string, GiNaC::ex> names;
+  for (const Parameter& p : parameters) names[p.name] = GiNaC::numeric(p.value);
+  const GiNaC::ex value = detail::parse_expression(expression, names, context).evalf();
+  if (GiNaC::is_a<GiNaC::numeric>(value)) {
+    const auto& n = GiNaC::ex_to<GiNaC::numeric>(value);
+    if (n.is_real()) {
+      const double v = n.to_double();
+      if (std::isfinite(v)) return v;
+    }
+  }
+  std::ostringstream text;
+  text << value;
+  detail::throw_at(expression, 0, context,
+                   fmt::format("'{}' evaluates to {}; expected a finite real number",
+                               expression.text, text.str()));
+}
+
+}  // namespace rigid::lagrange

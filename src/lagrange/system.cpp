@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
@@ -225,7 +226,8 @@ struct System::Impl {
   std::vector<int> cyclic_index;
   bool verlet_ok = false;
   // compiled
-  detail::Tape dyn, diag;
+  detail::Tape dyn, diag, pose;
+  std::vector<std::string> body_names;
   int n = 0, m = 0;
   // work space (the evaluation is not re-entrant)
   mutable std::vector<double> in, out, diag_out;
@@ -274,8 +276,15 @@ struct System::Impl {
       // pivots of the Cholesky factor: M is numerically singular when the smallest squared
       // pivot falls below 1e-13 of the largest (condition number ≳ 1e13)
       // (or since the start of the run)
-      const Eigen::VectorXd d = llt_M.matrixLLT().diagonal().cwiseAbs2();
-      singular = !(d.minCoeff() > 1e-13 * std::max(d.maxCoeff(), mass_scale));
+      // (a loop rather than minCoeff(): g++ 12 -O3 reports a false null dereference in
+      // Eigen's vectorised reduction here)
+      double dmin = std::numeric_limits<double>::infinity(), dmax = 0.0;
+      for (Eigen::Index i = 0; i < n; ++i) {
+        const double di = llt_M.matrixLLT()(i, i) * llt_M.matrixLLT()(i, i);
+        dmin = std::min(dmin, di);
+        dmax = std::max(dmax, di);
+      }
+      singular = !(dmin > 1e-13 * std::max(dmax, mass_scale));
     }
     if (singular) {
       rigid::detail::throw_error(
@@ -381,6 +390,7 @@ System::System(const SystemSpec& spec) : impl_(std::make_unique<Impl>()) {
     L_given = parse(spec.lagrangian, "Lagrangian", true).expand();
   }
   std::map<std::string, std::pair<Vec3, Mat3>> poses;  // body name → (p_WB, R_WB)
+  std::vector<ex> pose_outputs;                         // per body: p_WB (3), R_WB row-major (9)
   for (const Body& b : spec.bodies) {
     const std::string ctx = fmt::format("body '{}'", b.name);
     RIGID_REQUIRE(b.name.empty() || !poses.count(b.name), "body name '{}' is used twice",
@@ -428,6 +438,10 @@ System::System(const SystemSpec& spec) : impl_(std::make_unique<Impl>()) {
       if (spec.gravity_W[k] != 0) V -= number(mass) * number(spec.gravity_W[k]) * c[k];
     }
     if (!b.name.empty()) poses.emplace(b.name, std::make_pair(p, R));
+    s.body_names.push_back(b.name.empty() ? fmt::format("body{}", s.body_names.size()) : b.name);
+    for (int k = 0; k < 3; ++k) pose_outputs.push_back(p[k]);
+    for (int i = 0; i < 3; ++i)
+      for (int k = 0; k < 3; ++k) pose_outputs.push_back(R[i][k]);
   }
   // springs: V = ½ k (|p_a − p_b| − L)², points carried by their bodies' poses
   auto world_point = [&](const std::string& body, const Eigen::Vector3d& point, std::size_t s_index,
@@ -578,6 +592,9 @@ System::System(const SystemSpec& spec) : impl_(std::make_unique<Impl>()) {
   diag.add_output(s.h);
   for (int i : s.cyclic_index) diag.add_output(s.p[static_cast<std::size_t>(i)]);
   s.diag = diag.build();
+  detail::TapeBuilder pose(inputs);
+  for (const ex& e : pose_outputs) pose.add_output(e);
+  s.pose = pose.build();
 
   s.in.assign(inputs.size(), 0.0);
   s.out.assign(s.dyn.num_outputs(), 0.0);
@@ -604,6 +621,28 @@ const std::vector<std::string>& System::cyclic_coordinates() const { return impl
 Eigen::VectorXd System::initial_q() const { return impl_->q0; }
 Eigen::VectorXd System::initial_q_dot() const { return impl_->qd0; }
 std::size_t System::tape_size() const { return impl_->dyn.size(); }
+const std::vector<std::string>& System::body_names() const { return impl_->body_names; }
+
+std::vector<BodyPose> System::body_poses(double time, const Eigen::VectorXd& q) const {
+  const Impl& s = *impl_;
+  RIGID_REQUIRE(q.size() == s.n, "expected q of size {}, got {}", s.n, q.size());
+  s.load_inputs(time, q, Eigen::VectorXd::Zero(s.n));
+  std::vector<double> out(s.pose.num_outputs());
+  s.pose.evaluate(s.in.data(), out.data());
+  std::vector<BodyPose> poses(s.body_names.size());
+  for (std::size_t b = 0; b < poses.size(); ++b) {
+    const double* o = out.data() + 12 * b;
+    poses[b].p_WB = Eigen::Vector3d(o[0], o[1], o[2]);
+    Eigen::Matrix3d R;
+    R << o[3], o[4], o[5], o[6], o[7], o[8], o[9], o[10], o[11];
+    // R is a product of exact rotations, orthonormal to round-off; the sign is made
+    // canonical (w ≥ 0) so that equal poses give equal quaternions
+    Eigen::Quaterniond qr(R);
+    if (qr.w() < 0) qr.coeffs() = -qr.coeffs();
+    poses[b].q_WB = qr.normalized();
+  }
+  return poses;
+}
 
 void System::set_parameter(const std::string& name, double value) {
   auto& s = *impl_;
@@ -788,6 +827,7 @@ Trajectory System::simulate(const SimulationOptions& o, const Eigen::VectorXd& q
           fmt::format("non-finite state at {}, q̇ = ({}); the motion diverged: reduce the step "
                       "or check the model", s.state_text(t, qv), velocities));
     }
+    if (o.progress) o.progress(t);
     s.evaluate_dynamics(t, qv, qdv);
     s.solve(t, qv, acc, lw, alpha);
     dydt.head(n) = qdv;

@@ -1,11 +1,14 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include "rigid/common/error.hpp"
 #include "rigid/integrate/integrator.hpp"
@@ -116,6 +119,9 @@ struct SimulationOptions {
   /// ... unless this is set: then q(0) is projected onto g = 0 (minimum-norm Newton) and
   /// q̇(0) onto ġ = 0.
   bool project_initial = false;
+  /// Called with the time reached (s) as the run advances (from the right-hand side, so
+  /// several times per step); may throw rigid::Error to stop the run. Empty: not called.
+  std::function<void(double t)> progress;
 };
 
 /// A simulated trajectory; row k of every matrix is the sample at time t[k].
@@ -131,6 +137,20 @@ struct Trajectory {
   Eigen::VectorXd velocity_residual;  ///< max_k |ġ_k| per sample
   std::size_t steps = 0, rhs_evaluations = 0;
 };
+
+/// Pose of a body frame B in the world W: origin p_WB (m) and orientation q_WB.
+struct BodyPose {
+  Eigen::Vector3d p_WB = Eigen::Vector3d::Zero();
+  Eigen::Quaterniond q_WB = Eigen::Quaterniond::Identity();
+};
+
+/// The value of an expression that uses only numbers, `pi`, functions and the given
+/// parameters (no coordinates, velocities or t), e.g. a parameter defined from earlier ones.
+/// @throws rigid::Error "<context>: ..." at the offending position for a parse error or an
+///   undefined name, and for a value that is not finite (naming it).
+[[nodiscard]] double evaluate_constant(const Expression& expression,
+                                       const std::vector<Parameter>& parameters,
+                                       std::string_view context);
 
 /// A Lagrangian system: symbols, the Euler–Lagrange equations derived once (GiNaC) and
 /// compiled into a flat, common-subexpression-eliminated instruction tape evaluated in
@@ -184,6 +204,11 @@ class System {
                                        const Eigen::VectorXd& q_dot) const;
   /// g(q, t).
   [[nodiscard]] Eigen::VectorXd constraint_residual(double t, const Eigen::VectorXd& q) const;
+
+  /// Names of the bodies of the spec, in order ("body<i>" for an unnamed body i, from 0).
+  [[nodiscard]] const std::vector<std::string>& body_names() const;
+  /// Poses of the bodies at (t, q), in the order of body_names().
+  [[nodiscard]] std::vector<BodyPose> body_poses(double t, const Eigen::VectorXd& q) const;
 
   /// Number of instructions of the compiled dynamics tape (M, f, G, γ, g, ġ).
   [[nodiscard]] std::size_t tape_size() const;

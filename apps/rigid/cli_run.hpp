@@ -1,0 +1,42 @@
+#pragma once
+// Included by main.cpp only (the one translation unit that sees CLI11).
+// `rigid run`, `rigid check` and `rigid eom`: the commands that take a scene file.
+#include <memory>
+
+#include "cmd_run.hpp"
+
+inline void add_scene_options(CLI::App* cmd, rigid::cli::SceneOptions& o) {
+  cmd->add_option("SCENE", o.scene, "scene file (TOML; see docs/scene-format.md)")->required();
+  cmd->add_option("--set", o.set, "override a parameter: name=value (repeatable)")
+      ->type_name("NAME=VALUE")
+      ->allow_extra_args(false);
+  cmd->add_option("--integrator", o.integrator,
+                  "coordinates: rk4, dopri5, implicit_midpoint, stormer_verlet; free bodies: rk4, "
+                  "splitting2, splitting4, splitting6, midpoint, and the further methods of "
+                  "docs/body.md");
+}
+
+inline void add_run_command(CLI::App& app) {
+  auto run = std::make_shared<rigid::cli::RunOptions>();
+  auto* cmd = app.add_subcommand("run", "Simulate a scene and write its trajectory and summary");
+  add_scene_options(cmd, run->scene);
+  cmd->add_option("-o,--output", run->output_dir,
+                  "output directory (default: the scene's [output] directory, else ./out)");
+  cmd->add_option("--format", run->formats, "output files: csv, npy, json (repeatable; default: "
+                  "the scene's [output] formats, else csv and json)");
+  cmd->add_flag("-q,--quiet", run->quiet, "print nothing on success (no summary, no progress bar)");
+  cmd->callback([run] { rigid::cli::run_run(*run); });
+
+  auto check = std::make_shared<rigid::cli::SceneOptions>();
+  auto* c = app.add_subcommand("check", "Validate a scene (file, expressions, bodies, initial "
+                                        "conditions) without running it");
+  add_scene_options(c, *check);
+  c->callback([check] { rigid::cli::run_check(*check); });
+
+  auto eom = std::make_shared<rigid::cli::SceneOptions>();
+  auto latex = std::make_shared<bool>(false);
+  auto* e = app.add_subcommand("eom", "Print a scene's equations of motion");
+  add_scene_options(e, *eom);
+  e->add_flag("--latex", *latex, "LaTeX instead of plain text");
+  e->callback([eom, latex] { rigid::cli::run_eom(*eom, *latex); });
+}

@@ -1,0 +1,33 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace rigid::cli {
+
+/// Options shared by `rigid run`, `rigid check` and `rigid eom`.
+struct SceneOptions {
+  std::string scene;               ///< the scene file (TOML)
+  std::vector<std::string> set;    ///< name=value parameter overrides
+  std::string integrator;          ///< overrides [simulation] integrator
+};
+
+/// Options of `rigid run SCENE`.
+struct RunOptions {
+  SceneOptions scene;
+  std::string output_dir;             ///< overrides [output] directory
+  std::vector<std::string> formats;   ///< overrides [output] formats: csv, npy, json
+  bool quiet = false;                 ///< no summary and no progress bar
+};
+
+/// `rigid run SCENE`: simulates and writes trajectory.csv / trajectory.npy / summary.json
+/// (each atomically, and only after the run succeeded), then prints a short summary.
+void run_run(const RunOptions& opts);
+
+/// `rigid check SCENE`: builds the model and runs the checks of a run without integrating.
+void run_check(const SceneOptions& opts);
+
+/// `rigid eom SCENE [--latex]`: prints the equations of motion.
+void run_eom(const SceneOptions& opts, bool latex);
+
+}  // namespace rigid::cli
