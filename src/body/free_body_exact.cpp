@@ -7,8 +7,8 @@
 
 // Double in, double out: no internal promotion to long double (x87 is slow).
 #define BOOST_MATH_PROMOTE_DOUBLE_POLICY false
-#include <boost/math/special_functions/ellint_1.hpp>
-#include <boost/math/special_functions/jacobi_elliptic.hpp>
+#include <boost/math/special_functions/ellint_rf.hpp>
+#include <boost/math/special_functions/ellint_rj.hpp>
 
 #include "rigid/common/error.hpp"
 #include "rigid/common/format.hpp"
@@ -52,7 +52,6 @@ FreeBodyExact::FreeBodyExact(const Eigen::Vector3d& I_B, const Eigen::Vector3d& 
   energy_ = 0.5 * (I.array() * w.array().square()).sum();
   const double L2 = (I.array().square() * w.array().square()).sum();
   L_norm_ = std::sqrt(L2);
-  const double E2 = 2.0 * energy_;
 
   const bool eq12 = I(1) - I(0) <= kEqualMoments * I(2);
   const bool eq23 = I(2) - I(1) <= kEqualMoments * I(2);
@@ -74,35 +73,102 @@ FreeBodyExact::FreeBodyExact(const Eigen::Vector3d& I_B, const Eigen::Vector3d& 
     return;
   }
   case_ = FreeBodyCase::kAsymmetric;
+  // A permanent rotation (ω ∥ L exactly, e.g. ω along one principal axis): ω is
+  // constant. Caught here because on the unstable middle axis the elliptic form with
+  // a rounded k < 1 would start a flip that the given data do not contain.
+  if (w.cross(I.cwiseProduct(w)).isZero(0.0)) {
+    steady_ = true;
+    return;
+  }
   // [Landau1976, §37, eq. 37.10]: for L² > 2E I2, ω1 ∝ cn, ω2 ∝ sn, ω3 ∝ dn;
   // for L² < 2E I2 the roles of axes 1 and 3 swap.
-  const bool about3 = L2 >= E2 * I(1);
+  // The differences below are sums of terms of one sign, free of cancellation:
+  //   A = 2E I_d − L² = Σ I_i (I_d − I_i) ω_i²,  B = L² − 2E I_c = Σ I_i (I_i − I_c) ω_i²,
+  //   D = L² − 2E I2 = Σ I_i (I_i − I2) ω_i²   (D = 0 on the separatrix).
+  const auto quad = [&](double Iref) {
+    double acc = 0;
+    for (int i = 0; i < 3; ++i) acc += I(i) * (I(i) - Iref) * w(i) * w(i);
+    return acc;
+  };
+  const double D = quad(I(1));
+  const bool about3 = D >= 0.0;
   axis_cn_ = about3 ? 0 : 2;
   axis_dn_ = about3 ? 2 : 0;
   const double Ic = I(axis_cn_), I2 = I(1), Id = I(axis_dn_);
-  const double A = E2 * Id - L2;  // same sign as (Id − Ic)
-  const double B = L2 - E2 * Ic;  // same sign as (Id − Ic)
+  const double A = -quad(Id);  // same sign as (Id − Ic)
+  const double B = quad(Ic);   // same sign as (Id − Ic)
   a_cn_ = std::sqrt(std::max(0.0, A / (Ic * (Id - Ic))));
   a_sn_ = std::sqrt(std::max(0.0, A / (I2 * (Id - I2))));
   a_dn_ = std::sqrt(std::max(0.0, B / (Id * (Id - Ic))));
   lambda_ = std::sqrt(std::max(0.0, (Id - I2) * B / (Ic * I2 * Id)));
-  const double k2 = (I2 - Ic) * A / ((Id - I2) * B);
-  k_ = std::sqrt(std::clamp(k2, 0.0, 1.0));
+  // k² = (I2 − Ic) A / ((Id − I2) B) and, by the identity (Id − I2)B − (I2 − Ic)A
+  // = (Id − Ic) D, k'² = 1 − k² = (Id − Ic) D / ((Id − I2) B): k' keeps full relative
+  // precision near the separatrix.
+  k2_ = std::clamp((I2 - Ic) * A / ((Id - I2) * B), 0.0, 1.0);
+  kc2_ = std::clamp((Id - Ic) * D / ((Id - I2) * B), 0.0, 1.0);
+  k_ = k2_ < 0.5 ? std::sqrt(k2_) : std::sqrt(1.0 - kc2_);
   // Signs from Euler's equations (substitute the ansatz into I_c ω̇_c and I_2 ω̇_2):
   // ω2 and ω_d carry the same sign s = sign(ω_d(0)) in both cases.
-  const double sd = w(axis_dn_) >= 0.0 ? 1.0 : -1.0;
-  sign_ = sd;
-  const double s2 = sd;
-  // Initial phase: amplitude φ0 with cn u0 = ω_c/a_c, sn u0 = ω2/(s2 a_2).
-  const double cn0 = a_cn_ > 0 ? w(axis_cn_) / a_cn_ : 1.0;
-  const double sn0 = a_sn_ > 0 ? w(1) / (s2 * a_sn_) : 0.0;
-  const double phi0 = std::atan2(sn0, cn0);
-  if (k_ < 1.0) {
-    u0_ = boost::math::ellint_1(k_, phi0);
+  sign_ = w(axis_dn_) >= 0.0 ? 1.0 : -1.0;
+  // Initial amplitude φ0: cos φ0 = ω_c/a_c, sin φ0 = ω2/(s a_2), normalised.
+  double cn0 = a_cn_ > 0 ? w(axis_cn_) / a_cn_ : 1.0;
+  double sn0 = a_sn_ > 0 ? w(1) / (sign_ * a_sn_) : 0.0;
+  const double rho = std::hypot(sn0, cn0);
+  cn0 /= rho;
+  sn0 /= rho;
+  // Below k'² ≈ 1e-290 the nome underflows: the orbit is the separatrix to within
+  // a phase error that appears only after λt ≈ 330.
+  if (kc2_ > 1e-290) {
+    jacobi_ = JacobiElliptic(k2_, kc2_);
+    K_ = jacobi_.K();
+    // F(φ, k) = sin φ · R_F(cos²φ, 1 − k² sin²φ, 1) for |φ| ≤ π/2 [DLMF 19.25.5], with
+    // 1 − k² sin²φ = cos²φ + k'² sin²φ; beyond, F(π − φ) = 2K − F(φ).
+    const double F = sn0 * boost::math::ellint_rf(cn0 * cn0, cn0 * cn0 + kc2_ * sn0 * sn0, 1.0);
+    u0_ = cn0 >= 0.0 ? F : std::copysign(2.0 * K_, sn0) - F;
+    if (cn0 < 0.0 && sn0 == 0.0) u0_ = 2.0 * K_;
   } else {
-    // Separatrix: F(φ, 1) = atanh(sin φ) = asinh(tan φ), finite for |φ| < π/2.
-    u0_ = std::asinh(std::tan(phi0));
+    // Separatrix: cn u = sech u > 0, so ω_c keeps its sign; the mirror image
+    // (ω_c, ω2, ω_d) → (−ω_c, −ω2, ω_d) (a half turn about axis d) covers ω_c < 0.
+    // u0 = F(φ0, 1) = asinh(tan φ0), clamped where sech u underflows anyway.
+    K_ = 0.0;
+    k_ = 1.0;
+    if (cn0 < 0.0) {
+      sep_sign_ = -1.0;
+      sn0 = -sn0;
+      cn0 = -cn0;
+    }
+    u0_ = std::clamp(std::asinh(sn0 / cn0), -700.0, 700.0);
   }
+}
+
+FreeBodyExact::Phase FreeBodyExact::phase(double u) const {
+  Phase ph;
+  if (K_ == 0.0) {
+    // Separatrix (k = 1): sn = tanh, cn = dn = sech, no period to reduce by.
+    ph.u_r = u;
+    ph.dn = 1.0 / std::cosh(u);
+    ph.sn = sep_sign_ * std::tanh(u);
+    ph.cn = sep_sign_ * ph.dn;
+    return ph;
+  }
+  // u = u_r + 2K j with |u_r| ≤ K; fma rounds u − 2K j once.
+  ph.half_periods = std::nearbyint(u / (2.0 * K_));
+  ph.u_r = std::fma(-2.0 * K_, ph.half_periods, u);
+  jacobi_.eval(ph.u_r, ph.sn, ph.cn, ph.dn);
+  // sn(u + 2K) = −sn u, cn(u + 2K) = −cn u, dn(u + 2K) = dn u [DLMF 22.4.3].
+  if (std::fmod(ph.half_periods, 2.0) != 0.0) {
+    ph.sn = -ph.sn;
+    ph.cn = -ph.cn;
+  }
+  return ph;
+}
+
+Eigen::Vector3d FreeBodyExact::omega_sorted_at(const Phase& ph) const {
+  Eigen::Vector3d out;
+  out(axis_cn_) = a_cn_ * ph.cn;
+  out(1) = sign_ * a_sn_ * ph.sn;
+  out(axis_dn_) = sign_ * a_dn_ * ph.dn;
+  return out;
 }
 
 Eigen::Vector3d FreeBodyExact::omega_sorted(double t) const {
@@ -125,15 +191,8 @@ Eigen::Vector3d FreeBodyExact::omega_sorted(double t) const {
     case FreeBodyCase::kAsymmetric:
       break;
   }
-  const double u = lambda_ * t + u0_;
-  double cn = 0, dn = 0;
-  const double sn = boost::math::jacobi_elliptic(k_, u, &cn, &dn);
-  const double s2 = sign_;
-  Eigen::Vector3d out;
-  out(axis_cn_) = a_cn_ * cn;
-  out(1) = s2 * a_sn_ * sn;
-  out(axis_dn_) = sign_ * a_dn_ * dn;
-  return out;
+  if (steady_) return w;
+  return omega_sorted_at(phase(lambda_ * t + u0_));
 }
 
 Eigen::Vector3d FreeBodyExact::omega_body(double t) const {
@@ -151,10 +210,153 @@ double FreeBodyExact::period() const {
     case FreeBodyCase::kSymmetric:
       return Omega_ == 0.0 ? kInf : 2.0 * std::numbers::pi / std::abs(Omega_);
     case FreeBodyCase::kAsymmetric:
-      if (k_ >= 1.0 || lambda_ == 0.0) return kInf;
-      return 4.0 * boost::math::ellint_1(k_) / lambda_;
+      if (steady_ || K_ == 0.0 || lambda_ == 0.0) return kInf;
+      return 4.0 * K_ / lambda_;
   }
   return kInf;
 }
+
+}  // namespace rigid::body
+
+// ---------------------------------------------------------------------------
+// FreeBodyMotion
+
+namespace rigid::body {
+
+namespace {
+// Unit quaternion of the rotation by `angle` about the unit vector `axis`.
+Eigen::Quaterniond axis_angle_quaternion(const Eigen::Vector3d& axis, double angle) {
+  const double h = 0.5 * angle;
+  Eigen::Quaterniond q;
+  q.w() = std::cos(h);
+  q.vec() = std::sin(h) * axis;
+  return q;
+}
+}  // namespace
+
+FreeBodyMotion::FreeBodyMotion(const Eigen::Vector3d& I_B, const Eigen::Quaterniond& q0_WB,
+                               const Eigen::Vector3d& w0_B)
+    : omega_(I_B, w0_B) {
+  RIGID_REQUIRE(q0_WB.coeffs().allFinite() && std::abs(q0_WB.norm() - 1.0) <= 1e-9,
+                "initial orientation must be a finite unit quaternion (|q| within 1e-9 of 1), "
+                "got (w, x, y, z) = ({}, {}, {}, {}) with |q| = {}",
+                q0_WB.w(), q0_WB.x(), q0_WB.y(), q0_WB.z(), q0_WB.norm());
+  q0_WB_ = q0_WB.normalized();
+  L_W_ = q0_WB_ * I_B.cwiseProduct(w0_B);
+
+  // Sorted axes from the user's: v_S(s) = flip · v_B(perm[s]), a proper rotation
+  // (an odd permutation has det −1 and flip = −1 restores det +1 in 3D).
+  Eigen::Matrix3d R_SB = Eigen::Matrix3d::Zero();
+  for (int s = 0; s < 3; ++s) R_SB(s, omega_.perm_[s]) = omega_.flip_;
+  RIGID_ASSERT(std::abs(R_SB.determinant() - 1.0) < 1e-12);
+  q_SB_ = Eigen::Quaterniond(R_SB);
+
+  const FreeBodyExact& e = omega_;
+  const Eigen::Vector3d& I = e.I_sorted_;
+  const Eigen::Vector3d& w = e.w0_sorted_;
+  const double L = e.L_norm_;
+  switch (e.case_) {
+    case FreeBodyCase::kSphere:
+      uniform_ = true;
+      return;
+    case FreeBodyCase::kSymmetric: {
+      // (a, b, d) cyclic with d the symmetry axis; ψ̇ = |L|/I_t [Landau1976, §33].
+      abd_ = e.sym_axis_ == 2 ? std::array<int, 3>{0, 1, 2} : std::array<int, 3>{1, 2, 0};
+      const double Lt2 = std::pow(I(abd_[0]) * w(abd_[0]), 2) + std::pow(I(abd_[1]) * w(abd_[1]), 2);
+      if (Lt2 == 0.0) {  // spin about the symmetry axis: permanent rotation
+        uniform_ = true;
+        return;
+      }
+      psi_rate_ = L / I(abd_[0]);
+      break;
+    }
+    case FreeBodyCase::kAsymmetric: {
+      if (e.steady_) {
+        uniform_ = true;
+        return;
+      }
+      abd_ = e.axis_dn_ == 2 ? std::array<int, 3>{0, 1, 2} : std::array<int, 3>{1, 2, 0};
+      const double Ic = I(e.axis_cn_), I2 = I(1), Id = I(e.axis_dn_);
+      // ψ̇ = |L|(2E − L_d²/I_d)/(|L|² − L_d²) with L_d² = I_d² a_d² (1 − k² sn²) is
+      // |L|/I_d + |L|(I_d − I_c)/(I_c I_d) / (1 − n sn²) after partial fractions
+      // [Landau1976, eq. 37.16; Celledoni2008, eq. 2.14]; ∫ du/(1 − n sn²u) = Π(n; am u, k).
+      psi_rate_ = L / Id;
+      pi_coef_ = L * (Id - Ic) / (Ic * Id * e.lambda_);
+      n_ = -Id * (I2 - Ic) / (Ic * (Id - I2));
+      // Π(n, k) = K + (n/3) R_J(0, k'², 1, 1 − n) [DLMF 19.25.2].
+      Pi_complete_ =
+          e.K_ > 0.0 ? e.K_ + n_ / 3.0 * boost::math::ellint_rj(0.0, e.kc2_, 1.0, 1.0 - n_) : 0.0;
+      Pi_u0_ = elliptic_pi(e.phase(e.u0_));
+      break;
+    }
+  }
+  // M = R_WS(0) Q(0): world from the frame whose e3 is L.
+  q_M_ = q0_WB_ * q_SB_.conjugate() * q_Q(w);
+}
+
+double FreeBodyMotion::elliptic_pi(const FreeBodyExact::Phase& ph) const {
+  const double m = -n_;  // > 0
+  if (omega_.K_ == 0.0) {
+    // Separatrix: with s = sin θ, Π(n; φ, 1) = ∫ ds / ((1 + m s²)(1 − s²))
+    //   = (atanh s + √m atan(√m s)) / (1 + m), and s = tanh u, atanh s = u.
+    const double rm = std::sqrt(m);
+    return (ph.u_r + rm * std::atan(rm * std::tanh(ph.u_r))) / (1.0 + m);
+  }
+  // Reduced u_r ∈ [−K, K] has φ_r = am u_r ∈ [−π/2, π/2], sin φ_r = sn u_r,
+  // cos φ_r = cn u_r ≥ 0, √(1 − k² sin²φ_r) = dn u_r, and [DLMF 19.25.14]
+  //   Π(n; φ, k) = s R_F(c², Δ², 1) + (n/3) s³ R_J(c², Δ², 1, 1 − n s²).
+  // Π gains 2Π(n, k) per half period (am(u + 2K) = am u + π).
+  const bool odd = std::fmod(ph.half_periods, 2.0) != 0.0;
+  const double s = odd ? -ph.sn : ph.sn;
+  const double c2 = ph.cn * ph.cn, d2 = ph.dn * ph.dn;
+  const double incomplete =
+      s * boost::math::ellint_rf(c2, d2, 1.0) +
+      n_ / 3.0 * s * s * s * boost::math::ellint_rj(c2, d2, 1.0, 1.0 - n_ * s * s);
+  return 2.0 * ph.half_periods * Pi_complete_ + incomplete;
+}
+
+Eigen::Quaterniond FreeBodyMotion::q_Q(const Eigen::Vector3d& w_S) const {
+  // Columns in sorted coordinates: (l_b/s, −l_a/s, 0), (l_a l_d/s, l_b l_d/s, −s), l
+  // in the (a, b, d) components; s = √(l_a² + l_b²) > 0 off permanent rotations.
+  const Eigen::Vector3d l = omega_.I_sorted_.cwiseProduct(w_S) / omega_.L_norm_;
+  const int a = abd_[0], b = abd_[1], d = abd_[2];
+  const double s = std::hypot(l(a), l(b));
+  Eigen::Matrix3d Q = Eigen::Matrix3d::Zero();
+  Q(a, 0) = l(b) / s;
+  Q(b, 0) = -l(a) / s;
+  Q(a, 1) = l(a) * l(d) / s;
+  Q(b, 1) = l(b) * l(d) / s;
+  Q(d, 1) = -s;
+  Q.col(2) = l;
+  return Eigen::Quaterniond(Q);
+}
+
+Eigen::Quaterniond FreeBodyMotion::orientation(double t) const {
+  const FreeBodyExact& e = omega_;
+  if (uniform_) {
+    // ω constant: R_WB(t) = R_WB(0) exp(t ω̂).
+    const Eigen::Vector3d& w = e.w0_sorted_;
+    const double wn = w.norm();
+    if (wn == 0.0) return q0_WB_;
+    const Eigen::Vector3d w_B = q_SB_.conjugate() * w;
+    return q0_WB_ * axis_angle_quaternion(w_B / wn, wn * t);
+  }
+  Eigen::Vector3d w_S;
+  double psi = psi_rate_ * t;
+  if (e.case_ == FreeBodyCase::kSymmetric) {
+    w_S = e.omega_sorted(t);
+  } else {
+    const FreeBodyExact::Phase ph = e.phase(e.lambda_ * t + e.u0_);
+    w_S = e.omega_sorted_at(ph);
+    psi += pi_coef_ * (elliptic_pi(ph) - Pi_u0_);
+  }
+  // R_WB = M R_e3(ψ) Q(t)ᵀ R_SB.
+  Eigen::Quaterniond q = q_M_ * axis_angle_quaternion(Eigen::Vector3d::UnitZ(), psi) *
+                         q_Q(w_S).conjugate() * q_SB_;
+  q.normalize();
+  return q;
+}
+
+FreeBodyState FreeBodyMotion::state(double t) const { return {orientation(t), omega_body(t)}; }
 
 }  // namespace rigid::body
