@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <memory>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -146,6 +147,56 @@ T load(const char* p, bool big_endian) {
   return v;
 }
 
+// Reads n binary STL records from `in` (positioned after the 84-byte header) in chunks into
+// one reused buffer: the file is never held whole, and vertices are written straight into
+// the mesh (no per-triangle allocation, no zero-filling).
+TriangleMesh read_stl_binary_records(const std::string& path, std::istream& in, std::uint32_t n,
+                                     double scale) {
+  TriangleMesh mesh;
+  mesh.vertices.resize(3ull * n);  // Eigen vectors: not initialised
+  mesh.triangles.reserve(n);
+  constexpr std::size_t kRecord = 50;
+  constexpr std::size_t kChunk = 1 << 14;  // triangles per read: 800 kB, stays in cache
+  const auto buffer = std::make_unique_for_overwrite<char[]>(kChunk * kRecord);
+  Eigen::Vector3d* out = mesh.vertices.data();
+  for (std::size_t first = 0; first < n; first += kChunk) {
+    const std::size_t count = std::min<std::size_t>(kChunk, n - first);
+    if (!in.read(buffer.get(), static_cast<std::streamsize>(count * kRecord))) {
+      fail_byte(path, 84 + kRecord * first, "reading the file failed");
+    }
+    for (std::size_t i = 0; i < count; ++i) {
+      const char* rec = buffer.get() + kRecord * i + 12;  // skip the normal
+      // little-endian float32 bit patterns; a float is finite unless its exponent bits are
+      // all ones (Inf, NaN)
+      std::uint32_t bits[9];
+      bool finite = true;
+      for (int k = 0; k < 9; ++k) {
+        bits[k] = load<std::uint32_t>(rec + 4 * k, false);
+        finite &= (bits[k] & 0x7f800000u) != 0x7f800000u;
+      }
+      const std::size_t t = first + i;
+      if (!finite) {
+        for (int k = 0; k < 9; ++k) {
+          const float f = std::bit_cast<float>(bits[k]);
+          if (!std::isfinite(f)) {
+            fail_byte(path, 84 + kRecord * t + 12 + 4 * static_cast<std::size_t>(k),
+                      fmt::format("coordinate of triangle {} is {}: expected a finite number",
+                                  t + 1, f));
+          }
+        }
+      }
+      for (int k = 0; k < 3; ++k) {
+        *out++ = Eigen::Vector3d(static_cast<double>(std::bit_cast<float>(bits[3 * k])) * scale,
+                                 static_cast<double>(std::bit_cast<float>(bits[3 * k + 1])) * scale,
+                                 static_cast<double>(std::bit_cast<float>(bits[3 * k + 2])) * scale);
+      }
+      const auto v = static_cast<Index>(3 * t);
+      mesh.triangles.push_back({v, v + 1, v + 2});
+    }
+  }
+  return mesh;
+}
+
 TriangleMesh read_stl_binary(const std::string& path, const std::string& data, double scale) {
   if (data.size() < 84) {
     fail_byte(path, data.size(),
@@ -161,28 +212,8 @@ TriangleMesh read_stl_binary(const std::string& path, const std::string& data, d
                           "truncated or corrupt",
                           n, expected, data.size()));
   }
-  TriangleMesh mesh;
-  mesh.vertices.reserve(3ull * n);
-  mesh.triangles.reserve(n);
-  for (std::uint32_t t = 0; t < n; ++t) {
-    const std::size_t base = 84 + 50ull * t + 12;  // skip the normal
-    for (Index k = 0; k < 3; ++k) {
-      Eigen::Vector3d p;
-      for (int c = 0; c < 3; ++c) {
-        const std::size_t at = base + 12 * k + 4 * c;
-        const float f = load<float>(data.data() + at, false);
-        if (!std::isfinite(f)) {
-          fail_byte(path, at, fmt::format("coordinate of triangle {} is {}: expected a finite "
-                                          "number",
-                                          t + 1, f));
-        }
-        p[c] = static_cast<double>(f) * scale;
-      }
-      mesh.vertices.push_back(p);
-    }
-    mesh.triangles.push_back({3 * t, 3 * t + 1, 3 * t + 2});
-  }
-  return mesh;
+  std::istringstream in(data.substr(84));
+  return read_stl_binary_records(path, in, n, scale);
 }
 
 TriangleMesh read_stl_ascii(const std::string& path, const std::string& data, double scale) {
@@ -315,12 +346,22 @@ double unit_scale(std::string_view unit) {
 }
 
 TriangleMesh read_stl(const std::string& path, double scale) {
-  const std::string data = slurp(path);
-  // A binary file is recognised by its size (84 + 50 n), whatever its header says.
-  if (data.size() >= 84) {
-    const auto n = load<std::uint32_t>(data.data() + 80, false);
-    if (84 + 50ull * n == data.size()) return read_stl_binary(path, data, scale);
+  // A binary file is recognised by its size (84 + 50 n), whatever its header says; it is
+  // read record by record, never whole.
+  {
+    std::ifstream in(path, std::ios::binary);
+    if (in) {
+      in.seekg(0, std::ios::end);
+      const std::streamoff size = in.tellg();
+      in.seekg(0, std::ios::beg);
+      char header[84];
+      if (size >= 84 && in.read(header, 84)) {
+        const auto n = load<std::uint32_t>(header + 80, false);
+        if (84 + 50ll * n == size) return read_stl_binary_records(path, in, n, scale);
+      }
+    }
   }
+  const std::string data = slurp(path);
   std::size_t i = 0;
   while (i < data.size() && std::isspace(static_cast<unsigned char>(data[i]))) ++i;
   if (data.compare(i, 5, "solid") == 0) {
