@@ -6,3 +6,4 @@
 #include "rigid/body/free_body_exact.hpp"
 #include "rigid/body/free_body_integrators.hpp"
 #include "rigid/body/heavy_top.hpp"
+#include "rigid/body/rigid_body.hpp"
