@@ -17,7 +17,7 @@ constexpr Index kNone = 0xffffffffu;
 }  // namespace
 
 HoleFillReport fill_holes(TriangleMesh& mesh) {
-  const detail::EdgeTable edges = detail::edge_table(mesh, false);
+  const detail::EdgeTable edges = detail::edge_table(mesh, {.mates = true, .lengths = false});
   HoleFillReport report;
   if (edges.boundary == 0) return report;
 

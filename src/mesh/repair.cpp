@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <unordered_map>
 #include <utility>
 
@@ -33,7 +34,7 @@ struct CellHash {
 };
 
 // Replaces every vertex index by remap[index] and keeps `kept` as the vertices.
-void apply_remap(TriangleMesh& mesh, const std::vector<Index>& remap) {
+void apply_remap(TriangleMesh& mesh, const Index* remap) {
   for (auto& t : mesh.triangles) {
     for (auto& i : t) i = remap[i];
   }
@@ -79,7 +80,7 @@ std::size_t weld_tolerance(TriangleMesh& mesh, double tol) {
     remap[i] = found;
   }
   const std::size_t merged = mesh.vertices.size() - kept.size();
-  apply_remap(mesh, remap);
+  apply_remap(mesh, remap.data());
   mesh.vertices = std::move(kept);
   return merged;
 }
@@ -115,11 +116,12 @@ std::size_t weld_exact(TriangleMesh& mesh) {
   std::size_t capacity = 64;
   while (capacity < n / 3) capacity *= 2;
   std::vector<Index> table(capacity, kNone);
-  std::vector<Index> remap(n);
+  const auto remap_storage = std::make_unique_for_overwrite<Index[]>(n);  // all written below
+  Index* remap = remap_storage.get();
   Index kept = 0;
   for (std::size_t i = 0; i < n; ++i) {
-    const Eigen::Vector3d p = v[i];
     std::size_t mask = capacity - 1;
+    const Eigen::Vector3d p = v[i];
     std::size_t slot = hash(p) & mask;
     while (table[slot] != kNone && !same(v[table[slot]], p)) slot = (slot + 1) & mask;
     if (table[slot] != kNone) {
@@ -156,7 +158,7 @@ double twice_area(const TriangleMesh& mesh, const std::array<Index, 3>& t) {
 }  // namespace
 
 EdgeCounts count_edges(const TriangleMesh& mesh) {
-  const EdgeTable e = edge_table(mesh, false);
+  const EdgeTable e = edge_table(mesh, {.mates = false, .lengths = false});
   return {e.boundary, e.non_manifold, e.misoriented};
 }
 
@@ -191,18 +193,18 @@ RepairReport repair_mesh(TriangleMesh& mesh, const RepairOptions& options) {
   if (options.exact_weld_first) {
     report.welded_vertices = weld_exact(mesh);
     report.degenerate_triangles = remove_degenerate();
-    edges = edge_table(mesh, true);
+    edges = edge_table(mesh, {.mates = true, .lengths = true});
     if (tol > 0 && (edges.boundary > 0 || edges.min_length2 <= tol * tol)) {
       report.tolerance_weld = true;
       report.welded_vertices += weld_tolerance(mesh, tol);
       report.degenerate_triangles += remove_degenerate();
-      edges = edge_table(mesh, false);
+      edges = edge_table(mesh, {.mates = true, .lengths = false});
     }
   } else {
     report.tolerance_weld = true;
     report.welded_vertices = weld_tolerance(mesh, tol);
     report.degenerate_triangles = remove_degenerate();
-    edges = edge_table(mesh, false);
+    edges = edge_table(mesh, {.mates = true, .lengths = false});
   }
   report.boundary_edges = edges.boundary;
   report.non_manifold_edges = edges.non_manifold;

@@ -14,7 +14,8 @@ namespace rigid::mesh::detail {
 // counting sort, no hashing). Half-edge h = 3f + k runs from triangle f's corner k to
 // corner k + 1.
 struct EdgeTable {
-  /// The other half-edge of an edge used exactly twice; kBoundary or kNonManifold otherwise.
+  /// Per half-edge: the other half-edge of an edge used exactly twice; kBoundary or
+  /// kNonManifold otherwise.
   std::vector<std::uint32_t> mate;
   std::size_t boundary = 0;
   std::size_t non_manifold = 0;
@@ -25,9 +26,15 @@ struct EdgeTable {
   static constexpr std::uint32_t kNonManifold = 0xfffffffeu;
 };
 
-/// Builds the table; with `lengths`, also the shortest edge. O(half-edges + vertices), plus
+/// What edge_table computes beyond the counts.
+struct EdgeTableOptions {
+  bool mates = true;     ///< fill EdgeTable::mate (else it stays empty)
+  bool lengths = false;  ///< find the shortest edge
+};
+
+/// Builds the table. O(half-edges + vertices), plus
 /// d log d for a vertex that is the lower end of d half-edges.
 /// @throws rigid::Error for more than 1.4e9 triangles.
-[[nodiscard]] EdgeTable edge_table(const TriangleMesh& mesh, bool lengths);
+[[nodiscard]] EdgeTable edge_table(const TriangleMesh& mesh, EdgeTableOptions options);
 
 }  // namespace rigid::mesh::detail
