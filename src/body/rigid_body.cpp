@@ -86,7 +86,7 @@ Wrench RigidBody::total_wrench(double t, const RigidBodyState& state) const {
 RigidBodyAcceleration RigidBody::acceleration(double t, const RigidBodyState& state) const {
   const Wrench w = total_wrench(t, state);
   const Eigen::Vector3d& omega = state.w_B;
-  // m v̇ = F_W;  I ω̇ = τ_B − ω × I ω  [Landau1976, eq. 36.4]
+  // m v̇ = F_W;  I ω̇ = τ_B − ω × I ω  [Landau1976, §36]
   return {w.force / mass_, I_C_B_inv_ * (w.torque - omega.cross(I_C_B_ * omega))};
 }
 
@@ -95,7 +95,7 @@ RigidBodyDiagnostics RigidBody::diagnose(const RigidBodyState& s) const {
   const Eigen::Vector3d L_B = I_C_B_ * s.w_B;
   d.energy = 0.5 * mass_ * s.v_WC.squaredNorm() + 0.5 * s.w_B.dot(L_B) - mass_ * g_W_.dot(s.p_WC);
   d.P_W = mass_ * s.v_WC;
-  // L about the world origin O = spin about C + orbital part p_OC × m v  [Goldstein2002, eq. 1.26]
+  // L about the world origin O = spin about C + orbital part p_OC × m v  [Goldstein2002, §1.2]
   d.L_W = s.R_WB * L_B + s.p_WC.cross(d.P_W);
   const Eigen::Matrix3d R = s.R_WB.matrix();
   d.orthonormality_error = (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();

@@ -84,7 +84,7 @@ TEST(RigidBody, ProjectileWithSpinFollowsParabolaAndFreeBodyRotation) {
 
 TEST(RigidBody, ConstantTorqueAboutPrincipalAxisSpinsUpLinearly) {
   // ω ∥ a (a principal axis): ω × Iω = 0, so I_a ω̇ = τ: ω(t) = (w0 + τ t / I_a) a, and the
-  // body turns about the fixed axis a by θ(t) = w0 t + τ t² / (2 I_a)  [Landau1976, eq. 36.4].
+  // body turns about the fixed axis a by θ(t) = w0 t + τ t² / (2 I_a)  [Landau1976, §36].
   const Eigen::Vector3d a = kQ.col(2);
   const double Ia = kIP(2), w0 = 0.5, tau = 0.3;
   const double h = 1e-2;
@@ -226,7 +226,7 @@ TEST(RigidBody, ConvergesAtItsOrderAgainstDragClosedForm) {
 TEST(RigidBody, ConvergesAtItsOrderOnCoupledMotion) {
   // tumbling racket in gravity, held by a spring at an off-COM body point with drag there:
   // no closed form, so the order is measured on successive differences
-  // d(h) = ‖x_h − x_{h/2}‖ ∝ h^p  [Hairer2006, §II.4].
+  // d(h) = ‖x_h − x_{h/2}‖ ∝ h^p (Richardson: x_h − x = C h^p + O(h^{p+1})).
   const Eigen::Vector3d r_B(0.2, 0.1, -0.3), anchor(0, 0, 1);
   RigidBody body(1.0, kIfull, Eigen::Vector3d(0, 0, -9.81));
   body.add_load({[&](double, const RigidBodyState& s) {

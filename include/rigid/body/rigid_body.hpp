@@ -117,7 +117,7 @@ class RigidBody {
 /// |             |       | parabola in uniform gravity exactly; rotation = the free-body flow |
 /// | kRk4        | 4     | nothing exactly (classical RK4 on (q, ω, p, v), q renormalised)      |
 ///
-/// kSplitting2 is the Strang splitting K(h/2) D(h) K(h/2) [Hairer2006, §II.5 and §VII.4]:
+/// kSplitting2 is the Strang splitting K(h/2) D(h) K(h/2) [Hairer2006, §II.5]:
 /// the kick K integrates v̇ = F_W/m, L̇_B = τ_B with p, R and t frozen by the explicit
 /// midpoint rule (the exact flow when the loads do not depend on velocity); the drift D
 /// is p += h v plus the free-body flow of the kinetic energy in the principal frame by
