@@ -11,12 +11,14 @@ namespace rigid::body {
 
 namespace {
 
-constexpr std::array<std::pair<std::string_view, FreeBodyMethod>, 5> kMethods{{
+constexpr std::array<std::pair<std::string_view, FreeBodyMethod>, 7> kMethods{{
     {"rk4", FreeBodyMethod::kRk4},
     {"splitting2", FreeBodyMethod::kSplitting2},
     {"splitting4", FreeBodyMethod::kSplitting4},
     {"splitting6", FreeBodyMethod::kSplitting6},
     {"midpoint", FreeBodyMethod::kLiePoissonMidpoint},
+    {"rkmk4", FreeBodyMethod::kRkmk4},
+    {"moser_veselov", FreeBodyMethod::kMoserVeselov},
 }};
 
 struct Rk4Deriv {
@@ -112,13 +114,77 @@ FreeBodyState step_midpoint(const Eigen::Vector3d& I_B, const FreeBodyState& s, 
   return out;
 }
 
+// Unit quaternion exp(θ̂/2 …): the rotation by the vector θ (rad), Taylor-safe at 0
+// (sin(|θ|/2)/|θ| = ½ − |θ|²/48 + …).
+Eigen::Quaterniond quat_exp(const Eigen::Vector3d& theta) {
+  const double a2 = theta.squaredNorm();
+  const double a = std::sqrt(a2);
+  const double s = a2 < 1e-12 ? 0.5 - a2 / 48.0 : std::sin(0.5 * a) / a;
+  return {std::cos(0.5 * a), s * theta(0), s * theta(1), s * theta(2)};
+}
+
+FreeBodyState step_rkmk4(const Eigen::Vector3d& I_B, const FreeBodyState& st, double h) {
+  // R = R0 exp(Θ̂): Θ̇ = dexp⁻¹_{−Θ}(ω) = ω + ½ Θ×ω + (1/12) Θ×(Θ×ω) + O(|Θ|⁴|ω|)
+  // [Iserles2000, eq. 5.6, Bernoulli numbers B1 = −½, B2 = 1/6 with the sign of −Θ].
+  // Stage Θ's are O(h), so the dropped term is O(h⁴) in Θ̇ and O(h⁵) per step.
+  const auto theta_dot = [](const Eigen::Vector3d& th, const Eigen::Vector3d& w) -> Eigen::Vector3d {
+    const Eigen::Vector3d tw = th.cross(w);
+    return w + 0.5 * tw + th.cross(tw) / 12.0;
+  };
+  const Eigen::Vector3d z = Eigen::Vector3d::Zero();
+  const Eigen::Vector3d& w0 = st.w_B;
+  // Stage i: Θ_i, ω_i (the state exp(Θ_i) R0, ω_i) → (Θ̇, ω̇).
+  const Eigen::Vector3d k1t = w0;
+  const Eigen::Vector3d k1w = euler_rhs<double>(I_B, w0, z);
+  const Eigen::Vector3d th2 = 0.5 * h * k1t, w2 = w0 + 0.5 * h * k1w;
+  const Eigen::Vector3d k2t = theta_dot(th2, w2), k2w = euler_rhs<double>(I_B, w2, z);
+  const Eigen::Vector3d th3 = 0.5 * h * k2t, w3 = w0 + 0.5 * h * k2w;
+  const Eigen::Vector3d k3t = theta_dot(th3, w3), k3w = euler_rhs<double>(I_B, w3, z);
+  const Eigen::Vector3d th4 = h * k3t, w4 = w0 + h * k3w;
+  const Eigen::Vector3d k4t = theta_dot(th4, w4), k4w = euler_rhs<double>(I_B, w4, z);
+  const Eigen::Vector3d theta = h / 6.0 * (k1t + 2.0 * k2t + 2.0 * k3t + k4t);
+  FreeBodyState out;
+  out.q_WB = (st.q_WB * quat_exp(theta)).normalized();
+  out.w_B = w0 + h / 6.0 * (k1w + 2.0 * k2w + 2.0 * k3w + k4w);
+  return out;
+}
+
+FreeBodyState step_moser_veselov(const Eigen::Vector3d& I_B, const FreeBodyState& st, double h) {
+  // With Ω = R(q0, q): ΩJ − JΩᵀ = 2 (q × Iq)^ + 2 q0 (Iq)^ since q̂J + Jq̂ = (Iq)^ and
+  // q qᵀJ − J q qᵀ = ((Jq) × q)^ = (q × Iq)^ for J = ½ tr(I) 1 − I. Solve
+  //   h L = 2 q0 I q + 2 q × I q,  q0 = √(1 − |q|²)
+  // by fixed-point iteration q ← I⁻¹ (h L/2 − q × Iq) / q0 from q = h ω/2 (a contraction
+  // for h|ω| max(I)/min(I) < 1), to round-off.
+  const Eigen::Vector3d L = I_B.cwiseProduct(st.w_B);
+  const Eigen::Vector3d half_hL = 0.5 * h * L;
+  Eigen::Vector3d q = 0.5 * h * st.w_B;
+  double q0 = std::sqrt(std::max(0.0, 1.0 - q.squaredNorm()));
+  for (int it = 0; it < 100; ++it) {
+    const Eigen::Vector3d next = (half_hL - q.cross(I_B.cwiseProduct(q))).cwiseQuotient(I_B) / q0;
+    const double change = (next - q).lpNorm<Eigen::Infinity>();
+    q = next;
+    q0 = std::sqrt(std::max(0.0, 1.0 - q.squaredNorm()));
+    if (change <= 1e-17 * (1.0 + q.lpNorm<Eigen::Infinity>())) break;
+  }
+  RIGID_REQUIRE(q.squaredNorm() < 1.0,
+                "Moser–Veselov step did not converge (h = {} s too large for |ω| = {} rad/s); "
+                "use a smaller step",
+                h, st.w_B.norm());
+  const Eigen::Quaterniond Omega(q0, q(0), q(1), q(2));
+  // L_{k+1} = Ωᵀ L_k, R_{k+1} = R_k Ω (so L_W = R L is unchanged up to round-off).
+  FreeBodyState out;
+  out.q_WB = (st.q_WB * Omega).normalized();
+  out.w_B = (Omega.conjugate() * L).cwiseQuotient(I_B);
+  return out;
+}
+
 }  // namespace
 
 FreeBodyMethod free_body_method_from_name(std::string_view name) {
   for (const auto& [n, m] : kMethods)
     if (n == name) return m;
   RIGID_THROW("unknown free-body method '{}'; expected one of rk4, splitting2, splitting4, "
-              "splitting6, midpoint",
+              "splitting6, midpoint, rkmk4, moser_veselov",
               name);
 }
 
@@ -133,9 +199,11 @@ int order_of(FreeBodyMethod method) {
   switch (method) {
     case FreeBodyMethod::kRk4:
     case FreeBodyMethod::kSplitting4:
+    case FreeBodyMethod::kRkmk4:
       return 4;
     case FreeBodyMethod::kSplitting2:
     case FreeBodyMethod::kLiePoissonMidpoint:
+    case FreeBodyMethod::kMoserVeselov:
       return 2;
     case FreeBodyMethod::kSplitting6:
       return 6;
@@ -150,6 +218,10 @@ FreeBodyState step_free_body(FreeBodyMethod method, const Eigen::Vector3d& I_B,
       return step_rk4(I_B, state, h);
     case FreeBodyMethod::kLiePoissonMidpoint:
       return step_midpoint(I_B, state, h);
+    case FreeBodyMethod::kRkmk4:
+      return step_rkmk4(I_B, state, h);
+    case FreeBodyMethod::kMoserVeselov:
+      return step_moser_veselov(I_B, state, h);
     default:
       break;
   }

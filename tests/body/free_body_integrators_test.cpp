@@ -35,7 +35,8 @@ TEST(FreeBodyIntegrators, ConvergeAtTheirOrderAgainstTheExactFlow) {
   };
   for (const Row& r : {Row{FreeBodyMethod::kRk4, 0.02}, Row{FreeBodyMethod::kSplitting2, 0.005},
                        Row{FreeBodyMethod::kSplitting4, 0.02}, Row{FreeBodyMethod::kSplitting6, 0.05},
-                       Row{FreeBodyMethod::kLiePoissonMidpoint, 0.005}}) {
+                       Row{FreeBodyMethod::kLiePoissonMidpoint, 0.005},
+                       Row{FreeBodyMethod::kRkmk4, 0.02}, Row{FreeBodyMethod::kMoserVeselov, 0.005}}) {
     const double e1 = omega_error(r.m, r.h, 10.0);
     const double e2 = omega_error(r.m, r.h / 2, 10.0);
     const double p = std::log2(e1 / e2);
@@ -76,6 +77,55 @@ TEST(FreeBodyIntegrators, MidpointKeepsQuadraticInvariants) {
   EXPECT_LT(diagnose(kI, s).orthonormality_error, 1e-13);
 }
 
+TEST(FreeBodyIntegrators, OrientationConvergesAtTheOrderAgainstTheClosedForm) {
+  // The closed-form orientation (FreeBodyMotion) as reference for the Lie-group
+  // methods; same ±0.3 criterion as for ω.
+  const Eigen::Quaterniond q0 = Eigen::Quaterniond(0.9, 0.1, -0.3, 0.2).normalized();
+  const FreeBodyMotion exact(kI, q0, kW0);
+  for (const auto& [m, h] : {std::pair{FreeBodyMethod::kRkmk4, 0.02}, std::pair{FreeBodyMethod::kMoserVeselov, 0.005}}) {
+    double e[2];
+    for (int j = 0; j < 2; ++j) {
+      const double hj = h / (1 << j);
+      FreeBodyState s{q0, kW0};
+      const int n = static_cast<int>(std::lround(10.0 / hj));
+      for (int i = 0; i < n; ++i) s = step_free_body(m, kI, s, hj);
+      e[j] = s.q_WB.angularDistance(exact.orientation(10.0));
+    }
+    EXPECT_NEAR(std::log2(e[0] / e[1]), order_of(m), 0.3) << name_of(m) << " " << e[0] << " " << e[1];
+  }
+}
+
+TEST(FreeBodyIntegrators, MoserVeselovKeepsMomentumAndEnergyToRoundOff) {
+  FreeBodyState s;
+  s.w_B = kW0;
+  const FreeBodyDiagnostics d0 = diagnose(kI, s);
+  const double L0 = d0.L_W.norm();
+  double max_energy_err = 0;
+  const int n = 100000;  // 1000 s, ~25 flips
+  for (int i = 0; i < n; ++i) {
+    s = step_free_body(FreeBodyMethod::kMoserVeselov, kI, s, 0.01);
+    if (i % 100 == 0) max_energy_err = std::max(max_energy_err, std::abs(diagnose(kI, s).energy - d0.energy));
+  }
+  const FreeBodyDiagnostics d = diagnose(kI, s);
+  // Each step is an exact rotation of L_B and of the body: round-off only, a random
+  // walk ≈ √n · few ε ≈ 1e-13 relative after 1e5 steps.
+  EXPECT_LT((d.L_W - d0.L_W).norm(), 1e-12 * L0);
+  EXPECT_NEAR(kI.cwiseProduct(s.w_B).norm(), L0, 1e-12 * L0);
+  EXPECT_LT(d.orthonormality_error, 1e-13);
+  // Energy too: with h L_k = 2(q0 Iq + q × Iq) and h L_{k+1} = 2(q0 Iq − q × Iq) the
+  // cross term of L·I⁻¹L is ±4 q0 (q × Iq)·q = 0, so ½ L·I⁻¹L is the same at both
+  // ends of a step [McLachlan2005, §2]; only round-off remains.
+  EXPECT_LT(max_energy_err, 1e-12 * d0.energy);
+}
+
+TEST(FreeBodyIntegrators, Rkmk4KeepsOrthonormalityToRoundOff) {
+  FreeBodyState s;
+  s.w_B = kW0;
+  for (int i = 0; i < 100000; ++i) s = step_free_body(FreeBodyMethod::kRkmk4, kI, s, 0.01);
+  // Updated by q ← q exp(Θ) and renormalised: the defect stays at a few ε.
+  EXPECT_LT(diagnose(kI, s).orthonormality_error, ulps(16));
+}
+
 TEST(FreeBodyIntegrators, Rk4DriftsWhichTheDiagnosticsShow) {
   // Baseline without structure: the unit-norm defect of q grows (it is a check
   // that the diagnostics can fail).
@@ -99,6 +149,8 @@ TEST(FreeBodyIntegrators, SimulateReturnsRequestedTimes) {
 TEST(FreeBodyIntegrators, NamesAndBadInput) {
   EXPECT_EQ(free_body_method_from_name("splitting4"), FreeBodyMethod::kSplitting4);
   EXPECT_EQ(name_of(FreeBodyMethod::kLiePoissonMidpoint), "midpoint");
+  EXPECT_EQ(free_body_method_from_name("rkmk4"), FreeBodyMethod::kRkmk4);
+  EXPECT_EQ(name_of(FreeBodyMethod::kMoserVeselov), "moser_veselov");
   EXPECT_RIGID_ERROR((void)free_body_method_from_name("euler"), "unknown free-body method 'euler'");
   FreeBodyState s;
   EXPECT_RIGID_ERROR((void)simulate_free_body(FreeBodyMethod::kRk4, kI, s, 0.0, {1.0}),

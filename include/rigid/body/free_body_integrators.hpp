@@ -10,6 +10,15 @@
 /// | kSplitting4 (Yoshida)   | 4     | as kSplitting2; symplectic, energy error bounded        |
 /// | kSplitting6 (Yoshida)   | 6     | as kSplitting2; symplectic, energy error bounded        |
 /// | kLiePoissonMidpoint     | 2     | |L| and energy (quadratic invariants) to solver tolerance |
+/// | kRkmk4 (Lie-group RK)   | 4     | |q| = 1 / RᵀR = 1 to round-off (update by exp); energy, |L| drift O(h⁴) |
+/// | kMoserVeselov           | 2     | L_W, |L| and energy ½ L·I⁻¹L to round-off; symplectic   |
+///
+/// RKMK4: classical RK4 tableau on the Lie algebra, R = R0 exp(Θ̂),
+/// Θ̇ = dexp⁻¹_{−Θ}(ω) ≈ ω + ½ Θ × ω + (1/12) Θ × (Θ × ω) (truncated after the terms
+/// that affect order 4) [MuntheKaas1998; Iserles2000, §5]; ω by RK4 on Euler's equations.
+/// Moser–Veselov: solve h L_k = 2 q0 I q + 2 q × (I q) for the unit quaternion (q0, q)
+/// of Ω_k (the matrix form h M̂ = ΩJ − JΩᵀ, J = ½ tr(I) 1 − I), then
+/// L_{k+1} = Ω_kᵀ L_k, R_{k+1} = R_k Ω_k [Moser1991; McLachlan2005, eq. 2.3].
 ///
 /// Splitting: H = Σ L_i²/(2 I_i) is split into the three body-axis Hamiltonians;
 /// each flow rotates L_B about e_i by −h L_i/I_i and the body by +h L_i/I_i
@@ -30,9 +39,18 @@ struct FreeBodyState {
   Eigen::Vector3d w_B = Eigen::Vector3d::Zero();
 };
 
-enum class FreeBodyMethod { kRk4, kSplitting2, kSplitting4, kSplitting6, kLiePoissonMidpoint };
+enum class FreeBodyMethod {
+  kRk4,
+  kSplitting2,
+  kSplitting4,
+  kSplitting6,
+  kLiePoissonMidpoint,
+  kRkmk4,
+  kMoserVeselov
+};
 
-/// Method from its name: "rk4", "splitting2", "splitting4", "splitting6", "midpoint".
+/// Method from its name: "rk4", "splitting2", "splitting4", "splitting6", "midpoint",
+/// "rkmk4", "moser_veselov".
 /// Throws rigid::Error listing the valid names otherwise.
 [[nodiscard]] FreeBodyMethod free_body_method_from_name(std::string_view name);
 [[nodiscard]] std::string_view name_of(FreeBodyMethod method);
