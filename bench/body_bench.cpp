@@ -131,6 +131,17 @@ void BM_ExactOmega(benchmark::State& st) {
   }
 }
 
+// Closed-form orientation q_WB(t) of the same motion (one evaluation).
+void BM_ExactOrientation(benchmark::State& st) {
+  const rigid::body::FreeBodyMotion motion(kI, Eigen::Quaterniond::Identity(), kW0);
+  double t = 0;
+  for (auto _ : st) {
+    t += 0.0137;
+    if (t > kTEnd) t -= kTEnd;
+    benchmark::DoNotOptimize(motion.orientation(t));
+  }
+}
+
 // 10⁷ steps (t = 1e5 s at dt = 0.01): drift of L_W, |L|, energy and ‖RᵀR − 1‖ of the
 // Lie–Poisson methods (one iteration; the counters are the point, not the time).
 void BM_LongRun(benchmark::State& st, FreeBodyMethod m) {
@@ -311,6 +322,7 @@ void BM_BatchMuJoCo(benchmark::State& st, int integrator) {
 BENCHMARK_CAPTURE(BM_LongRun, splitting2, FreeBodyMethod::kSplitting2)->Iterations(1)->Unit(benchmark::kSecond);
 BENCHMARK_CAPTURE(BM_LongRun, midpoint, FreeBodyMethod::kLiePoissonMidpoint)->Iterations(1)->Unit(benchmark::kSecond);
 BENCHMARK(BM_ExactOmega);
+BENCHMARK(BM_ExactOrientation);
 BENCHMARK_CAPTURE(BM_Rigid, rk4, FreeBodyMethod::kRk4)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Rigid, splitting2, FreeBodyMethod::kSplitting2)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Rigid, splitting4, FreeBodyMethod::kSplitting4)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);
