@@ -24,13 +24,16 @@ using Clock = std::chrono::steady_clock;
 // A scene expression for the Lagrangian engine: positions inside it map to the file.
 lagrange::Expression to_lagrange(const Expression& e) { return {e.text, e.at(0)}; }
 
-// Rethrows an error of a library call at a position of the scene file.
+// Rethrows an error of a library call at a position of the scene file, unless the error
+// already names a position in that file (expressions report their own column).
 template <typename F>
 auto at_location(const SourceLocation& where, const std::string& context, F&& f) {
   try {
     return f();
   } catch (const Error& e) {
-    detail::throw_error_at(where, fmt::format("{}: {}", context, e.what()));
+    const std::string_view what = e.what();
+    if (!where.file.empty() && what.starts_with(where.file + ":")) throw;
+    detail::throw_error_at(where, fmt::format("{}: {}", context, what));
   }
 }
 
