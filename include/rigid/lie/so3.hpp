@@ -1,6 +1,11 @@
 #pragma once
 
 #include <random>
+#include <type_traits>
+
+#ifdef __SSE2__
+#include <emmintrin.h>
+#endif
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>  // cross
@@ -76,8 +81,34 @@ class SO3 {
   [[nodiscard]] const Scalar& z() const { return q_(3); }
 
   [[nodiscard]] SO3 inverse() const { return SO3(q_(0), -q_(1), -q_(2), -q_(3)); }
-  /// Composition (Hamilton product of the quaternions).
+  /// Composition (Hamilton product of the quaternions; 16 multiplications, 12 additions).
   [[nodiscard]] SO3 operator*(const SO3& b) const {
+#ifdef __SSE2__
+    if constexpr (std::is_same_v<Scalar, double>) {
+      // The same product on two SSE2 lanes, (w, x) and (y, z), so that the (w, x, y, z) storage
+      // needs no reordering: with A = a's coefficients broadcast and B = b's pairs,
+      //   (rw, rx) = aw (bw, bx) + ax (−bx, bw) + ay (−by, bz) + az (−bz, −by)
+      //   (ry, rz) = aw (by, bz) + ax (−bz, by) + ay (bw, −bx) + az (bx, bw)
+      // 8 packed multiplications, 6 packed additions.
+      const __m128d a0 = _mm_loadu_pd(q_.data()), a1 = _mm_loadu_pd(q_.data() + 2);
+      const __m128d b0 = _mm_loadu_pd(b.q_.data()), b1 = _mm_loadu_pd(b.q_.data() + 2);
+      const __m128d aw = _mm_unpacklo_pd(a0, a0), ax = _mm_unpackhi_pd(a0, a0);
+      const __m128d ay = _mm_unpacklo_pd(a1, a1), az = _mm_unpackhi_pd(a1, a1);
+      const __m128d b0s = _mm_shuffle_pd(b0, b0, 1), b1s = _mm_shuffle_pd(b1, b1, 1);
+      const __m128d neg_lo = _mm_set_pd(0.0, -0.0), neg_hi = _mm_set_pd(-0.0, 0.0);
+      const __m128d neg_both = _mm_set1_pd(-0.0);
+      const __m128d r0 = _mm_add_pd(
+          _mm_add_pd(_mm_mul_pd(aw, b0), _mm_mul_pd(ax, _mm_xor_pd(b0s, neg_lo))),
+          _mm_add_pd(_mm_mul_pd(ay, _mm_xor_pd(b1, neg_lo)), _mm_mul_pd(az, _mm_xor_pd(b1s, neg_both))));
+      const __m128d r1 = _mm_add_pd(
+          _mm_add_pd(_mm_mul_pd(aw, b1), _mm_mul_pd(ax, _mm_xor_pd(b1s, neg_lo))),
+          _mm_add_pd(_mm_mul_pd(ay, _mm_xor_pd(b0, neg_hi)), _mm_mul_pd(az, b0s)));
+      SO3 r;
+      _mm_storeu_pd(r.q_.data(), r0);
+      _mm_storeu_pd(r.q_.data() + 2, r1);
+      return r;
+    }
+#endif
     const Scalar &aw = q_(0), &ax = q_(1), &ay = q_(2), &az = q_(3);
     const Scalar &bw = b.q_(0), &bx = b.q_(1), &by = b.q_(2), &bz = b.q_(3);
     return SO3(aw * bw - ax * bx - ay * by - az * bz, aw * bx + ax * bw + ay * bz - az * by,
@@ -102,6 +133,7 @@ class SO3 {
 
  private:
   SO3(const Scalar& w, const Scalar& x, const Scalar& y, const Scalar& z) : q_(w, x, y, z) {}
+  SO3() = default;  // uninitialised storage, filled at once by operator*
   Vector4 q_;
 };
 
