@@ -303,6 +303,18 @@ void BM_BatchRigid(benchmark::State& st, FreeBodyMethod m) {
   st.SetItemsProcessed(st.iterations() * st.range(0));
 }
 
+// the same batch through the library's batch kernel (merged sub-flows, one sincos each)
+void BM_BatchRigidKernel(benchmark::State& st, FreeBodyMethod m) {
+  const Batch batch(st.range(0));
+  std::vector<FreeBodyState> s(batch.I.size());
+  for (std::size_t i = 0; i < s.size(); ++i) s[i].w_B = batch.w0[i];
+  for (auto _ : st) {
+    rigid::body::step_free_bodies(m, batch.I, s, 0.01);
+    benchmark::ClobberMemory();
+  }
+  st.SetItemsProcessed(st.iterations() * st.range(0));
+}
+
 void BM_BatchMuJoCo(benchmark::State& st, int integrator) {
   const Batch batch(st.range(0));
   try {
@@ -338,5 +350,8 @@ BENCHMARK_CAPTURE(BM_BatchRigid, rk4, FreeBodyMethod::kRk4)->Arg(100'000)->Unit(
 BENCHMARK_CAPTURE(BM_BatchRigid, splitting2, FreeBodyMethod::kSplitting2)->Arg(100'000)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_BatchRigid, splitting4, FreeBodyMethod::kSplitting4)->Arg(100'000)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_BatchRigid, midpoint, FreeBodyMethod::kLiePoissonMidpoint)->Arg(100'000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_BatchRigidKernel, splitting2, FreeBodyMethod::kSplitting2)->Arg(100'000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_BatchRigidKernel, splitting4, FreeBodyMethod::kSplitting4)->Arg(100'000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_BatchRigidKernel, splitting6, FreeBodyMethod::kSplitting6)->Arg(100'000)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_BatchMuJoCo, euler, static_cast<int>(mjINT_EULER))->Arg(1000)->Arg(10'000)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_BatchMuJoCo, rk4, static_cast<int>(mjINT_RK4))->Arg(1000)->Arg(10'000)->Unit(benchmark::kMillisecond);
