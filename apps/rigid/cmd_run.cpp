@@ -50,7 +50,7 @@ class Progress {
   void operator()(double t) {
     if (g_interrupted) {
       clear();
-      RIGID_THROW("interrupted at t = {:.6g} s of {:.6g} s; no output was written", t, t_end_);
+      throw Error(fmt::format("interrupted at t = {:.6g} s of {:.6g} s; no output was written", t, t_end_));
     }
     if (!enabled_ || ++calls_ % 64 != 0) return;
     const auto now = Clock::now();
