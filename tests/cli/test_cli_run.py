@@ -200,6 +200,15 @@ def test_stiff_dumbbell_approaches_the_rigid_body(run, tmp_path, k):
     assert abs(np.mean(radius) - r0) < 1.01 * (rk - r0)
 
 
+CHECKED = {"rolling_cylinder", "rolling_sphere", "rolling_tube", "atwood", "physical_pendulum",
+           "cone_pendulum", "double_pendulum", "heavy_top", "tennis_racket", "stiff_dumbbell"}
+
+
+def test_every_example_scene_has_a_closed_form_check():
+    # a new example must come with its check above
+    assert {p.stem for p in EXAMPLES.glob("*.toml")} == CHECKED
+
+
 def test_npy_equals_csv(run, tmp_path):
     out = tmp_path / "o"
     run("run", EXAMPLES / "atwood.toml", "-o", out, "--format", "csv", "--format", "npy", check=True)
