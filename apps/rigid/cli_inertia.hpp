@@ -67,6 +67,9 @@ inline void add_inertia_command(CLI::App& app) {
   inertia->add_option_function<double>(
       "--thickness", [source](double v) { source->thickness = v; },
       "mesh files with --shell: wall thickness (m)");
+  inertia->add_flag("--fill-holes", source->fill_holes,
+                    "mesh files: close holes whose border is a simple loop before computing "
+                    "(a planar hole is closed exactly)");
   // unknown words after an unknown SOURCE reach the callback, which names the real problem
   inertia->allow_extras();
   inertia->callback([inertia, source] {

@@ -17,5 +17,8 @@ inline void add_mesh_command(CLI::App& app) {
   check->add_option("--weld-tolerance", opts->weld_tolerance,
                     "merge vertices closer than this fraction of the bounding-box diagonal")
       ->default_str("1e-7");
+  check->add_flag("--fill-holes", opts->fill_holes,
+                  "close holes whose border is a simple loop (fan around its centre) before "
+                  "judging the mesh");
   check->callback([opts] { rigid::cli::run_mesh_check(*opts); });
 }

@@ -253,8 +253,10 @@ void run_inertia_source(const InertiaSourceOptions& opts) {
   for (const auto& p : primitives()) names += (names.empty() ? "" : ", ") + p.spec.name;
   RIGID_REQUIRE(!opts.source.empty(), "give a primitive ({}) or `check FILE`", names);
   if (is_mesh_file(opts.source)) {
-    run_inertia_mesh(opts.source, {opts.mass, opts.density, opts.units, opts.shell, opts.thickness},
-                     opts.output);
+    run_inertia_mesh(
+        opts.source,
+        {opts.mass, opts.density, opts.units, opts.shell, opts.thickness, opts.fill_holes},
+        opts.output);
     return;
   }
   RIGID_THROW("unknown primitive '{}'; expected one of {}, or `check FILE`", opts.source, names);

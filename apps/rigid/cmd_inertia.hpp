@@ -61,6 +61,7 @@ struct InertiaSourceOptions {
   std::string units = "m";          ///< mesh file unit: m, cm, mm or in
   bool shell = false;               ///< mesh as a thin shell
   std::optional<double> thickness;  ///< m, with shell
+  bool fill_holes = false;          ///< mesh: close simple holes first
 };
 
 /// `rigid inertia SOURCE`: SOURCE names no primitive; reports the choices.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -14,6 +15,34 @@ namespace {
 
 void warn(const std::string& s) {
   std::fputs(fmt::format("rigid: warning: {}\n", s).c_str(), stderr);
+}
+
+// One line on what fill_holes did.
+std::string describe_fill(const mesh::HoleFillReport& f) {
+  std::string s = fmt::format("filled {} hole{} ({} triangles added, patch area {:.9g} m²):",
+                              f.holes.size(), f.holes.size() == 1 ? "" : "s",
+                              f.triangles_added, f.area);
+  for (const auto& h : f.holes) s += fmt::format(" {} edges/{:.6g} m²;", h.boundary_edges, h.area);
+  s.pop_back();
+  return s;
+}
+
+// Repairs `m`; with `fill` and holes present, closes the simple holes and repairs again
+// (orienting the now closed components).
+struct RepairAndFill {
+  mesh::RepairReport first;                  ///< of the mesh as read
+  std::optional<mesh::HoleFillReport> fill;  ///< what fill_holes added, if it ran
+  std::optional<mesh::RepairReport> after;   ///< of the filled mesh
+  [[nodiscard]] const mesh::RepairReport& final_report() const { return after ? *after : first; }
+};
+
+RepairAndFill repair_and_fill(mesh::TriangleMesh& m, const mesh::RepairOptions& ro, bool fill) {
+  RepairAndFill r{mesh::repair_mesh(m, ro), std::nullopt, std::nullopt};
+  if (fill && r.first.boundary_edges > 0) {
+    r.fill = mesh::fill_holes(m);
+    r.after = mesh::repair_mesh(m, ro);
+  }
+  return r;
 }
 
 }  // namespace
@@ -31,18 +60,22 @@ void run_mesh_check(const MeshCheckOptions& opts) {
   mesh::TriangleMesh m = mesh::read_mesh(opts.file, mesh::unit_scale(opts.units));
   mesh::RepairOptions ro;
   ro.weld_tolerance = opts.weld_tolerance;
-  const mesh::RepairReport rep = mesh::repair_mesh(m, ro);
+  const RepairAndFill rf = repair_and_fill(m, ro, opts.fill_holes);
+  const mesh::RepairReport& rep = rf.final_report();
   const auto box = m.bounding_box();
   std::string out = fmt::format("{}\n", opts.file);
   out += fmt::format("bounding box: ({:.6g}, {:.6g}, {:.6g}) to ({:.6g}, {:.6g}, {:.6g}) m\n",
                      box[0].x(), box[0].y(), box[0].z(), box[1].x(), box[1].y(), box[1].z());
-  out += mesh::describe(rep);
+  out += mesh::describe(rf.first);
+  if (rf.fill) {
+    out += describe_fill(*rf.fill) + "\nafter filling:\n" + mesh::describe(*rf.after);
+  }
   for (const auto& w : rep.warnings) out += fmt::format("warning: {}\n", w);
   std::string problem;
   if (!rep.closed()) {
     problem = fmt::format("the mesh is not closed ({} boundary edges, {} non-manifold edges): "
                           "its volume is undefined; use `rigid inertia {} --shell` for a thin "
-                          "shell, or close the holes",
+                          "shell, or --fill-holes to close simple holes",
                           rep.boundary_edges, rep.non_manifold_edges, opts.file);
   } else {
     const double v = mesh::volume_moments(m).measure;
@@ -66,8 +99,14 @@ void run_mesh_check(const MeshCheckOptions& opts) {
 void run_inertia_mesh(const std::string& file, const MeshInertiaOptions& opts,
                       const InertiaOutputOptions& out) {
   mesh::TriangleMesh m = mesh::read_mesh(file, mesh::unit_scale(opts.units));
-  const mesh::RepairReport rep = mesh::repair_mesh(m);
-  for (const auto& w : rep.warnings) warn(fmt::format("{}: {}", file, w));
+  const RepairAndFill rf = repair_and_fill(m, {}, opts.fill_holes);
+  if (rf.fill) {
+    for (const auto& w : rf.first.warnings) {  // what the filled mesh no longer shows
+      if (w.find("the mesh is open") == std::string::npos) warn(fmt::format("{}: {}", file, w));
+    }
+    warn(fmt::format("{}: {}", file, describe_fill(*rf.fill)));
+  }
+  for (const auto& w : rf.final_report().warnings) warn(fmt::format("{}: {}", file, w));
   const auto res = mesh::mesh_mass_properties(
       m, mesh::MassSpec{opts.mass, opts.density, opts.shell, opts.thickness});
   for (const auto& w : res.warnings) warn(fmt::format("{}: {}", file, w));

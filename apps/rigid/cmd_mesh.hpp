@@ -12,6 +12,7 @@ struct MeshCheckOptions {
   std::string file;
   std::string units = "m";        ///< m, cm, mm or in: length of one file unit
   double weld_tolerance = 1e-7;   ///< relative to the bounding-box diagonal
+  bool fill_holes = false;        ///< close simple holes (mesh::fill_holes) before judging
 };
 
 /// `rigid mesh check FILE`: prints what is wrong with the mesh and whether its solid mass
@@ -25,13 +26,15 @@ struct MeshInertiaOptions {
   std::string units = "m";          ///< m, cm, mm or in
   bool shell = false;               ///< thin shell instead of a solid
   std::optional<double> thickness;  ///< m, shell only
+  bool fill_holes = false;          ///< close simple holes (mesh::fill_holes) first
 };
 
 /// True when `path` has a mesh extension (.stl, .obj, .ply, .off, any case).
 [[nodiscard]] bool is_mesh_file(const std::string& path);
 
-/// `rigid inertia FILE ...` for a mesh: read, repair, mass properties, then emit_inertia.
-/// Repairs and plausibility problems are printed to standard error as warnings.
+/// `rigid inertia FILE ...` for a mesh: read, repair, (fill holes, repair again,) mass
+/// properties, then emit_inertia. Repairs, filled holes and plausibility problems are printed
+/// to standard error as warnings.
 void run_inertia_mesh(const std::string& file, const MeshInertiaOptions& mesh,
                       const InertiaOutputOptions& out);
 

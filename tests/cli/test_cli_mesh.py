@@ -64,3 +64,32 @@ def test_inertia_shell_and_open_solid(run, tmp_path):
     proc = run("inertia", p, "--shell", "--thickness", 0.001, "--density", 1000,
                "--format", "json", check=True)
     assert json.loads(proc.stdout)["mass"] == pytest.approx(5.5, rel=1e-12)  # 5.5 m² × 1 kg/m²
+
+
+def test_fill_holes_closes_a_missing_face(run, tmp_path):
+    # The unit box without its face z = 0 (triangles 0 and 6): a planar square hole,
+    # closed exactly by the fan around its centre, so m = 1000 kg and I_xx = m (1 + 1)/12.
+    tris = box_triangles(1, 1, 1)  # the first of each quad's two triangles, then the second
+    p = write_binary_stl(tmp_path / "no_bottom.stl", [t for i, t in enumerate(tris) if i not in (0, 6)])
+    proc = run("mesh", "check", p, check=False)
+    assert proc.returncode == 1 and "--fill-holes" in proc.stderr
+    out = run("mesh", "check", p, "--fill-holes", check=True).stdout
+    assert "filled 1 hole (4 triangles added, patch area 1 m²): 4 edges/1 m²" in out
+    assert "after filling:" in out and "boundary edges: 0" in out
+    assert "mass properties: trustworthy as a solid" in out
+    proc = run("inertia", p, "--density", 1000, "--fill-holes", "--format", "json", check=True)
+    d = json.loads(proc.stdout)
+    assert d["mass"] == pytest.approx(1000.0, rel=1e-12)
+    assert d["inertia"][0][0] == pytest.approx(1000 * 2 / 12, rel=1e-12)
+    assert "filled 1 hole" in proc.stderr and "the mesh is open" not in proc.stderr
+    proc = run("inertia", p, "--density", 1000, check=False)
+    assert proc.returncode != 0 and "--fill-holes" in proc.stderr
+
+
+def test_fill_holes_refuses_holes_touching_at_a_vertex(run, tmp_path):
+    # Triangles (0,2,3) and (0,5,4) of the box removed: two holes meeting at the origin.
+    tris = box_triangles(1, 1, 1)
+    p = write_binary_stl(tmp_path / "touching.stl", [t for i, t in enumerate(tris) if i not in (0, 8)])
+    proc = run("inertia", p, "--density", 1000, "--fill-holes", check=False)
+    assert proc.returncode != 0
+    assert "boundary loop through vertex" in proc.stderr and "at (0, 0, 0) m is not simple" in proc.stderr
