@@ -160,7 +160,7 @@ void bind_lagrange(py::module_& root) {
             rigid::lagrange::SimulationOptions o{
                 .t_end = t_end, .method = rigid::integrate::parse_method(method), .dt = dt,
                 .tolerance = tolerance, .output_dt = output_dt, .stabilization = stabilization,
-                .project_initial = project_initial};
+                .project_initial = project_initial, .progress = {}};
             // the GIL stays held: a System's compiled tape has one scratch buffer
             const rigid::lagrange::Trajectory tr =
                 s.simulate(o, q0 ? *q0 : s.initial_q(), q_dot0 ? *q_dot0 : s.initial_q_dot());
