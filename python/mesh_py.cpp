@@ -76,11 +76,25 @@ void bind_mesh(py::module_& m) {
       .def_readonly("non_manifold_edges", &rm::RepairReport::non_manifold_edges)
       .def_readonly("reoriented_triangles", &rm::RepairReport::reoriented_triangles)
       .def_readonly("inverted_components", &rm::RepairReport::inverted_components)
+      .def_readonly("tolerance_weld", &rm::RepairReport::tolerance_weld)
       .def_readonly("components", &rm::RepairReport::components)
       .def_readonly("warnings", &rm::RepairReport::warnings)
       .def_property_readonly("closed", &rm::RepairReport::closed)
       .def("__str__", &rm::describe);
 
+  py::class_<rm::FilledHole>(mesh, "FilledHole")
+      .def_readonly("boundary_edges", &rm::FilledHole::boundary_edges)
+      .def_readonly("area", &rm::FilledHole::area);
+
+  py::class_<rm::HoleFillReport>(mesh, "HoleFillReport")
+      .def_readonly("holes", &rm::HoleFillReport::holes)
+      .def_readonly("triangles_added", &rm::HoleFillReport::triangles_added)
+      .def_readonly("vertices_added", &rm::HoleFillReport::vertices_added)
+      .def_readonly("area", &rm::HoleFillReport::area);
+
+  mesh.def("fill_holes", &rm::fill_holes, py::arg("mesh"),
+           "Close every hole whose border is a simple loop (in place; run repair first and "
+           "again after); a planar hole is closed exactly. Returns the report.");
   mesh.def("read", &rm::read_mesh, py::arg("path"), py::arg("scale") = 1.0,
            "Read an STL/OBJ/PLY/OFF file; coordinates multiplied by scale (m per file unit).");
   mesh.def("unit_scale", &rm::unit_scale, py::arg("unit"), "Metres per unit: m, cm, mm or in.");

@@ -45,3 +45,16 @@ def test_open_mesh_and_bad_input_errors(tmp_path):
     with pytest.raises(rigid.Error, match="empty.stl: the file is empty"):
         rigid.mesh.read(str(p))
     assert rigid.mesh.unit_scale("mm") == 0.001
+
+
+def test_fill_holes_closes_a_missing_face_exactly():
+    v, f = box(1, 2, 3)
+    mesh = rigid.mesh.TriangleMesh(v, f[2:])  # without the face z = 0 (triangles 0 and 1)
+    assert rigid.mesh.repair(mesh).boundary_edges == 4
+    fill = rigid.mesh.fill_holes(mesh)
+    assert len(fill.holes) == 1 and fill.holes[0].boundary_edges == 4
+    assert fill.area == pytest.approx(2.0, rel=1e-12)  # the 1 × 2 face
+    assert rigid.mesh.repair(mesh).closed
+    mp, _ = rigid.mesh.mass_properties(mesh, density=1.0)
+    assert mp.mass == pytest.approx(6.0, rel=1e-12)
+    np.testing.assert_allclose(np.diag(mp.inertia_com), [6.5, 5.0, 2.5], rtol=1e-12)
