@@ -1,5 +1,7 @@
 // SO3 compose, act, exp and log: rigid::SO3d next to Eigen's Quaternion / AngleAxis, on the
 // same pre-generated random inputs (1024 of each, cycled so that nothing is constant-folded).
+// Then the dynamic-size SOn exp and log at n = 3 and n = 8 (Gaussian ω, σ = 0.5 per component;
+// Haar rotations), to show the cost of the general matrix route.
 #include <random>
 #include <vector>
 
@@ -101,6 +103,41 @@ void BM_eigen_log(benchmark::State& s) {
   }
 }
 
+struct DynamicInputs {
+  std::vector<rigid::SOn> r;
+  std::vector<Eigen::VectorXd> w;
+  explicit DynamicInputs(int n) {
+    std::mt19937_64 rng(2);
+    std::normal_distribution<double> g(0.0, 0.5);
+    for (std::size_t i = 0; i < kN; ++i) {
+      r.push_back(rigid::SOn::sample(n, rng));
+      Eigen::VectorXd v(rigid::SOn::dimension_of(n));
+      for (Eigen::Index k = 0; k < v.size(); ++k) v(k) = g(rng);
+      w.push_back(v);
+    }
+  }
+};
+const DynamicInputs& dynamic_inputs(int n) {
+  static const DynamicInputs in3(3), in8(8);
+  return n == 3 ? in3 : in8;
+}
+void BM_rigid_SOn_exp(benchmark::State& s) {
+  const auto& in = dynamic_inputs(static_cast<int>(s.range(0)));
+  std::size_t i = 0;
+  for (auto _ : s) {
+    benchmark::DoNotOptimize(rigid::SOn::exp(in.w[i]));
+    i = (i + 1) % kN;
+  }
+}
+void BM_rigid_SOn_log(benchmark::State& s) {
+  const auto& in = dynamic_inputs(static_cast<int>(s.range(0)));
+  std::size_t i = 0;
+  for (auto _ : s) {
+    benchmark::DoNotOptimize(in.r[i].log());
+    i = (i + 1) % kN;
+  }
+}
+
 BENCHMARK(BM_rigid_compose);
 BENCHMARK(BM_eigen_compose);
 BENCHMARK(BM_rigid_act);
@@ -109,5 +146,7 @@ BENCHMARK(BM_rigid_exp);
 BENCHMARK(BM_eigen_exp);
 BENCHMARK(BM_rigid_log);
 BENCHMARK(BM_eigen_log);
+BENCHMARK(BM_rigid_SOn_exp)->Arg(3)->Arg(8);
+BENCHMARK(BM_rigid_SOn_log)->Arg(3)->Arg(8);
 
 }  // namespace

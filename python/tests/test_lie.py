@@ -65,3 +65,84 @@ def test_errors():
         rigid.SO3.from_axis_angle(np.zeros(3), 1.0)
     with pytest.raises(rigid.Error, match="unknown Euler sequence 'ABC'"):
         rigid.SO3.from_euler(np.zeros(3), "ABC")
+
+
+def rot2(t):
+    c, s = math.cos(t), math.sin(t)
+    return np.array([[c, -s], [s, c]])
+
+
+def test_so2_and_se2_closed_forms():
+    R = rigid.SO2.exp(0.7)
+    # cos and sin are correctly rounded: exact agreement with numpy.
+    assert np.array_equal(R.matrix(), rot2(0.7))
+    assert R.log() == 0.7
+    assert np.abs(R * np.array([1.0, 0.0]) - [math.cos(0.7), math.sin(0.7)]).max() < 1e-16
+    assert rigid.SO2.from_complex(-1.0, 0.0).log() == math.pi
+    assert rigid.SO2.dimension == 1 and rigid.SE2.dimension == 3
+    # SE2: a rotation by t about c has rho = t (c_y, -c_x); it fixes c.
+    c, t = np.array([0.4, -1.3]), 2.0
+    X = rigid.SE2.exp(np.array([t * c[1], -t * c[0], t]))
+    assert np.abs(X * c - c).max() < 1e-15
+    assert np.abs(X.translation() - (c - rot2(t) @ c)).max() < 1e-15
+    assert np.abs(rigid.SE2.exp(X.log()).matrix() - X.matrix()).max() < 1e-15
+    J = rigid.SE2.left_jacobian(np.array([0.3, -0.2, 1.1]))
+    Ji = rigid.SE2.left_jacobian_inverse(np.array([0.3, -0.2, 1.1]))
+    assert np.abs(J @ Ji - np.eye(3)).max() < 1e-15
+
+
+def expm_series(A, terms=40):
+    """Independent matrix exponential: Taylor series with scaling and squaring."""
+    k = max(0, int(math.ceil(math.log2(max(np.abs(A).sum(axis=1).max(), 1e-300)))) + 1)
+    B = A / 2**k
+    E, term = np.eye(A.shape[0]), np.eye(A.shape[0])
+    for j in range(1, terms):
+        term = term @ B / j
+        E = E + term
+    for _ in range(k):
+        E = E @ E
+    return E
+
+
+def test_son_matches_numpy_and_so3():
+    rng = np.random.default_rng(3)
+    for n in range(2, 9):
+        w = rng.standard_normal(n * (n - 1) // 2)
+        W = rigid.SOn.hat(w)
+        assert np.array_equal(W, -W.T)
+        R = rigid.SOn.exp(w)
+        # ~1e-14 from ||W|| ~ n and two independent exponentials.
+        assert np.abs(R.matrix() - expm_series(W)).max() < 1e-12
+        assert R.n == n and R.dimension == n * (n - 1) // 2
+        g = rigid.SOn.sample(n, seed=n, count=1)[0]
+        assert np.abs(rigid.SOn.exp(g.log()).matrix() - g.matrix()).max() < 1e-12
+        v = rng.standard_normal(n)
+        assert np.abs(g * v - g.matrix() @ v).max() < 1e-14
+    w3 = np.array([0.3, -0.2, 0.9])
+    assert np.array_equal(rigid.SOn.hat(w3), rigid.SO3.hat(w3))
+    assert np.abs(rigid.SOn.exp(w3).matrix() - rigid.SO3.exp(w3).matrix()).max() < 1e-15
+    assert np.abs(rigid.SOn.from_matrix(rigid.SO3.exp(w3).matrix()).log() - w3).max() < 1e-15
+
+
+def test_sen_matches_se3():
+    xi = np.array([0.5, -1.0, 2.0, 0.3, -0.2, 0.9])
+    X = rigid.SEn.exp(xi)
+    assert np.abs(X.matrix() - rigid.SE3.exp(xi).matrix()).max() < 1e-15
+    assert np.abs(X.log() - xi).max() < 1e-14
+    assert np.abs(X.adjoint() - rigid.SE3.exp(xi).adjoint()).max() < 1e-15
+    Y = rigid.SEn.sample(5, seed=1, count=1)[0]
+    p = np.arange(5.0)
+    assert np.abs(Y * p - (Y.matrix() @ np.append(p, 1.0))[:5]).max() < 1e-14
+
+
+def test_new_group_errors():
+    with pytest.raises(rigid.Error, match=r"determinant -1 \(expected \+1\)"):
+        rigid.SOn.from_matrix(np.diag([1.0, 1.0, 1.0, -1.0]))
+    with pytest.raises(rigid.Error, match="tangent vector has 4 components"):
+        rigid.SOn.exp(np.zeros(4))
+    with pytest.raises(rigid.Error, match=r"SO\(3\) and SO\(4\) differ"):
+        rigid.SOn.identity(3) * rigid.SOn.identity(4)
+    with pytest.raises(rigid.Error, match="has norm 0, expected a nonzero number"):
+        rigid.SO2.from_complex(0.0, 0.0)
+    with pytest.raises(rigid.Error, match=r"last row of the homogeneous matrix is \[1, 0, 1\]"):
+        rigid.SE2.from_matrix(np.array([[1.0, 0, 0], [0, 1, 0], [1, 0, 1]]))
