@@ -12,8 +12,8 @@ inline void add_scene_options(CLI::App* cmd, rigid::cli::SceneOptions& o) {
       ->allow_extra_args(false);
   cmd->add_option("--integrator", o.integrator,
                   "coordinates: rk4, dopri5, implicit_midpoint, stormer_verlet; free bodies: rk4, "
-                  "splitting2, splitting4, splitting6, midpoint, and the further methods of "
-                  "docs/body.md");
+                  "exact (closed form, no pivot), splitting2, splitting4, splitting6, midpoint, and "
+                  "the further methods of docs/body.md");
 }
 
 inline void add_run_command(CLI::App& app) {

@@ -7,6 +7,7 @@
 #include <Eigen/Geometry>
 #include <fmt/format.h>
 
+#include "rigid/body/free_body_exact.hpp"
 #include "rigid/body/free_body_integrators.hpp"
 #include "rigid/body/heavy_top.hpp"
 #include "rigid/common/error.hpp"
@@ -310,6 +311,12 @@ std::string Model::integrator(const std::string& requested) const {
       (void)integrate::parse_method(name);
     } else {
       const bool any_top = std::any_of(m.free.begin(), m.free.end(), [](const FreeModel& f) { return f.top; });
+      if (name == "exact") {
+        RIGID_REQUIRE(!any_top, "integrator 'exact' is the closed-form motion of the torque-free "
+                      "body; a body on a pivot feels the gravity torque: use splitting2, "
+                      "splitting4 or splitting6");
+        return name;
+      }
       const body::FreeBodyMethod method = body::free_body_method_from_name(name);
       if (any_top && method != body::FreeBodyMethod::kSplitting2 &&
           method != body::FreeBodyMethod::kSplitting4 && method != body::FreeBodyMethod::kSplitting6) {
@@ -496,7 +503,15 @@ RunResult Model::Impl::run_coordinates(const std::string& method, const RunOptio
 }
 
 RunResult Model::Impl::run_free(const std::string& method_name, const RunOptions& o) const {
-  const body::FreeBodyMethod method = body::free_body_method_from_name(method_name);
+  // "exact": the closed-form rotation (Jacobi elliptic functions), evaluated at each output
+  // time; otherwise a stepping method
+  const bool exact = method_name == "exact";
+  const body::FreeBodyMethod method =
+      exact ? body::FreeBodyMethod::kSplitting4 : body::free_body_method_from_name(method_name);
+  std::vector<body::FreeBodyMotion> motions;
+  if (exact) {
+    for (const FreeModel& f : free) motions.emplace_back(f.I_P, f.rot0.q_WB, f.rot0.w_B);
+  }
   std::vector<std::string> cols{"t"};
   for (const FreeModel& f : free) {
     add_pose_columns(cols, f.name);
@@ -519,7 +534,10 @@ RunResult Model::Impl::run_free(const std::string& method_name, const RunOptions
   double t_prev = 0.0;
   for (std::size_t k = 0; k < times.size(); ++k) {
     const double t = times[k];
-    if (k > 0) {
+    if (k > 0 && exact) {
+      for (std::size_t i = 0; i < free.size(); ++i) state[i] = motions[i].state(t);
+      if (o.progress) o.progress(t);
+    } else if (k > 0) {
       const auto n = static_cast<std::size_t>(std::max(1.0, std::ceil((t - t_prev) / dt * (1 - 1e-12))));
       const double h = (t - t_prev) / static_cast<double>(n);
       for (std::size_t i = 0; i < free.size(); ++i) {
