@@ -348,3 +348,30 @@ def test_tennis_racket_exact_integrator_agrees_with_splitting(run, tmp_path):
     assert sb["diagnostics"]["energy_max_change"] < 1e-13
     p = run("run", EXAMPLES / "heavy_top.toml", "--integrator", "exact", "-o", tmp_path / "o", check=False)
     assert "closed-form motion of the torque-free body" in p.stderr
+
+
+def test_progress_bar_only_on_a_terminal(rigid_exe, tmp_path):
+    import os
+    import pty
+    import subprocess
+    # about 2 s of splitting4 steps: long enough for the bar (it waits half a second)
+    scene = write(tmp_path, (EXAMPLES / "tennis_racket.toml").read_text()
+                  .replace("t_end = 100.0", "t_end = 1500.0").replace("output_dt = 0.05", "output_dt = 10"))
+    master, slave = pty.openpty()
+    proc = subprocess.run([rigid_exe, "run", str(scene), "-o", str(tmp_path / "o")],
+                          stdout=subprocess.PIPE, stderr=slave, timeout=120)
+    os.close(slave)
+    err = b""
+    while True:
+        try:
+            chunk = os.read(master, 4096)
+        except OSError:
+            break
+        if not chunk:
+            break
+        err += chunk
+    os.close(master)
+    assert proc.returncode == 0
+    assert b"\r[#" in err and b"t = " in err
+    assert err.endswith(b"\r\x1b[K")  # the bar is wiped before the summary
+    assert b"splitting4 to t = 1500 s" in proc.stdout
