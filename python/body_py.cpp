@@ -21,6 +21,25 @@ void bind_body(py::module_& m) {
       .def_property_readonly("modulus", &rigid::body::FreeBodyExact::modulus)
       .def_property_readonly("energy", &rigid::body::FreeBodyExact::energy)
       .def_property_readonly("angular_momentum_norm", &rigid::body::FreeBodyExact::angular_momentum_norm);
+  py::class_<rigid::body::FreeBodyMotion>(
+      body, "FreeBodyMotion",
+      "Exact torque-free motion: orientation q_WB(t) and body angular velocity in closed form.")
+      .def(py::init([](const Eigen::Vector3d& I_B, const Eigen::Vector4d& q_wxyz, const Eigen::Vector3d& w_B) {
+             return rigid::body::FreeBodyMotion(I_B, Eigen::Quaterniond(q_wxyz(0), q_wxyz(1), q_wxyz(2), q_wxyz(3)),
+                                                w_B);
+           }),
+           py::arg("principal_moments"), py::arg("q_wxyz"), py::arg("omega_body"))
+      .def(
+          "orientation",
+          [](const rigid::body::FreeBodyMotion& motion, double t) {
+            const Eigen::Quaterniond q = motion.orientation(t);
+            return Eigen::Vector4d(q.w(), q.x(), q.y(), q.z());
+          },
+          py::arg("t"), "Orientation q_WB(t) as (w, x, y, z).")
+      .def("omega_body", &rigid::body::FreeBodyMotion::omega_body, py::arg("t"), "Body angular velocity at t (s).")
+      .def_property_readonly("angular_momentum_world", &rigid::body::FreeBodyMotion::angular_momentum_world)
+      .def_property_readonly("period", [](const rigid::body::FreeBodyMotion& motion) { return motion.omega_solution().period(); })
+      .def_property_readonly("modulus", [](const rigid::body::FreeBodyMotion& motion) { return motion.omega_solution().modulus(); });
   body.def(
       "simulate_free_body",
       [](const std::string& method, const Eigen::Vector3d& I_B, const Eigen::Vector4d& q_wxyz,
@@ -53,6 +72,7 @@ void bind_body(py::module_& m) {
       },
       py::arg("method"), py::arg("principal_moments"), py::arg("q_wxyz"), py::arg("omega_body"),
       py::arg("h_max"), py::arg("times"),
-      "Integrate a free body (method: rk4, splitting2, splitting4, splitting6, midpoint); returns a dict of "
+      "Integrate a free body (method: rk4, splitting2, splitting4, splitting6, midpoint, rkmk4, moser_veselov); "
+      "returns a dict of "
       "arrays sampled at `times`.");
 }
