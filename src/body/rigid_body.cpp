@@ -1,6 +1,7 @@
 #include "rigid/body/rigid_body.hpp"
 
 #include <cmath>
+#include <string>
 #include <utility>
 
 #include <Eigen/Eigenvalues>
@@ -197,3 +198,21 @@ RigidBodyState step_rigid_body(const RigidBody& body, RigidBodyMethod method, do
 }
 
 }  // namespace rigid::body
+
+auto fmt::formatter<rigid::body::RigidBodyState>::format(const rigid::body::RigidBodyState& s,
+                                                         fmt::format_context& ctx) const
+    -> decltype(ctx.out()) {
+  const std::string text = fmt::format(
+      "RigidBodyState{{q_WB: {}, w_B: {} rad/s, p_WC: {} m, v_WC: {} m/s}}",
+      rigid::to_string(s.R_WB.quaternion().transpose()), rigid::to_string(s.w_B.transpose()),
+      rigid::to_string(s.p_WC.transpose()), rigid::to_string(s.v_WC.transpose()));
+  return fmt::formatter<std::string_view>::format(text, ctx);
+}
+
+auto fmt::formatter<rigid::body::Wrench>::format(const rigid::body::Wrench& w,
+                                                 fmt::format_context& ctx) const -> decltype(ctx.out()) {
+  const std::string text = fmt::format("Wrench{{force: {} N, torque: {} N·m}}",
+                                       rigid::to_string(w.force.transpose()),
+                                       rigid::to_string(w.torque.transpose()));
+  return fmt::formatter<std::string_view>::format(text, ctx);
+}

@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 #include "rigid/body/free_body_exact.hpp"
+#include "rigid/common/format.hpp"
 #include "support/expect_error.hpp"
 #include "support/tolerance.hpp"
 
@@ -252,6 +254,19 @@ TEST(RigidBody, ConvergesAtItsOrderOnCoupledMotion) {
     EXPECT_GT(d2, 1e-11);  // far above round-off, so the ratio measures truncation error
     EXPECT_NEAR(std::log2(d1 / d2), order, 0.1 * order) << "d1 = " << d1 << ", d2 = " << d2;
   }
+}
+
+TEST(RigidBody, FormatsStateAndWrench) {
+  RigidBodyState s;
+  s.p_WC = Eigen::Vector3d(1, 2.5, -3);
+  s.v_WC = Eigen::Vector3d(0, 0, 0.25);
+  const std::string text = fmt::format("{}", s);
+  EXPECT_NE(text.find("RigidBodyState{q_WB: "), std::string::npos) << text;
+  EXPECT_NE(text.find(fmt::format("p_WC: {} m", rigid::to_string(s.p_WC.transpose()))), std::string::npos) << text;
+  EXPECT_NE(text.find(fmt::format("v_WC: {} m/s", rigid::to_string(s.v_WC.transpose()))), std::string::npos) << text;
+  const std::string w = fmt::format("{}", Wrench{Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 0, 2)});
+  EXPECT_NE(w.find("N·m}"), std::string::npos) << w;
+  EXPECT_EQ(w.rfind("Wrench{force: ", 0), 0u) << w;
 }
 
 TEST(RigidBody, RejectsBadInput) {

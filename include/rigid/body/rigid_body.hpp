@@ -14,6 +14,7 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <fmt/format.h>
 
 #include "rigid/body/free_body_integrators.hpp"
 #include "rigid/lie/so3.hpp"
@@ -137,3 +138,16 @@ enum class RigidBodyMethod { kSplitting2, kRk4 };
     double h, FreeBodyMethod free_method = FreeBodyMethod::kSplitting2);
 
 }  // namespace rigid::body
+
+/// "RigidBodyState{q_WB: [w, x, y, z], w_B: [..] rad/s, p_WC: [..] m, v_WC: [..] m/s}"
+template <>
+struct fmt::formatter<rigid::body::RigidBodyState> : fmt::formatter<std::string_view> {
+  auto format(const rigid::body::RigidBodyState& s, fmt::format_context& ctx) const
+      -> decltype(ctx.out());
+};
+
+/// "Wrench{force: [..] N, torque: [..] N·m}"
+template <>
+struct fmt::formatter<rigid::body::Wrench> : fmt::formatter<std::string_view> {
+  auto format(const rigid::body::Wrench& w, fmt::format_context& ctx) const -> decltype(ctx.out());
+};
