@@ -197,6 +197,32 @@ RigidBodyState step_rigid_body(const RigidBody& body, RigidBodyMethod method, do
   return unpack(y + (h / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4));
 }
 
+RigidBodyTrajectory simulate_rigid_body(const RigidBody& body, RigidBodyMethod method,
+                                        const RigidBodyState& initial, double h_max,
+                                        const std::vector<double>& output_times, FreeBodyMethod free_method) {
+  RIGID_REQUIRE(std::isfinite(h_max) && h_max > 0, "step h_max must be positive and finite, got {} s", h_max);
+  RigidBodyTrajectory traj;
+  RigidBodyState s = initial;
+  double t = 0;
+  for (std::size_t i = 0; i < output_times.size(); ++i) {
+    const double t_out = output_times[i];
+    RIGID_REQUIRE(std::isfinite(t_out) && t_out >= t,
+                  "output times must be finite, ≥ 0 and ascending; entry {} is {} s after {} s", i, t_out, t);
+    const double span = t_out - t;
+    // the 1e-12 keeps a span that is a multiple of h_max up to round-off from taking one extra step
+    const auto n = static_cast<long>(std::ceil(span / h_max - 1e-12));
+    for (long k = 0; k < n; ++k) {
+      const double h = span / static_cast<double>(n);
+      s = step_rigid_body(body, method, t + h * static_cast<double>(k), s, h, free_method);
+    }
+    t = t_out;
+    traj.t.push_back(t);
+    traj.states.push_back(s);
+    traj.diagnostics.push_back(body.diagnose(s));
+  }
+  return traj;
+}
+
 }  // namespace rigid::body
 
 auto fmt::formatter<rigid::body::RigidBodyState>::format(const rigid::body::RigidBodyState& s,

@@ -256,6 +256,34 @@ TEST(RigidBody, ConvergesAtItsOrderOnCoupledMotion) {
   }
 }
 
+TEST(RigidBody, SimulateSamplesTheSteppedTrajectory) {
+  // free fall with spin: the samples are the parabola at the requested times (to round-off,
+  // as in the projectile test), the diagnostics are those of the sampled states, and P_W
+  // grows by m g t exactly as a kick-drift-kick of constant force does
+  const double m = 2.0;
+  const Eigen::Vector3d g(0, 0, -9.81), v0(1, 0, 3);
+  const RigidBody body(m, kIfull, g);
+  RigidBodyState s0;
+  s0.v_WC = v0;
+  s0.w_B = Eigen::Vector3d(0.3, 1.0, -0.2);
+  const std::vector<double> times{0.0, 0.25, 1.0, 1.0, 2.5};
+  const auto traj = simulate_rigid_body(body, RigidBodyMethod::kSplitting2, s0, 0.01, times);
+  ASSERT_EQ(traj.t, times);
+  ASSERT_EQ(traj.states.size(), times.size());
+  for (std::size_t i = 0; i < times.size(); ++i) {
+    const double t = times[i];
+    const Eigen::Vector3d p = v0 * t + 0.5 * g * t * t;
+    EXPECT_LT((traj.states[i].p_WC - p).norm(), ulps(1000, 30.0)) << "t = " << t;
+    EXPECT_LT((traj.diagnostics[i].P_W - m * (v0 + g * t)).norm(), ulps(1000, 50.0)) << "t = " << t;
+    EXPECT_EQ(traj.diagnostics[i].energy, body.diagnose(traj.states[i]).energy);
+  }
+  EXPECT_EQ(traj.states[2].p_WC, traj.states[3].p_WC);  // a repeated time takes no step
+  EXPECT_RIGID_ERROR((void)simulate_rigid_body(body, RigidBodyMethod::kRk4, s0, 0.01, {1.0, 0.5}),
+                     "output times must be finite, ≥ 0 and ascending; entry 1 is 0.5 s after 1 s");
+  EXPECT_RIGID_ERROR((void)simulate_rigid_body(body, RigidBodyMethod::kRk4, s0, -1.0, {1.0}),
+                     "step h_max must be positive and finite, got -1 s");
+}
+
 TEST(RigidBody, FormatsStateAndWrench) {
   RigidBodyState s;
   s.p_WC = Eigen::Vector3d(1, 2.5, -3);

@@ -137,6 +137,21 @@ enum class RigidBodyMethod { kSplitting2, kRk4 };
     const RigidBody& body, RigidBodyMethod method, double t, const RigidBodyState& state,
     double h, FreeBodyMethod free_method = FreeBodyMethod::kSplitting2);
 
+/// A sampled trajectory: times (s), states and diagnostics at each output time.
+struct RigidBodyTrajectory {
+  std::vector<double> t;
+  std::vector<RigidBodyState> states;
+  std::vector<RigidBodyDiagnostics> diagnostics;
+};
+
+/// Integrates from t = 0 to every entry of `output_times` (ascending, ≥ 0) with steps of at
+/// most `h_max` (s); each output interval is split into equal steps.
+/// @throws rigid::Error on a non-positive h_max, unordered or non-finite output times, a
+/// non-finite initial state, or a load that returns a non-finite wrench.
+[[nodiscard]] RigidBodyTrajectory simulate_rigid_body(
+    const RigidBody& body, RigidBodyMethod method, const RigidBodyState& initial, double h_max,
+    const std::vector<double>& output_times, FreeBodyMethod free_method = FreeBodyMethod::kSplitting2);
+
 }  // namespace rigid::body
 
 /// "RigidBodyState{q_WB: [w, x, y, z], w_B: [..] rad/s, p_WC: [..] m, v_WC: [..] m/s}"
