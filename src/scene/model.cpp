@@ -4,6 +4,8 @@
 #include <chrono>
 #include <cmath>
 
+#include <fnmatch.h>
+
 #include <Eigen/Geometry>
 #include <fmt/format.h>
 
@@ -406,6 +408,44 @@ void Model::check(const RunOptions& options) const {
   }
 }
 
+namespace {
+
+// The columns of `table` that match one of `patterns` (shell patterns, fnmatch), with `t`
+// first. A pattern that matches nothing is an error that lists the columns.
+io::Table select_columns(const io::Table& table, const std::vector<std::string>& patterns,
+                         const SourceLocation& where) {
+  const auto& cols = table.columns();
+  std::vector<bool> keep(cols.size(), false);
+  keep[0] = true;  // t
+  for (const std::string& p : patterns) {
+    bool any = false;
+    for (std::size_t c = 0; c < cols.size(); ++c) {
+      if (fnmatch(p.c_str(), cols[c].c_str(), 0) == 0) keep[c] = any = true;
+    }
+    if (!any) {
+      std::string msg = fmt::format("[output] quantities: '{}' matches no column", p);
+      if (auto g = did_you_mean(p, cols)) msg += fmt::format("; did you mean '{}'?", *g);
+      detail::throw_error_at(where, msg + fmt::format(" (columns: {})", fmt::join(cols, ", ")));
+    }
+  }
+  std::vector<std::string> names;
+  for (std::size_t c = 0; c < cols.size(); ++c) {
+    if (keep[c]) names.push_back(cols[c]);
+  }
+  io::Table out(names);
+  std::vector<double> row;
+  for (std::size_t k = 0; k < table.rows(); ++k) {
+    row.clear();
+    for (std::size_t c = 0; c < cols.size(); ++c) {
+      if (keep[c]) row.push_back(table(k, c));
+    }
+    out.add_row(row);
+  }
+  return out;
+}
+
+}  // namespace
+
 RunResult Model::run(const RunOptions& options) const {
   const std::string method = integrator(options.integrator);
   const auto start = Clock::now();
@@ -417,6 +457,8 @@ RunResult Model::run(const RunOptions& options) const {
   r.summary.samples = r.trajectory.rows();
   for (const auto& p : impl_->params) r.summary.parameters.emplace_back(p.name, p.value);
   r.summary.warnings = impl_->warnings;
+  const Output& out = impl_->scene.output;
+  if (!out.quantities.empty()) r.trajectory = select_columns(r.trajectory, out.quantities, out.quantities_where);
   return r;
 }
 

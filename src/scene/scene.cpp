@@ -468,7 +468,15 @@ Scene parse_document(const toml::table& root, const Parser& p) {
 
   if (auto n = root.get("output")) {
     const toml::table& ot = p.table(*n, "[output]");
-    p.check_keys(ot, "[output]", {"directory", "formats"});
+    p.check_keys(ot, "[output]", {"directory", "formats", "quantities"});
+    if (auto q = ot.get("quantities")) {
+      const toml::array* a = q->as_array();
+      if (a == nullptr) {
+        p.fail(*q, "quantities must be an array of column names or patterns such as [\"theta\", \"*.x\"]");
+      }
+      s.output.quantities_where = p.where(q->source());
+      for (const toml::node& e : *a) s.output.quantities.push_back(p.string(e, "output quantity"));
+    }
     if (auto d = ot.get("directory")) s.output.directory = p.string(*d, "output directory");
     if (auto f = ot.get("formats")) {
       const toml::array* a = f->as_array();

@@ -375,3 +375,15 @@ def test_progress_bar_only_on_a_terminal(rigid_exe, tmp_path):
     assert b"\r[#" in err and b"t = " in err
     assert err.endswith(b"\r\x1b[K")  # the bar is wiped before the summary
     assert b"splitting4 to t = 1500 s" in proc.stdout
+
+
+def test_output_quantities_select_columns(run, tmp_path):
+    text = (EXAMPLES / "atwood.toml").read_text() + '\n[output]\nquantities = ["y1", "lambda_*"]\n'
+    out = tmp_path / "o"
+    run("run", write(tmp_path, text), "-o", out, check=True)
+    with open(out / "trajectory.csv", newline="") as f:
+        header = next(csv.reader(f))
+    assert header == ["t", "y1", "lambda_rope1", "lambda_rope2"]
+    bad = text.replace('"lambda_*"', '"lamda_rope1"')
+    p = run("run", write(tmp_path, bad, "bad.toml"), "-o", tmp_path / "b", check=False)
+    assert "'lamda_rope1' matches no column; did you mean 'lambda_rope1'?" in p.stderr

@@ -125,6 +125,10 @@ struct Simulation {
 struct Output {
   std::filesystem::path directory;    ///< relative to the working directory; empty: "out"
   std::vector<std::string> formats = {"csv", "json"};  ///< csv, npy, json
+  /// Columns of the trajectory to keep (names or shell patterns such as "racket.w*");
+  /// empty: all. `t` is always kept.
+  std::vector<std::string> quantities;
+  SourceLocation quantities_where;
 };
 
 /// A whole scene as written, checked for structure, types and names but not yet turned
