@@ -7,8 +7,95 @@
 #include <pybind11/stl.h>
 
 #include "rigid/body.hpp"
+#include "rigid/body/rigid_body.hpp"
+#include "rigid/common/error.hpp"
 
 namespace py = pybind11;
+
+namespace {
+
+// rigid.body.RigidBody: mass, inertia about the COM, gravity and Python loads; simulate()
+// returns the sampled trajectory as numpy arrays. The GIL stays held (loads are Python).
+void bind_rigid_body(py::module_& body) {
+  using rigid::body::RigidBody;
+  using rigid::body::RigidBodyState;
+  py::class_<RigidBody>(body, "RigidBody",
+                        "A rigid body: mass (kg), inertia about the COM in the body frame (kg·m², "
+                        "any symmetric tensor), uniform gravity (m/s²) and applied loads.")
+      .def(py::init<double, const Eigen::Matrix3d&, const Eigen::Vector3d&>(), py::arg("mass"),
+           py::arg("inertia"), py::arg("gravity") = Eigen::Vector3d::Zero())
+      .def(
+          "add_load",
+          [](RigidBody& b, py::function fn, const std::string& frame, const Eigen::Vector3d& point) {
+            if (frame != "world" && frame != "body") {
+              throw rigid::Error(fmt::format("RigidBody.add_load(): frame must be 'world' or 'body', got '{}'", frame));
+            }
+            rigid::body::AppliedLoad load;
+            load.frame = frame == "world" ? rigid::body::LoadFrame::kWorld : rigid::body::LoadFrame::kBody;
+            load.p_CQ_B = point;
+            load.wrench = [fn](double t, const RigidBodyState& st) {
+              const Eigen::Vector4d q = st.R_WB.quaternion();
+              py::dict state;
+              state["q_wxyz"] = q;
+              state["omega_body"] = st.w_B;
+              state["p_world"] = st.p_WC;
+              state["v_world"] = st.v_WC;
+              const auto fw = fn(t, state).cast<std::pair<Eigen::Vector3d, Eigen::Vector3d>>();
+              return rigid::body::Wrench{fw.first, fw.second};
+            };
+            b.add_load(std::move(load));
+          },
+          py::arg("wrench"), py::arg("frame") = "world", py::arg("point") = Eigen::Vector3d::Zero(),
+          "Adds a load: wrench(t, state) -> (force N, torque N·m) in `frame` ('world' or 'body'); "
+          "the force acts at the body point `point` (from the COM, body frame, m). `state` is a "
+          "dict with q_wxyz, omega_body, p_world, v_world.")
+      .def_property_readonly("mass", &RigidBody::mass)
+      .def_property_readonly("principal_moments", &RigidBody::principal_moments)
+      .def(
+          "simulate",
+          [](const RigidBody& b, const std::string& method, const Eigen::Vector4d& q_wxyz,
+             const Eigen::Vector3d& w_B, const Eigen::Vector3d& p, const Eigen::Vector3d& v, double h_max,
+             const std::vector<double>& times, const std::string& free_method) {
+            RigidBodyState s;
+            s.R_WB = rigid::SO3d::from_quaternion(q_wxyz(0), q_wxyz(1), q_wxyz(2), q_wxyz(3));
+            s.w_B = w_B;
+            s.p_WC = p;
+            s.v_WC = v;
+            const auto tr = rigid::body::simulate_rigid_body(
+                b, rigid::body::rigid_body_method_from_name(method), s, h_max, times,
+                rigid::body::free_body_method_from_name(free_method));
+            const auto n = static_cast<Eigen::Index>(tr.t.size());
+            Eigen::MatrixXd q(n, 4), w(n, 3), pw(n, 3), vw(n, 3), P(n, 3), L(n, 3);
+            Eigen::VectorXd E(n);
+            for (Eigen::Index i = 0; i < n; ++i) {
+              const auto& st = tr.states[static_cast<std::size_t>(i)];
+              const auto& d = tr.diagnostics[static_cast<std::size_t>(i)];
+              q.row(i) = st.R_WB.quaternion().transpose();
+              w.row(i) = st.w_B.transpose();
+              pw.row(i) = st.p_WC.transpose();
+              vw.row(i) = st.v_WC.transpose();
+              P.row(i) = d.P_W.transpose();
+              L.row(i) = d.L_W.transpose();
+              E(i) = d.energy;
+            }
+            py::dict out;
+            out["t"] = tr.t;
+            out["q_wxyz"] = q;
+            out["omega_body"] = w;
+            out["p_world"] = pw;
+            out["v_world"] = vw;
+            out["momentum_world"] = P;
+            out["angular_momentum_world"] = L;
+            out["energy"] = E;
+            return out;
+          },
+          py::arg("method"), py::arg("q_wxyz"), py::arg("omega_body"), py::arg("p_world"),
+          py::arg("v_world"), py::arg("h_max"), py::arg("times"), py::arg("free_method") = "splitting2",
+          "Integrates from t = 0 (method: splitting2 or rk4) and samples at `times`; returns a dict "
+          "of arrays (angular momentum about the world origin).");
+}
+
+}  // namespace
 
 void bind_body(py::module_& m) {
   auto body = m.def_submodule("body", "Rigid-body dynamics on SO(3): exact free body, integrators, SO(n).");
@@ -75,4 +162,6 @@ void bind_body(py::module_& m) {
       "Integrate a free body (method: rk4, splitting2, splitting4, splitting6, midpoint, rkmk4, moser_veselov); "
       "returns a dict of "
       "arrays sampled at `times`.");
+
+  bind_rigid_body(body);
 }

@@ -70,3 +70,23 @@ def test_exact_orientation_keeps_world_momentum_and_matches_moser_veselov():
 def test_motion_rejects_non_unit_quaternion():
     with pytest.raises(rigid.Error, match="initial orientation must be a finite unit quaternion"):
         rigid.body.FreeBodyMotion(I, [2, 0, 0, 0], W0)
+
+
+def test_rigid_body_torque_about_a_principal_axis_and_load_at_a_point():
+    # constant body torque tau about principal axis 3 from rest: w3 = tau t / I3 (closed form)
+    b = rigid.body.RigidBody(2.0, np.diag([1.0, 2.0, 3.0]))
+    b.add_load(lambda t, s: ((0, 0, 0), (0, 0, 0.6)), frame="body")
+    out = b.simulate("splitting2", (1, 0, 0, 0), (0, 0, 0), (0, 0, 0), (0, 0, 0), 1e-3, [0.5, 1.0])
+    np.testing.assert_allclose(out["omega_body"][:, 2], [0.1, 0.2], rtol=1e-12)
+    # the rotation angle about z is tau t^2 / (2 I3): 0.1 rad at t = 1
+    q = out["q_wxyz"][-1]
+    assert abs(2 * math.atan2(q[3], q[0]) - 0.1) < 1e-12
+    # a world force F = (0, 1, 0) at body point (1, 0, 0) also turns the body: r x F = (0, 0, 1)
+    c = rigid.body.RigidBody(1.0, np.eye(3))
+    c.add_load(lambda t, s: ((0, 1, 0), (0, 0, 0)), point=(1, 0, 0))
+    out = c.simulate("rk4", (1, 0, 0, 0), (0, 0, 0), (0, 0, 0), (0, 0, 0), 1e-4, [1e-3])
+    # after a short time the torque is still ~ (0, 0, 1): w3 ≈ t, v_y = t
+    assert abs(out["omega_body"][-1, 2] - 1e-3) < 1e-8
+    assert abs(out["v_world"][-1, 1] - 1e-3) < 1e-12
+    with pytest.raises(rigid.Error, match="frame must be 'world' or 'body'"):
+        c.add_load(lambda t, s: ((0, 0, 0), (0, 0, 0)), frame="space")
