@@ -111,7 +111,8 @@ SOn SOn::identity(int n) {
 SOn SOn::from_matrix(const MatrixXd& R, double tol) {
   RIGID_REQUIRE(R.rows() == R.cols() && R.rows() >= 2,
                 "matrix is {}x{}, expected a square matrix of size n ≥ 2", R.rows(), R.cols());
-  const OrthogonalityReport r = check_orthogonal(R, tol);  // also refuses non-finite entries
+  RIGID_REQUIRE(R.allFinite(), "matrix {} has a non-finite entry", to_string(R));
+  const OrthogonalityReport r = check_orthogonal(R, tol);
   RIGID_REQUIRE(r.rotation,
                 "matrix {} is not a rotation: orthonormality defect max|RᵀR − I| = {:.3g} "
                 "(tolerance {:.3g}), determinant {:.17g} (expected +1)",

@@ -207,6 +207,7 @@ TEST(SOn, BadInput) {
   EXPECT_RIGID_ERROR((void)SOn::from_matrix(M), "determinant -1 (expected +1)");
   M(2, 2) = std::nan("");
   EXPECT_RIGID_ERROR((void)SOn::from_matrix(M), "has a non-finite entry");
+  EXPECT_RIGID_ERROR((void)SOn::from_matrix(M), "from_matrix(): matrix [1, 0, 0, 0, 0; ");
   EXPECT_RIGID_ERROR((void)SOn::from_matrix(MatrixXd::Identity(1, 1)),
                      "matrix is 1x1, expected a square matrix of size n ≥ 2");
   EXPECT_RIGID_ERROR((void)SOn::exp(VectorXd::Zero(4)),
