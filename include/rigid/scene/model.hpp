@@ -7,8 +7,9 @@
 ///  - generalized coordinates: a rigid::lagrange::System derived from the bodies' poses,
 ///    integrated by rigid::integrate (rk4, dopri5, implicit_midpoint, stormer_verlet);
 ///  - free bodies: each body's COM moves on its exact parabola under uniform gravity and
-///    its rotation is integrated on SO(3) by the free-body methods of rigid::body; a body
-///    with a pivot is a heavy top, integrated by the gravity-kick splitting.
+///    its rotation is integrated on SO(3) by the free-body methods of rigid::body, or
+///    evaluated in closed form ("exact"); a body with a pivot is a heavy top, integrated by
+///    the gravity-kick splitting.
 
 #include <functional>
 #include <memory>
@@ -89,6 +90,7 @@ class Model {
 
   /// The integrator a run uses: `requested` if not empty, else [simulation] integrator,
   /// else the default of the kind (dopri5 for coordinates, splitting4 for free bodies).
+  /// Free bodies also accept "exact" (closed form; not with a pivot).
   /// @throws rigid::Error naming the accepted methods if it is unknown for this kind.
   [[nodiscard]] std::string integrator(const std::string& requested = {}) const;
 
