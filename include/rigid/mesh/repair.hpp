@@ -51,17 +51,17 @@ struct RepairOptions {
   double weld_tolerance = 1e-7;
   /// Weld bitwise-equal positions first (a hash of the coordinates' bit patterns) and run the
   /// tolerance weld only when that leaves boundary edges or an edge no longer than the
-  /// tolerance. An STL soup of a closed part takes only the exact weld. false: always the
-  /// tolerance weld, on every input vertex. Both give the same mesh unless distinct,
+  /// tolerance. An STL soup of a closed part takes only the exact weld; exact copies weld
+  /// even with weld_tolerance = 0. false: only the tolerance weld, on every input vertex. Both give the same mesh unless distinct,
   /// non-adjacent vertices of a closed mesh lie within the tolerance (touching parts), which
   /// the exact path keeps apart.
   bool exact_weld_first = true;
 };
 
-/// Welds duplicate vertices (see RepairOptions), removes degenerate triangles, makes the winding of each
-/// edge-connected component consistent (breadth-first over manifold edges), flips closed
-/// components whose volume is negative (with a warning), and reports boundary and
-/// non-manifold edges and each component's volume. Modifies `mesh` in place.
+/// Welds duplicate vertices (see RepairOptions), removes degenerate triangles, makes the
+/// winding of each edge-connected component consistent (depth-first over manifold edges),
+/// flips closed components whose volume is negative (with a warning), and reports boundary
+/// and non-manifold edges and each component's volume. Modifies `mesh` in place.
 RepairReport repair_mesh(TriangleMesh& mesh, const RepairOptions& options = {});
 
 /// A multi-line human-readable summary of `report`.
