@@ -13,6 +13,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <BulletCollision/CollisionShapes/btEmptyShape.h>
@@ -76,6 +77,56 @@ void BM_Rigid(benchmark::State& st, FreeBodyMethod m) {
   s.w_B = kW0;
   report(st, measure(dt, [&] {
            s = rigid::body::step_free_body(m, kI, s, dt);
+           return s.w_B;
+         }),
+         n);
+}
+
+// The single-body splitting stepper as it was before the shared kernel (for before/after in
+// one binary): unmerged sub-flows, std::cos/std::sin of the full and of the half angle in each,
+// q normalised by a square root at the end of the step.
+namespace previous {
+void axis_flow(int i, Eigen::Quaterniond& q, Eigen::Vector3d& L, double h) {
+  const double theta = h * L(i) / kI(i);
+  const double c = std::cos(theta), s = std::sin(theta);
+  const int j = (i + 1) % 3, k = (i + 2) % 3;
+  const double Lj = L(j), Lk = L(k);
+  L(j) = c * Lj + s * Lk;
+  L(k) = -s * Lj + c * Lk;
+  Eigen::Quaterniond r(std::cos(0.5 * theta), 0, 0, 0);
+  r.vec()(i) = std::sin(0.5 * theta);
+  q = q * r;
+}
+void composition(int order, Eigen::Quaterniond& q, Eigen::Vector3d& L, double h) {
+  if (order == 2) {
+    for (const auto& [i, c] : {std::pair{0, 0.5}, {1, 0.5}, {2, 1.0}, {1, 0.5}, {0, 0.5}}) axis_flow(i, q, L, c * h);
+    return;
+  }
+  const double g1 = 1.0 / (2.0 - std::pow(2.0, 1.0 / (order - 1)));
+  for (const double g : {g1, 1.0 - 2.0 * g1, g1}) composition(order - 2, q, L, g * h);
+}
+FreeBodyState step(int order, const FreeBodyState& st, double h) {
+  Eigen::Quaterniond q = st.q_WB;
+  Eigen::Vector3d L = kI.cwiseProduct(st.w_B);
+  composition(order, q, L, h);
+  q.normalize();
+  return {q, L.cwiseQuotient(kI)};
+}
+}  // namespace previous
+
+void BM_RigidPrevious(benchmark::State& st, int order) {
+  const double dt = 1.0 / static_cast<double>(st.range(0));
+  const long n = std::lround(kTEnd / dt);
+  for (auto _ : st) {
+    FreeBodyState s;
+    s.w_B = kW0;
+    for (long i = 0; i < n; ++i) s = previous::step(order, s, dt);
+    benchmark::DoNotOptimize(s);
+  }
+  FreeBodyState s;
+  s.w_B = kW0;
+  report(st, measure(dt, [&] {
+           s = previous::step(order, s, dt);
            return s.w_B;
          }),
          n);
@@ -367,6 +418,9 @@ BENCHMARK_CAPTURE(BM_Rigid, rk4, FreeBodyMethod::kRk4)->Arg(100)->Arg(1000)->Uni
 BENCHMARK_CAPTURE(BM_Rigid, splitting2, FreeBodyMethod::kSplitting2)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Rigid, splitting4, FreeBodyMethod::kSplitting4)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Rigid, splitting6, FreeBodyMethod::kSplitting6)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_RigidPrevious, splitting2, 2)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_RigidPrevious, splitting4, 4)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_RigidPrevious, splitting6, 6)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Rigid, midpoint, FreeBodyMethod::kLiePoissonMidpoint)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_RigidBody, splitting2, rigid::body::RigidBodyMethod::kSplitting2)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_RigidBody, rk4, rigid::body::RigidBodyMethod::kRk4)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);

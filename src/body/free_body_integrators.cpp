@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cmath>
+#include <utility>
 
 #include "rigid/body/euler.hpp"
 #include "rigid/common/error.hpp"
@@ -50,45 +51,124 @@ FreeBodyState step_rk4(const Eigen::Vector3d& I_B, const FreeBodyState& s, doubl
   return out;
 }
 
-// Exact flow of H_i = L_i²/(2 I_i) for time h: ω_i = L_i / I_i is constant;
-// L_B turns by −h ω_i about e_i, the body by +h ω_i.
-void axis_flow(int i, const Eigen::Vector3d& I_B, Eigen::Quaterniond& q, Eigen::Vector3d& L, double h) {
-  const double theta = h * L(i) / I_B(i);
-  const double c = std::cos(theta), s = std::sin(theta);
-  const int j = (i + 1) % 3, k = (i + 2) % 3;
-  const double Lj = L(j), Lk = L(k);
-  L(j) = c * Lj + s * Lk;
-  L(k) = -s * Lj + c * Lk;
-  const double ch = std::cos(0.5 * theta), sh = std::sin(0.5 * theta);
-  Eigen::Quaterniond r(ch, 0, 0, 0);
-  r.vec()(i) = sh;
-  q = q * r;
+// sin x and cos x − 1 for |x| ≤ 0.5 by their Maclaurin series [DLMF, eqs. 4.19.1, 4.19.2]:
+//   sin x     = x − x³/3! + … + x¹³/13!   (first dropped term x¹⁵/15! ≤ 2.3e-17 < ε/4 · sin x)
+//   cos x − 1 = −x²/2! + … − x¹⁴/14!      (first dropped term x¹⁶/16! ≤ 7e-19)
+// Horner in x² rounds to about one ulp. cos x − 1 is returned rather than cos x: a cosine
+// rounded next to 1 carries an absolute error up to ε/2 that is the same in every step of
+// a steady motion (the same angle each step), so rotations built from it would change |L|
+// systematically, step after step; the small difference keeps its relative precision.
+// Larger |x| (a sub-flow turning by more than one radian) falls back to std::sin/std::cos.
+// ≈ 16 flops.
+inline void small_sincos(double x, double& s, double& cm1) {
+  if (std::abs(x) > 0.5) {
+    s = std::sin(x);
+    cm1 = std::cos(x) - 1.0;  // ≤ −0.12 here: no precision lost
+    return;
+  }
+  const double x2 = x * x;
+  double ps = 1.0 / 6227020800.0;  // 1/13!
+  ps = ps * x2 - 1.0 / 39916800.0;
+  ps = ps * x2 + 1.0 / 362880.0;
+  ps = ps * x2 - 1.0 / 5040.0;
+  ps = ps * x2 + 1.0 / 120.0;
+  ps = ps * x2 - 1.0 / 6.0;
+  s = x + x * (x2 * ps);
+  double pc = -1.0 / 87178291200.0;  // −1/14!
+  pc = pc * x2 + 1.0 / 479001600.0;
+  pc = pc * x2 - 1.0 / 3628800.0;
+  pc = pc * x2 + 1.0 / 40320.0;
+  pc = pc * x2 - 1.0 / 720.0;
+  pc = pc * x2 + 1.0 / 24.0;
+  pc = pc * x2 - 0.5;
+  cm1 = x2 * pc;
 }
 
-void strang(const Eigen::Vector3d& I_B, Eigen::Quaterniond& q, Eigen::Vector3d& L, double h) {
-  axis_flow(0, I_B, q, L, 0.5 * h);
-  axis_flow(1, I_B, q, L, 0.5 * h);
-  axis_flow(2, I_B, q, L, h);
-  axis_flow(1, I_B, q, L, 0.5 * h);
-  axis_flow(0, I_B, q, L, 0.5 * h);
+// One sub-flow of the body-axis splitting: rotation about body axis `axis` for the fraction
+// `c` of the step.
+struct AxisFlow {
+  int axis;
+  double c;
+};
+
+// The Strang step R1(h/2) R2(h/2) R3(h) R2(h/2) R1(h/2) [McLachlan1993] composed by Yoshida's
+// triple jump γ1 = 1/(2 − 2^{1/(p+1)}), γ0 = 1 − 2γ1 [Yoshida1990] `levels` times, as a list
+// of axis flows with neighbours about the same axis merged: the flow of H_i = L_i²/(2 I_i)
+// keeps L_i, so flows of lengths a and b about axis i compose to one of length a + b.
+// Yoshida-4 has 13 sub-flows instead of 15, Yoshida-6 37 instead of 45.
+std::vector<AxisFlow> composition(int levels) {
+  std::vector<AxisFlow> seq{{0, 0.5}, {1, 0.5}, {2, 1.0}, {1, 0.5}, {0, 0.5}};
+  for (int level = 0, p = 2; level < levels; ++level, p += 2) {
+    const double g1 = 1.0 / (2.0 - std::pow(2.0, 1.0 / (p + 1)));
+    const double g0 = 1.0 - 2.0 * g1;
+    std::vector<AxisFlow> next;
+    for (const double g : {g1, g0, g1})
+      for (const AxisFlow& f : seq) next.push_back({f.axis, g * f.c});
+    seq = std::move(next);
+  }
+  std::vector<AxisFlow> merged;
+  for (const AxisFlow& f : seq) {
+    if (!merged.empty() && merged.back().axis == f.axis) merged.back().c += f.c;
+    else merged.push_back(f);
+  }
+  // stored as half-angle fractions: the kernel needs θ/2 = (c/2) h L_i / I_i
+  for (AxisFlow& f : merged) f.c *= 0.5;
+  return merged;
 }
 
-// Triple-jump composition [Yoshida1990]: order p → p + 2 with
-// γ1 = 1/(2 − 2^{1/(p+1)}), γ0 = 1 − 2γ1.
-void yoshida4(const Eigen::Vector3d& I_B, Eigen::Quaterniond& q, Eigen::Vector3d& L, double h) {
-  const double g1 = 1.0 / (2.0 - std::cbrt(2.0));
-  const double g0 = 1.0 - 2.0 * g1;
-  strang(I_B, q, L, g1 * h);
-  strang(I_B, q, L, g0 * h);
-  strang(I_B, q, L, g1 * h);
+const std::vector<AxisFlow>& flows_of(FreeBodyMethod method) {
+  static const std::vector<AxisFlow> k2 = composition(0), k4 = composition(1), k6 = composition(2);
+  if (method == FreeBodyMethod::kSplitting4) return k4;
+  if (method == FreeBodyMethod::kSplitting6) return k6;
+  return k2;
 }
 
-void yoshida6(const Eigen::Vector3d& I_B, Eigen::Quaterniond& q, Eigen::Vector3d& L, double h) {
-  const double g1 = 1.0 / (2.0 - std::pow(2.0, 0.2));
-  const double g0 = 1.0 - 2.0 * g1;
-  yoshida4(I_B, q, L, g1 * h);
-  yoshida4(I_B, q, L, g0 * h);
-  yoshida4(I_B, q, L, g1 * h);
+// Exact flow of H_i = L_i²/(2 I_i) through the half angle θ/2 = `half`: ω_i = L_i/I_i is
+// constant, L_B turns by −θ about e_i and the body by +θ. One sin/cos pair of θ/2 gives
+// 1 − cos θ = 2 sin²(θ/2), sin θ = 2 sin(θ/2) cos(θ/2) and the quaternion r = (cos θ/2,
+// sin θ/2 e_i) of the body turn, q ← q ⊗ r. Each new component is written as the old one
+// plus a small increment (e.g. L_j + (sin θ L_k − (1 − cos θ) L_j)), so its rounding error
+// is one half-ulp of the result and does not repeat with the same sign in every step (see
+// small_sincos). ≈ 30 flops + small_sincos.
+template <int i>
+inline void axis_flow(double half, double q[4], double L[3]) {
+  constexpr int j = (i + 1) % 3, k = (i + 2) % 3;
+  double sh = 0, cm = 0;  // sin θ/2, cos θ/2 − 1
+  small_sincos(half, sh, cm);
+  const double d = 2.0 * sh * sh;          // 1 − cos θ
+  const double s = 2.0 * sh + 2.0 * sh * cm;  // sin θ
+  const double Lj = L[j], Lk = L[k];
+  L[j] = Lj + (s * Lk - d * Lj);
+  L[k] = Lk - (s * Lj + d * Lk);
+  // (w, v) ⊗ (ch, sh e_i) = (w ch − sh v_i, ch v + w sh e_i + sh v × e_i), ch = 1 + cm
+  const double w = q[0], v[3] = {q[1], q[2], q[3]};
+  q[0] = w + (cm * w - sh * v[i]);
+  q[1 + i] = v[i] + (cm * v[i] + sh * w);
+  q[1 + j] = v[j] + (cm * v[j] + sh * v[k]);
+  q[1 + k] = v[k] + (cm * v[k] - sh * v[j]);
+}
+
+// The splitting step shared by step_free_body and step_free_bodies (free_body_batch.cpp).
+FreeBodyState step_splitting(const std::vector<AxisFlow>& flows, const Eigen::Vector3d& I_B,
+                             const FreeBodyState& st, double h) {
+  // Divisions, not products with a rounded 1/I_i: ω = L/I here and L = I ω at the start of
+  // the next step must round-trip without a bias that repeats every step (with 1/I_i rounded
+  // once, the tennis racket's ω error at t = 100 s grew 70× and |L| drifted 30–50× more).
+  const double a[3] = {h / I_B(0), h / I_B(1), h / I_B(2)};  // θ/2 = c_half · a_i · L_i
+  double q[4] = {st.q_WB.w(), st.q_WB.x(), st.q_WB.y(), st.q_WB.z()};
+  double L[3] = {I_B(0) * st.w_B(0), I_B(1) * st.w_B(1), I_B(2) * st.w_B(2)};
+  for (const AxisFlow& f : flows) {
+    if (f.axis == 0) axis_flow<0>(f.c * a[0] * L[0], q, L);
+    else if (f.axis == 1) axis_flow<1>(f.c * a[1] * L[1], q, L);
+    else axis_flow<2>(f.c * a[2] * L[2], q, L);
+  }
+  // Products of unit quaternions stay unit only up to round-off, which would random-walk.
+  // One Newton step for 1/√(|q|²) at 1, q ← q (3 − |q|²)/2, leaves |q|² − 1 = O(δ²) for
+  // |q|² = 1 + δ: the same as normalising, without the square root and division. ≈ 10 flops.
+  const double n2 = q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3];
+  const double f = 1.5 - 0.5 * n2;
+  return {Eigen::Quaterniond(f * q[0], f * q[1], f * q[2], f * q[3]),
+          Eigen::Vector3d(L[0] / I_B(0), L[1] / I_B(1), L[2] / I_B(2))};
 }
 
 FreeBodyState step_midpoint(const Eigen::Vector3d& I_B, const FreeBodyState& s, double h) {
@@ -225,15 +305,7 @@ FreeBodyState step_free_body(FreeBodyMethod method, const Eigen::Vector3d& I_B,
     default:
       break;
   }
-  Eigen::Quaterniond q = state.q_WB;
-  Eigen::Vector3d L = I_B.cwiseProduct(state.w_B);
-  if (method == FreeBodyMethod::kSplitting2) strang(I_B, q, L, h);
-  else if (method == FreeBodyMethod::kSplitting4) yoshida4(I_B, q, L, h);
-  else yoshida6(I_B, q, L, h);
-  // Products of unit quaternions stay unit up to round-off, which would random-walk;
-  // renormalising keeps ‖RᵀR − 1‖ at a few ulps for any number of steps.
-  q.normalize();
-  return {q, L.cwiseQuotient(I_B)};
+  return step_splitting(flows_of(method), I_B, state, h);
 }
 
 FreeBodyDiagnostics diagnose(const Eigen::Vector3d& I_B, const FreeBodyState& state) {

@@ -22,7 +22,12 @@
 ///
 /// Splitting: H = Σ L_i²/(2 I_i) is split into the three body-axis Hamiltonians;
 /// each flow rotates L_B about e_i by −h L_i/I_i and the body by +h L_i/I_i
-/// [McLachlan1993; Yoshida1990 for the compositions].
+/// [McLachlan1993; Yoshida1990 for the compositions]. The kernel (shared with
+/// `step_free_bodies`) merges neighbouring sub-flows about the same axis (they commute, since
+/// each keeps its L_i): Strang 5, Yoshida-4 13 (not 15), Yoshida-6 37 (not 45) sub-flows per
+/// step; each takes one sin/cos pair of the half angle θ/2 (a Maclaurin polynomial for
+/// |θ/2| ≤ 0.5) from which cos θ, sin θ and the quaternion of the turn follow, and |q| is
+/// restored once per step by one Newton step q ← q (3 − |q|²)/2 (no square root).
 
 #include <string>
 #include <string_view>
