@@ -148,17 +148,66 @@ T load(const char* p, bool big_endian) {
 }
 
 // Reads n binary STL records from `in` (positioned after the 84-byte header) in chunks into
-// one reused buffer: the file is never held whole, and vertices are written straight into
-// the mesh (no per-triangle allocation, no zero-filling).
+// one reused buffer: the file is never held whole. The copies of a vertex in an STL file are
+// one float32 value written again for every triangle, so corners are shared as they are read
+// by exact equality of the three float32 bit patterns (−0 = +0; open addressing, the key held
+// in the slot): the 3 n-vertex soup is never built, and the first copy's value is kept.
 TriangleMesh read_stl_binary_records(const std::string& path, std::istream& in, std::uint32_t n,
                                      double scale) {
+  struct Slot {
+    std::uint32_t x, y, z;
+    Index index;  // kEmpty: free
+  };
+  constexpr Index kEmpty = 0xffffffffu;
+  const auto hash = [](std::uint32_t x, std::uint32_t y, std::uint32_t z) {
+    std::uint64_t h = x * 0x9E3779B97F4A7C15ull;
+    h ^= y * 0xC2B2AE3D27D4EB4Full;
+    h ^= z * 0x165667B19E3779F9ull;
+    h ^= h >> 29;
+    h *= 0xBF58476D1CE4E5B9ull;
+    return h ^ (h >> 32);
+  };
+  // a closed mesh has about n/2 vertices: n slots keep the table at most half full
+  std::size_t capacity = 64;
+  while (capacity < n) capacity *= 2;
+  std::vector<Slot> table(capacity, Slot{0, 0, 0, kEmpty});
   TriangleMesh mesh;
-  mesh.vertices.resize(3ull * n);  // Eigen vectors: not initialised
+  mesh.vertices.reserve(n / 2 + 16);
   mesh.triangles.reserve(n);
+  const auto vertex = [&](const std::uint32_t* b) {
+    // −0 and +0 are one position
+    const std::uint32_t x = b[0] == 0x80000000u ? 0 : b[0];
+    const std::uint32_t y = b[1] == 0x80000000u ? 0 : b[1];
+    const std::uint32_t z = b[2] == 0x80000000u ? 0 : b[2];
+    std::size_t mask = capacity - 1;
+    std::size_t slot = hash(x, y, z) & mask;
+    while (table[slot].index != kEmpty &&
+           (table[slot].x != x || table[slot].y != y || table[slot].z != z)) {
+      slot = (slot + 1) & mask;
+    }
+    if (table[slot].index != kEmpty) return table[slot].index;
+    const auto id = static_cast<Index>(mesh.vertices.size());
+    table[slot] = {x, y, z, id};
+    mesh.vertices.emplace_back(static_cast<double>(std::bit_cast<float>(b[0])) * scale,
+                               static_cast<double>(std::bit_cast<float>(b[1])) * scale,
+                               static_cast<double>(std::bit_cast<float>(b[2])) * scale);
+    if (2 * mesh.vertices.size() > capacity) {  // rehash into twice the slots
+      std::vector<Slot> old(capacity * 2, Slot{0, 0, 0, kEmpty});
+      old.swap(table);
+      capacity *= 2;
+      mask = capacity - 1;
+      for (const Slot& e : old) {
+        if (e.index == kEmpty) continue;
+        std::size_t s = hash(e.x, e.y, e.z) & mask;
+        while (table[s].index != kEmpty) s = (s + 1) & mask;
+        table[s] = e;
+      }
+    }
+    return id;
+  };
   constexpr std::size_t kRecord = 50;
   constexpr std::size_t kChunk = 1 << 14;  // triangles per read: 800 kB, stays in cache
   const auto buffer = std::make_unique_for_overwrite<char[]>(kChunk * kRecord);
-  Eigen::Vector3d* out = mesh.vertices.data();
   for (std::size_t first = 0; first < n; first += kChunk) {
     const std::size_t count = std::min<std::size_t>(kChunk, n - first);
     if (!in.read(buffer.get(), static_cast<std::streamsize>(count * kRecord))) {
@@ -185,13 +234,10 @@ TriangleMesh read_stl_binary_records(const std::string& path, std::istream& in, 
           }
         }
       }
-      for (int k = 0; k < 3; ++k) {
-        *out++ = Eigen::Vector3d(static_cast<double>(std::bit_cast<float>(bits[3 * k])) * scale,
-                                 static_cast<double>(std::bit_cast<float>(bits[3 * k + 1])) * scale,
-                                 static_cast<double>(std::bit_cast<float>(bits[3 * k + 2])) * scale);
-      }
-      const auto v = static_cast<Index>(3 * t);
-      mesh.triangles.push_back({v, v + 1, v + 2});
+      const Index a = vertex(bits);
+      const Index b = vertex(bits + 3);
+      const Index c = vertex(bits + 6);
+      mesh.triangles.push_back({a, b, c});
     }
   }
   return mesh;

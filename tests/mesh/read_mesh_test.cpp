@@ -256,5 +256,34 @@ TEST(ReadMesh, TextThatIsNotAMesh) {
   EXPECT_RIGID_ERROR((void)read_mesh(t), t + ":4: 'oops': expected 'vertex' or 'endloop'");
 }
 
+TEST(ReadMesh, BinaryStlSharesExactCopiesOfAVertex) {
+  // The reader shares float32-identical copies; the result must be what repair_mesh's exact
+  // weld makes of the per-corner soup, so the repaired meshes are the same bit for bit.
+  const std::string file = temp_path("sphere.stl");
+  write_stl_binary(test::uv_sphere(0.1, 12), file);
+  auto shared = read_mesh(file);
+  EXPECT_EQ(shared.vertices.size(), 2u + 11u * 24u);
+  TriangleMesh soup;
+  for (const auto& t : shared.triangles) {
+    const auto n = static_cast<std::uint32_t>(soup.vertices.size());
+    for (auto i : t) soup.vertices.push_back(shared.vertices[i]);
+    soup.triangles.push_back({n, n + 1, n + 2});
+  }
+  repair_mesh(shared);
+  repair_mesh(soup);
+  EXPECT_EQ(shared.vertices, soup.vertices);
+  EXPECT_EQ(shared.triangles, soup.triangles);
+  // −0 and +0 are one position: the box with every zero coordinate negative in one face.
+  auto box = test::box_mesh(1, 2, 3);
+  std::string bytes = binary_stl(box, "signed zeros");
+  for (int k = 0; k < 9; ++k) {  // first triangle's nine coordinates: +0 → −0
+    float f = 0;
+    std::memcpy(&f, bytes.data() + 84 + 12 + 4 * k, 4);
+    if (f == 0) f = -0.0f;
+    std::memcpy(bytes.data() + 84 + 12 + 4 * k, &f, 4);
+  }
+  EXPECT_EQ(read_mesh(write("signed_zero.stl", bytes)).vertices.size(), 8u);
+}
+
 }  // namespace
 }  // namespace rigid::mesh

@@ -15,7 +15,9 @@ namespace rigid::mesh {
 /// with "solid" is recognised by its size), OBJ (polygons fan-triangulated), PLY (ASCII,
 /// binary little- and big-endian) or OFF, chosen by the file extension (case-insensitive).
 /// Vertices are multiplied by `scale` (metres per file unit). Polygons are fan-triangulated.
-/// Vertices are not welded (see weld_vertices): STL files repeat them per triangle.
+/// Binary STL repeats every vertex per triangle: copies with bitwise equal float32 coordinates
+/// are shared as the file is read (the rest of welding is repair_mesh's); ASCII STL is
+/// returned as one vertex per corner.
 /// @throws rigid::Error starting with the file name and, where it applies, `line N` or
 /// `byte N`, for unreadable, empty, truncated or malformed files, non-finite coordinates
 /// and indices out of range.
