@@ -359,6 +359,9 @@ FreeBodyMotion::FreeBodyMotion(const Eigen::Vector3d& I_B, const Eigen::Quaterni
   }
   // M = R_WS(0) Q(0): world from the frame whose e3 is L.
   q_M_ = q0_WB_ * q_SB_.conjugate() * q_Q(w);
+  Eigen::Matrix3d P = Eigen::Matrix3d::Zero();
+  for (int c = 0; c < 3; ++c) P(abd_[c], c) = 1.0;
+  q_PS_SB_ = Eigen::Quaterniond(Eigen::Matrix3d(P.transpose())) * q_SB_;
 }
 
 double FreeBodyMotion::elliptic_pi(const FreeBodyExact::Phase& ph) const {
@@ -417,9 +420,33 @@ Eigen::Quaterniond FreeBodyMotion::orientation(double t) const {
     w_S = e.omega_sorted_at(ph);
     psi += pi_coef_ * (elliptic_pi(ph) - Pi_u0_);
   }
-  // R_WB = M R_e3(ψ) Q(t)ᵀ R_SB.
-  Eigen::Quaterniond q = q_M_ * axis_angle_quaternion(Eigen::Vector3d::UnitZ(), psi) *
-                         q_Q(w_S).conjugate() * q_SB_;
+  // R_WB = M R_e3(ψ) Q(t)ᵀ R_SB, with Q = R_z(α) R_x(−θ) in the (a, b, d) axes (cos θ = l_d,
+  // sin θ = s = √(l_a² + l_b²), cos α = l_b/s, sin α = −l_a/s: the columns of q_Q below), so
+  // R_e3(ψ) Qᵀ = R_z(ψ) R_x(θ) R_z(−α), whose quaternion (z-x-z Euler angles) is
+  //   (cos θ/2 cos((ψ − α)/2), sin θ/2 cos((ψ + α)/2), sin θ/2 sin((ψ + α)/2), cos θ/2 sin((ψ − α)/2))
+  // in (a, b, d) components. The half angles come from the cosines without cancellation:
+  // (cos θ/2, sin θ/2) ∝ (1 + l_d, s) for l_d ≥ 0 and ∝ (s, 1 − l_d) otherwise; the same for
+  // α/2 with (s + l_b, −l_a) or (−l_a, s − l_b). This replaces building Q, converting the
+  // matrix to a quaternion and one quaternion product.
+  const Eigen::Vector3d l = e.I_sorted_.cwiseProduct(w_S) / e.L_norm_;
+  const int a = abd_[0], b = abd_[1], d = abd_[2];
+  // (sqrt, not hypot: the components are ≤ 2 in magnitude, nothing can overflow)
+  const double s = std::sqrt(l(a) * l(a) + l(b) * l(b));
+  double ct = l(d) >= 0.0 ? 1.0 + l(d) : s, st = l(d) >= 0.0 ? s : 1.0 - l(d);
+  const double nt = std::sqrt(ct * ct + st * st);
+  ct /= nt;
+  st /= nt;
+  double ca = l(b) >= 0.0 ? s + l(b) : -l(a), sa = l(b) >= 0.0 ? -l(a) : s - l(b);
+  const double na = std::sqrt(ca * ca + sa * sa);
+  ca /= na;
+  sa /= na;
+  const double cp = std::cos(0.5 * psi), sp = std::sin(0.5 * psi);
+  const double c_minus = cp * ca + sp * sa, s_minus = sp * ca - cp * sa;  // (ψ − α)/2
+  const double c_plus = cp * ca - sp * sa, s_plus = sp * ca + cp * sa;    // (ψ + α)/2
+  const Eigen::Quaterniond r(ct * c_minus, st * c_plus, st * s_plus, ct * s_minus);
+  // r acts in the frame whose x, y, z are the sorted axes a, b, d: q_PS_SB_ = Pᵀ R_SB takes
+  // the user's body axes there (P: x, y, z ↦ a, b, d, a cyclic relabelling).
+  Eigen::Quaterniond q = q_M_ * r * q_PS_SB_;
   q.normalize();
   return q;
 }

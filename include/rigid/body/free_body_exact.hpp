@@ -131,6 +131,7 @@ class FreeBodyMotion {
   bool uniform_ = false;     // ω constant (sphere, permanent rotation)
   std::array<int, 3> abd_{0, 1, 2};  // sorted-axis indices of the (a, b, d) frame
   Eigen::Quaterniond q_M_;   // M of the construction, world from the "L frame"
+  Eigen::Quaterniond q_PS_SB_;  // Pᵀ R_SB: user body axes to the (a, b, d) axes as x, y, z
   double psi_rate_ = 0;      // |L|/I_d (asymmetric) or |L|/I_t (symmetric), rad/s
   double pi_coef_ = 0;       // |L| (I_d − I_c)/(I_c I_d λ)
   double n_ = 0;             // characteristic of Π
