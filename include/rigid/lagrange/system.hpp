@@ -121,7 +121,7 @@ struct SimulationOptions {
   bool project_initial = false;
   /// Called with the time reached (s) as the run advances (from the right-hand side, so
   /// several times per step); may throw rigid::Error to stop the run. Empty: not called.
-  std::function<void(double t)> progress;
+  std::function<void(double t)> progress{};
 };
 
 /// A simulated trajectory; row k of every matrix is the sample at time t[k].
