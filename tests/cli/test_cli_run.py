@@ -354,9 +354,9 @@ def test_progress_bar_only_on_a_terminal(rigid_exe, tmp_path):
     import os
     import pty
     import subprocess
-    # about 2 s of splitting4 steps: long enough for the bar (it waits half a second)
+    # 5e6 splitting4 steps, a second or more: long enough for the bar (it waits half a second)
     scene = write(tmp_path, (EXAMPLES / "tennis_racket.toml").read_text()
-                  .replace("t_end = 100.0", "t_end = 1500.0").replace("output_dt = 0.05", "output_dt = 10"))
+                  .replace("t_end = 100.0", "t_end = 5000.0").replace("output_dt = 0.05", "output_dt = 1"))
     master, slave = pty.openpty()
     proc = subprocess.run([rigid_exe, "run", str(scene), "-o", str(tmp_path / "o")],
                           stdout=subprocess.PIPE, stderr=slave, timeout=120)
@@ -374,7 +374,7 @@ def test_progress_bar_only_on_a_terminal(rigid_exe, tmp_path):
     assert proc.returncode == 0
     assert b"\r[#" in err and b"t = " in err
     assert err.endswith(b"\r\x1b[K")  # the bar is wiped before the summary
-    assert b"splitting4 to t = 1500 s" in proc.stdout
+    assert b"splitting4 to t = 5000 s" in proc.stdout
 
 
 def test_output_quantities_select_columns(run, tmp_path):
