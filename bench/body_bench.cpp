@@ -193,6 +193,30 @@ void BM_ExactOrientation(benchmark::State& st) {
   }
 }
 
+}  // namespace
+
+// The previous evaluation (Π by Carlson's R_F/R_J duplication loop), kept in
+// FreeBodyMotion as the tests' reference: the before/after pair in one run.
+namespace rigid::body {
+struct FreeBodyMotionPeer {
+  static Eigen::Quaterniond orientation_carlson(const FreeBodyMotion& m, double t) {
+    return m.orientation_impl(t, true);
+  }
+};
+}  // namespace rigid::body
+
+namespace {
+
+void BM_ExactOrientationCarlson(benchmark::State& st) {
+  const rigid::body::FreeBodyMotion motion(kI, Eigen::Quaterniond::Identity(), kW0);
+  double t = 0;
+  for (auto _ : st) {
+    t += 0.0137;
+    if (t > kTEnd) t -= kTEnd;
+    benchmark::DoNotOptimize(rigid::body::FreeBodyMotionPeer::orientation_carlson(motion, t));
+  }
+}
+
 // 10⁷ steps (t = 1e5 s at dt = 0.01): drift of L_W, |L|, energy and ‖RᵀR − 1‖ of the
 // Lie–Poisson methods (one iteration; the counters are the point, not the time).
 void BM_LongRun(benchmark::State& st, FreeBodyMethod m) {
@@ -414,6 +438,7 @@ BENCHMARK_CAPTURE(BM_LongRun, splitting2, FreeBodyMethod::kSplitting2)->Iteratio
 BENCHMARK_CAPTURE(BM_LongRun, midpoint, FreeBodyMethod::kLiePoissonMidpoint)->Iterations(1)->Unit(benchmark::kSecond);
 BENCHMARK(BM_ExactOmega);
 BENCHMARK(BM_ExactOrientation);
+BENCHMARK(BM_ExactOrientationCarlson);
 BENCHMARK_CAPTURE(BM_Rigid, rk4, FreeBodyMethod::kRk4)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Rigid, splitting2, FreeBodyMethod::kSplitting2)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Rigid, splitting4, FreeBodyMethod::kSplitting4)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);

@@ -141,7 +141,7 @@ FreeBodyExact::FreeBodyExact(const Eigen::Vector3d& I_B, const Eigen::Vector3d& 
   }
 }
 
-FreeBodyExact::Phase FreeBodyExact::phase(double u) const {
+FreeBodyExact::Phase FreeBodyExact::phase(double u, const JacobiElliptic::ThetaShift* shift) const {
   Phase ph;
   if (K_ == 0.0) {
     // Separatrix (k = 1): sn = tanh, cn = dn = sech, no period to reduce by.
@@ -154,7 +154,11 @@ FreeBodyExact::Phase FreeBodyExact::phase(double u) const {
   // u = u_r + 2K j with |u_r| ≤ K; fma rounds u − 2K j once.
   ph.half_periods = std::nearbyint(u / (2.0 * K_));
   ph.u_r = std::fma(-2.0 * K_, ph.half_periods, u);
-  jacobi_.eval(ph.u_r, ph.sn, ph.cn, ph.dn);
+  if (shift != nullptr) {
+    jacobi_.eval(ph.u_r, *shift, ph.sn, ph.cn, ph.dn, ph.theta_arg);
+  } else {
+    jacobi_.eval(ph.u_r, ph.sn, ph.cn, ph.dn);
+  }
   // sn(u + 2K) = −sn u, cn(u + 2K) = −cn u, dn(u + 2K) = dn u [DLMF 22.4.3].
   if (std::fmod(ph.half_periods, 2.0) != 0.0) {
     ph.sn = -ph.sn;
@@ -353,7 +357,29 @@ FreeBodyMotion::FreeBodyMotion(const Eigen::Vector3d& I_B, const Eigen::Quaterni
       // Π(n, k) = K + (n/3) R_J(0, k'², 1, 1 − n) [DLMF 19.25.2].
       Pi_complete_ =
           e.K_ > 0.0 ? e.K_ + n_ / 3.0 * boost::math::ellint_rj(0.0, e.kc2_, 1.0, 1.0 - n_) : 0.0;
-      Pi_u0_ = elliptic_pi(e.phase(e.u0_));
+      if (e.K_ > 0.0) {
+        // Theta form of Π for n = −m < 0 [DLMF, §22.16(iii); Celledoni2008, §2]. Jacobi's
+        // Zeta Z(u) = d/du ln Θ(u), Θ(u) = θ4(πu/(2K)) [DLMF 22.16.32], obeys the addition
+        // formula Z(u − a) − Z(u + a) + 2Z(a) = 2k² sn a cn a dn a sn²u / (1 − k² sn²a sn²u);
+        // integrating over [0, u] (Θ is even),
+        //   ∫₀ᵘ sn²v dv / (1 − k² sn²a sn²v) = [u Z(a) + ½ ln(Θ(u − a)/Θ(u + a))] / (k² sn a cn a dn a).
+        // Choose a with k² sn²a = n: since n < 0, a = iβ with sn(iβ, k) = i sc(β, k'),
+        // cn = nc(β, k'), dn = dc(β, k') [DLMF 22.6.12], i.e. tan am(β, k') = √m/k. Then
+        //   Π(n; am u, k) = u + n ∫₀ᵘ sn²/(1 − n sn²) = u (1 − c Z_i) + c · arg Θ(u + iβ),
+        // Z(iβ) = i Z_i, c = sn cn/dn (β, k'), as Θ(u − iβ) is the conjugate of Θ(u + iβ).
+        // arg Θ(K + iβ) = 0 (JacobiElliptic::ThetaShift), so the slope 1 − c Z_i is
+        // Π(n, k)/K and no Zeta function is needed. With tan φ = √m/k:
+        //   c = sin φ cos φ / √(1 − k'² sin²φ) = √(m / ((k² + m)(1 + m))),
+        //   β = F(φ, k') = sin φ R_F(cos²φ, 1 − k'² sin²φ, 1) = √m R_F(k², k²(1 + m), k² + m)
+        // [DLMF 19.25.5] (R_F homogeneous of degree −½; every argument a sum of positives).
+        const double m = -n_, k2 = e.k2_;
+        theta_coef_ = std::sqrt(m / ((k2 + m) * (1.0 + m)));
+        const double beta = std::sqrt(m) * boost::math::ellint_rf(k2, k2 * (1.0 + m), k2 + m);
+        theta_shift_ = e.jacobi_.theta_shift(beta);
+        Pi_slope_ = Pi_complete_ / e.K_;
+      }
+      Pi_u0_ = elliptic_pi(e.phase(e.u0_, &theta_shift_));
+      Pi_u0_carlson_ = elliptic_pi_carlson(e.phase(e.u0_));
       break;
     }
   }
@@ -364,14 +390,24 @@ FreeBodyMotion::FreeBodyMotion(const Eigen::Vector3d& I_B, const Eigen::Quaterni
   q_PS_SB_ = Eigen::Quaterniond(Eigen::Matrix3d(P.transpose())) * q_SB_;
 }
 
+namespace {
+// Separatrix: with s = sin θ, Π(n; φ, 1) = ∫ ds / ((1 + m s²)(1 − s²))
+//   = (atanh s + √m atan(√m s)) / (1 + m), and s = tanh u, atanh s = u.
+double elliptic_pi_separatrix(double m, double u) {
+  const double rm = std::sqrt(m);
+  return (u + rm * std::atan(rm * std::tanh(u))) / (1.0 + m);
+}
+}  // namespace
+
 double FreeBodyMotion::elliptic_pi(const FreeBodyExact::Phase& ph) const {
-  const double m = -n_;  // > 0
-  if (omega_.K_ == 0.0) {
-    // Separatrix: with s = sin θ, Π(n; φ, 1) = ∫ ds / ((1 + m s²)(1 − s²))
-    //   = (atanh s + √m atan(√m s)) / (1 + m), and s = tanh u, atanh s = u.
-    const double rm = std::sqrt(m);
-    return (ph.u_r + rm * std::atan(rm * std::tanh(ph.u_r))) / (1.0 + m);
-  }
+  if (omega_.K_ == 0.0) return elliptic_pi_separatrix(-n_, ph.u_r);
+  // Π(n; am u, k) = 2j Π(n, k) + u_r Π(n, k)/K + c arg Θ(u_r + iβ), u = u_r + 2jK (the
+  // derivation is in the constructor): one atan2 on the multiple angles of sn, cn, dn.
+  return 2.0 * ph.half_periods * Pi_complete_ + Pi_slope_ * ph.u_r + theta_coef_ * ph.theta_arg;
+}
+
+double FreeBodyMotion::elliptic_pi_carlson(const FreeBodyExact::Phase& ph) const {
+  if (omega_.K_ == 0.0) return elliptic_pi_separatrix(-n_, ph.u_r);
   // Reduced u_r ∈ [−K, K] has φ_r = am u_r ∈ [−π/2, π/2], sin φ_r = sn u_r,
   // cos φ_r = cn u_r ≥ 0, √(1 − k² sin²φ_r) = dn u_r, and [DLMF 19.25.14]
   //   Π(n; φ, k) = s R_F(c², Δ², 1) + (n/3) s³ R_J(c², Δ², 1, 1 − n s²).
@@ -401,7 +437,9 @@ Eigen::Quaterniond FreeBodyMotion::q_Q(const Eigen::Vector3d& w_S) const {
   return Eigen::Quaterniond(Q);
 }
 
-Eigen::Quaterniond FreeBodyMotion::orientation(double t) const {
+Eigen::Quaterniond FreeBodyMotion::orientation(double t) const { return orientation_impl(t, false); }
+
+Eigen::Quaterniond FreeBodyMotion::orientation_impl(double t, bool carlson) const {
   const FreeBodyExact& e = omega_;
   if (uniform_) {
     // ω constant: R_WB(t) = R_WB(0) exp(t ω̂).
@@ -416,9 +454,16 @@ Eigen::Quaterniond FreeBodyMotion::orientation(double t) const {
   if (e.case_ == FreeBodyCase::kSymmetric) {
     w_S = e.omega_sorted(t);
   } else {
-    const FreeBodyExact::Phase ph = e.phase(e.lambda_ * t + e.u0_);
-    w_S = e.omega_sorted_at(ph);
-    psi += pi_coef_ * (elliptic_pi(ph) - Pi_u0_);
+    const double u = e.lambda_ * t + e.u0_;
+    if (carlson) {
+      const FreeBodyExact::Phase ph = e.phase(u);
+      w_S = e.omega_sorted_at(ph);
+      psi += pi_coef_ * (elliptic_pi_carlson(ph) - Pi_u0_carlson_);
+    } else {
+      const FreeBodyExact::Phase ph = e.phase(u, &theta_shift_);
+      w_S = e.omega_sorted_at(ph);
+      psi += pi_coef_ * (elliptic_pi(ph) - Pi_u0_);
+    }
   }
   // R_WB = M R_e3(ψ) Q(t)ᵀ R_SB, with Q = R_z(α) R_x(−θ) in the (a, b, d) axes (cos θ = l_d,
   // sin θ = s = √(l_a² + l_b²), cos α = l_b/s, sin α = −l_a/s: the columns of q_Q below), so

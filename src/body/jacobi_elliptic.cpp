@@ -52,4 +52,30 @@ JacobiElliptic::JacobiElliptic(double k2, double kc2) {
   }
 }
 
+JacobiElliptic::ThetaShift JacobiElliptic::theta_shift(double beta) const {
+  RIGID_REQUIRE(std::isfinite(beta) && beta > 0.0 && beta < Kc_,
+                "the imaginary shift must lie in (0, K') = (0, {}), got β = {}", Kc_, beta);
+  ThetaShift sh;
+  // x = πβ/(2K) (real nome) or πβ/(2K') (imaginary transformation): scale_ β either way.
+  const double x = scale_ * beta;
+  if (!imaginary_) {
+    // re_n = 2(−1)ⁿ qⁿ² cosh 2nx, im_n = −2(−1)ⁿ qⁿ² sinh 2nx; qⁿ² e^{2nx} ≤ q^{n²−n}
+    // (x < πK'/(2K)), so these terms are no larger than those of θ4(v) itself. A
+    // zero qⁿ² (underflow) gives a zero term (not 0 · ∞).
+    for (int n = 1; n < n_even_; ++n) {
+      if (even_[n] == 0.0) continue;
+      const double sgn = n % 2 ? -2.0 : 2.0;
+      sh.re[n] = sgn * even_[n] * std::cosh(2.0 * n * x);
+      sh.im[n] = -sgn * even_[n] * std::sinh(2.0 * n * x);
+    }
+  } else {
+    for (int n = 0; n < n_odd_; ++n) {
+      sh.re[n] = odd_[n] * std::cos((2.0 * n + 1.0) * x);
+      sh.im[n] = odd_[n] * std::sin((2.0 * n + 1.0) * x);
+    }
+    sh.lin = -0.5 * std::numbers::pi * beta / (K_ * Kc_);
+  }
+  return sh;
+}
+
 }  // namespace rigid::body

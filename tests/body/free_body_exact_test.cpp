@@ -1,5 +1,6 @@
 #include "rigid/body/free_body_exact.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string_view>
@@ -307,6 +308,45 @@ TEST(FreeBodyMotion, SphereAndPermanentRotationsTurnUniformly) {
   // At rest the orientation stays put.
   const FreeBodyMotion rest(Eigen::Vector3d(1, 2, 3), kQ0, Eigen::Vector3d::Zero());
   EXPECT_LT(angle_between(rest.orientation(50.0), kQ0), ulps(4));
+}
+
+}  // namespace
+
+// Reaches FreeBodyMotion's reference path: Π(n; am u, k) by Carlson's R_F and R_J (the
+// implementation before the theta form), everything else shared.
+struct FreeBodyMotionPeer {
+  static Eigen::Quaterniond orientation_carlson(const FreeBodyMotion& m, double t) {
+    return m.orientation_impl(t, true);
+  }
+};
+
+namespace {
+
+TEST(FreeBodyMotion, ThetaFormAgreesWithTheCarlsonReference) {
+  // The two paths differ only in Π(n; am u, k): theta phase vs Carlson R_F/R_J, each
+  // accurate to a few ε of Π (jacobi_elliptic_test checks the theta form against Boost).
+  // ψ = |L| t/I_d + |L|(I_d − I_c)/(I_c I_d λ) (Π(u) − Π(u0)) is summed in a different
+  // order, so the paths may differ by an ulp or two of ψ, |ψ| ≤ |L| |t| / I_min (the
+  // precession rate lies between |L|/I_max and |L|/I_min [Landau1976, §37]):
+  // tolerance 1e-13 (≈ 450 ε, the 1e-12 goal with margin) + 4 ε |L| |t| / I_min.
+  std::vector<MotionCase> cases = motion_cases();
+  cases.push_back({"almost symmetric, I_d → I2 (n → −∞)", {1, 2, 2 + 1e-7}, {0.3, 0.2, 0.9}});
+  cases.push_back({"almost symmetric, I_c → I2 (n → 0)", {2, 2 + 2e-7, 3}, {0.3, 0.2, 0.9}});
+  cases.push_back({"k² just above ½", {1, 2, 3}, {0.5, 0.6, 0.45}});
+  cases.push_back({"fast, far from the separatrix", {0.2, 1.5, 1.6}, {2.0, -3.0, 7.0}});
+  for (const MotionCase& c : cases) {
+    const FreeBodyMotion motion(c.I, kQ0, c.w0);
+    const double psi_rate_max = c.I.cwiseProduct(c.w0).norm() / c.I.minCoeff();
+    std::vector<double> times;
+    for (double t = 0.0; t <= 100.0; t += 0.0625) times.push_back(t);      // the goal's range
+    for (double t = -3000.0; t <= 3000.0; t += 0.37 + std::abs(t) * 0.01) times.push_back(t);
+    for (double t : times) {
+      const double tol = 1e-13 + 4.0 * test::kEps * psi_rate_max * std::abs(t);
+      EXPECT_LT(angle_between(motion.orientation(t), FreeBodyMotionPeer::orientation_carlson(motion, t)),
+                tol)
+          << c.name << " k = " << motion.omega_solution().modulus() << " t = " << t;
+    }
+  }
 }
 
 TEST(FreeBodyMotion, RejectsNonUnitQuaternion) {

@@ -1,9 +1,11 @@
 #include "rigid/body/jacobi_elliptic.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
 #include <boost/math/special_functions/ellint_1.hpp>
+#include <boost/math/special_functions/ellint_3.hpp>
 #include <boost/math/special_functions/jacobi_elliptic.hpp>
 #include <gtest/gtest.h>
 
@@ -68,9 +70,79 @@ TEST(JacobiElliptic, KeepsQuarterPeriodValuesNearTheSeparatrix) {
   EXPECT_NEAR(cn, 1.0 / std::cosh(0.5), ulps(8));
 }
 
+// Π(n; am u, k) = u Π(n, k)/K + c arg Θ(u + iβ) (JacobiElliptic::ThetaShift), with
+// k² sn²(iβ, k) = n < 0: tan am(β, k') = √m/k, c = sn cn/dn (β, k'), m = −n. β and c come
+// from Boost's F and sn, cn, dn (not from the code under test).
+struct ShiftedTheta {
+  JacobiElliptic::ThetaShift shift;
+  double c, slope;
+};
+ShiftedTheta shifted_theta(const JacobiElliptic& jac, double k, double n) {
+  const double kc = std::sqrt((1.0 - k) * (1.0 + k));
+  const double beta = boost::math::ellint_1(kc, std::atan(std::sqrt(-n) / k));
+  double cn, dn;
+  const double sn = boost::math::jacobi_elliptic(kc, beta, &cn, &dn);
+  return {jac.theta_shift(beta), sn * cn / dn, boost::math::ellint_3(k, n) / jac.K()};
+}
+
+TEST(JacobiElliptic, ThetaPhaseGivesTheThirdKindIntegral) {
+  // Reference: Boost's ellint_3(k, n, φ) (Carlson R_F, R_J), φ = am u = atan2(sn, cn) from
+  // Boost's own sn, cn. Both sides are O(1) to O(K) sums of a few rounded terms; the
+  // reference φ carries ≈ ε/k' of rounding that Π turns into ≈ ε/k' (dΠ/dφ ≤ 1/dn ≤ 1/k'):
+  // 64 ε · max(1, |Π|) / k' covers both (measured worst about a tenth of that).
+  for (double k : {0.1, 0.5, 0.7071067811865476, 0.75, 0.9, 0.9999}) {
+    const JacobiElliptic jac = make(k);
+    const double kc = std::sqrt((1.0 - k) * (1.0 + k));
+    for (double n : {-1e-3, -0.5, -3.0, -1e3, -1e8}) {
+      const ShiftedTheta st = shifted_theta(jac, k, n);
+      for (double f = -1.0; f <= 1.0; f += 0.03125) {
+        const double u = f * jac.K();
+        double sn, cn, dn, arg, bcn, bdn;
+        jac.eval(u, st.shift, sn, cn, dn, arg);
+        const double bsn = boost::math::jacobi_elliptic(k, u, &bcn, &bdn);
+        const double expected = boost::math::ellint_3(k, n, std::atan2(bsn, bcn));
+        const double got = u * st.slope + st.c * arg;
+        EXPECT_NEAR(got, expected, ulps(64, std::max(1.0, std::abs(expected)) / kc))
+            << "k = " << k << " n = " << n << " u = " << u;
+        // The shifted evaluation returns the same sn, cn, dn bit for bit.
+        double sn0, cn0, dn0;
+        jac.eval(u, sn0, cn0, dn0);
+        EXPECT_EQ(sn, sn0);
+        EXPECT_EQ(cn, cn0);
+        EXPECT_EQ(dn, dn0);
+      }
+    }
+  }
+}
+
+TEST(JacobiElliptic, ThetaPhaseVanishesAtZeroAndAtTheQuarterPeriod) {
+  // Θ is real and positive on the real axis and Θ(±K + iβ) = θ3(iw) (or its transform) > 0,
+  // so arg Θ(u + iβ) is 0 at u = 0 and u = ±K: Π(n; am K, k) = Π(n, k) = K · slope exactly.
+  // Only the rounding of a few O(1) terms remains: 16 ε.
+  for (double k : {0.1, 0.7071067811865476, 0.75, 0.9999, 1.0 - 0x1p-30}) {
+    const JacobiElliptic jac = make(k);
+    for (double beta_frac : {1e-6, 0.3, 0.9, 0.999999}) {
+      const JacobiElliptic::ThetaShift sh = jac.theta_shift(beta_frac * jac.Kc());
+      double sn, cn, dn, arg;
+      for (double u : {0.0, jac.K(), -jac.K()}) {
+        jac.eval(u, sh, sn, cn, dn, arg);
+        EXPECT_NEAR(arg, 0.0, ulps(16, std::max(1.0, jac.K()))) << "k = " << k << " β/K' = " << beta_frac;
+      }
+      // odd in u: Θ(−u + iβ) is the conjugate of Θ(u + iβ)
+      double arg_minus;
+      jac.eval(0.4 * jac.K(), sh, sn, cn, dn, arg);
+      jac.eval(-0.4 * jac.K(), sh, sn, cn, dn, arg_minus);
+      EXPECT_NEAR(arg, -arg_minus, ulps(4, std::abs(arg)));
+    }
+  }
+}
+
 TEST(JacobiElliptic, RejectsBadModulus) {
   EXPECT_RIGID_ERROR(JacobiElliptic(0.5, 0.6), "k² + k'² = 1");
   EXPECT_RIGID_ERROR(JacobiElliptic(1.0, 0.0), "k'² > 0");
+  const JacobiElliptic jac = make(0.5);
+  EXPECT_RIGID_ERROR(static_cast<void>(jac.theta_shift(0.0)), "imaginary shift must lie in (0, K')");
+  EXPECT_RIGID_ERROR(static_cast<void>(jac.theta_shift(jac.Kc())), "imaginary shift must lie in (0, K')");
 }
 
 }  // namespace

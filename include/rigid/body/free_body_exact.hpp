@@ -50,11 +50,13 @@ class FreeBodyExact {
   friend class FreeBodyMotion;
   /// Jacobi functions at u reduced to u_r ∈ [−K, K], u = u_r + 2K·half_periods
   /// (sn, cn at u are (−1)^half_periods times those at u_r; dn is 2K-periodic).
+  /// With a `shift`, also theta_arg = arg Θ(u_r + iβ) (JacobiElliptic::eval).
   struct Phase {
     double sn = 0, cn = 1, dn = 1, u_r = 0;
     double half_periods = 0;
+    double theta_arg = 0;
   };
-  [[nodiscard]] Phase phase(double u) const;
+  [[nodiscard]] Phase phase(double u, const JacobiElliptic::ThetaShift* shift = nullptr) const;
   [[nodiscard]] Eigen::Vector3d omega_sorted_at(const Phase& ph) const;
 
   FreeBodyCase case_ = FreeBodyCase::kSphere;
@@ -137,8 +139,16 @@ class FreeBodyMotion {
   double n_ = 0;             // characteristic of Π
   double Pi_complete_ = 0;   // Π(n, k) (0 on the separatrix)
   double Pi_u0_ = 0;         // Π(n; am u0, k)
+  // Theta form Π(n; am u_r, k) = u_r Π(n, k)/K + c · arg Θ(u_r + iβ), k² sn²(iβ) = n.
+  JacobiElliptic::ThetaShift theta_shift_;
+  double Pi_slope_ = 0;      // Π(n, k)/K
+  double theta_coef_ = 0;    // c = sn cn / dn (β, k') = √(m / ((k² + m)(1 + m))), m = −n
+  double Pi_u0_carlson_ = 0; // Π(n; am u0, k) by the Carlson reference path
 
+  friend struct FreeBodyMotionPeer;  // tests and the benchmark reach the Carlson reference
   [[nodiscard]] double elliptic_pi(const FreeBodyExact::Phase& ph) const;
+  [[nodiscard]] double elliptic_pi_carlson(const FreeBodyExact::Phase& ph) const;
+  [[nodiscard]] Eigen::Quaterniond orientation_impl(double t, bool carlson) const;
   [[nodiscard]] Eigen::Quaterniond q_Q(const Eigen::Vector3d& w_S) const;
 };
 
