@@ -7,6 +7,7 @@
 #include <Eigen/Geometry>
 #include <fmt/format.h>
 
+#include "detail/accumulate.hpp"
 #include "rigid/common/error.hpp"
 #include "rigid/mesh/repair.hpp"
 
@@ -19,10 +20,7 @@ Eigen::Vector3d default_reference(const TriangleMesh& mesh) {
 }
 
 // Σ v vᵀ over the three vertices plus s sᵀ, accumulated into the upper triangle.
-struct Accumulator {
-  double measure = 0, fx = 0, fy = 0, fz = 0;
-  double xx = 0, yy = 0, zz = 0, xy = 0, xz = 0, yz = 0;
-};
+using Accumulator = detail::VolumeSums;
 
 MeshMoments finish(const Accumulator& a, const Eigen::Vector3d& p_OR, double k0, double k1,
                    double k2) {
@@ -128,23 +126,44 @@ template <Weight kWeight>
           total(yy),    total(zz), total(xy), total(xz), total(yz)};
 }
 
-// The volume sum compiled twice, for baseline x86-64 (SSE2) and for AVX2, chosen when the
-// program loads (GNU ifunc): portable binaries, and twice the vector width where the CPU has
-// it. Same operations in the same order (no FMA: contraction is off in ISO C++ mode and AVX2
-// alone has no FMA), so both give bitwise the same result.
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && defined(__linux__)
-[[gnu::target_clones("avx2", "default")]]
-#endif
-Accumulator accumulate_volume(const TriangleMesh& mesh, const Eigen::Vector3d& p_OR) {
+}  // namespace
+
+// The volume sum compiled twice, for baseline x86-64 (SSE2) and for AVX2, the variant chosen
+// once at run time: portable binaries, and twice the vector width where the CPU has it. Same
+// operations in the same order (no FMA: contraction is off in ISO C++ mode and AVX2 alone
+// has no FMA), so both give bitwise the same result (tests/mesh compare them).
+namespace detail {
+
+VolumeSums accumulate_volume_baseline(const TriangleMesh& mesh, const Eigen::Vector3d& p_OR) {
   return accumulate<Weight::kDet>(mesh, p_OR);
 }
 
-}  // namespace
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && defined(__linux__)
+bool avx2_available() { return __builtin_cpu_supports("avx2") != 0; }
+
+[[gnu::target("avx2")]] VolumeSums accumulate_volume_avx2(const TriangleMesh& mesh,
+                                                          const Eigen::Vector3d& p_OR) {
+  return accumulate<Weight::kDet>(mesh, p_OR);
+}
+#else
+bool avx2_available() { return false; }
+
+VolumeSums accumulate_volume_avx2(const TriangleMesh& mesh, const Eigen::Vector3d& p_OR) {
+  return accumulate<Weight::kDet>(mesh, p_OR);
+}
+#endif
+
+VolumeSums accumulate_volume(const TriangleMesh& mesh, const Eigen::Vector3d& p_OR) {
+  static const bool avx2 = avx2_available();
+  return avx2 ? accumulate_volume_avx2(mesh, p_OR) : accumulate_volume_baseline(mesh, p_OR);
+}
+
+}  // namespace detail
 
 MeshMoments volume_moments(const TriangleMesh& mesh, std::optional<Eigen::Vector3d> p_OR_M) {
   const Eigen::Vector3d r = p_OR_M ? *p_OR_M : default_reference(mesh);
   // [Tonon2005, eq. 2–4]: V = det/6, ∫r = det·s/24, ∫r rᵀ = det/120 (Σ v vᵀ + s sᵀ).
-  return finish(accumulate_volume(mesh, r), r, 1.0 / 6.0, 1.0 / 24.0, 1.0 / 120.0);
+  return finish(detail::accumulate_volume(mesh, r), r, 1.0 / 6.0, 1.0 / 24.0, 1.0 / 120.0);
 }
 
 MeshMoments surface_moments(const TriangleMesh& mesh, std::optional<Eigen::Vector3d> p_OR_M) {
@@ -163,7 +182,13 @@ constexpr double kMaxSize = 100.0;  // m: larger than any part one computes an i
 
 }  // namespace
 
-MeshMassResult mesh_mass_properties(const TriangleMesh& mesh, const MassSpec& spec) {
+namespace detail {
+
+// mesh_mass_properties with the mesh's edge counts (boundary, non-manifold) found by the
+// caller, or found here when not given. (Named like the public function: its errors start
+// with the name.)
+MeshMassResult mesh_mass_properties(const TriangleMesh& mesh, const MassSpec& spec,
+                               const std::optional<EdgeCounts>& known_edges) {
   RIGID_REQUIRE(spec.mass.has_value() != spec.density.has_value(),
                 "give exactly one of mass and density (got {})",
                 spec.mass ? "both" : "neither");
@@ -183,7 +208,7 @@ MeshMassResult mesh_mass_properties(const TriangleMesh& mesh, const MassSpec& sp
   RIGID_REQUIRE(!mesh.triangles.empty(), "the mesh has no triangles");
 
   if (!spec.shell) {
-    const EdgeCounts e = count_edges(mesh);
+    const EdgeCounts e = known_edges ? *known_edges : count_edges(mesh);
     RIGID_REQUIRE(e.boundary == 0 && e.non_manifold == 0,
                   "the mesh is not closed ({} boundary edges, {} non-manifold edges), so it "
                   "bounds no solid: use --shell for a thin shell, or --fill-holes (fill_holes) "
@@ -225,6 +250,21 @@ MeshMassResult mesh_mass_properties(const TriangleMesh& mesh, const MassSpec& sp
     }
   }
   return out;
+}
+
+}  // namespace detail
+
+MeshMassResult mesh_mass_properties(const TriangleMesh& mesh, const MassSpec& spec) {
+  return detail::mesh_mass_properties(mesh, spec, std::nullopt);
+}
+
+MeshMassResult mesh_mass_properties(const TriangleMesh& mesh, const MassSpec& spec,
+                                    const RepairReport& repaired) {
+  // repair_mesh's counts are those of its output (flipping faces keeps every undirected
+  // edge). Not re-checked here, not even in asserting builds: that is the edge matching this
+  // overload exists to skip (the benchmarks run with asserts on); tests/mesh check it.
+  return detail::mesh_mass_properties(mesh, spec,
+                                      EdgeCounts{repaired.boundary_edges, repaired.non_manifold_edges, 0});
 }
 
 }  // namespace rigid::mesh

@@ -18,6 +18,7 @@
 #include <Eigen/Geometry>
 #include <tiny_obj_loader.h>
 
+#include "detail/read_mesh.hpp"
 #include "rigid/common/error.hpp"
 
 namespace rigid::mesh {
@@ -26,25 +27,25 @@ namespace {
 using Index = std::uint32_t;
 
 [[noreturn]] void fail_line(const std::string& path, int line, const std::string& msg) {
-  detail::throw_error_at(SourceLocation{path, line, 0}, msg);
+  rigid::detail::throw_error_at(SourceLocation{path, line, 0}, msg);
 }
 
 [[noreturn]] void fail_byte(const std::string& path, std::size_t byte, const std::string& msg) {
-  detail::throw_error_at(SourceLocation{path, 0, 0}, fmt::format("byte {}: {}", byte, msg));
+  rigid::detail::throw_error_at(SourceLocation{path, 0, 0}, fmt::format("byte {}: {}", byte, msg));
 }
 
 std::string slurp(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) detail::throw_error_at(SourceLocation{path, 0, 0}, "cannot open the file for reading");
+  if (!in) rigid::detail::throw_error_at(SourceLocation{path, 0, 0}, "cannot open the file for reading");
   in.seekg(0, std::ios::end);
   const std::streamoff size = in.tellg();
   in.seekg(0, std::ios::beg);
   std::string data(static_cast<std::size_t>(std::max<std::streamoff>(size, 0)), '\0');
   if (!data.empty() && !in.read(data.data(), static_cast<std::streamsize>(data.size()))) {
-    detail::throw_error_at(SourceLocation{path, 0, 0}, "reading the file failed");
+    rigid::detail::throw_error_at(SourceLocation{path, 0, 0}, "reading the file failed");
   }
   if (data.empty()) {
-    detail::throw_error_at(SourceLocation{path, 0, 0}, "the file is empty: expected a mesh");
+    rigid::detail::throw_error_at(SourceLocation{path, 0, 0}, "the file is empty: expected a mesh");
   }
   return data;
 }
@@ -315,7 +316,7 @@ void check_indices(const std::string& path, const TriangleMesh& mesh) {
   for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
     for (Index i : mesh.triangles[f]) {
       if (i >= mesh.vertices.size()) {
-        detail::throw_error_at(SourceLocation{path, 0, 0},
+        rigid::detail::throw_error_at(SourceLocation{path, 0, 0},
                                fmt::format("face {} uses vertex index {}: the file has {} "
                                            "vertices (indices 0 to {})",
                                            f + 1, i, mesh.vertices.size(),
@@ -391,7 +392,11 @@ double unit_scale(std::string_view unit) {
   RIGID_THROW("unknown unit '{}': expected m, cm, mm or in", unit);
 }
 
-TriangleMesh read_stl(const std::string& path, double scale) {
+namespace {
+
+// read_stl; *binary_records says whether the records were read by read_stl_binary_records.
+TriangleMesh read_stl(const std::string& path, double scale, bool* binary_records) {
+  *binary_records = true;
   // A binary file is recognised by its size (84 + 50 n), whatever its header says; it is
   // read record by record, never whole.
   {
@@ -415,9 +420,19 @@ TriangleMesh read_stl(const std::string& path, double scale) {
     const bool text = std::none_of(data.begin(), data.end(), [](char c) {
       return c == '\0';
     });
-    if (text) return read_stl_ascii(path, data, scale);
+    if (text) {
+      *binary_records = false;
+      return read_stl_ascii(path, data, scale);
+    }
   }
   return read_stl_binary(path, data, scale);
+}
+
+}  // namespace
+
+TriangleMesh read_stl(const std::string& path, double scale) {
+  bool binary = false;
+  return read_stl(path, scale, &binary);
 }
 
 TriangleMesh read_off(const std::string& path, double scale) {
@@ -666,7 +681,7 @@ TriangleMesh read_obj(const std::string& path, double scale) {
   config.vertex_color = false;
   tinyobj::ObjReader reader;
   if (!reader.ParseFromFile(path, config)) {
-    detail::throw_error_at(SourceLocation{path, 0, 0},
+    rigid::detail::throw_error_at(SourceLocation{path, 0, 0},
                            fmt::format("not a readable OBJ file: {}", reader.Error()));
   }
   const auto& attrib = reader.GetAttrib();
@@ -677,7 +692,7 @@ TriangleMesh read_obj(const std::string& path, double scale) {
     Eigen::Vector3d p(attrib.vertices[3 * i], attrib.vertices[3 * i + 1],
                       attrib.vertices[3 * i + 2]);
     if (!p.allFinite()) {
-      detail::throw_error_at(SourceLocation{path, 0, 0},
+      rigid::detail::throw_error_at(SourceLocation{path, 0, 0},
                              fmt::format("vertex {} is ({}, {}, {}): expected finite coordinates",
                                          i + 1, p.x(), p.y(), p.z()));
     }
@@ -692,7 +707,7 @@ TriangleMesh read_obj(const std::string& path, double scale) {
       for (std::size_t j = 0; j < n; ++j) {
         const int i = shape.mesh.indices[offset + j].vertex_index;
         if (i < 0 || static_cast<std::size_t>(i) >= nv) {
-          detail::throw_error_at(
+          rigid::detail::throw_error_at(
               SourceLocation{path, 0, 0},
               fmt::format("face {} of '{}' uses vertex {}: the file has {} vertices", f + 1,
                           shape.name, i + 1, nv));
@@ -704,18 +719,23 @@ TriangleMesh read_obj(const std::string& path, double scale) {
     }
   }
   if (mesh.triangles.empty()) {
-    detail::throw_error_at(SourceLocation{path, 0, 0}, "no faces: not a mesh OBJ file");
+    rigid::detail::throw_error_at(SourceLocation{path, 0, 0}, "no faces: not a mesh OBJ file");
   }
   return mesh;
 }
 
-TriangleMesh read_mesh(const std::string& path, double scale) {
+namespace detail {
+
+ReadResult read_mesh(const std::string& path, double scale) {
   RIGID_REQUIRE(std::isfinite(scale) && scale > 0, "scale {}: expected a positive finite number",
                 scale);
   const std::string ext = extension(path);
-  TriangleMesh mesh;
+  ReadResult out;
+  TriangleMesh& mesh = out.mesh;
   if (ext == "stl") {
-    mesh = read_stl(path, scale);
+    bool binary = false;
+    mesh = read_stl(path, scale, &binary);
+    out.vertices_distinct = binary && scale >= 1e-250 && scale <= 1e250;
   } else if (ext == "obj") {
     mesh = read_obj(path, scale);
   } else if (ext == "ply") {
@@ -727,9 +747,15 @@ TriangleMesh read_mesh(const std::string& path, double scale) {
   }
   check_indices(path, mesh);
   if (mesh.triangles.empty()) {
-    detail::throw_error_at(SourceLocation{path, 0, 0}, "the mesh has no triangles");
+    rigid::detail::throw_error_at(SourceLocation{path, 0, 0}, "the mesh has no triangles");
   }
-  return mesh;
+  return out;
+}
+
+}  // namespace detail
+
+TriangleMesh read_mesh(const std::string& path, double scale) {
+  return detail::read_mesh(path, scale).mesh;
 }
 
 void write_stl_binary(const TriangleMesh& mesh, const std::string& path) {

@@ -14,6 +14,7 @@
 
 #include "rigid/common/error.hpp"
 #include "detail/edge_table.hpp"
+#include "detail/repair.hpp"
 
 namespace rigid::mesh {
 namespace {
@@ -163,6 +164,11 @@ EdgeCounts count_edges(const TriangleMesh& mesh) {
 }
 
 RepairReport repair_mesh(TriangleMesh& mesh, const RepairOptions& options) {
+  return detail::repair_mesh(mesh, options, false);
+}
+
+RepairReport detail::repair_mesh(TriangleMesh& mesh, const RepairOptions& options,
+                                 bool vertices_distinct) {
   RepairReport report;
   report.input_vertices = mesh.vertices.size();
   report.input_triangles = mesh.triangles.size();
@@ -191,7 +197,8 @@ RepairReport repair_mesh(TriangleMesh& mesh, const RepairOptions& options) {
   // (which the tolerance weld would collapse), so the two paths give the same mesh.
   EdgeTable edges;
   if (options.exact_weld_first) {
-    report.welded_vertices = weld_exact(mesh);
+    // distinct vertices: the exact weld would keep every vertex and every index
+    report.welded_vertices = vertices_distinct ? 0 : weld_exact(mesh);
     report.degenerate_triangles = remove_degenerate();
     edges = edge_table(mesh, {.mates = true, .lengths = true});
     if (tol > 0 && (edges.boundary > 0 || edges.min_length2 <= tol * tol)) {

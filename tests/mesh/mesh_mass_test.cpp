@@ -2,10 +2,12 @@
 
 #include <cmath>
 #include <numbers>
+#include <random>
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include "mesh/detail/accumulate.hpp"
 #include "mesh/mesh_builders.hpp"
 #include "rigid/mesh/repair.hpp"
 #include "support/expect_error.hpp"
@@ -238,6 +240,54 @@ TEST(MeshMass, BadSpecsAreNamed) {
                      "thickness 0.1 m given for a solid");
   EXPECT_RIGID_ERROR((void)mesh_mass_properties(TriangleMesh{}, density(1)),
                      "the mesh has no triangles");
+}
+
+// The baseline (SSE2) and AVX2 compilations of the volume sums: the same operations in the
+// same order, so every sum is bitwise equal; on meshes whose triangle count is and is not a
+// multiple of the four lanes, near and far from the reference point, and on random soups
+// (cancellation-heavy, arbitrary bit patterns).
+TEST(MeshMass, AccumulationVariantsAreBitwiseEqual) {
+  if (!detail::avx2_available()) GTEST_SKIP() << "this CPU has no AVX2";
+  std::vector<TriangleMesh> meshes = {test::uv_sphere(0.1, 24), test::uv_sphere(0.1, 7),
+                                      test::box_mesh(0.3, 0.5, 0.7)};
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (const std::size_t n : {1u, 2u, 3u, 5u, 1001u, 4096u}) {
+    TriangleMesh soup;
+    for (std::size_t i = 0; i < 3 * n; ++i) {
+      soup.vertices.emplace_back(u(rng), 1e3 * u(rng), 1e-3 * u(rng));
+    }
+    for (std::size_t f = 0; f < n; ++f) {
+      const auto i = static_cast<std::uint32_t>(3 * f);
+      soup.triangles.push_back({i, i + 1, i + 2});
+    }
+    meshes.push_back(soup);
+  }
+  for (std::size_t k = 0; k < meshes.size(); ++k) {
+    SCOPED_TRACE(k);
+    for (const Eigen::Vector3d& p_OR :
+         {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0.01, -0.02, 0.03),
+          Eigen::Vector3d(1e6, 2e6, -3e6)}) {
+      const detail::VolumeSums a = detail::accumulate_volume_baseline(meshes[k], p_OR);
+      const detail::VolumeSums b = detail::accumulate_volume_avx2(meshes[k], p_OR);
+      EXPECT_NE(a.measure, 0.0);  // non-trivial sums
+      EXPECT_EQ(a.measure, b.measure);
+      EXPECT_EQ(a.fx, b.fx);
+      EXPECT_EQ(a.fy, b.fy);
+      EXPECT_EQ(a.fz, b.fz);
+      EXPECT_EQ(a.xx, b.xx);
+      EXPECT_EQ(a.yy, b.yy);
+      EXPECT_EQ(a.zz, b.zz);
+      EXPECT_EQ(a.xy, b.xy);
+      EXPECT_EQ(a.xz, b.xz);
+      EXPECT_EQ(a.yz, b.yz);
+    }
+  }
+  // volume_moments uses the variant for this CPU: the AVX2 sums
+  const TriangleMesh& m = meshes[0];
+  const Eigen::Vector3d p_OR(0.01, -0.02, 0.03);
+  EXPECT_EQ(volume_moments(m, p_OR).measure,
+            detail::accumulate_volume_avx2(m, p_OR).measure / 6.0);
 }
 
 }  // namespace

@@ -33,6 +33,7 @@ std::string cgal_meshes() {
 }
 
 MassSpec unit_density() { return {std::nullopt, 1.0, false, {}}; }
+MassSpec shell_density() { return {std::nullopt, 1.0, true, {}}; }
 
 class RealFiles : public testing::Test {
  protected:
@@ -144,6 +145,46 @@ TEST_F(RealFiles, ExactWeldPathMatchesTheToleranceWeldPath) {
   // The binary STL soup of a closed sphere welds exactly: the fast path.
   auto stl = read_mesh(cgal_meshes() + "sphere.stl");
   EXPECT_FALSE(repair_mesh(stl).tolerance_weld);
+}
+
+TEST_F(RealFiles, MassFromFileMatchesTheStepByStepPath) {
+  // mesh_mass_from_file skips the exact weld of a binary STL and the second edge matching:
+  // the same report and the same mass properties, bit for bit, on every file of the set.
+  for (const char* name : {"cube.off", "cube-shuffled.off", "cube-ouvert.off", "blobby_3cc.off",
+                           "sphere.stl", "sphere.ply", "boeing.off", "bones.off"}) {
+    SCOPED_TRACE(name);
+    auto m = read_mesh(cgal_meshes() + name);
+    const RepairReport rep = repair_mesh(m);
+    // as a shell (open meshes too)
+    const MeshFileMass shell = mesh_mass_from_file(cgal_meshes() + name, 1.0, shell_density());
+    EXPECT_EQ(shell.repair.welded_vertices, rep.welded_vertices);
+    EXPECT_EQ(shell.repair.boundary_edges, rep.boundary_edges);
+    EXPECT_EQ(shell.repair.reoriented_triangles, rep.reoriented_triangles);
+    EXPECT_EQ(shell.repair.inverted_components, rep.inverted_components);
+    EXPECT_EQ(shell.repair.components.size(), rep.components.size());
+    EXPECT_EQ(shell.repair.warnings, rep.warnings);
+    const MeshMassResult full_shell = mesh_mass_properties(m, shell_density());
+    EXPECT_EQ(shell.mass.measure, full_shell.measure);
+    EXPECT_EQ(shell.mass.properties.inertia_com(), full_shell.properties.inertia_com());
+    if (!rep.closed()) {  // refused as a solid by both, with one message
+      std::string message;
+      try {
+        (void)mesh_mass_properties(m, unit_density());
+      } catch (const Error& e) {
+        message = e.what();
+      }
+      ASSERT_FALSE(message.empty());
+      EXPECT_RIGID_ERROR((void)mesh_mass_from_file(cgal_meshes() + name, 1.0, unit_density()),
+                         message);
+      continue;
+    }
+    const MeshFileMass fast = mesh_mass_from_file(cgal_meshes() + name, 1.0, unit_density());
+    const MeshMassResult full = mesh_mass_properties(m, unit_density());
+    EXPECT_EQ(fast.mass.measure, full.measure);
+    EXPECT_EQ(fast.mass.properties.mass(), full.properties.mass());
+    EXPECT_EQ(fast.mass.properties.com(), full.properties.com());
+    EXPECT_EQ(fast.mass.properties.inertia_com(), full.properties.inertia_com());
+  }
 }
 
 TEST_F(RealFiles, OpenCubeIsFilledExactly) {

@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 
 #include "rigid/mass/mass_properties.hpp"
+#include "rigid/mesh/repair.hpp"
 #include "rigid/mesh/triangle_mesh.hpp"
 
 namespace rigid::mesh {
@@ -57,5 +58,13 @@ struct MeshMassResult {
 /// as metres: 10⁹ times the mass), naming --units mm.
 /// @throws rigid::Error for a bad MassSpec, an open solid or a zero volume/area.
 [[nodiscard]] MeshMassResult mesh_mass_properties(const TriangleMesh& mesh, const MassSpec& spec);
+
+/// The same for a mesh that `repaired`, the report of repair_mesh on it, describes (the mesh
+/// unchanged since): closedness is taken from the report's boundary and non-manifold edge
+/// counts instead of matching the edges again. Bitwise the same result as the overload
+/// without the report when the report is the mesh's.
+/// @throws rigid::Error as mesh_mass_properties(mesh, spec).
+[[nodiscard]] MeshMassResult mesh_mass_properties(const TriangleMesh& mesh, const MassSpec& spec,
+                                                  const RepairReport& repaired);
 
 }  // namespace rigid::mesh
