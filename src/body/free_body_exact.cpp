@@ -160,7 +160,10 @@ FreeBodyExact::Phase FreeBodyExact::phase(double u, const JacobiElliptic::ThetaS
     jacobi_.eval(ph.u_r, ph.sn, ph.cn, ph.dn);
   }
   // sn(u + 2K) = −sn u, cn(u + 2K) = −cn u, dn(u + 2K) = dn u [DLMF 22.4.3].
-  if (std::fmod(ph.half_periods, 2.0) != 0.0) {
+  // j odd ⇔ j/2 is not an integer (j/2 is exact: j is an integer-valued double; cheaper
+  // than fmod, which loops on x87 fprem).
+  const double half = 0.5 * ph.half_periods;
+  if (half != std::floor(half)) {
     ph.sn = -ph.sn;
     ph.cn = -ph.cn;
   }

@@ -117,9 +117,14 @@ class JacobiElliptic {
       }
       return;
     }
-    // Powers e^{±mw}; sinh w from expm1 keeps relative precision near u = 0.
-    const double E = std::exp(x), Ei = 1.0 / E;
-    const double sinh1 = 0.5 * (std::expm1(x) - std::expm1(-x)), cosh1 = 0.5 * (E + Ei);
+    // Powers e^{±mw} from one expm1 of |w|: with g = e^|w| − 1 ≥ 0, e^|w| = 1 + g,
+    // e^{−|w|} = 1/(1 + g) and 2 sinh |w| = g + g/(1 + g) = g (2 + g)/(1 + g), a product of
+    // positive factors: relative precision near u = 0 (no e^w − e^{−w} cancellation), and
+    // no 1 + g cancellation for w < 0 (g would be near −1 there).
+    const double g = std::expm1(std::abs(x));
+    const double Eabs = 1.0 + g, Eabs_inv = 1.0 / Eabs;
+    const double E = x >= 0.0 ? Eabs : Eabs_inv, Ei = x >= 0.0 ? Eabs_inv : Eabs;
+    const double sinh1 = std::copysign(0.5 * g * (2.0 + g) * Eabs_inv, x), cosh1 = 0.5 * (E + Ei);
     double S = odd_[0] * sinh1, C = odd_[0] * cosh1;
     double T3 = 1, T4 = 1;
     [[maybe_unused]] double re = 0, im = 0;
