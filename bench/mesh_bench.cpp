@@ -72,10 +72,11 @@ void BM_RigidRepair(benchmark::State& state) {
 }
 BENCHMARK(BM_RigidRepair)->Arg(144)->Unit(benchmark::kMillisecond);
 
-// read + weld/orient/inspect + mass properties; the second variant forces the tolerance weld
-// on every vertex read (RepairOptions::exact_weld_first = false), for the exact weld's gain in
-// the same run (the reader has shared the float32-identical copies in both).
-void file_to_result(benchmark::State& state, bool exact_weld_first) {
+// read + weld/orient/inspect + mass properties, step by step (read_mesh, repair_mesh,
+// mesh_mass_properties: an exact weld that finds nothing after the welding reader, and a second
+// edge matching for closedness); with exact_weld_first = false the tolerance weld runs on every
+// vertex read.
+void file_to_result_steps(benchmark::State& state, bool exact_weld_first) {
   const std::string file = stl_file(static_cast<int>(state.range(0)));
   double mass = 0, ixx = 0;
   std::size_t n = 0;
@@ -92,10 +93,30 @@ void file_to_result(benchmark::State& state, bool exact_weld_first) {
   state.counters["Ixx_rel_err"] = ixx / kInertiaExact - 1;
 }
 
-void BM_RigidFileToResult(benchmark::State& state) { file_to_result(state, true); }
+// The same in one call (mesh_mass_from_file: no redundant exact weld, one edge matching), as
+// `rigid inertia FILE` runs it; bitwise the same result (tests/mesh).
+void BM_RigidFileToResult(benchmark::State& state) {
+  const std::string file = stl_file(static_cast<int>(state.range(0)));
+  double mass = 0, ixx = 0;
+  std::size_t n = 0;
+  for (auto _ : state) {
+    const auto r = rigid::mesh::mesh_mass_from_file(file, 1.0, {std::nullopt, kDensity, false, {}});
+    mass = r.mass.properties.mass();
+    ixx = r.mass.properties.inertia_com()(0, 0);
+    n = r.repair.input_triangles;
+  }
+  state.counters["triangles"] = static_cast<double>(n);
+  state.counters["mass_rel_err"] = mass / kMassExact - 1;
+  state.counters["Ixx_rel_err"] = ixx / kInertiaExact - 1;
+}
 BENCHMARK(BM_RigidFileToResult)->Arg(144)->Arg(512)->Unit(benchmark::kMillisecond);
 
-void BM_RigidFileToResultToleranceWeld(benchmark::State& state) { file_to_result(state, false); }
+void BM_RigidFileToResultSteps(benchmark::State& state) { file_to_result_steps(state, true); }
+BENCHMARK(BM_RigidFileToResultSteps)->Arg(144)->Arg(512)->Unit(benchmark::kMillisecond);
+
+void BM_RigidFileToResultToleranceWeld(benchmark::State& state) {
+  file_to_result_steps(state, false);
+}
 BENCHMARK(BM_RigidFileToResultToleranceWeld)->Arg(144)->Arg(512)->Unit(benchmark::kMillisecond);
 
 // MuJoCo: compile a model whose only body's inertia comes from the mesh geom.

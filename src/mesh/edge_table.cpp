@@ -74,7 +74,7 @@ EdgeTable edge_table(const TriangleMesh& mesh, EdgeTableOptions options) {
           mate[h0] = h1;
           mate[h1] = h0;
         }
-        if (tail(h0) == tail(h1)) ++e.misoriented;
+        if (options.misoriented && tail(h0) == tail(h1)) ++e.misoriented;
       } else {
         ++e.non_manifold;
         for (std::uint64_t* u = g; options.mates && u < end; ++u) {

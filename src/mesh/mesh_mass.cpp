@@ -215,7 +215,10 @@ MeshMassResult mesh_mass_properties(const TriangleMesh& mesh, const MassSpec& sp
                   "to close simple holes",
                   e.boundary, e.non_manifold);
   }
-  const MeshMoments mom = spec.shell ? surface_moments(mesh) : volume_moments(mesh);
+  // one pass for the box: its centre is the reference point, its diagonal the size
+  const auto box = mesh.bounding_box();
+  const Eigen::Vector3d p_OR = 0.5 * (box[0] + box[1]);
+  const MeshMoments mom = spec.shell ? surface_moments(mesh, p_OR) : volume_moments(mesh, p_OR);
   const char* what = spec.shell ? "area" : "volume";
   RIGID_REQUIRE(mom.measure > 0 && std::isfinite(mom.measure),
                 "mesh {} is {}: expected positive{}", what, mom.measure,
@@ -234,7 +237,7 @@ MeshMassResult mesh_mass_properties(const TriangleMesh& mesh, const MassSpec& sp
   const Eigen::Matrix3d I = C.trace() * Eigen::Matrix3d::Identity() - C;
   MeshMassResult out{MassProperties(m, mom.p_OR_M + p_RC, I), mom.measure, {}};
 
-  const double size = mesh.bounding_box_diagonal();
+  const double size = (box[1] - box[0]).norm();
   if (size > kMaxSize) {
     out.warnings.push_back(fmt::format(
         "the mesh is {:.4g} m across: if the file is in millimetres, use --units mm", size));

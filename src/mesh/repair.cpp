@@ -149,6 +149,13 @@ std::size_t weld_exact(TriangleMesh& mesh) {
   return n - kept;
 }
 
+// Twice the area of a triangle, squared: |(b − a) × (c − a)|².
+double twice_area_squared(const TriangleMesh& mesh, const std::array<Index, 3>& t) {
+  return (mesh.vertices[t[1]] - mesh.vertices[t[0]])
+      .cross(mesh.vertices[t[2]] - mesh.vertices[t[0]])
+      .squaredNorm();
+}
+
 // Twice the area of a triangle: |(b − a) × (c − a)|.
 double twice_area(const TriangleMesh& mesh, const std::array<Index, 3>& t) {
   return (mesh.vertices[t[1]] - mesh.vertices[t[0]])
@@ -159,7 +166,7 @@ double twice_area(const TriangleMesh& mesh, const std::array<Index, 3>& t) {
 }  // namespace
 
 EdgeCounts count_edges(const TriangleMesh& mesh) {
-  const EdgeTable e = edge_table(mesh, {.mates = false, .lengths = false});
+  const EdgeTable e = edge_table(mesh, {.mates = false, .lengths = false, .misoriented = true});
   return {e.boundary, e.non_manifold, e.misoriented};
 }
 
@@ -172,17 +179,24 @@ RepairReport detail::repair_mesh(TriangleMesh& mesh, const RepairOptions& option
   RepairReport report;
   report.input_vertices = mesh.vertices.size();
   report.input_triangles = mesh.triangles.size();
-  const double diag = mesh.bounding_box_diagonal();
+  const auto input_box = mesh.bounding_box();
+  const double diag = (input_box[1] - input_box[0]).norm();
   const double tol = options.weld_tolerance * diag;
 
   // Degenerate: a repeated index, or an area below round-off of the box size.
   const double min_area2 = 1e-14 * diag * diag;  // (twice the area) ~ 1e-7·diag squared
+  // |n|² above 4·min_area2² means |n| > min_area2 whatever the rounding of the square and the
+  // root (a factor 4 is far beyond either), so the root is taken only near the threshold;
+  // always for a box so small that the square would underflow
+  const double clearly_above = min_area2 > 1e-150 ? 4 * min_area2 * min_area2
+                                                  : std::numeric_limits<double>::infinity();
   const auto remove_degenerate = [&] {
     std::size_t removed = 0;
     std::size_t out = 0;
     for (const auto& t : mesh.triangles) {
       const bool repeated = t[0] == t[1] || t[1] == t[2] || t[0] == t[2];
-      if (repeated || twice_area(mesh, t) <= min_area2) {
+      if (repeated || (twice_area_squared(mesh, t) <= clearly_above &&
+                       twice_area(mesh, t) <= min_area2)) {
         ++removed;
       } else {
         mesh.triangles[out++] = t;
@@ -200,18 +214,18 @@ RepairReport detail::repair_mesh(TriangleMesh& mesh, const RepairOptions& option
     // distinct vertices: the exact weld would keep every vertex and every index
     report.welded_vertices = vertices_distinct ? 0 : weld_exact(mesh);
     report.degenerate_triangles = remove_degenerate();
-    edges = edge_table(mesh, {.mates = true, .lengths = true});
+    edges = edge_table(mesh, {.mates = true, .lengths = true, .misoriented = false});
     if (tol > 0 && (edges.boundary > 0 || edges.min_length2 <= tol * tol)) {
       report.tolerance_weld = true;
       report.welded_vertices += weld_tolerance(mesh, tol);
       report.degenerate_triangles += remove_degenerate();
-      edges = edge_table(mesh, {.mates = true, .lengths = false});
+      edges = edge_table(mesh, {.mates = true, .lengths = false, .misoriented = false});
     }
   } else {
     report.tolerance_weld = true;
     report.welded_vertices = weld_tolerance(mesh, tol);
     report.degenerate_triangles = remove_degenerate();
-    edges = edge_table(mesh, {.mates = true, .lengths = false});
+    edges = edge_table(mesh, {.mates = true, .lengths = false, .misoriented = false});
   }
   report.boundary_edges = edges.boundary;
   report.non_manifold_edges = edges.non_manifold;
@@ -222,7 +236,8 @@ RepairReport detail::repair_mesh(TriangleMesh& mesh, const RepairOptions& option
   const std::size_t nf = mesh.triangles.size();
   std::vector<std::uint8_t> flipped(nf, 0);
   const auto tail = [&](std::uint32_t h) { return mesh.triangles[h / 3][h % 3]; };
-  const auto box = mesh.bounding_box();
+  // no vertex merged: the same vertices, the same box
+  const auto box = report.welded_vertices == 0 ? input_box : mesh.bounding_box();
   const Eigen::Vector3d centre = 0.5 * (box[0] + box[1]);
   std::vector<int> component(nf, -1);
   std::vector<std::uint32_t> queue;

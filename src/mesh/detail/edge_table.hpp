@@ -30,6 +30,7 @@ struct EdgeTable {
 struct EdgeTableOptions {
   bool mates = true;     ///< fill EdgeTable::mate (else it stays empty)
   bool lengths = false;  ///< find the shortest edge
+  bool misoriented = true;  ///< count EdgeTable::misoriented (else it stays 0)
 };
 
 /// Builds the table. O(half-edges + vertices), plus
