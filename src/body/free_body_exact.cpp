@@ -317,6 +317,7 @@ FreeBodyMotion::FreeBodyMotion(const Eigen::Vector3d& I_B, const Eigen::Quaterni
                 q0_WB.w(), q0_WB.x(), q0_WB.y(), q0_WB.z(), q0_WB.norm());
   q0_WB_ = q0_WB.normalized();
   L_W_ = q0_WB_ * I_B.cwiseProduct(w0_B);
+  inv_L_ = omega_.L_norm_ > 0.0 ? 1.0 / omega_.L_norm_ : 0.0;
 
   // Sorted axes from the user's: v_S(s) = flip · v_B(perm[s]), a proper rotation
   // (an odd permutation has det −1 and flip = −1 restores det +1 in 3D).
@@ -476,18 +477,20 @@ Eigen::Quaterniond FreeBodyMotion::orientation_impl(double t, bool carlson) cons
   // (cos θ/2, sin θ/2) ∝ (1 + l_d, s) for l_d ≥ 0 and ∝ (s, 1 − l_d) otherwise; the same for
   // α/2 with (s + l_b, −l_a) or (−l_a, s − l_b). This replaces building Q, converting the
   // matrix to a quaternion and one quaternion product.
-  const Eigen::Vector3d l = e.I_sorted_.cwiseProduct(w_S) / e.L_norm_;
+  // (products with reciprocals: one division each instead of two or three; each adds at
+  // most ½ ulp, and q is renormalised at the end)
+  const Eigen::Vector3d l = e.I_sorted_.cwiseProduct(w_S) * inv_L_;
   const int a = abd_[0], b = abd_[1], d = abd_[2];
   // (sqrt, not hypot: the components are ≤ 2 in magnitude, nothing can overflow)
   const double s = std::sqrt(l(a) * l(a) + l(b) * l(b));
   double ct = l(d) >= 0.0 ? 1.0 + l(d) : s, st = l(d) >= 0.0 ? s : 1.0 - l(d);
-  const double nt = std::sqrt(ct * ct + st * st);
-  ct /= nt;
-  st /= nt;
+  const double nt = 1.0 / std::sqrt(ct * ct + st * st);
+  ct *= nt;
+  st *= nt;
   double ca = l(b) >= 0.0 ? s + l(b) : -l(a), sa = l(b) >= 0.0 ? -l(a) : s - l(b);
-  const double na = std::sqrt(ca * ca + sa * sa);
-  ca /= na;
-  sa /= na;
+  const double na = 1.0 / std::sqrt(ca * ca + sa * sa);
+  ca *= na;
+  sa *= na;
   const double cp = std::cos(0.5 * psi), sp = std::sin(0.5 * psi);
   const double c_minus = cp * ca + sp * sa, s_minus = sp * ca - cp * sa;  // (ψ − α)/2
   const double c_plus = cp * ca - sp * sa, s_plus = sp * ca + cp * sa;    // (ψ + α)/2

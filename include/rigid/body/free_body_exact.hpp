@@ -144,6 +144,7 @@ class FreeBodyMotion {
   double Pi_slope_ = 0;      // Π(n, k)/K
   double theta_coef_ = 0;    // c = sn cn / dn (β, k') = √(m / ((k² + m)(1 + m))), m = −n
   double Pi_u0_carlson_ = 0; // Π(n; am u0, k) by the Carlson reference path
+  double inv_L_ = 0;         // 1/|L| (0 at rest)
 
   friend struct FreeBodyMotionPeer;  // tests and the benchmark reach the Carlson reference
   [[nodiscard]] double elliptic_pi(const FreeBodyExact::Phase& ph) const;
