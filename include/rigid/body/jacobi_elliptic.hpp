@@ -67,7 +67,7 @@ class JacobiElliptic {
   /// @throws rigid::Error if β is not in (0, K').
   [[nodiscard]] ThetaShift theta_shift(double beta) const;
 
-  /// sn, cn, dn at u, |u| ≤ K. About 40 flops, one exp or sincos.
+  /// sn, cn, dn at u, |u| ≤ K. About 40 flops, one expm1 or sincos.
   void eval(double u, double& sn, double& cn, double& dn) const {
     eval_impl<false>(u, sn, cn, dn, nullptr, nullptr);
   }
