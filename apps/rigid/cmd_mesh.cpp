@@ -98,7 +98,16 @@ void run_mesh_check(const MeshCheckOptions& opts) {
 
 void run_inertia_mesh(const std::string& file, const MeshInertiaOptions& opts,
                       const InertiaOutputOptions& out) {
-  mesh::TriangleMesh m = mesh::read_mesh(file, mesh::unit_scale(opts.units));
+  const mesh::MassSpec spec{opts.mass, opts.density, opts.shell, opts.thickness};
+  const double scale = mesh::unit_scale(opts.units);
+  if (!opts.fill_holes) {  // read, repair and integrate without repeated work
+    const mesh::MeshFileMass r = mesh::mesh_mass_from_file(file, scale, spec);
+    for (const auto& w : r.repair.warnings) warn(fmt::format("{}: {}", file, w));
+    for (const auto& w : r.mass.warnings) warn(fmt::format("{}: {}", file, w));
+    emit_inertia(r.mass.properties, out);
+    return;
+  }
+  mesh::TriangleMesh m = mesh::read_mesh(file, scale);
   const RepairAndFill rf = repair_and_fill(m, {}, opts.fill_holes);
   if (rf.fill) {
     for (const auto& w : rf.first.warnings) {  // what the filled mesh no longer shows
@@ -107,8 +116,7 @@ void run_inertia_mesh(const std::string& file, const MeshInertiaOptions& opts,
     warn(fmt::format("{}: {}", file, describe_fill(*rf.fill)));
   }
   for (const auto& w : rf.final_report().warnings) warn(fmt::format("{}: {}", file, w));
-  const auto res = mesh::mesh_mass_properties(
-      m, mesh::MassSpec{opts.mass, opts.density, opts.shell, opts.thickness});
+  const auto res = mesh::mesh_mass_properties(m, spec, rf.final_report());
   for (const auto& w : res.warnings) warn(fmt::format("{}: {}", file, w));
   emit_inertia(res.properties, out);
 }
