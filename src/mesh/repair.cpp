@@ -239,14 +239,16 @@ RepairReport detail::repair_mesh(TriangleMesh& mesh, const RepairOptions& option
   // no vertex merged: the same vertices, the same box
   const auto box = report.welded_vertices == 0 ? input_box : mesh.bounding_box();
   const Eigen::Vector3d centre = 0.5 * (box[0] + box[1]);
-  std::vector<int> component(nf, -1);
+  // one byte per face marks it visited (a walk only needs to know whether a face has been
+  // reached; the components are reported in the order of their seeds); the member list is
+  // reserved once: at most every face, and no copying as it grows
+  std::vector<std::uint8_t> visited(nf, 0);
   std::vector<std::uint32_t> queue;
   std::vector<std::uint32_t> members;
-  int ncomp = 0;
+  members.reserve(nf);
   for (std::size_t seed = 0; seed < nf; ++seed) {
-    if (component[seed] >= 0) continue;
-    const int id = ncomp++;
-    component[seed] = id;
+    if (visited[seed] != 0) continue;
+    visited[seed] = 1;
     queue.assign(1, static_cast<std::uint32_t>(seed));
     ComponentReport comp;
     members.clear();
@@ -260,8 +262,8 @@ RepairReport detail::repair_mesh(TriangleMesh& mesh, const RepairOptions& option
         if (m == EdgeTable::kBoundary) ++comp.boundary_edges;
         if (m >= EdgeTable::kNonManifold) continue;  // non-manifold edges do not propagate
         const std::uint32_t g = m / 3;
-        if (component[g] >= 0) continue;
-        component[g] = id;
+        if (visited[g] != 0) continue;
+        visited[g] = 1;
         // f as it stands traverses h forward unless flipped; g likewise with m. The same
         // direction on both sides of the edge means g disagrees with f: flip g.
         const bool same_input_direction = tail(h) == tail(m);
