@@ -15,9 +15,8 @@
 #include "rigid/common/error.hpp"
 #include "rigid/mass/primitive_table.hpp"
 #include "rigid/mass/primitives.hpp"
-#include "rigid/mesh/mesh_mass.hpp"
+#include "rigid/mesh/mass_from_file.hpp"
 #include "rigid/mesh/read_mesh.hpp"
-#include "rigid/mesh/repair.hpp"
 
 namespace rigid::scene {
 namespace {
@@ -72,12 +71,10 @@ MassProperties mass_of(const Body& b, const std::vector<lagrange::Parameter>& pa
       if (m.mass) spec.mass = value_of(*m.mass, params, ctx + " mass");
       if (m.density) spec.density = value_of(*m.density, params, ctx + " density");
       return at_location(m.where, ctx, [&] {
-        mesh::TriangleMesh tm = mesh::read_mesh(m.mesh_file.string(), mesh::unit_scale(m.units));
-        const mesh::RepairReport report = mesh::repair_mesh(tm);
-        for (const auto& w : report.warnings) warnings.push_back(fmt::format("{}: {}", ctx, w));
-        mesh::MeshMassResult r = mesh::mesh_mass_properties(tm, spec);
-        for (const auto& w : r.warnings) warnings.push_back(fmt::format("{}: {}", ctx, w));
-        return r.properties;
+        const mesh::MeshFileMass r = mesh::mesh_mass_from_file(m.mesh_file.string(), mesh::unit_scale(m.units), spec);
+        for (const auto& w : r.repair.warnings) warnings.push_back(fmt::format("{}: {}", ctx, w));
+        for (const auto& w : r.mass.warnings) warnings.push_back(fmt::format("{}: {}", ctx, w));
+        return r.mass.properties;
       });
     }
     case MassSpec::Kind::kExplicit: {
