@@ -145,7 +145,7 @@ void run_demo() {
   const SO3d mid = Rz.interpolate(Rx, 0.5);
   fmt::print("Geodesic midpoint of Rz and Rx: angle from each = {} deg and {} deg\n",
              (Rz.inverse() * mid).angle() * 180 / pi, (Rx.inverse() * mid).angle() * 180 / pi);
-  fmt::print("\nTry: rigid run examples/atwood.toml -o atwood && rigid eom examples/heavy_top.toml\n"
+  fmt::print("\nTry: rigid run examples/atwood.toml -o out/atwood && rigid eom examples/heavy_top.toml\n"
              "     rigid rotation --euler 30,20,10 --convention ZYX --unit deg\n"
              "     rigid inertia cone --radius 0.3 --height 1.2 --mass 2.5 --format urdf\n");
 }
