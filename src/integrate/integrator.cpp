@@ -1,6 +1,8 @@
 #include "rigid/integrate/integrator.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <optional>
 #include <vector>
 
 #include <Eigen/LU>
@@ -23,20 +25,14 @@ std::string component_name(const Problem& p, Eigen::Index i) {
   return fmt::format("y[{}]", i);
 }
 
-// cheap per-step check (as MuJoCo's mj_checkPos): the first non-finite component is named
-void check_finite(const Problem& p, std::size_t step, double t, const Eigen::VectorXd& y) {
-  for (Eigen::Index i = 0; i < y.size(); ++i) {
-    if (!std::isfinite(y[i])) [[unlikely]] {
-      std::string state;
-      for (Eigen::Index j = 0; j < y.size(); ++j) {
-        state += fmt::format("{}{}={}", j ? ", " : "", component_name(p, j), y[j]);
-      }
-      detail::throw_error("integrate",
-                          fmt::format("non-finite state at step {}, t = {} s: {} = {} ({}); "
-                                      "reduce the step or check the model",
-                                      step, t, component_name(p, i), y[i], state));
-    }
+// the first non-finite component of y, named (checked after every step, as MuJoCo's
+// mj_checkPos)
+std::optional<NonFinite> find_nonfinite(const Problem& p, const Eigen::VectorXd& y) {
+  if (auto i = first_nonfinite({y.data(), static_cast<std::size_t>(y.size())})) [[unlikely]] {
+    return NonFinite{p.owner, component_name(p, static_cast<Eigen::Index>(*i)),
+                     y[static_cast<Eigen::Index>(*i)]};
   }
+  return std::nullopt;
 }
 
 // adapts the Eigen right-hand side to odeint's std::vector state
@@ -52,29 +48,6 @@ struct OdeintSystem {
     Eigen::Map<Eigen::VectorXd>(dxdt.data(), static_cast<Eigen::Index>(dxdt.size())) = *dydt;
   }
 };
-
-// number of fixed steps of size ≈ dt covering [t0, t_end] (the last one shortened) and the
-// number of steps between output samples
-struct FixedGrid {
-  std::size_t steps;
-  std::size_t stride;
-};
-
-FixedGrid make_grid(const Problem& p, const Options& o) {
-  const double span = p.t_end - p.t0;
-  const double n = std::ceil(span / o.dt * (1.0 - 1e-12));
-  RIGID_REQUIRE(n <= static_cast<double>(o.max_steps),
-                "(t_end - t0)/dt = {} steps exceeds max_steps = {}", n, o.max_steps);
-  std::size_t stride = 1;
-  if (o.output_dt > 0) {
-    const double k = std::round(o.output_dt / o.dt);
-    RIGID_REQUIRE(k >= 1 && std::abs(k * o.dt - o.output_dt) <= 1e-9 * o.output_dt,
-                  "output_dt = {} s must be a whole multiple of the fixed step dt = {} s",
-                  o.output_dt, o.dt);
-    stride = static_cast<std::size_t>(k);
-  }
-  return {static_cast<std::size_t>(n), stride};
-}
 
 // one implicit-midpoint step y1 = y0 + h f(t + h/2, (y0 + y1)/2), solved by a simplified
 // Newton iteration on k = (y1 - y0)/h: (1 - h/2 J) δk = f(t + h/2, y0 + h/2 k) - k, with a
@@ -164,14 +137,21 @@ class ImplicitMidpoint {
   double h_ = 0.0;
 };
 
+MarchControl control_of(const Options& o) {
+  MarchControl c = o.control;
+  c.max_steps = std::min(c.max_steps, o.max_steps);
+  return c;
+}
+
 Solution run_fixed(const Problem& p, const Options& o) {
-  const FixedGrid grid = make_grid(p, o);
+  // outputs every output_dt (or every step); between two outputs the fewest equal steps ≤ dt
+  const TimeGrid grid = TimeGrid::uniform(p.t0, p.t_end, o.output_dt > 0 ? o.output_dt : o.dt);
   Solution sol;
+  sol.t.reserve(grid.size());
+  sol.y.reserve(grid.size());
   Eigen::VectorXd y = p.y0;
-  sol.t.push_back(p.t0);
-  sol.y.push_back(y);
   const auto n = y.size();
-  Eigen::VectorXd a(n), work(n);
+  Eigen::VectorXd a(n);
 
   Eigen::Index np = p.n_position;
   if (o.method == Method::kStormerVerlet) {
@@ -191,21 +171,19 @@ Solution run_fixed(const Problem& p, const Options& o) {
   ImplicitMidpoint midpoint(p, o, &sol.rhs_evaluations);
 
   bool have_accel = false;  // Störmer–Verlet reuses a(t1, q1) as the next step's a(t0, q0)
-  for (std::size_t k = 0; k < grid.steps; ++k) {
-    const double t = p.t0 + static_cast<double>(k) * o.dt;
-    const double t1 = (k + 1 == grid.steps) ? p.t_end : p.t0 + static_cast<double>(k + 1) * o.dt;
-    const double h = t1 - t;
+  std::size_t step_index = 0;
+  auto step = [&](double t, double h) {
+    ++step_index;
     switch (o.method) {
-      case Method::kRk4: {
+      case Method::kRk4:
         Eigen::Map<Eigen::VectorXd>(x.data(), n) = y;
         rk4.do_step(sys, x, t, h);
         y = Eigen::Map<const Eigen::VectorXd>(x.data(), n);
         break;
-      }
       case Method::kImplicitMidpoint:
-        midpoint.step(t, h, y, k);
+        midpoint.step(t, h, y, step_index);
         break;
-      case Method::kStormerVerlet: {
+      case Method::kStormerVerlet:
         // v_{1/2} = v0 + h/2 a(t0, q0); q1 = q0 + h v_{1/2}; v1 = v_{1/2} + h/2 a(t1, q1)
         if (!have_accel) {
           p.rhs(t, y, a);
@@ -213,71 +191,78 @@ Solution run_fixed(const Problem& p, const Options& o) {
         }
         y.tail(np) += 0.5 * h * a.tail(np);
         y.head(np) += h * y.tail(np);
-        p.rhs(t1, y, a);
+        p.rhs(t + h, y, a);
         ++sol.rhs_evaluations;
         y.tail(np) += 0.5 * h * a.tail(np);
         have_accel = true;
         break;
-      }
       case Method::kDopri5:
         RIGID_ASSERT(false);
         break;
     }
-    ++sol.steps;
-    check_finite(p, k + 1, t1, y);
-    if ((k + 1) % grid.stride == 0 || k + 1 == grid.steps) {
-      sol.t.push_back(t1);
-      sol.y.push_back(y);
-    }
-  }
+  };
+  auto observe = [&](std::size_t, double t) {
+    sol.t.push_back(t);
+    sol.y.push_back(y);
+  };
+  sol.steps = march(grid, o.dt, step, [&] { return find_nonfinite(p, y); }, observe, control_of(o)).steps;
   return sol;
 }
 
 Solution run_dopri5(const Problem& p, const Options& o) {
   Solution sol;
+  const MarchControl control = control_of(o);
   const auto n = p.y0.size();
   Eigen::VectorXd ybuf(n), dbuf(n);
   OdeintSystem sys{&p, &ybuf, &dbuf, &sol.rhs_evaluations};
   auto stepper = odeint::make_dense_output(o.atol, o.rtol, odeint::runge_kutta_dopri5<StdState>());
   StdState x0(p.y0.data(), p.y0.data() + n);
   stepper.initialize(x0, p.t0, std::min(o.dt, p.t_end - p.t0));
+  // output times of the one grid rule (dense output between steps), or every accepted step
+  std::optional<TimeGrid> grid;
+  if (o.output_dt > 0) grid = TimeGrid::uniform(p.t0, p.t_end, o.output_dt);
+  StdState xo(static_cast<std::size_t>(n));
+  auto sample = [&](double t, const StdState& state) {
+    RIGID_REQUIRE(sol.t.size() < TimeGrid::kMaxOutputs,
+                  "dopri5 sampled every step for more than {} steps before t_end = {} s (at t = {} "
+                  "s); set an output spacing",
+                  TimeGrid::kMaxOutputs, p.t_end, t);
+    sol.t.push_back(t);
+    sol.y.emplace_back(Eigen::Map<const Eigen::VectorXd>(state.data(), n));
+  };
   sol.t.push_back(p.t0);
   sol.y.push_back(p.y0);
-  StdState xo(static_cast<std::size_t>(n));
-  std::size_t next_output = 1;
-  auto output_time = [&](std::size_t k) {
-    return std::min(p.t_end, p.t0 + static_cast<double>(k) * o.output_dt);
-  };
+  std::size_t next_output = 1;  // grid index of the next sample (output 0 is t0)
+  double h_last = 0.0;
   while (stepper.current_time() < p.t_end) {
-    RIGID_REQUIRE(sol.steps < o.max_steps, "dopri5 took more than max_steps = {} steps before "
-                  "t_end = {} s (at t = {} s)", o.max_steps, p.t_end, stepper.current_time());
+    RIGID_REQUIRE(sol.steps < control.max_steps, "dopri5 took more than max_steps = {} steps before "
+                  "t_end = {} s (at t = {} s)", control.max_steps, p.t_end, stepper.current_time());
+    const double before = stepper.current_time();
     stepper.do_step(sys);
     ++sol.steps;
     const StdState& xc = stepper.current_state();
     const double tc = stepper.current_time();
-    check_finite(p, sol.steps, tc, Eigen::Map<const Eigen::VectorXd>(xc.data(), n));
-    if (o.output_dt > 0) {
+    h_last = tc - before;
+    const Eigen::Map<const Eigen::VectorXd> yc(xc.data(), n);
+    if (auto bad = find_nonfinite(p, yc)) throw_nonfinite(*bad, sol.steps, tc, h_last);
+    if (grid) {
       // dense output at every sample time passed by this step
-      while (next_output >= 1 && sol.t.back() < p.t_end && output_time(next_output) <= tc) {
-        const double to = output_time(next_output);
-        stepper.calc_state(to, xo);
-        sol.t.push_back(to);
-        sol.y.emplace_back(Eigen::Map<const Eigen::VectorXd>(xo.data(), n));
+      while (next_output < grid->size() && (*grid)[next_output] <= tc) {
+        stepper.calc_state((*grid)[next_output], xo);
+        sample((*grid)[next_output], xo);
         ++next_output;
       }
     } else if (tc <= p.t_end) {
-      sol.t.push_back(tc);
-      sol.y.emplace_back(Eigen::Map<const Eigen::VectorXd>(xc.data(), n));
+      sample(tc, xc);
     } else {
       stepper.calc_state(p.t_end, xo);
-      sol.t.push_back(p.t_end);
-      sol.y.emplace_back(Eigen::Map<const Eigen::VectorXd>(xo.data(), n));
+      sample(p.t_end, xo);
     }
+    poll(control, std::min(tc, p.t_end));
   }
   if (sol.t.back() < p.t_end) {  // round-off in the sample times: close on t_end exactly
     stepper.calc_state(p.t_end, xo);
-    sol.t.push_back(p.t_end);
-    sol.y.emplace_back(Eigen::Map<const Eigen::VectorXd>(xo.data(), n));
+    sample(p.t_end, xo);
   }
   return sol;
 }
@@ -317,7 +302,10 @@ Solution integrate(const Problem& problem, const Options& options) {
   RIGID_REQUIRE(options.rtol > 0 && options.atol > 0,
                 "tolerances must be positive, got rtol = {}, atol = {}", options.rtol,
                 options.atol);
-  check_finite(problem, 0, problem.t0, problem.y0);
+  if (auto bad = find_nonfinite(problem, problem.y0)) {
+    RIGID_THROW("the initial state is not finite: {}{} = {}",
+                bad->owner.empty() ? "" : bad->owner + " ", bad->component, bad->value);
+  }
   if (options.method == Method::kDopri5) return run_dopri5(problem, options);
   return run_fixed(problem, options);
 }

@@ -16,6 +16,13 @@ class Error : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// A run stopped on request (Ctrl-C on the command line, KeyboardInterrupt in Python, a
+/// cancellation flag set by another thread). Nothing the run would have written is written.
+class Cancelled : public Error {
+ public:
+  using Error::Error;
+};
+
 /// A position in a text input, for messages that start with `file:line:col: `.
 /// line and column count from 1; 0 means unknown and is left out of the message.
 struct SourceLocation {

@@ -9,6 +9,8 @@
 
 #include <Eigen/Core>
 
+#include "rigid/integrate/march.hpp"
+
 namespace rigid::integrate {
 
 /// The integration methods on R^n.
@@ -39,18 +41,27 @@ struct Problem {
   int n_position = -1;
   /// Names of the components of y for error messages (empty: y[i]).
   std::vector<std::string> names;
+  /// What y is the state of, for error messages (e.g. "system"); may be empty.
+  std::string owner;
 };
 
 /// Integration settings. Units: seconds.
+///
+/// Fixed-step methods follow the one step rule of rigid::integrate::march: between two output
+/// times they take the fewest equal steps no longer than `dt`. Output times are t0 + k·output_dt
+/// and t_end (TimeGrid::uniform); output_dt = 0 samples every step of length dt.
 struct Options {
   Method method = Method::kDopri5;
-  double dt = 1e-3;          ///< fixed step; initial step of dopri5
+  double dt = 1e-3;          ///< largest fixed step; initial step of dopri5
   double rtol = 1e-10;       ///< dopri5 relative tolerance
   double atol = 1e-10;       ///< dopri5 absolute tolerance
   double output_dt = 0.0;    ///< spacing of output samples; 0: every step (and t_end)
   int max_newton = 30;       ///< implicit midpoint: Newton iterations per step
   double newton_tol = 1e-14; ///< implicit midpoint: relative correction at convergence
   std::size_t max_steps = 500'000'000;
+  /// Progress reports and cancellation (polled after every output and every
+  /// MarchControl::kPollSteps steps; every step of dopri5).
+  MarchControl control{};
 };
 
 /// Output samples y(t[k]) = y[k] and counters.
@@ -64,7 +75,7 @@ struct Solution {
 /// Integrates `problem` with `options`. Every step is checked for a non-finite state.
 /// @throws rigid::Error for bad options (non-positive dt, t_end ≤ t0, ...), a non-finite
 ///         state (naming the step, t and the component), a diverging Newton iteration, or
-///         whatever the right-hand side throws.
+///         whatever the right-hand side throws; rigid::Cancelled from options.control.
 [[nodiscard]] Solution integrate(const Problem& problem, const Options& options);
 
 }  // namespace rigid::integrate

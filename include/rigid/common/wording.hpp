@@ -1,0 +1,31 @@
+#pragma once
+
+/// Remedies in library terms, worded by each front end in its own.
+///
+/// A library error that suggests a setting names it as the setting's C++ field in backticks,
+/// `` `shell = true` `` or `` `units = "mm"` ``, built by `setting()`. The command line prints
+/// it as a flag (`--shell`, `--units mm`), a scene file as its key (`shell = true`), Python
+/// as a keyword argument (`shell=True`, `units="mm"`): `word_for()` rewrites every such
+/// reference of a message for one surface. The library, C++ users and scene files read the
+/// message unchanged.
+
+#include <string>
+#include <string_view>
+
+namespace rigid {
+
+/// `` `key = true` ``: a boolean setting to switch on.
+[[nodiscard]] std::string setting(std::string_view key);
+/// `` `key = "value"` ``: a setting with a text value.
+[[nodiscard]] std::string setting(std::string_view key, std::string_view value);
+
+/// The front ends that word a remedy.
+enum class Surface { kLibrary, kCli, kScene, kPython };
+
+/// `message` with every setting reference in the terms of `surface`:
+///  - kCli: `--key-with-dashes` for `true`, `--key value` for a text value;
+///  - kPython: `key=True`, `key="value"`;
+///  - kLibrary, kScene: unchanged.
+[[nodiscard]] std::string word_for(Surface surface, std::string_view message);
+
+}  // namespace rigid

@@ -1,0 +1,73 @@
+#include "rigid/common/wording.hpp"
+
+#include <cctype>
+
+#include <fmt/format.h>
+
+namespace rigid {
+
+std::string setting(std::string_view key) { return fmt::format("`{} = true`", key); }
+
+std::string setting(std::string_view key, std::string_view value) {
+  return fmt::format("`{} = \"{}\"`", key, value);
+}
+
+namespace {
+
+bool is_key_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_'; }
+
+// A setting reference `key = true` or `key = "value"` starting at text[0] (the opening
+// backtick); on success `key`, `value` (empty for true) and the length are set.
+bool parse_reference(std::string_view text, std::string_view& key, std::string_view& value,
+                     bool& boolean, std::size_t& length) {
+  std::size_t i = 1;
+  while (i < text.size() && is_key_char(text[i])) ++i;
+  if (i == 1 || std::isalpha(static_cast<unsigned char>(text[1])) == 0) return false;
+  key = text.substr(1, i - 1);
+  const std::string_view rest = text.substr(i);
+  if (rest.starts_with(" = true`")) {
+    boolean = true;
+    value = {};
+    length = i + 8;
+    return true;
+  }
+  if (!rest.starts_with(" = \"")) return false;
+  const std::size_t open = i + 4;
+  const std::size_t close = text.find("\"`", open);
+  if (close == std::string_view::npos || text.substr(open, close - open).find('`') != std::string_view::npos) {
+    return false;
+  }
+  boolean = false;
+  value = text.substr(open, close - open);
+  length = close + 2;
+  return true;
+}
+
+}  // namespace
+
+std::string word_for(Surface surface, std::string_view message) {
+  if (surface == Surface::kLibrary || surface == Surface::kScene) return std::string(message);
+  std::string out;
+  out.reserve(message.size());
+  std::size_t i = 0;
+  while (i < message.size()) {
+    std::string_view key, value;
+    bool boolean = false;
+    std::size_t length = 0;
+    if (message[i] == '`' && parse_reference(message.substr(i), key, value, boolean, length)) {
+      if (surface == Surface::kCli) {
+        std::string flag(key);
+        for (char& c : flag) c = c == '_' ? '-' : c;
+        out += boolean ? fmt::format("--{}", flag) : fmt::format("--{} {}", flag, value);
+      } else {
+        out += boolean ? fmt::format("{}=True", key) : fmt::format("{}=\"{}\"", key, value);
+      }
+      i += length;
+      continue;
+    }
+    out += message[i++];
+  }
+  return out;
+}
+
+}  // namespace rigid

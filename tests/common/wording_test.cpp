@@ -1,0 +1,34 @@
+#include "rigid/common/wording.hpp"
+
+#include <gtest/gtest.h>
+
+namespace rigid {
+namespace {
+
+TEST(Wording, SettingReferencesAreTheCppFields) {
+  EXPECT_EQ(setting("shell"), "`shell = true`");
+  EXPECT_EQ(setting("units", "mm"), "`units = \"mm\"`");
+}
+
+TEST(Wording, EachSurfaceWordsTheRemedy) {
+  const std::string msg = "the mesh is open: use " + setting("shell") + ", or " +
+                          setting("fill_holes") + "; if it is in millimetres, use " +
+                          setting("units", "mm");
+  EXPECT_EQ(word_for(Surface::kCli, msg),
+            "the mesh is open: use --shell, or --fill-holes; if it is in millimetres, use --units mm");
+  EXPECT_EQ(word_for(Surface::kPython, msg),
+            "the mesh is open: use shell=True, or fill_holes=True; if it is in millimetres, use "
+            "units=\"mm\"");
+  EXPECT_EQ(word_for(Surface::kScene, msg), msg);
+  EXPECT_EQ(word_for(Surface::kLibrary, msg), msg);
+}
+
+TEST(Wording, OtherBackticksAreLeftAlone) {
+  const std::string msg = "invariant `x > 0` fails; `a = b` and `k = 3` are not settings; `1x = true`";
+  EXPECT_EQ(word_for(Surface::kCli, msg), msg);
+  EXPECT_EQ(word_for(Surface::kPython, msg), msg);
+  EXPECT_EQ(word_for(Surface::kCli, "unterminated `units = \"mm"), "unterminated `units = \"mm");
+}
+
+}  // namespace
+}  // namespace rigid
