@@ -22,18 +22,9 @@ constexpr double kEqualMoments = 1e-14;
 }  // namespace
 
 FreeBodyExact::FreeBodyExact(const Eigen::Vector3d& I_B, const Eigen::Vector3d& w0_B) {
-  RIGID_REQUIRE(I_B.allFinite() && (I_B.array() > 0).all(),
-                "principal moments must be finite and > 0 kg·m², got {}", rigid::to_string(I_B.transpose()));
+  if (auto report = check_rotational_moments(I_B)) RIGID_THROW("{}", *report);
   RIGID_REQUIRE(w0_B.allFinite(), "initial body angular velocity must be finite, got {}",
                 rigid::to_string(w0_B.transpose()));
-  const double tol = 1e-12 * I_B.maxCoeff();
-  for (int i = 0; i < 3; ++i) {
-    RIGID_REQUIRE(I_B(i) <= I_B((i + 1) % 3) + I_B((i + 2) % 3) + tol,
-                  "principal moments {} violate the triangle inequality at axis {} "
-                  "(I{} = {} > {}); not a physical body",
-                  rigid::to_string(I_B.transpose()), i + 1, i + 1, I_B(i),
-                  I_B((i + 1) % 3) + I_B((i + 2) % 3));
-  }
   // Sort ascending; an odd permutation is improper, compensated by ω → −ω
   // (Euler's equations are quadratic in ω, so −ω solves the mirrored system).
   std::array<int, 3> p{0, 1, 2};
@@ -298,24 +289,25 @@ void carlson_rf_rj(double x, double y, double z, double p, double& rf, double& r
   }
 }
 
-// Unit quaternion of the rotation by `angle` about the unit vector `axis`.
-Eigen::Quaterniond axis_angle_quaternion(const Eigen::Vector3d& axis, double angle) {
-  const double h = 0.5 * angle;
-  Eigen::Quaterniond q;
-  q.w() = std::cos(h);
-  q.vec() = std::sin(h) * axis;
-  return q;
+// The principal axes R_BP of a body's inertia about its COM (rigid::MassProperties).
+SO3d principal_rotation(const MassProperties& mass_B) {
+  return SO3d::from_matrix(mass_B.principal_axes().R_BP);
 }
 }  // namespace
 
-FreeBodyMotion::FreeBodyMotion(const Eigen::Vector3d& I_B, const Eigen::Quaterniond& q0_WB,
-                               const Eigen::Vector3d& w0_B)
-    : omega_(I_B, w0_B) {
-  RIGID_REQUIRE(q0_WB.coeffs().allFinite() && std::abs(q0_WB.norm() - 1.0) <= 1e-9,
-                "initial orientation must be a finite unit quaternion (|q| within 1e-9 of 1), "
-                "got (w, x, y, z) = ({}, {}, {}, {}) with |q| = {}",
-                q0_WB.w(), q0_WB.x(), q0_WB.y(), q0_WB.z(), q0_WB.norm());
-  q0_WB_ = q0_WB.normalized();
+FreeBodyMotion::FreeBodyMotion(const Eigen::Vector3d& I_B, const SO3d& R0_WB, const Eigen::Vector3d& w0_B)
+    : FreeBodyMotion(I_B, R0_WB, w0_B, SO3d::identity()) {}
+
+FreeBodyMotion::FreeBodyMotion(const MassProperties& mass_B, const SO3d& R0_WB, const Eigen::Vector3d& w0_B)
+    : FreeBodyMotion(mass_B.principal_axes().moments, R0_WB * principal_rotation(mass_B),
+                     principal_rotation(mass_B).inverse() * w0_B, principal_rotation(mass_B)) {}
+
+FreeBodyMotion::FreeBodyMotion(const Eigen::Vector3d& I_B, const SO3d& R0_WB, const Eigen::Vector3d& w0_B,
+                               const SO3d& R_BP)
+    : R_BP_(R_BP), omega_(I_B, w0_B) {
+  // (in this constructor B is the principal frame; R_BP_ turns the results back into the
+  // user's body frame for the MassProperties form)
+  q0_WB_ = R0_WB;
   L_W_ = q0_WB_ * I_B.cwiseProduct(w0_B);
   inv_L_ = omega_.L_norm_ > 0.0 ? 1.0 / omega_.L_norm_ : 0.0;
 
@@ -324,7 +316,7 @@ FreeBodyMotion::FreeBodyMotion(const Eigen::Vector3d& I_B, const Eigen::Quaterni
   Eigen::Matrix3d R_SB = Eigen::Matrix3d::Zero();
   for (int s = 0; s < 3; ++s) R_SB(s, omega_.perm_[s]) = omega_.flip_;
   RIGID_ASSERT(std::abs(R_SB.determinant() - 1.0) < 1e-12);
-  q_SB_ = Eigen::Quaterniond(R_SB);
+  q_SB_ = SO3d::from_matrix(R_SB);
 
   const FreeBodyExact& e = omega_;
   const Eigen::Vector3d& I = e.I_sorted_;
@@ -388,10 +380,10 @@ FreeBodyMotion::FreeBodyMotion(const Eigen::Vector3d& I_B, const Eigen::Quaterni
     }
   }
   // M = R_WS(0) Q(0): world from the frame whose e3 is L.
-  q_M_ = q0_WB_ * q_SB_.conjugate() * q_Q(w);
+  q_M_ = q0_WB_ * q_SB_.inverse() * q_Q(w);
   Eigen::Matrix3d P = Eigen::Matrix3d::Zero();
   for (int c = 0; c < 3; ++c) P(abd_[c], c) = 1.0;
-  q_PS_SB_ = Eigen::Quaterniond(Eigen::Matrix3d(P.transpose())) * q_SB_;
+  q_PS_SB_ = SO3d::from_matrix(P.transpose()) * q_SB_;
 }
 
 namespace {
@@ -425,7 +417,7 @@ double FreeBodyMotion::elliptic_pi_carlson(const FreeBodyExact::Phase& ph) const
   return 2.0 * ph.half_periods * Pi_complete_ + incomplete;
 }
 
-Eigen::Quaterniond FreeBodyMotion::q_Q(const Eigen::Vector3d& w_S) const {
+SO3d FreeBodyMotion::q_Q(const Eigen::Vector3d& w_S) const {
   // Columns in sorted coordinates: (l_b/s, −l_a/s, 0), (l_a l_d/s, l_b l_d/s, −s), l
   // in the (a, b, d) components; s = √(l_a² + l_b²) > 0 off permanent rotations.
   const Eigen::Vector3d l = omega_.I_sorted_.cwiseProduct(w_S) / omega_.L_norm_;
@@ -438,20 +430,21 @@ Eigen::Quaterniond FreeBodyMotion::q_Q(const Eigen::Vector3d& w_S) const {
   Q(b, 1) = l(b) * l(d) / s;
   Q(d, 1) = -s;
   Q.col(2) = l;
-  return Eigen::Quaterniond(Q);
+  // orthonormal to round-off (unit columns built from the unit l); the tolerance of from_matrix
+  // is ample
+  return SO3d::from_matrix(Q);
 }
 
-Eigen::Quaterniond FreeBodyMotion::orientation(double t) const { return orientation_impl(t, false); }
+SO3d FreeBodyMotion::orientation(double t) const {
+  const SO3d R_WP = orientation_impl(t, false);
+  return R_BP_is_identity() ? R_WP : R_WP * R_BP_.inverse();
+}
 
-Eigen::Quaterniond FreeBodyMotion::orientation_impl(double t, bool carlson) const {
+SO3d FreeBodyMotion::orientation_impl(double t, bool carlson) const {
   const FreeBodyExact& e = omega_;
   if (uniform_) {
     // ω constant: R_WB(t) = R_WB(0) exp(t ω̂).
-    const Eigen::Vector3d& w = e.w0_sorted_;
-    const double wn = w.norm();
-    if (wn == 0.0) return q0_WB_;
-    const Eigen::Vector3d w_B = q_SB_.conjugate() * w;
-    return q0_WB_ * axis_angle_quaternion(w_B / wn, wn * t);
+    return q0_WB_ * SO3d::exp(t * (q_SB_.inverse() * e.w0_sorted_));
   }
   Eigen::Vector3d w_S;
   double psi = psi_rate_ * t;
@@ -494,12 +487,11 @@ Eigen::Quaterniond FreeBodyMotion::orientation_impl(double t, bool carlson) cons
   const double cp = std::cos(0.5 * psi), sp = std::sin(0.5 * psi);
   const double c_minus = cp * ca + sp * sa, s_minus = sp * ca - cp * sa;  // (ψ − α)/2
   const double c_plus = cp * ca - sp * sa, s_plus = sp * ca + cp * sa;    // (ψ + α)/2
-  const Eigen::Quaterniond r(ct * c_minus, st * c_plus, st * s_plus, ct * s_minus);
+  // (ct, st) and (ca, sa) are unit pairs and (cp, sp) a cosine and sine: r is unit to round-off
+  const SO3d r = SO3d::from_unit_quaternion(ct * c_minus, st * c_plus, st * s_plus, ct * s_minus);
   // r acts in the frame whose x, y, z are the sorted axes a, b, d: q_PS_SB_ = Pᵀ R_SB takes
   // the user's body axes there (P: x, y, z ↦ a, b, d, a cyclic relabelling).
-  Eigen::Quaterniond q = q_M_ * r * q_PS_SB_;
-  q.normalize();
-  return q;
+  return (q_M_ * r * q_PS_SB_).renormalized();
 }
 
 FreeBodyState FreeBodyMotion::state(double t) const { return {orientation(t), omega_body(t)}; }

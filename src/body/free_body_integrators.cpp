@@ -7,6 +7,7 @@
 #include "rigid/body/euler.hpp"
 #include "rigid/common/error.hpp"
 #include "rigid/common/format.hpp"
+#include "rigid/mass/mass_properties.hpp"
 
 namespace rigid::body {
 
@@ -22,33 +23,28 @@ constexpr std::array<std::pair<std::string_view, FreeBodyMethod>, 7> kMethods{{
     {"moser_veselov", FreeBodyMethod::kMoserVeselov},
 }};
 
-struct Rk4Deriv {
-  Eigen::Vector4d qdot;  // (w, x, y, z)
-  Eigen::Vector3d wdot;
-};
-
-Eigen::Vector4d coeffs_wxyz(const Eigen::Quaterniond& q) { return {q.w(), q.x(), q.y(), q.z()}; }
-Eigen::Quaterniond from_wxyz(const Eigen::Vector4d& c) { return {c(0), c(1), c(2), c(3)}; }
-
-Rk4Deriv rk4_deriv(const Eigen::Vector3d& I_B, const Eigen::Vector4d& q, const Eigen::Vector3d& w) {
-  // q̇ = ½ q ⊗ (0, ω_B)
-  const Eigen::Quaterniond qq = from_wxyz(q);
-  const Eigen::Quaterniond wq(0.0, w(0), w(1), w(2));
-  const Eigen::Quaterniond prod = qq * wq;
-  return {0.5 * coeffs_wxyz(prod), euler_rhs<double>(I_B, w, Eigen::Vector3d::Zero())};
-}
-
+// RK4 on (q, ω) with q the unnormalised quaternion coefficients of the stages,
+// q̇ = ½ q ⊗ (0, ω_B) (SO3::quaternion_rate) and Euler's equations for ω̇; the result is
+// projected back onto |q| = 1 (SO3's invariant).
 FreeBodyState step_rk4(const Eigen::Vector3d& I_B, const FreeBodyState& s, double h) {
-  const Eigen::Vector4d q0 = coeffs_wxyz(s.q_WB);
+  const Eigen::Vector3d z = Eigen::Vector3d::Zero();
+  const Eigen::Vector4d q0 = s.R_WB.quaternion();
   const Eigen::Vector3d& w0 = s.w_B;
-  const Rk4Deriv k1 = rk4_deriv(I_B, q0, w0);
-  const Rk4Deriv k2 = rk4_deriv(I_B, q0 + 0.5 * h * k1.qdot, w0 + 0.5 * h * k1.wdot);
-  const Rk4Deriv k3 = rk4_deriv(I_B, q0 + 0.5 * h * k2.qdot, w0 + 0.5 * h * k2.wdot);
-  const Rk4Deriv k4 = rk4_deriv(I_B, q0 + h * k3.qdot, w0 + h * k3.wdot);
-  FreeBodyState out;
-  out.q_WB = from_wxyz(q0 + h / 6.0 * (k1.qdot + 2.0 * k2.qdot + 2.0 * k3.qdot + k4.qdot));
-  out.w_B = w0 + h / 6.0 * (k1.wdot + 2.0 * k2.wdot + 2.0 * k3.wdot + k4.wdot);
-  return out;
+  const Eigen::Vector4d k1q = SO3d::quaternion_rate(q0, w0);
+  const Eigen::Vector3d k1w = euler_rhs<double>(I_B, w0, z);
+  const Eigen::Vector3d w2 = w0 + 0.5 * h * k1w;
+  const Eigen::Vector4d k2q = SO3d::quaternion_rate(q0 + 0.5 * h * k1q, w2);
+  const Eigen::Vector3d k2w = euler_rhs<double>(I_B, w2, z);
+  const Eigen::Vector3d w3 = w0 + 0.5 * h * k2w;
+  const Eigen::Vector4d k3q = SO3d::quaternion_rate(q0 + 0.5 * h * k2q, w3);
+  const Eigen::Vector3d k3w = euler_rhs<double>(I_B, w3, z);
+  const Eigen::Vector3d w4 = w0 + h * k3w;
+  const Eigen::Vector4d k4q = SO3d::quaternion_rate(q0 + h * k3q, w4);
+  const Eigen::Vector3d k4w = euler_rhs<double>(I_B, w4, z);
+  const Eigen::Vector4d q1 = q0 + h / 6.0 * (k1q + 2.0 * k2q + 2.0 * k3q + k4q);
+  // a step that overflowed returns SO3d::invalid() for the finiteness check to report
+  return {q1.allFinite() ? SO3d::from_quaternion(q1(0), q1(1), q1(2), q1(3)) : SO3d::invalid(),
+          w0 + h / 6.0 * (k1w + 2.0 * k2w + 2.0 * k3w + k4w)};
 }
 
 // sin x and cos x − 1 for |x| ≤ 0.5 by their Maclaurin series [DLMF, eqs. 4.19.1, 4.19.2]:
@@ -125,27 +121,22 @@ const std::vector<AxisFlow>& flows_of(FreeBodyMethod method) {
 
 // Exact flow of H_i = L_i²/(2 I_i) through the half angle θ/2 = `half`: ω_i = L_i/I_i is
 // constant, L_B turns by −θ about e_i and the body by +θ. One sin/cos pair of θ/2 gives
-// 1 − cos θ = 2 sin²(θ/2), sin θ = 2 sin(θ/2) cos(θ/2) and the quaternion r = (cos θ/2,
-// sin θ/2 e_i) of the body turn, q ← q ⊗ r. Each new component is written as the old one
-// plus a small increment (e.g. L_j + (sin θ L_k − (1 − cos θ) L_j)), so its rounding error
-// is one half-ulp of the result and does not repeat with the same sign in every step (see
-// small_sincos). ≈ 30 flops + small_sincos.
+// 1 − cos θ = 2 sin²(θ/2), sin θ = 2 sin(θ/2) cos(θ/2), and the body turn R ← R exp(θ e_i)
+// (SO3::turned_about_axis, from the same half-angle pair). Each new component of L is written
+// as the old one plus a small increment (L_j + (sin θ L_k − (1 − cos θ) L_j)), so its rounding
+// error is one half-ulp of the result and does not repeat with the same sign in every step
+// (see small_sincos). ≈ 40 flops + small_sincos.
 template <int i>
-inline void axis_flow(double half, double q[4], double L[3]) {
+inline void axis_flow(double half, SO3d& R, double L[3]) {
   constexpr int j = (i + 1) % 3, k = (i + 2) % 3;
   double sh = 0, cm = 0;  // sin θ/2, cos θ/2 − 1
   small_sincos(half, sh, cm);
-  const double d = 2.0 * sh * sh;          // 1 − cos θ
+  const double d = 2.0 * sh * sh;             // 1 − cos θ
   const double s = 2.0 * sh + 2.0 * sh * cm;  // sin θ
   const double Lj = L[j], Lk = L[k];
   L[j] = Lj + (s * Lk - d * Lj);
   L[k] = Lk - (s * Lj + d * Lk);
-  // (w, v) ⊗ (ch, sh e_i) = (w ch − sh v_i, ch v + w sh e_i + sh v × e_i), ch = 1 + cm
-  const double w = q[0], v[3] = {q[1], q[2], q[3]};
-  q[0] = w + (cm * w - sh * v[i]);
-  q[1 + i] = v[i] + (cm * v[i] + sh * w);
-  q[1 + j] = v[j] + (cm * v[j] + sh * v[k]);
-  q[1 + k] = v[k] + (cm * v[k] - sh * v[j]);
+  R = R.turned_about_axis<i>(sh, cm);
 }
 
 // The splitting step shared by step_free_body and step_free_bodies (free_body_batch.cpp).
@@ -155,20 +146,16 @@ FreeBodyState step_splitting(const std::vector<AxisFlow>& flows, const Eigen::Ve
   // the next step must round-trip without a bias that repeats every step (with 1/I_i rounded
   // once, the tennis racket's ω error at t = 100 s grew 70× and |L| drifted 30–50× more).
   const double a[3] = {h / I_B(0), h / I_B(1), h / I_B(2)};  // θ/2 = c_half · a_i · L_i
-  double q[4] = {st.q_WB.w(), st.q_WB.x(), st.q_WB.y(), st.q_WB.z()};
+  SO3d R = st.R_WB;
   double L[3] = {I_B(0) * st.w_B(0), I_B(1) * st.w_B(1), I_B(2) * st.w_B(2)};
   for (const AxisFlow& f : flows) {
-    if (f.axis == 0) axis_flow<0>(f.c * a[0] * L[0], q, L);
-    else if (f.axis == 1) axis_flow<1>(f.c * a[1] * L[1], q, L);
-    else axis_flow<2>(f.c * a[2] * L[2], q, L);
+    if (f.axis == 0) axis_flow<0>(f.c * a[0] * L[0], R, L);
+    else if (f.axis == 1) axis_flow<1>(f.c * a[1] * L[1], R, L);
+    else axis_flow<2>(f.c * a[2] * L[2], R, L);
   }
-  // Products of unit quaternions stay unit only up to round-off, which would random-walk.
-  // One Newton step for 1/√(|q|²) at 1, q ← q (3 − |q|²)/2, leaves |q|² − 1 = O(δ²) for
-  // |q|² = 1 + δ: the same as normalising, without the square root and division. ≈ 10 flops.
-  const double n2 = q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3];
-  const double f = 1.5 - 0.5 * n2;
-  return {Eigen::Quaterniond(f * q[0], f * q[1], f * q[2], f * q[3]),
-          Eigen::Vector3d(L[0] / I_B(0), L[1] / I_B(1), L[2] / I_B(2))};
+  // Products of unit quaternions stay unit only up to round-off, which would random-walk:
+  // one Newton step per step restores |q| (SO3::renormalized).
+  return {R.renormalized(), Eigen::Vector3d(L[0] / I_B(0), L[1] / I_B(1), L[2] / I_B(2))};
 }
 
 FreeBodyState step_midpoint(const Eigen::Vector3d& I_B, const FreeBodyState& s, double h) {
@@ -185,22 +172,7 @@ FreeBodyState step_midpoint(const Eigen::Vector3d& I_B, const FreeBodyState& s, 
     if (change <= 1e-16 * L0.lpNorm<Eigen::Infinity>()) break;
   }
   const Eigen::Vector3d wm = (0.5 * (L0 + L1)).cwiseQuotient(I_B);
-  const double angle = h * wm.norm();
-  FreeBodyState out;
-  out.q_WB = angle > 0 ? s.q_WB * Eigen::Quaterniond(Eigen::AngleAxisd(angle, wm.normalized()))
-                       : s.q_WB;
-  out.q_WB.normalize();
-  out.w_B = L1.cwiseQuotient(I_B);
-  return out;
-}
-
-// Unit quaternion exp(θ̂/2 …): the rotation by the vector θ (rad), Taylor-safe at 0
-// (sin(|θ|/2)/|θ| = ½ − |θ|²/48 + …).
-Eigen::Quaterniond quat_exp(const Eigen::Vector3d& theta) {
-  const double a2 = theta.squaredNorm();
-  const double a = std::sqrt(a2);
-  const double s = a2 < 1e-12 ? 0.5 - a2 / 48.0 : std::sin(0.5 * a) / a;
-  return {std::cos(0.5 * a), s * theta(0), s * theta(1), s * theta(2)};
+  return {s.R_WB * SO3d::exp(h * wm), L1.cwiseQuotient(I_B)};
 }
 
 FreeBodyState step_rkmk4(const Eigen::Vector3d& I_B, const FreeBodyState& st, double h) {
@@ -223,10 +195,7 @@ FreeBodyState step_rkmk4(const Eigen::Vector3d& I_B, const FreeBodyState& st, do
   const Eigen::Vector3d th4 = h * k3t, w4 = w0 + h * k3w;
   const Eigen::Vector3d k4t = theta_dot(th4, w4), k4w = euler_rhs<double>(I_B, w4, z);
   const Eigen::Vector3d theta = h / 6.0 * (k1t + 2.0 * k2t + 2.0 * k3t + k4t);
-  FreeBodyState out;
-  out.q_WB = (st.q_WB * quat_exp(theta)).normalized();
-  out.w_B = w0 + h / 6.0 * (k1w + 2.0 * k2w + 2.0 * k3w + k4w);
-  return out;
+  return {(st.R_WB * SO3d::exp(theta)).renormalized(), w0 + h / 6.0 * (k1w + 2.0 * k2w + 2.0 * k3w + k4w)};
 }
 
 FreeBodyState step_moser_veselov(const Eigen::Vector3d& I_B, const FreeBodyState& st, double h) {
@@ -250,12 +219,9 @@ FreeBodyState step_moser_veselov(const Eigen::Vector3d& I_B, const FreeBodyState
                 "Moser–Veselov step did not converge (h = {} s too large for |ω| = {} rad/s); "
                 "use a smaller step",
                 h, st.w_B.norm());
-  const Eigen::Quaterniond Omega(q0, q(0), q(1), q(2));
+  const SO3d Omega = SO3d::from_quaternion(q0, q(0), q(1), q(2));
   // L_{k+1} = Ωᵀ L_k, R_{k+1} = R_k Ω (so L_W = R L is unchanged up to round-off).
-  FreeBodyState out;
-  out.q_WB = (st.q_WB * Omega).normalized();
-  out.w_B = (Omega.conjugate() * L).cwiseQuotient(I_B);
-  return out;
+  return {(st.R_WB * Omega).renormalized(), (Omega.inverse() * L).cwiseQuotient(I_B)};
 }
 
 }  // namespace
@@ -308,17 +274,21 @@ FreeBodyState step_free_body(FreeBodyMethod method, const Eigen::Vector3d& I_B,
   return step_splitting(flows_of(method), I_B, state, h);
 }
 
+std::optional<integrate::NonFinite> find_nonfinite(const FreeBodyState& s, std::string_view owner) {
+  static constexpr const char* kNames[7] = {"R_WB.w", "R_WB.x", "R_WB.y", "R_WB.z",
+                                            "w_B.x",  "w_B.y",  "w_B.z"};
+  const Eigen::Vector4d q = s.R_WB.quaternion();
+  const double values[7] = {q(0), q(1), q(2), q(3), s.w_B(0), s.w_B(1), s.w_B(2)};
+  if (auto i = integrate::first_nonfinite(values)) [[unlikely]] {
+    return integrate::NonFinite{std::string(owner), kNames[*i], values[*i]};
+  }
+  return std::nullopt;
+}
+
 FreeBodyDiagnostics diagnose(const Eigen::Vector3d& I_B, const FreeBodyState& state) {
   FreeBodyDiagnostics d;
   d.energy = rotational_energy<double>(I_B, state.w_B);
-  // Rotation matrix of a possibly non-unit quaternion, not renormalised, so the
-  // defect shows |q| drift: R = (w² − v·v) 1 + 2 v vᵀ + 2 w v̂.
-  const double w = state.q_WB.w();
-  const Eigen::Vector3d v = state.q_WB.vec();
-  Eigen::Matrix3d vhat;
-  vhat << 0, -v(2), v(1), v(2), 0, -v(0), -v(1), v(0), 0;
-  const Eigen::Matrix3d R_WB =
-      (w * w - v.squaredNorm()) * Eigen::Matrix3d::Identity() + 2.0 * v * v.transpose() + 2.0 * w * vhat;
+  const Eigen::Matrix3d R_WB = state.R_WB.matrix();
   d.L_W = R_WB * I_B.cwiseProduct(state.w_B);
   d.orthonormality_error =
       (R_WB.transpose() * R_WB - Eigen::Matrix3d::Identity()).lpNorm<Eigen::Infinity>();
@@ -327,28 +297,24 @@ FreeBodyDiagnostics diagnose(const Eigen::Vector3d& I_B, const FreeBodyState& st
 
 FreeBodyTrajectory simulate_free_body(FreeBodyMethod method, const Eigen::Vector3d& I_B,
                                       const FreeBodyState& initial, double h_max,
-                                      const std::vector<double>& output_times) {
-  RIGID_REQUIRE(I_B.allFinite() && (I_B.array() > 0).all(),
-                "principal moments must be finite and > 0 kg·m², got {}", rigid::to_string(I_B.transpose()));
-  RIGID_REQUIRE(std::isfinite(h_max) && h_max > 0, "step h_max must be finite and > 0 s, got {}", h_max);
-  RIGID_REQUIRE(initial.w_B.allFinite() && initial.q_WB.coeffs().allFinite() &&
-                    std::abs(initial.q_WB.norm() - 1.0) < 1e-9,
-                "initial state must be finite with a unit quaternion, got |q| = {}", initial.q_WB.norm());
+                                      const std::vector<double>& output_times,
+                                      const integrate::MarchControl& control) {
+  if (auto report = check_rotational_moments(I_B)) RIGID_THROW("{}", *report);
+  if (auto bad = find_nonfinite(initial)) {
+    RIGID_THROW("the initial state is not finite: {} = {}", bad->component, bad->value);
+  }
+  const integrate::TimeGrid grid = integrate::TimeGrid::from_times(0.0, output_times);
   FreeBodyTrajectory traj;
   FreeBodyState s = initial;
-  double t = 0;
-  for (std::size_t i = 0; i < output_times.size(); ++i) {
-    const double t_out = output_times[i];
-    RIGID_REQUIRE(std::isfinite(t_out) && t_out >= t,
-                  "output times must be finite, ≥ 0 and ascending; entry {} is {} after {}", i, t_out, t);
-    const double span = t_out - t;
-    const auto n = static_cast<long>(std::ceil(span / h_max - 1e-12));
-    for (long k = 0; k < n; ++k) s = step_free_body(method, I_B, s, span / static_cast<double>(n));
-    t = t_out;
-    traj.t.push_back(t);
-    traj.states.push_back(s);
-    traj.diagnostics.push_back(diagnose(I_B, s));
-  }
+  (void)integrate::march(
+      grid, h_max, [&](double, double h) { s = step_free_body(method, I_B, s, h); },
+      [&] { return find_nonfinite(s); },
+      [&](std::size_t, double t) {
+        traj.t.push_back(t);
+        traj.states.push_back(s);
+        traj.diagnostics.push_back(diagnose(I_B, s));
+      },
+      control);
   return traj;
 }
 

@@ -4,54 +4,45 @@
 #include <string>
 #include <utility>
 
-#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 
+#include "body/detail/principal_frame.hpp"
 #include "rigid/common/error.hpp"
 #include "rigid/common/format.hpp"
 
 namespace rigid::body {
 
-namespace {
-
-// relative tolerance of the symmetry and triangle-inequality checks of I_C_B
-constexpr double kInertiaRelTol = 1e-12;
-
-Eigen::Quaterniond to_eigen(const SO3d& R) {
-  const Eigen::Vector4d q = R.quaternion();  // (w, x, y, z)
-  return {q(0), q(1), q(2), q(3)};
+RigidBody::RigidBody(const MassProperties& mass_B, const Eigen::Vector3d& g_W)
+    : mass_(mass_B.mass()), p_BC_B_(mass_B.com()), I_C_B_(mass_B.inertia_com()), g_W_(g_W) {
+  RIGID_REQUIRE(g_W.allFinite(), "gravity g_W must be finite, got {} m/s²", rigid::to_string(g_W.transpose()));
+  const PrincipalFrame frame = principal_frame(I_C_B_, "RigidBody", "about the COM");
+  I_P_ = frame.moments;
+  R_BP_ = frame.R_BP;
+  principal_is_body_ = frame.is_body;
+  I_C_B_inv_ = I_C_B_.inverse();
 }
 
-SO3d from_eigen(const Eigen::Quaterniond& q) { return SO3d::from_quaternion(q.w(), q.x(), q.y(), q.z()); }
-
-}  // namespace
-
 RigidBody::RigidBody(double mass, const Eigen::Matrix3d& I_C_B, const Eigen::Vector3d& g_W)
-    : mass_(mass), g_W_(g_W), R_BP_(SO3d::identity()) {
-  RIGID_REQUIRE(std::isfinite(mass) && mass > 0, "mass must be positive and finite, got {} kg", mass);
-  RIGID_REQUIRE(I_C_B.allFinite(), "inertia I_C_B must be finite, got\n{}", rigid::to_string(I_C_B));
-  RIGID_REQUIRE(g_W.allFinite(), "gravity g_W must be finite, got {} m/s²", rigid::to_string(g_W.transpose()));
-  const double scale = I_C_B.cwiseAbs().maxCoeff();
-  const double asym = (I_C_B - I_C_B.transpose()).cwiseAbs().maxCoeff();
-  RIGID_REQUIRE(asym <= kInertiaRelTol * scale,
-                "inertia I_C_B must be symmetric; |I − Iᵀ|_max = {} kg·m² exceeds {} × the largest "
-                "entry {}",
-                asym, kInertiaRelTol, scale);
-  I_C_B_ = 0.5 * (I_C_B + I_C_B.transpose());
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(I_C_B_);
-  I_P_ = eig.eigenvalues();  // ascending
-  RIGID_REQUIRE(I_P_(0) > 0, "inertia I_C_B must be positive definite; principal moments are {} kg·m²",
-                rigid::to_string(I_P_.transpose()));
-  RIGID_REQUIRE(I_P_(2) <= (I_P_(0) + I_P_(1)) * (1 + kInertiaRelTol),
-                "inertia I_C_B violates the triangle inequality: largest principal moment {} > {} + {} "
-                "kg·m² (no mass distribution has these moments)",
-                I_P_(2), I_P_(0), I_P_(1));
-  // principal axes as a proper rotation: flip one axis if the eigenvector basis is left-handed
-  Eigen::Matrix3d V = eig.eigenvectors();
-  if (V.determinant() < 0) V.col(2) = -V.col(2);
-  R_BP_ = SO3d::from_matrix(V);
-  I_C_B_inv_ = I_C_B_.inverse();
+    : RigidBody(MassProperties(mass, Eigen::Vector3d::Zero(), I_C_B), g_W) {}
+
+FreeBodyState RigidBody::free_flow(const FreeBodyState& s, double h, FreeBodyMethod method) const {
+  if (principal_is_body_) return step_free_body(method, I_P_, s, h);
+  return from_principal(step_free_body(method, I_P_, to_principal(s, R_BP_), h), R_BP_);
+}
+
+std::optional<integrate::NonFinite> find_nonfinite(const RigidBodyState& s, std::string_view owner) {
+  static constexpr const char* kNames[13] = {"R_WB.w", "R_WB.x", "R_WB.y", "R_WB.z", "w_B.x",
+                                             "w_B.y",  "w_B.z",  "p_WC.x", "p_WC.y", "p_WC.z",
+                                             "v_WC.x", "v_WC.y", "v_WC.z"};
+  const Eigen::Vector4d q = s.R_WB.quaternion();
+  const double values[13] = {q(0),      q(1),      q(2),      q(3),      s.w_B(0),
+                             s.w_B(1),  s.w_B(2),  s.p_WC(0), s.p_WC(1), s.p_WC(2),
+                             s.v_WC(0), s.v_WC(1), s.v_WC(2)};
+  if (auto i = integrate::first_nonfinite(values)) [[unlikely]] {
+    return integrate::NonFinite{std::string(owner), kNames[*i], values[*i]};
+  }
+  return std::nullopt;
 }
 
 void RigidBody::add_load(AppliedLoad load) {
@@ -125,11 +116,9 @@ void kick(const RigidBody& body, double t, RigidBodyState& s, double tau, bool h
 // the principal frame P (R_WP = R_WB R_BP, ω_P = R_BPᵀ ω_B) where I is diagonal.
 void drift(const RigidBody& body, RigidBodyState& s, double h, FreeBodyMethod free_method) {
   s.p_WC += h * s.v_WC;
-  const SO3d& R_BP = body.principal_axes();
-  FreeBodyState fs{to_eigen(s.R_WB * R_BP), R_BP.inverse() * s.w_B};
-  fs = step_free_body(free_method, body.principal_moments(), fs, h);
-  s.R_WB = from_eigen(fs.q_WB) * R_BP.inverse();
-  s.w_B = R_BP * fs.w_B;
+  const FreeBodyState fs = body.free_flow({s.R_WB, s.w_B}, h, free_method);
+  s.R_WB = fs.R_WB;
+  s.w_B = fs.w_B;
 }
 
 // RK4 state y = (q_WB (w, x, y, z), ω_B, p_WC, v_WC).
@@ -141,21 +130,19 @@ Vec13 pack(const RigidBodyState& s) {
   return y;
 }
 
+// from_quaternion renormalises q (SO3d keeps |q| = 1 as its invariant); a step that overflowed
+// gives SO3d::invalid() for the finiteness check to report
 RigidBodyState unpack(const Vec13& y) {
-  return {SO3d::from_quaternion(y(0), y(1), y(2), y(3)), y.segment<3>(4), y.segment<3>(7), y.segment<3>(10)};
+  const SO3d R = y.head<4>().allFinite() ? SO3d::from_quaternion(y(0), y(1), y(2), y(3)) : SO3d::invalid();
+  return {R, y.segment<3>(4), y.segment<3>(7), y.segment<3>(10)};
 }
 
 Vec13 rk4_rate(const RigidBody& body, double t, const Vec13& y) {
   const RigidBodyState s = unpack(y);
   const RigidBodyAcceleration a = body.acceleration(t, s);
-  // q̇ = ½ q ⊗ (0, ω_B) on the unnormalised stage quaternion:
-  // (w, v) ⊗ (0, ω) = (−v·ω, w ω + v × ω)
-  const double qw = y(0);
-  const Eigen::Vector3d qv = y.segment<3>(1);
-  const Eigen::Vector3d w = y.segment<3>(4);
+  // q̇ = ½ q ⊗ (0, ω_B) on the unnormalised stage quaternion
   Vec13 r;
-  r(0) = -0.5 * qv.dot(w);
-  r.segment<3>(1) = 0.5 * (qw * w + qv.cross(w));
+  r.head<4>() = SO3d::quaternion_rate(y.head<4>(), y.segment<3>(4));
   r.segment<3>(4) = a.alpha_B;
   r.segment<3>(7) = y.segment<3>(10);
   r.segment<3>(10) = a.a_WC;
@@ -199,27 +186,23 @@ RigidBodyState step_rigid_body(const RigidBody& body, RigidBodyMethod method, do
 
 RigidBodyTrajectory simulate_rigid_body(const RigidBody& body, RigidBodyMethod method,
                                         const RigidBodyState& initial, double h_max,
-                                        const std::vector<double>& output_times, FreeBodyMethod free_method) {
-  RIGID_REQUIRE(std::isfinite(h_max) && h_max > 0, "step h_max must be positive and finite, got {} s", h_max);
+                                        const std::vector<double>& output_times, FreeBodyMethod free_method,
+                                        const integrate::MarchControl& control) {
+  if (auto bad = find_nonfinite(initial)) {
+    RIGID_THROW("the initial state is not finite: {} = {}", bad->component, bad->value);
+  }
   RigidBodyTrajectory traj;
   RigidBodyState s = initial;
-  double t = 0;
-  for (std::size_t i = 0; i < output_times.size(); ++i) {
-    const double t_out = output_times[i];
-    RIGID_REQUIRE(std::isfinite(t_out) && t_out >= t,
-                  "output times must be finite, ≥ 0 and ascending; entry {} is {} s after {} s", i, t_out, t);
-    const double span = t_out - t;
-    // the 1e-12 keeps a span that is a multiple of h_max up to round-off from taking one extra step
-    const auto n = static_cast<long>(std::ceil(span / h_max - 1e-12));
-    for (long k = 0; k < n; ++k) {
-      const double h = span / static_cast<double>(n);
-      s = step_rigid_body(body, method, t + h * static_cast<double>(k), s, h, free_method);
-    }
-    t = t_out;
-    traj.t.push_back(t);
-    traj.states.push_back(s);
-    traj.diagnostics.push_back(body.diagnose(s));
-  }
+  (void)integrate::march(
+      integrate::TimeGrid::from_times(0.0, output_times), h_max,
+      [&](double t, double h) { s = step_rigid_body(body, method, t, s, h, free_method); },
+      [&] { return find_nonfinite(s); },
+      [&](std::size_t, double t) {
+        traj.t.push_back(t);
+        traj.states.push_back(s);
+        traj.diagnostics.push_back(body.diagnose(s));
+      },
+      control);
   return traj;
 }
 
@@ -229,7 +212,7 @@ auto fmt::formatter<rigid::body::RigidBodyState>::format(const rigid::body::Rigi
                                                          fmt::format_context& ctx) const
     -> decltype(ctx.out()) {
   const std::string text = fmt::format(
-      "RigidBodyState{{q_WB: {}, w_B: {} rad/s, p_WC: {} m, v_WC: {} m/s}}",
+      "RigidBodyState{{R_WB: {}, w_B: {} rad/s, p_WC: {} m, v_WC: {} m/s}}",
       rigid::to_string(s.R_WB.quaternion().transpose()), rigid::to_string(s.w_B.transpose()),
       rigid::to_string(s.p_WC.transpose()), rigid::to_string(s.v_WC.transpose()));
   return fmt::formatter<std::string_view>::format(text, ctx);

@@ -60,6 +60,13 @@ SO3<Scalar> SO3<Scalar>::from_quaternion(const Scalar& w, const Scalar& x, const
 }
 
 template <typename Scalar>
+SO3<Scalar> SO3<Scalar>::from_unit_quaternion(const Scalar& w, const Scalar& x, const Scalar& y,
+                                              const Scalar& z) {
+  RIGID_ASSERT(std::abs(value_of(w * w + x * x + y * y + z * z) - 1.0) <= 1e-12);
+  return SO3(w, x, y, z);
+}
+
+template <typename Scalar>
 SO3<Scalar> SO3<Scalar>::from_matrix(const Matrix3& R, double tol) {
   using std::sqrt;
   Eigen::Matrix3d Rd;

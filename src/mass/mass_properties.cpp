@@ -197,6 +197,24 @@ PrincipalAxes MassProperties::principal_axes() const {
   return PrincipalAxes{moments, R};
 }
 
+std::optional<std::string> check_rotational_moments(const Eigen::Vector3d& moments) {
+  if (!moments.allFinite()) {
+    return fmt::format("principal moments must be finite, got {} kg·m²", to_string(moments.transpose()));
+  }
+  if (auto report = MassProperties::check(1.0, Eigen::Vector3d::Zero(), moments.asDiagonal().toDenseMatrix())) {
+    return report;
+  }
+  const double tol = MassProperties::kRelativeTolerance * moments.sum();
+  if (!(moments.minCoeff() > tol)) {
+    return fmt::format(
+        "principal moments ({:.10g}, {:.10g}, {:.10g}) kg·m² include a zero moment (at most "
+        "1e-10·tr I = {:.3g} kg·m²): the rotation about that axis is undefined, as for a point "
+        "mass or a thin rod; give the body a finite size",
+        moments(0), moments(1), moments(2), tol);
+  }
+  return std::nullopt;
+}
+
 MassProperties combine(std::span<const MassProperties> parts) {
   RIGID_REQUIRE(!parts.empty(), "needs at least one body, got none");
   double mass = 0.0;

@@ -20,7 +20,7 @@ void random_bodies(int n, std::vector<Eigen::Vector3d>& I, std::vector<FreeBodyS
     const double x = side(rng), y = side(rng), z = side(rng);
     I.emplace_back((y * y + z * z) / 12, (x * x + z * z) / 12, (x * x + y * y) / 12);
     FreeBodyState st;
-    st.q_WB = Eigen::Quaterniond::UnitRandom();
+    st.R_WB = SO3d::sample(rng);
     st.w_B = Eigen::Vector3d(omega(rng), omega(rng), omega(rng));
     s.push_back(st);
   }
@@ -46,7 +46,7 @@ TEST(FreeBodyBatch, EqualsSingleBodyStepperBitwise) {
     double max_w = 0, max_q = 0;
     for (std::size_t i = 0; i < b.size(); ++i) {
       max_w = std::max(max_w, (b[i].w_B - single[i].w_B).lpNorm<Eigen::Infinity>());
-      max_q = std::max(max_q, (b[i].q_WB.coeffs() - single[i].q_WB.coeffs()).lpNorm<Eigen::Infinity>());
+      max_q = std::max(max_q, (b[i].R_WB.quaternion() - single[i].R_WB.quaternion()).lpNorm<Eigen::Infinity>());
     }
     EXPECT_EQ(max_w, 0.0);
     EXPECT_EQ(max_q, 0.0);

@@ -13,6 +13,7 @@
 #include "rigid/body/euler.hpp"
 #include "rigid/body/free_body_integrators.hpp"
 #include "support/expect_error.hpp"
+#include "support/rotation.hpp"
 #include "support/tolerance.hpp"
 
 namespace rigid::body {
@@ -157,10 +158,13 @@ TEST(FreeBodyExact, GracefulAtAndNearTheSeparatrix) {
 }
 
 TEST(FreeBodyExact, RejectsBadInput) {
+  // the one validity check of rigid::MassProperties (check_rotational_moments)
   EXPECT_RIGID_ERROR(FreeBodyExact(Eigen::Vector3d(1, -2, 3), Eigen::Vector3d::Ones()),
-                     "principal moments must be finite and > 0");
+                     "not positive semidefinite");
   EXPECT_RIGID_ERROR(FreeBodyExact(Eigen::Vector3d(1, 1, 3), Eigen::Vector3d::Ones()),
-                     "violate the triangle inequality at axis 3");
+                     "violate I₁ + I₂ ≥ I₃ by 1 kg·m²");
+  EXPECT_RIGID_ERROR(FreeBodyExact(Eigen::Vector3d(0, 1, 1), Eigen::Vector3d::Ones()),
+                     "include a zero moment");
   EXPECT_RIGID_ERROR(FreeBodyExact(Eigen::Vector3d(1, 2, 3), Eigen::Vector3d(NAN, 0, 0)),
                      "initial body angular velocity must be finite");
 }
@@ -168,9 +172,11 @@ TEST(FreeBodyExact, RejectsBadInput) {
 // ---------------------------------------------------------------------------
 // FreeBodyMotion: closed-form orientation.
 
-// Rotation angle (rad) between two unit quaternions.
-double angle_between(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b) {
-  return a.angularDistance(b);
+// Rotation angle (rad) between two rotations (the expected ones are built on Eigen's
+// quaternion and AngleAxis, independently of rigid::SO3).
+double angle_between(const SO3d& a, const SO3d& b) { return test::angle_between(a, b); }
+double angle_between(const SO3d& a, const Eigen::Quaterniond& b) {
+  return test::angle_between(a, test::from_eigen(b));
 }
 
 struct MotionCase {
@@ -199,7 +205,7 @@ std::vector<MotionCase> motion_cases() {
   };
 }
 
-const Eigen::Quaterniond kQ0 = Eigen::Quaterniond(0.3, -0.5, 0.7, 0.4).normalized();
+const SO3d kQ0 = SO3d::from_quaternion(0.3, -0.5, 0.7, 0.4);
 
 TEST(FreeBodyMotion, OrientationSatisfiesTheKinematicEquation) {
   // Ṙ = R ω̂ checked by a central difference of the orientation itself:
@@ -209,8 +215,8 @@ TEST(FreeBodyMotion, OrientationSatisfiesTheKinematicEquation) {
   for (const MotionCase& c : motion_cases()) {
     const FreeBodyMotion motion(c.I, kQ0, c.w0);
     for (double t : {0.0, 0.9, -3.7, 14.2, 61.0, -250.5}) {
-      const Eigen::Quaterniond dq = motion.orientation(t - h).conjugate() * motion.orientation(t + h);
-      const Eigen::Vector3d w_fd = (dq.w() >= 0 ? 1.0 : -1.0) * dq.vec() / h;
+      const SO3d dq = motion.orientation(t - h).inverse() * motion.orientation(t + h);
+      const Eigen::Vector3d w_fd = (dq.w() >= 0 ? 1.0 : -1.0) * Eigen::Vector3d(dq.x(), dq.y(), dq.z()) / h;
       EXPECT_LT((w_fd - motion.omega_body(t)).lpNorm<Eigen::Infinity>(), 1e-8)
           << c.name << " t = " << t << " fd " << w_fd.transpose() << " exact "
           << motion.omega_body(t).transpose();
@@ -224,7 +230,7 @@ TEST(FreeBodyMotion, WorldAngularMomentumIsConstant) {
     const Eigen::Vector3d L0 = kQ0 * c.I.cwiseProduct(c.w0);
     for (double t : {0.0, 0.37, 5.0, -11.0, 99.0, 1000.0, -3000.0}) {
       const FreeBodyState s = motion.state(t);
-      const Eigen::Vector3d L = s.q_WB * c.I.cwiseProduct(s.w_B);
+      const Eigen::Vector3d L = s.R_WB * c.I.cwiseProduct(s.w_B);
       // A handful of rounded products (quaternion composition, Q from l): ≲ 50 ε.
       EXPECT_LT((L - L0).norm(), 1e-12 * L0.norm() + 1e-300) << c.name << " t = " << t;
     }
@@ -241,7 +247,7 @@ TEST(FreeBodyMotion, IsAFlow) {
       // sech(70) ≈ 1e-30: restarting from it and running back cannot recover the orbit.
       if (std::string_view(c.name) == "separatrix" && t1 > 100) continue;
       const FreeBodyState s1 = motion.state(t1);
-      const FreeBodyMotion restarted(c.I, s1.q_WB, s1.w_B);
+      const FreeBodyMotion restarted(c.I, s1.R_WB, s1.w_B);
       // The motion near the separatrix amplifies the restart's rounding of ω(t1)
       // (≈ 1e-15) by up to e^{λ|t|}-like factors over a flip; 1e-9 rad bounds it here.
       EXPECT_LT(angle_between(restarted.orientation(t2), motion.orientation(t1 + t2)), 1e-9)
@@ -268,7 +274,7 @@ TEST(FreeBodyMotion, AgreesWithSixthOrderSplittingOver100s) {
       s = step_free_body(FreeBodyMethod::kSplitting6, c.I, s, h);
       if (i % 50 == 0) {
         const FreeBodyState e = motion.state(h * i);
-        max_angle = std::max(max_angle, angle_between(e.q_WB, s.q_WB));
+        max_angle = std::max(max_angle, angle_between(e.R_WB, s.R_WB));
         max_w = std::max(max_w, (e.w_B - s.w_B).lpNorm<Eigen::Infinity>());
       }
     }
@@ -287,7 +293,7 @@ TEST(FreeBodyMotion, SymmetricTopMatchesTheAnalyticPrecession) {
   const double nu = (1.0 / I(2) - 1.0 / I(0)) * I(2) * w0(2);
   for (double t : {0.5, 7.0, -40.0, 300.0}) {
     const Eigen::Quaterniond expected =
-        Eigen::Quaterniond(Eigen::AngleAxisd(t * L_W.norm() / I(0), L_W.normalized())) * kQ0 *
+        Eigen::Quaterniond(Eigen::AngleAxisd(t * L_W.norm() / I(0), L_W.normalized())) * test::to_eigen(kQ0) *
         Eigen::Quaterniond(Eigen::AngleAxisd(t * nu, Eigen::Vector3d::UnitZ()));
     // Angles up to ~130 rad are rounded to ≈ 130 ε each.
     EXPECT_LT(angle_between(motion.orientation(t), expected), 1e-12) << "t = " << t;
@@ -301,7 +307,7 @@ TEST(FreeBodyMotion, SphereAndPermanentRotationsTurnUniformly) {
     const FreeBodyMotion motion(I, kQ0, w0);
     for (double t : {1.0, -20.0, 100.0}) {
       const Eigen::Quaterniond expected =
-          kQ0 * Eigen::Quaterniond(Eigen::AngleAxisd(t * w0.norm(), w0.normalized()));
+          test::to_eigen(kQ0) * Eigen::Quaterniond(Eigen::AngleAxisd(t * w0.norm(), w0.normalized()));
       EXPECT_LT(angle_between(motion.orientation(t), expected), 1e-12) << "t = " << t;
       EXPECT_EQ(motion.omega_body(t), w0);
     }
@@ -316,7 +322,7 @@ TEST(FreeBodyMotion, SphereAndPermanentRotationsTurnUniformly) {
 // Reaches FreeBodyMotion's reference path: Π(n; am u, k) by Carlson's R_F and R_J (the
 // implementation before the theta form), everything else shared.
 struct FreeBodyMotionPeer {
-  static Eigen::Quaterniond orientation_carlson(const FreeBodyMotion& m, double t) {
+  static SO3d orientation_carlson(const FreeBodyMotion& m, double t) {
     return m.orientation_impl(t, true);
   }
 };
@@ -381,7 +387,7 @@ TEST(FreeBodyMotion, OrientationMatchesA40DigitReference) {
         {100.0, {0.97901312844042153508, 0.11751555813095256937, 0.071501290630387323472, -0.15036938975954607439}}}},
   };
   for (const RefCase& c : cases) {
-    const FreeBodyMotion motion(c.I, Eigen::Quaterniond::Identity(), c.w0);
+    const FreeBodyMotion motion(c.I, SO3d::identity(), c.w0);
     const double psi_max = c.I.cwiseProduct(c.w0).norm() / c.I.minCoeff() * 100.0;
     for (const Sample& smp : c.samples) {
       const Eigen::Quaterniond expected(smp.q[0], smp.q[1], smp.q[2], smp.q[3]);
@@ -391,13 +397,28 @@ TEST(FreeBodyMotion, OrientationMatchesA40DigitReference) {
   }
 }
 
-TEST(FreeBodyMotion, RejectsNonUnitQuaternion) {
-  EXPECT_RIGID_ERROR(FreeBodyMotion(Eigen::Vector3d(1, 2, 3), Eigen::Quaterniond(2, 0, 0, 0),
-                                    Eigen::Vector3d(0, 1, 0)),
-                     "initial orientation must be a finite unit quaternion");
-  EXPECT_RIGID_ERROR(FreeBodyMotion(Eigen::Vector3d(1, 2, 5), Eigen::Quaterniond::Identity(),
-                                    Eigen::Vector3d(0, 1, 0)),
-                     "violate the triangle inequality at axis 3");
+TEST(FreeBodyMotion, RejectsNonPhysicalMoments) {
+  EXPECT_RIGID_ERROR(FreeBodyMotion(Eigen::Vector3d(1, 2, 5), SO3d::identity(), Eigen::Vector3d(0, 1, 0)),
+                     "violate I₁ + I₂ ≥ I₃ by 2 kg·m²");
+}
+
+TEST(FreeBodyMotion, AnyBodyFrameThroughMassProperties) {
+  // The same body described in a frame B turned by R_BP0 from its principal frame: its inertia
+  // about the COM is R I_P Rᵀ (full). The MassProperties form must give R_WB(t) = R_WP(t) R_BP0ᵀ
+  // and ω_B = R_BP0 ω_P of the principal-frame motion; the principal axes that MassProperties
+  // picks may differ from R_BP0 by relabelling, which the closed form absorbs.
+  const Eigen::Vector3d I_P(1, 2, 3), w_P(0.4, -0.3, 0.8);
+  const SO3d R_BP0 = SO3d::exp(Eigen::Vector3d(0.3, -1.1, 0.7));
+  const Eigen::Matrix3d I_B = R_BP0.matrix() * I_P.asDiagonal() * R_BP0.matrix().transpose();
+  const MassProperties mass_B(2.0, Eigen::Vector3d(0.1, 0.2, 0.3), I_B);
+  const FreeBodyMotion principal(I_P, kQ0 * R_BP0, w_P);
+  const FreeBodyMotion general(mass_B, kQ0, R_BP0 * w_P);
+  for (double t : {0.0, 3.3, 47.0}) {
+    // a few rounded rotations of the inputs, amplified by the motion over ~50 s: 1e-11
+    EXPECT_LT(angle_between(general.orientation(t), principal.orientation(t) * R_BP0.inverse()), 1e-11)
+        << "t = " << t;
+    EXPECT_LT((general.omega_body(t) - R_BP0 * principal.omega_body(t)).norm(), 1e-11) << "t = " << t;
+  }
 }
 
 }  // namespace

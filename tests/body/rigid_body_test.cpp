@@ -46,7 +46,7 @@ TEST(RigidBody, ProjectileWithSpinFollowsParabolaAndFreeBodyRotation) {
     SCOPED_TRACE(method == RigidBodyMethod::kRk4 ? "rk4" : "splitting2");
     RigidBodyState s = s0;
     // the same rotation by the free-body stepper in the principal frame Q
-    FreeBodyState fs{Eigen::Quaterniond(kQ), w0_P};
+    FreeBodyState fs{SO3d::from_matrix(kQ), w0_P};
     const double E0 = body.diagnose(s0).energy;
     for (int i = 0; i < n; ++i) {
       s = step_rigid_body(body, method, i * h, s, h);
@@ -70,10 +70,7 @@ TEST(RigidBody, ProjectileWithSpinFollowsParabolaAndFreeBodyRotation) {
       // same sub-flows in exact arithmetic (the principal frame differs from Q only by a
       // proper axis relabelling that leaves each sub-flow unchanged): round-off only,
       // ~10 ulps per step over n steps.
-      EXPECT_LT(rotation_distance(s.R_WB, SO3d::from_quaternion(fs.q_WB.w(), fs.q_WB.x(), fs.q_WB.y(),
-                                                                fs.q_WB.z()) *
-                                               SO3d::from_matrix(kQ.transpose())),
-                ulps(10.0 * n));
+      EXPECT_LT(rotation_distance(s.R_WB, fs.R_WB * SO3d::from_matrix(kQ.transpose())), ulps(10.0 * n));
       EXPECT_LT((w_P - fs.w_B).norm(), ulps(10.0 * n));
     }
     // energy: translation exact, rotation's energy error O(h²) ≈ 1e-6 relative (splitting),
@@ -279,9 +276,37 @@ TEST(RigidBody, SimulateSamplesTheSteppedTrajectory) {
   }
   EXPECT_EQ(traj.states[2].p_WC, traj.states[3].p_WC);  // a repeated time takes no step
   EXPECT_RIGID_ERROR((void)simulate_rigid_body(body, RigidBodyMethod::kRk4, s0, 0.01, {1.0, 0.5}),
-                     "output times must be finite, ≥ 0 and ascending; entry 1 is 0.5 s after 1 s");
+                     "output times must be finite, ≥ the start t0 = 0 s and ascending; entry 1 is 0.5 s after 1 s");
   EXPECT_RIGID_ERROR((void)simulate_rigid_body(body, RigidBodyMethod::kRk4, s0, -1.0, {1.0}),
                      "step h_max must be positive and finite, got -1 s");
+}
+
+TEST(RigidBody, TakesMassPropertiesWithTheComAwayFromTheOrigin) {
+  // B's origin is not at the COM: the state follows the COM, origin_position() gives B's
+  // origin, and the motion is that of the same body with its frame at the COM.
+  const Eigen::Vector3d c(0.1, -0.2, 0.3);
+  const RigidBody at_com(2.0, kIfull), offset(MassProperties(2.0, c, kIfull));
+  EXPECT_EQ(offset.com(), c);
+  RigidBodyState s;
+  s.w_B = Eigen::Vector3d(0.3, 1.0, -0.2);
+  s.p_WC = Eigen::Vector3d(1, 2, 3);
+  RigidBodyState a = s, b = s;
+  for (int i = 0; i < 100; ++i) {
+    a = step_rigid_body(at_com, RigidBodyMethod::kSplitting2, 0.01 * i, a, 0.01);
+    b = step_rigid_body(offset, RigidBodyMethod::kSplitting2, 0.01 * i, b, 0.01);
+  }
+  EXPECT_EQ(a.w_B, b.w_B);  // the same computation: the COM offset enters only the output pose
+  EXPECT_LT((offset.origin_position(b) - (b.p_WC - b.R_WB * c)).norm(), ulps(4, 4.0));
+}
+
+TEST(RigidBody, DivergenceIsRefusedNamingTheComponent) {
+  // RK4 with h|ω| ≈ 170 (spin 1e3 rad/s about every axis, h = 0.1 s): far outside its
+  // stability region, the state overflows
+  const RigidBody body(1.0, Eigen::Vector3d(1, 2, 3).asDiagonal().toDenseMatrix());
+  RigidBodyState s;
+  s.w_B = Eigen::Vector3d(1e3, 1e3, 1e3);
+  EXPECT_RIGID_ERROR((void)simulate_rigid_body(body, RigidBodyMethod::kRk4, s, 0.1, {10.0}),
+                     "non-finite state at step");
 }
 
 TEST(RigidBody, FormatsStateAndWrench) {
@@ -289,7 +314,7 @@ TEST(RigidBody, FormatsStateAndWrench) {
   s.p_WC = Eigen::Vector3d(1, 2.5, -3);
   s.v_WC = Eigen::Vector3d(0, 0, 0.25);
   const std::string text = fmt::format("{}", s);
-  EXPECT_NE(text.find("RigidBodyState{q_WB: "), std::string::npos) << text;
+  EXPECT_NE(text.find("RigidBodyState{R_WB: "), std::string::npos) << text;
   EXPECT_NE(text.find(fmt::format("p_WC: {} m", rigid::to_string(s.p_WC.transpose()))), std::string::npos) << text;
   EXPECT_NE(text.find(fmt::format("v_WC: {} m/s", rigid::to_string(s.v_WC.transpose()))), std::string::npos) << text;
   const std::string w = fmt::format("{}", Wrench{Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 0, 2)});
@@ -301,11 +326,14 @@ TEST(RigidBody, RejectsBadInput) {
   EXPECT_RIGID_ERROR(RigidBody(-1.0, kIfull), "mass must be positive and finite, got -1 kg");
   Eigen::Matrix3d asym = kIfull;
   asym(0, 1) += 1e-3;
-  EXPECT_RIGID_ERROR(RigidBody(1.0, asym), "inertia I_C_B must be symmetric");
+  // the one validity check of rigid::MassProperties
+  EXPECT_RIGID_ERROR(RigidBody(1.0, asym), "inertia tensor is not symmetric");
   EXPECT_RIGID_ERROR(RigidBody(1.0, Eigen::Vector3d(1, -2, 3).asDiagonal().toDenseMatrix()),
-                     "must be positive definite");
+                     "not positive semidefinite");
   EXPECT_RIGID_ERROR(RigidBody(1.0, Eigen::Vector3d(1, 1, 3).asDiagonal().toDenseMatrix()),
-                     "violates the triangle inequality: largest principal moment 3 > 1 + 1");
+                     "violate I₁ + I₂ ≥ I₃ by 1 kg·m²");
+  EXPECT_RIGID_ERROR(RigidBody(1.0, Eigen::Vector3d(0, 1, 1).asDiagonal().toDenseMatrix()),
+                     "RigidBody: inertia about the COM: principal moments (0, 1, 1) kg·m² include a zero moment");
   EXPECT_RIGID_ERROR(RigidBody(1.0, kIfull, Eigen::Vector3d(0, 0, NAN)), "gravity g_W must be finite");
   RigidBody body(1.0, kIfull);
   EXPECT_RIGID_ERROR(body.add_load({}), "load 0 has no wrench function");

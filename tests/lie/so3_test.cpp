@@ -183,6 +183,57 @@ TEST(SE3, ClosedFormJacobianInversesMatchNumericInverse) {
   }
 }
 
+TEST(SO3, TurnAboutABodyAxisIsTheProductWithItsExp) {
+  // R.turned_about_axis<i>(sin θ/2, cos θ/2 − 1) = R · exp(θ e_i); both sides from independent
+  // code (the increment form vs exp and the Hamilton product). A few ulps.
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-3.0, 3.0);
+  for (int k = 0; k < 1000; ++k) {
+    const SO3d R = SO3d::sample(rng);
+    const double theta = u(rng);
+    const double s = std::sin(0.5 * theta), c1 = std::cos(0.5 * theta) - 1.0;
+    const SO3d turned[3] = {R.turned_about_axis<0>(s, c1), R.turned_about_axis<1>(s, c1),
+                            R.turned_about_axis<2>(s, c1)};
+    for (int i = 0; i < 3; ++i) {
+      const SO3d expected = R * SO3d::exp(theta * Eigen::Vector3d::Unit(i));
+      EXPECT_LT((turned[i].quaternion() - expected.quaternion()).cwiseAbs().maxCoeff(), ulps(8));
+    }
+  }
+}
+
+TEST(SO3, RenormalizedRestoresTheUnitNormQuadratically) {
+  // a product of many turns drifts from |q| = 1 by round-off; one Newton step takes a drift δ
+  // to O(δ²): after 10⁶ turns (|δ| ~ 1e-13 at most) |q| is 1 to an ulp or two.
+  SO3d R = SO3d::identity();
+  const double s = std::sin(0.05), c1 = std::cos(0.05) - 1.0;
+  for (int k = 0; k < 1'000'000; ++k) R = R.turned_about_axis<1>(s, c1).turned_about_axis<2>(s, c1);
+  const double drift = std::abs(R.quaternion().norm() - 1.0);
+  const double after = std::abs(R.renormalized().quaternion().norm() - 1.0);
+  EXPECT_LE(after, ulps(2));
+  EXPECT_LT(after, std::max(drift, ulps(2)));
+}
+
+TEST(SO3, QuaternionRateIsTheDerivativeOfRExpTw) {
+  // d/dt [R0 exp(t ω)] at t = 0 as a central difference of the quaternion coefficients
+  // (h = 1e-5: truncation h²|ω|³/6 ≈ 1e-10, round-off ε/h ≈ 2e-11)
+  std::mt19937_64 rng(8);
+  for (int k = 0; k < 100; ++k) {
+    const SO3d R0 = SO3d::sample(rng);
+    const Eigen::Vector3d w(0.7, -1.3, 0.4);
+    const double h = 1e-5;
+    const Eigen::Vector4d fd =
+        ((R0 * SO3d::exp(h * w)).quaternion() - (R0 * SO3d::exp(-h * w)).quaternion()) / (2 * h);
+    EXPECT_LT((SO3d::quaternion_rate(R0.quaternion(), w) - fd).cwiseAbs().maxCoeff(), 1e-9);
+  }
+}
+
+TEST(SO3, InvalidMarksADivergedComputation) {
+  const SO3d bad = SO3d::invalid();
+  EXPECT_TRUE(std::isnan(bad.w()) && std::isnan(bad.x()) && std::isnan(bad.y()) && std::isnan(bad.z()));
+  const SO3d q = SO3d::from_unit_quaternion(0.6, 0.0, 0.8, 0.0);
+  EXPECT_EQ(q.y(), 0.8);  // kept as given, not normalised again
+}
+
 TEST(SE3, BadInput) {
   Eigen::Matrix4d T = Eigen::Matrix4d::Identity();
   T(3, 0) = 1;

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "rigid/body/free_body_integrators.hpp"
+#include "rigid/lie/so3.hpp"
 #include "support/expect_error.hpp"
 #include "support/tolerance.hpp"
 
@@ -24,12 +25,34 @@ Eigen::Matrix3d second_moment_inertia(const Network& net) {
   return I;
 }
 
+MassProperties principal_body(double m, const Eigen::Vector3d& I) {
+  return MassProperties(m, Eigen::Vector3d::Zero(), I.asDiagonal().toDenseMatrix());
+}
+
 TEST(SpringNetwork, HasTheRequestedInertia) {
-  const Network net = network_with_inertia(3.0, Eigen::Vector3d(1, 2, 2.5), 1e3);
+  const Network net = network_with_inertia(principal_body(3.0, Eigen::Vector3d(1, 2, 2.5)), 1e3);
   const Eigen::Matrix3d I = second_moment_inertia(net);
   EXPECT_LT((I - Eigen::Vector3d(1, 2, 2.5).asDiagonal().toDenseMatrix()).lpNorm<Eigen::Infinity>(), ulps(16, 3));
   EXPECT_EQ(net.springs.size(), 15u);
   EXPECT_NEAR(spring_forces(net).norm(), 0.0, ulps(16));
+}
+
+TEST(SpringNetwork, HasTheMassPropertiesOfABodyInAnyFrame) {
+  // a full inertia tensor about a COM away from the origin: the particles sit along the
+  // principal axes around the COM, and their mass, COM and inertia about the COM are the body's
+  const Eigen::Matrix3d R = SO3d::exp(Eigen::Vector3d(0.3, 0.8, -0.5)).matrix();
+  const Eigen::Matrix3d I_C = R * Eigen::Vector3d(1, 2, 2.5).asDiagonal() * R.transpose();
+  const Eigen::Vector3d c(0.5, -1.0, 2.0);
+  const Network net = network_with_inertia(MassProperties(3.0, c, I_C), 1e3);
+  Eigen::Vector3d com = Eigen::Vector3d::Zero();
+  for (Eigen::Index i = 0; i < 6; ++i) com += net.mass(i) * net.position.col(i);
+  com /= net.mass.sum();
+  EXPECT_NEAR(net.mass.sum(), 3.0, ulps(8, 3));
+  EXPECT_LT((com - c).norm(), ulps(16, 3));
+  Network centred = net;
+  for (Eigen::Index i = 0; i < 6; ++i) centred.position.col(i) -= c;
+  // eigenvectors are accurate to ~10 ε and the particles sit ~1 m out: 1e-13 kg·m²
+  EXPECT_LT((second_moment_inertia(centred) - I_C).lpNorm<Eigen::Infinity>(), 1e-13);
 }
 
 // Orientation of the network: the rotation best mapping rest positions to current ones
@@ -55,7 +78,7 @@ Deviation deviation_from_rigid(double k) {
   // Tennis-racket-like (a lamina's I = (1, 2, 3) has no out-of-plane extent, which a
   // six-particle network cannot represent): rotation near the unstable middle axis.
   const Eigen::Vector3d I(1, 2, 2.8), w0(0.01, 1, 0.01);
-  const Network rest = network_with_inertia(1.0, I, k);
+  const Network rest = network_with_inertia(principal_body(1.0, I), k);
   Network net = rest;
   for (Eigen::Index i = 0; i < net.position.cols(); ++i) net.velocity.col(i) = w0.cross(net.position.col(i));
   body::FreeBodyState rigid;
@@ -68,7 +91,7 @@ Deviation deviation_from_rigid(double k) {
     step_implicit_midpoint(net, h);
     rigid = body::step_free_body(body::FreeBodyMethod::kSplitting6, I, rigid, h);
     if (step % 200 == 0) {
-      const Eigen::AngleAxisd diff(fit_rotation(rest, net).transpose() * rigid.q_WB.toRotationMatrix());
+      const Eigen::AngleAxisd diff(fit_rotation(rest, net).transpose() * rigid.R_WB.matrix());
       d.angle = std::max(d.angle, std::abs(diff.angle()));
       Eigen::Vector3d c = Eigen::Vector3d::Zero();
       for (Eigen::Index i = 0; i < net.position.cols(); ++i) c += net.mass(i) * net.position.col(i);
@@ -92,12 +115,37 @@ TEST(SpringNetwork, ConvergesToTheRigidBodyAsStiffnessGrows) {
 }
 
 TEST(SpringNetwork, RejectsBadInput) {
-  EXPECT_RIGID_ERROR((void)network_with_inertia(-1, Eigen::Vector3d(1, 2, 3), 1.0),
-                     "mass must be finite and > 0 kg, got -1");
-  EXPECT_RIGID_ERROR((void)network_with_inertia(1, Eigen::Vector3d(1, 2, 3), 0.0),
+  EXPECT_RIGID_ERROR((void)network_with_inertia(principal_body(1, Eigen::Vector3d(1, 2, 3)), 0.0),
                      "stiffness must be finite and > 0 N/m, got 0");
-  EXPECT_RIGID_ERROR((void)network_with_inertia(1, Eigen::Vector3d(1, 2, 3.0), 1.0),
+  EXPECT_RIGID_ERROR((void)network_with_inertia(principal_body(1, Eigen::Vector3d(1, 2, 3.0)), 1.0),
                      "need I3 < I1 + I2 strictly");
+  Network net = network_with_inertia(principal_body(1, Eigen::Vector3d(1, 2, 2.5)), 1e3);
+  net.springs[3].j = 9;
+  EXPECT_RIGID_ERROR((void)simulate_network(net, 1e-3, {0.1}),
+                     "spring 3 joins particles 0 and 9; expected two different particles of 0 … 5");
+}
+
+TEST(SpringNetwork, NewtonThatDoesNotConvergeIsRefused) {
+  // two Newton iterations cannot reach 1e-15 from the explicit predictor of a spinning,
+  // stiff network; the step is refused and the network left as it was
+  Network net = network_with_inertia(principal_body(1, Eigen::Vector3d(1, 2, 2.5)), 1e6);
+  for (Eigen::Index i = 0; i < 6; ++i) net.velocity.col(i) = Eigen::Vector3d(0, 0, 5).cross(net.position.col(i));
+  const Network before = net;
+  EXPECT_RIGID_ERROR(step_implicit_midpoint(net, 1e-2, {.max_iterations = 2}),
+                     "the Newton iteration of the implicit midpoint did not converge in 2 iterations at h = 0.01 s");
+  EXPECT_EQ(net.position, before.position);
+  EXPECT_EQ(net.velocity, before.velocity);
+}
+
+TEST(SpringNetwork, SimulateSamplesAndRefusesNonFiniteState) {
+  Network net = network_with_inertia(principal_body(1, Eigen::Vector3d(1, 2, 2.5)), 1e3);
+  const NetworkTrajectory tr = simulate_network(net, 1e-3, {0.0, 0.05, 0.1});
+  ASSERT_EQ(tr.t.size(), 3u);
+  EXPECT_EQ(tr.t[2], 0.1);
+  EXPECT_EQ(tr.position[0], net.position);
+  net.velocity(1, 4) = std::nan("");
+  EXPECT_RIGID_ERROR((void)simulate_network(net, 1e-3, {0.1}),
+                     "the initial state is not finite: particle 4 velocity.y = nan");
 }
 
 }  // namespace

@@ -17,10 +17,11 @@
 #include <array>
 
 #include <Eigen/Core>
-#include <Eigen/Geometry>
 
 #include "rigid/body/free_body_integrators.hpp"
 #include "rigid/body/jacobi_elliptic.hpp"
+#include "rigid/lie/so3.hpp"
+#include "rigid/mass/mass_properties.hpp"
 
 namespace rigid::body {
 
@@ -29,8 +30,9 @@ enum class FreeBodyCase { kSphere, kSymmetric, kAsymmetric };
 
 class FreeBodyExact {
  public:
-  /// `I_B`: principal moments about the COM (kg·m², all > 0, triangle inequality
-  /// I_i ≤ I_j + I_k); `w0_B`: body angular velocity at t = 0 (rad/s).
+  /// `I_B`: principal moments about the COM (kg·m², any order); `w0_B`: body angular velocity
+  /// at t = 0 (rad/s).
+  /// @throws rigid::Error if I_B fails rigid::check_rotational_moments or w0_B is not finite.
   FreeBodyExact(const Eigen::Vector3d& I_B, const Eigen::Vector3d& w0_B);
 
   /// Body angular velocity at time t (s), any sign of t.
@@ -80,7 +82,7 @@ class FreeBodyExact {
   [[nodiscard]] Eigen::Vector3d omega_sorted(double t) const;
 };
 
-/// Exact motion of the torque-free rigid body: orientation q_WB(t) and body angular
+/// Exact motion of the torque-free rigid body: orientation R_WB(t) and body angular
 /// velocity ω_B(t) in closed form, for every case of `FreeBodyExact`.
 ///
 /// Construction [Landau1976, §37, eqs. 37.13–37.16; Celledoni2008, §2]: with L_W the
@@ -107,33 +109,44 @@ class FreeBodyExact {
 /// Class invariant: built from finite, physical inputs (checked by the constructor).
 class FreeBodyMotion {
  public:
-  /// `I_B`: principal moments (kg·m², > 0, triangle inequality, any order);
-  /// `q0_WB`: initial orientation (unit quaternion, |q| within 1e-9 of 1; it is
-  /// normalised); `w0_B`: initial body angular velocity (rad/s).
-  /// @throws rigid::Error on non-finite or non-physical input or a non-unit quaternion.
-  FreeBodyMotion(const Eigen::Vector3d& I_B, const Eigen::Quaterniond& q0_WB,
-                 const Eigen::Vector3d& w0_B);
+  /// `I_B`: principal moments (kg·m², any order; B is a principal frame);
+  /// `R0_WB`: initial orientation; `w0_B`: initial body angular velocity (rad/s).
+  /// @throws rigid::Error if I_B fails rigid::check_rotational_moments or w0_B is not finite.
+  FreeBodyMotion(const Eigen::Vector3d& I_B, const SO3d& R0_WB, const Eigen::Vector3d& w0_B);
 
-  /// Orientation q_WB(t) (body to world) at time t (s), any sign of t.
-  [[nodiscard]] Eigen::Quaterniond orientation(double t) const;
+  /// The motion of a body with mass properties `mass_B` in any body frame B (its inertia about
+  /// the COM need not be diagonal): the closed form runs in the principal frame of
+  /// MassProperties::principal_axes, and orientation()/omega_body() are those of B.
+  /// @throws rigid::Error as above, for the principal moments of mass_B.
+  FreeBodyMotion(const MassProperties& mass_B, const SO3d& R0_WB, const Eigen::Vector3d& w0_B);
+
+  /// Orientation R_WB(t) (body to world) at time t (s), any sign of t.
+  [[nodiscard]] SO3d orientation(double t) const;
   /// Body angular velocity ω_B(t) (rad/s).
-  [[nodiscard]] Eigen::Vector3d omega_body(double t) const { return omega_.omega_body(t); }
-  /// (q_WB(t), ω_B(t)).
+  [[nodiscard]] Eigen::Vector3d omega_body(double t) const {
+    return R_BP_is_identity() ? omega_.omega_body(t) : Eigen::Vector3d(R_BP_ * omega_.omega_body(t));
+  }
+  /// (R_WB(t), ω_B(t)).
   [[nodiscard]] FreeBodyState state(double t) const;
   /// Constant world angular momentum L_W = R_WB I ω_B (kg·m²/s).
   [[nodiscard]] const Eigen::Vector3d& angular_momentum_world() const { return L_W_; }
-  /// The ω_B(t) solution (case, modulus, period, energy).
+  /// The ω(t) solution in the principal frame (case, modulus, period, energy).
   [[nodiscard]] const FreeBodyExact& omega_solution() const { return omega_; }
 
  private:
+  FreeBodyMotion(const Eigen::Vector3d& I_P, const SO3d& R0_WP, const Eigen::Vector3d& w0_P,
+                 const SO3d& R_BP);
+
+  SO3d R_BP_ = SO3d::identity();  // principal axes of the MassProperties form (else identity)
+  [[nodiscard]] bool R_BP_is_identity() const { return R_BP_.w() == 1.0; }
   FreeBodyExact omega_;
-  Eigen::Quaterniond q_SB_;  // proper relabelling: sorted axes from the user's body axes
-  Eigen::Quaterniond q0_WB_;
+  SO3d q_SB_ = SO3d::identity();  // proper relabelling: sorted axes from the (principal) body axes
+  SO3d q0_WB_ = SO3d::identity();
   Eigen::Vector3d L_W_;
   bool uniform_ = false;     // ω constant (sphere, permanent rotation)
   std::array<int, 3> abd_{0, 1, 2};  // sorted-axis indices of the (a, b, d) frame
-  Eigen::Quaterniond q_M_;   // M of the construction, world from the "L frame"
-  Eigen::Quaterniond q_PS_SB_;  // Pᵀ R_SB: user body axes to the (a, b, d) axes as x, y, z
+  SO3d q_M_ = SO3d::identity();      // M of the construction, world from the "L frame"
+  SO3d q_PS_SB_ = SO3d::identity();  // Pᵀ R_SB: user body axes to the (a, b, d) axes as x, y, z
   double psi_rate_ = 0;      // |L|/I_d (asymmetric) or |L|/I_t (symmetric), rad/s
   double pi_coef_ = 0;       // |L| (I_d − I_c)/(I_c I_d λ)
   double n_ = 0;             // characteristic of Π
@@ -149,8 +162,8 @@ class FreeBodyMotion {
   friend struct FreeBodyMotionPeer;  // tests and the benchmark reach the Carlson reference
   [[nodiscard]] double elliptic_pi(const FreeBodyExact::Phase& ph) const;
   [[nodiscard]] double elliptic_pi_carlson(const FreeBodyExact::Phase& ph) const;
-  [[nodiscard]] Eigen::Quaterniond orientation_impl(double t, bool carlson) const;
-  [[nodiscard]] Eigen::Quaterniond q_Q(const Eigen::Vector3d& w_S) const;
+  [[nodiscard]] SO3d orientation_impl(double t, bool carlson) const;
+  [[nodiscard]] SO3d q_Q(const Eigen::Vector3d& w_S) const;
 };
 
 }  // namespace rigid::body

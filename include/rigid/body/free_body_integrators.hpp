@@ -1,11 +1,14 @@
 #pragma once
 
-/// Time steppers for the free (torque-free) rigid body, state (q_WB, ω_B):
-/// orientation of body B in world W as a unit quaternion and body angular velocity.
+/// Time steppers for the free (torque-free) rigid body, state (R_WB, ω_B): orientation of
+/// the body's principal frame B in the world W and body angular velocity. These are the
+/// principal-frame kernels: `I_B` is the diagonal of the inertia in B (the principal moments).
+/// A body described in any frame (rigid::MassProperties) is stepped by rigid::body::RigidBody,
+/// which rotates into its principal frame once and calls these kernels.
 ///
 /// | method                  | order | conserves                                               |
 /// |-------------------------|-------|---------------------------------------------------------|
-/// | kRk4                    | 4     | nothing exactly; |q| drifts, energy and |L| drift O(h⁴) |
+/// | kRk4                    | 4     | |q| = 1 (projected each step); energy, |L| drift O(h⁴)  |
 /// | kSplitting2 (Strang)    | 2     | L_W exactly (each sub-flow is a rotation), |L|, |q| = 1 |
 /// | kSplitting4 (Yoshida)   | 4     | as kSplitting2; symplectic, energy error bounded        |
 /// | kSplitting6 (Yoshida)   | 6     | as kSplitting2; symplectic, energy error bounded        |
@@ -29,20 +32,28 @@
 /// |θ/2| ≤ 0.5) from which cos θ, sin θ and the quaternion of the turn follow, and |q| is
 /// restored once per step by one Newton step q ← q (3 − |q|²)/2 (no square root).
 
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include <Eigen/Core>
-#include <Eigen/Geometry>
+
+#include "rigid/integrate/march.hpp"
+#include "rigid/lie/so3.hpp"
 
 namespace rigid::body {
 
-/// Orientation q_WB and body angular velocity w_B (rad/s) of a free rigid body.
+/// Orientation R_WB (body to world) and body angular velocity w_B (rad/s) of a free rigid body.
 struct FreeBodyState {
-  Eigen::Quaterniond q_WB = Eigen::Quaterniond::Identity();
+  SO3d R_WB = SO3d::identity();
   Eigen::Vector3d w_B = Eigen::Vector3d::Zero();
 };
+
+/// The first non-finite component of a state ("R_WB.w" … "R_WB.z", "w_B.x" … "w_B.z") for the
+/// finiteness check of rigid::integrate::march; `owner` names the body in the message.
+[[nodiscard]] std::optional<integrate::NonFinite> find_nonfinite(const FreeBodyState& s,
+                                                                 std::string_view owner = {});
 
 enum class FreeBodyMethod {
   kRk4,
@@ -67,7 +78,7 @@ enum class FreeBodyMethod {
                                            const FreeBodyState& state, double h);
 
 /// Diagnostics of a state: kinetic energy (J), world angular momentum L_W = R_WB I ω_B,
-/// and the orthonormality defect ‖RᵀR − 1‖_max of R = R(q) without renormalising q.
+/// and the orthonormality defect ‖RᵀR − 1‖_max of the rotation matrix of R_WB.
 struct FreeBodyDiagnostics {
   double energy = 0;
   Eigen::Vector3d L_W = Eigen::Vector3d::Zero();
@@ -82,11 +93,16 @@ struct FreeBodyTrajectory {
   std::vector<FreeBodyDiagnostics> diagnostics;
 };
 
-/// Integrates from t = 0 to every entry of `output_times` (ascending, ≥ 0) with steps
-/// of at most `h_max`; each output interval is split into equal steps.
+/// Integrates from t = 0 to every entry of `output_times` (ascending, ≥ 0) by
+/// rigid::integrate::march: between two output times the fewest equal steps no longer than
+/// `h_max` (s). Every step is checked for a non-finite state.
+/// @throws rigid::Error if I_B fails rigid::check_rotational_moments, h_max is not positive and
+/// finite, the output times are not ascending and finite, the state diverges (naming the
+/// component and t), or `control` cancels the run (rigid::Cancelled).
 [[nodiscard]] FreeBodyTrajectory simulate_free_body(FreeBodyMethod method,
                                                     const Eigen::Vector3d& I_B,
                                                     const FreeBodyState& initial, double h_max,
-                                                    const std::vector<double>& output_times);
+                                                    const std::vector<double>& output_times,
+                                                    const integrate::MarchControl& control = {});
 
 }  // namespace rigid::body

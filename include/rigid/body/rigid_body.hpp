@@ -10,6 +10,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <optional>
 #include <string_view>
 #include <vector>
 
@@ -18,6 +19,7 @@
 
 #include "rigid/body/free_body_integrators.hpp"
 #include "rigid/lie/so3.hpp"
+#include "rigid/mass/mass_properties.hpp"
 
 namespace rigid::body {
 
@@ -49,6 +51,11 @@ struct AppliedLoad {
   Eigen::Vector3d p_CQ_B = Eigen::Vector3d::Zero();
 };
 
+/// The first non-finite component of a state ("R_WB.w", …, "w_B.x", …, "p_WC.x", …, "v_WC.z")
+/// for the finiteness check of rigid::integrate::march; `owner` names the body.
+[[nodiscard]] std::optional<integrate::NonFinite> find_nonfinite(const RigidBodyState& s,
+                                                                 std::string_view owner = {});
+
 /// Time derivative of a state: ṗ_WC = v_WC, v̇_WC (m/s²), ω̇_B (rad/s²); Ṙ_WB = R_WB hat(ω_B)
 /// is implied by the state's ω_B.
 struct RigidBodyAcceleration {
@@ -66,15 +73,21 @@ struct RigidBodyDiagnostics {
   double orthonormality_error = 0;
 };
 
-/// The model: mass m (kg), inertia I_C_B about the COM in the body frame (kg·m²), uniform
-/// gravity g_W (m/s²) and any number of applied loads.
+/// The model: mass properties (mass m in kg, COM p_BC_B and inertia I_C_B about the COM in the
+/// body frame B, kg·m²), uniform gravity g_W (m/s²) and any number of applied loads. The state
+/// follows the COM C; B's origin is at p_WC − R_WB p_BC_B (origin_position()).
 ///
-/// Class invariant (checked by the constructor): m > 0 and finite; I_C_B finite, symmetric
-/// to 1e-12 relative to its largest entry, with principal moments > 0 satisfying the
-/// triangle inequality I_i ≤ I_j + I_k (to 1e-12 relative); g_W finite.
+/// Class invariant (checked by the constructor): valid mass properties (rigid::MassProperties,
+/// the one validity check) whose principal moments pass rigid::check_rotational_moments (no
+/// zero moment: the rotation of a point mass or a thin rod is undefined); g_W finite. The free
+/// flow runs in the principal frame P (R_BP from MassProperties::principal_axes, or the identity
+/// when I_C_B is diagonal in B).
 class RigidBody {
  public:
   /// @throws rigid::Error naming the violated condition and its value.
+  explicit RigidBody(const MassProperties& mass_B,
+                     const Eigen::Vector3d& g_W = Eigen::Vector3d::Zero());
+  /// RigidBody(MassProperties(mass, 0, I_C_B), g_W): a body frame with its origin at the COM.
   RigidBody(double mass, const Eigen::Matrix3d& I_C_B,
             const Eigen::Vector3d& g_W = Eigen::Vector3d::Zero());
 
@@ -82,13 +95,16 @@ class RigidBody {
   void add_load(AppliedLoad load);
 
   [[nodiscard]] double mass() const { return mass_; }
+  /// The COM p_BC_B in the body frame (m).
+  [[nodiscard]] const Eigen::Vector3d& com() const { return p_BC_B_; }
   [[nodiscard]] const Eigen::Matrix3d& inertia() const { return I_C_B_; }
   [[nodiscard]] const Eigen::Vector3d& gravity() const { return g_W_; }
   /// I_C_B⁻¹ (1/(kg·m²)).
   [[nodiscard]] const Eigen::Matrix3d& inertia_inverse() const { return I_C_B_inv_; }
   [[nodiscard]] std::size_t load_count() const { return loads_.size(); }
-  /// Principal moments (ascending, kg·m²) and the proper rotation R_BP whose columns are the
-  /// principal axes in B: I_C_B = R_BP diag(moments) R_BPᵀ.
+  /// Principal moments (kg·m²) and the proper rotation R_BP whose columns are the principal
+  /// axes in B: I_C_B = R_BP diag(moments) R_BPᵀ (moments ascending, or B's own diagonal when
+  /// I_C_B is diagonal).
   [[nodiscard]] const Eigen::Vector3d& principal_moments() const { return I_P_; }
   [[nodiscard]] const SO3d& principal_axes() const { return R_BP_; }
 
@@ -99,14 +115,22 @@ class RigidBody {
   /// Accelerations from Newton's and Euler's equations at time t (s).
   [[nodiscard]] RigidBodyAcceleration acceleration(double t, const RigidBodyState& state) const;
   [[nodiscard]] RigidBodyDiagnostics diagnose(const RigidBodyState& state) const;
+  /// Position of B's origin in the world, p_WC − R_WB p_BC_B (m).
+  [[nodiscard]] Eigen::Vector3d origin_position(const RigidBodyState& state) const {
+    return state.p_WC - state.R_WB * p_BC_B_;
+  }
+  /// The free flow of the drift: (R_WB, ω_B) advanced by h with `method` in the principal frame.
+  [[nodiscard]] FreeBodyState free_flow(const FreeBodyState& s, double h, FreeBodyMethod method) const;
 
  private:
   double mass_;
+  Eigen::Vector3d p_BC_B_;
   Eigen::Matrix3d I_C_B_;
   Eigen::Matrix3d I_C_B_inv_;
   Eigen::Vector3d g_W_;
   Eigen::Vector3d I_P_;
-  SO3d R_BP_;
+  SO3d R_BP_ = SO3d::identity();
+  bool principal_is_body_ = true;
   std::vector<AppliedLoad> loads_;
 };
 
@@ -144,17 +168,20 @@ struct RigidBodyTrajectory {
   std::vector<RigidBodyDiagnostics> diagnostics;
 };
 
-/// Integrates from t = 0 to every entry of `output_times` (ascending, ≥ 0) with steps of at
-/// most `h_max` (s); each output interval is split into equal steps.
+/// Integrates from t = 0 to every entry of `output_times` (ascending, ≥ 0) by
+/// rigid::integrate::march: between two output times the fewest equal steps no longer than
+/// `h_max` (s), every step checked for a non-finite state.
 /// @throws rigid::Error on a non-positive h_max, unordered or non-finite output times, a
-/// non-finite initial state, or a load that returns a non-finite wrench.
+/// non-finite initial state, a diverging state (naming the component and t), a load that
+/// returns a non-finite wrench; rigid::Cancelled from `control`.
 [[nodiscard]] RigidBodyTrajectory simulate_rigid_body(
     const RigidBody& body, RigidBodyMethod method, const RigidBodyState& initial, double h_max,
-    const std::vector<double>& output_times, FreeBodyMethod free_method = FreeBodyMethod::kSplitting2);
+    const std::vector<double>& output_times, FreeBodyMethod free_method = FreeBodyMethod::kSplitting2,
+    const integrate::MarchControl& control = {});
 
 }  // namespace rigid::body
 
-/// "RigidBodyState{q_WB: [w, x, y, z], w_B: [..] rad/s, p_WC: [..] m, v_WC: [..] m/s}"
+/// "RigidBodyState{R_WB: [w, x, y, z], w_B: [..] rad/s, p_WC: [..] m, v_WC: [..] m/s}"
 template <>
 struct fmt::formatter<rigid::body::RigidBodyState> : fmt::formatter<std::string_view> {
   auto format(const rigid::body::RigidBodyState& s, fmt::format_context& ctx) const

@@ -109,6 +109,14 @@ class MassProperties {
   Eigen::Matrix3d I_C_B_;
 };
 
+/// Why `moments` (principal moments about the COM or a pivot, kg·m², any order) cannot be those
+/// of a body that turns, or nullopt when they can: the checks of MassProperties::check on
+/// diag(moments) (finite, non-negative, I_i ≤ I_j + I_k within kRelativeTolerance·ΣI), and
+/// every moment above kRelativeTolerance·ΣI, since a zero moment (a point mass, a thin rod)
+/// leaves the rotation about that axis undefined (ω = L/I). The one check of principal moments
+/// that the dynamics (rigid::body, rigid::spring) accept.
+[[nodiscard]] std::optional<std::string> check_rotational_moments(const Eigen::Vector3d& moments);
+
 /// Mass properties of the union of bodies expressed in the same frame: masses add, the COM
 /// is the mass-weighted mean, inertias are shifted to the new COM and added.
 /// @throws rigid::Error if parts is empty.
