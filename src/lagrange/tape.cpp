@@ -13,8 +13,20 @@ constexpr std::int32_t kResultBase = 1 << 28;
 
 }  // namespace
 
+std::vector<double> Tape::make_scratch() const {
+  std::vector<double> slots(num_inputs_ + constants_.size() + code_.size(), 0.0);
+  std::copy(constants_.begin(), constants_.end(), slots.begin() + static_cast<std::ptrdiff_t>(num_inputs_));
+  return slots;
+}
+
 void Tape::evaluate(const double* inputs, double* outputs) const {
-  double* s = slots_.data();
+  std::vector<double> scratch = make_scratch();
+  evaluate(inputs, outputs, scratch);
+}
+
+void Tape::evaluate(const double* inputs, double* outputs, std::vector<double>& scratch) const {
+  RIGID_ASSERT(scratch.size() == num_inputs_ + constants_.size() + code_.size());
+  double* s = scratch.data();
   std::copy(inputs, inputs + num_inputs_, s);
   double* r = s + num_inputs_ + constants_.size();
   for (const Instruction& in : code_) {
@@ -243,8 +255,6 @@ Tape TapeBuilder::build() const {
     tape.code_.push_back({in.op, resolve(in.a), binary ? resolve(in.b) : in.b});
   }
   for (std::int32_t o : outputs_) tape.outputs_.push_back(resolve(o));
-  tape.slots_.assign(num_inputs_ + constants_.size() + code_.size(), 0.0);
-  std::copy(constants_.begin(), constants_.end(), tape.slots_.begin() + ni);
   return tape;
 }
 

@@ -8,10 +8,10 @@
 #include <vector>
 
 #include <Eigen/Core>
-#include <Eigen/Geometry>
 
 #include "rigid/common/error.hpp"
 #include "rigid/integrate/integrator.hpp"
+#include "rigid/lie/so3.hpp"
 #include "rigid/mass/mass_properties.hpp"
 
 namespace rigid::lagrange {
@@ -29,6 +29,32 @@ struct Expression {
   Expression(const char* text_) : text(text_) {}             // NOLINT: implicit on purpose
   Expression(std::string text_, SourceLocation where_)
       : text(std::move(text_)), where(std::move(where_)) {}
+};
+
+/// Three expressions: a vector of the world or a body frame (gravity, a COM). Implicit from a
+/// numeric vector (each entry becomes its shortest round-trip decimal).
+struct Vector3Expression {
+  std::array<Expression, 3> e{Expression("0"), Expression("0"), Expression("0")};
+  Vector3Expression() = default;
+  Vector3Expression(const Eigen::Vector3d& v);                 // NOLINT: implicit on purpose
+  Vector3Expression(std::array<Expression, 3> expressions) : e(std::move(expressions)) {}  // NOLINT
+  [[nodiscard]] const Expression& operator[](std::size_t i) const { return e[i]; }
+  [[nodiscard]] Expression& operator[](std::size_t i) { return e[i]; }
+};
+
+/// Mass properties whose entries are expressions of the parameters, in the body frame B:
+/// mass (kg), COM p_BC_B (m) and the inertia about the COM (kg·m²) as the tensor elements
+/// xx, yy, zz, xy, xz, yz (off-diagonal elements are −∫ρ x y dV). The equations keep them as
+/// written, so a mass `m1` prints as m1. The System checks the numbers (mass > 0, a physical
+/// tensor: rigid::MassProperties::check) for the parameters' values.
+struct BodyMass {
+  Expression mass = "0";
+  Vector3Expression com;
+  std::array<Expression, 6> inertia{Expression("0"), Expression("0"), Expression("0"),
+                                    Expression("0"), Expression("0"), Expression("0")};
+  BodyMass() = default;
+  /// The numbers of `mp` (each its shortest round-trip decimal).
+  BodyMass(const MassProperties& mp);  // NOLINT: implicit on purpose
 };
 
 /// A named constant of the model (value in SI units).
@@ -55,7 +81,7 @@ struct AxisRotation {
 /// R_WBᵀ Ṙ_WB; gravity adds V = −m g_W · c.
 struct Body {
   std::string name;
-  MassProperties mass;
+  BodyMass mass;
   std::array<Expression, 3> position{Expression("0"), Expression("0"), Expression("0")};  ///< empty: 0
   std::vector<AxisRotation> rotations;
 };
@@ -85,7 +111,7 @@ struct SystemSpec {
   std::vector<Coordinate> coordinates;
   Expression lagrangian;  ///< optional (empty text: 0), J
   std::vector<Body> bodies;
-  Eigen::Vector3d gravity_W = Eigen::Vector3d::Zero();  ///< m/s², acts on the bodies
+  Vector3Expression gravity_W;  ///< m/s², acts on the bodies; expressions of the parameters
   std::vector<NamedExpression> potentials;
   std::vector<Spring> springs;
   std::vector<NamedExpression> forces;
@@ -103,11 +129,12 @@ struct Equations {
   std::vector<std::string> cyclic;  ///< names of cyclic coordinates
 };
 
-/// How to run a simulation (seconds).
+/// How to run a simulation (seconds). Fixed-step methods follow the one step rule of
+/// rigid::integrate::march: between two output times the fewest equal steps no longer than dt.
 struct SimulationOptions {
   double t_end = 1.0;
   integrate::Method method = integrate::Method::kDopri5;
-  double dt = 1e-3;          ///< fixed step, initial step of dopri5
+  double dt = 1e-3;          ///< largest fixed step, initial step of dopri5
   double tolerance = 1e-10;  ///< dopri5 relative and absolute tolerance
   double output_dt = 0.0;    ///< spacing of output rows; 0: every step
   /// Baumgarte stabilisation rate α (1/s) of the constraints: the solver enforces
@@ -119,9 +146,11 @@ struct SimulationOptions {
   /// ... unless this is set: then q(0) is projected onto g = 0 (minimum-norm Newton) and
   /// q̇(0) onto ġ = 0.
   bool project_initial = false;
-  /// Called with the time reached (s) as the run advances (from the right-hand side, so
-  /// several times per step); may throw rigid::Error to stop the run. Empty: not called.
-  std::function<void(double t)> progress{};
+  /// Values of parameters for this run only, by name (the System's own stay as they are, so
+  /// several runs with different values may share one System, also on several threads).
+  std::vector<Parameter> parameters{};
+  /// Progress reports and cancellation (rigid::integrate::MarchControl).
+  integrate::MarchControl control{};
 };
 
 /// A simulated trajectory; row k of every matrix is the sample at time t[k].
@@ -138,10 +167,36 @@ struct Trajectory {
   std::size_t steps = 0, rhs_evaluations = 0;
 };
 
-/// Pose of a body frame B in the world W: origin p_WB (m) and orientation q_WB.
+/// Pose of a body frame B in the world W: origin p_WB (m) and orientation R_WB.
 struct BodyPose {
   Eigen::Vector3d p_WB = Eigen::Vector3d::Zero();
-  Eigen::Quaterniond q_WB = Eigen::Quaterniond::Identity();
+  SO3d R_WB = SO3d::identity();
+};
+
+/// Scratch space for evaluating a System: inputs, outputs and factorizations of one run or one
+/// thread. A System is immutable once built (but for set_parameter); every evaluation writes
+/// only into a Workspace, so one System may be evaluated and simulated from several threads at
+/// once, each with its own Workspace. The symbolic side (equations(), construction) uses
+/// GiNaC, which is not thread-safe: call it from one thread at a time.
+class Workspace {
+ public:
+  Workspace(Workspace&&) noexcept;
+  Workspace& operator=(Workspace&&) noexcept;
+  Workspace(const Workspace&) = delete;
+  Workspace& operator=(const Workspace&) = delete;
+  ~Workspace();
+  /// Sets a parameter's value for evaluations through this workspace only.
+  /// @throws rigid::Error for an unknown name or a non-finite value.
+  void set_parameter(const std::string& name, double value);
+
+  struct Impl;
+  struct Access;  ///< the library's own access to the scratch (src/lagrange)
+
+ private:
+  friend class System;
+  friend struct Access;
+  explicit Workspace(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
 };
 
 /// The value of an expression that uses only numbers, `pi`, functions and the given
@@ -183,48 +238,92 @@ class System {
   [[nodiscard]] Eigen::VectorXd initial_q() const;
   [[nodiscard]] Eigen::VectorXd initial_q_dot() const;
 
-  /// Changes a parameter's value without re-deriving. @throws rigid::Error if unknown.
+  /// Changes a parameter's default value without re-deriving (workspaces made afterwards see
+  /// it). Not to be called while another thread evaluates or simulates this System.
+  /// @throws rigid::Error if unknown, not finite, or if it makes a body unphysical.
   void set_parameter(const std::string& name, double value);
+  /// Names and default values of the parameters, in declaration order.
+  [[nodiscard]] std::vector<Parameter> parameters() const;
+
+  /// A workspace for evaluating this System (with its current parameter values).
+  [[nodiscard]] Workspace make_workspace() const;
 
   /// The equations for printing.
   [[nodiscard]] Equations equations() const;
 
   /// Evaluates M(q, t) (n × n) and f(q, q̇, t) + Q (n).
-  void mass_matrix_and_forces(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& q_dot,
-                              Eigen::MatrixXd& M, Eigen::VectorXd& f) const;
+  void mass_matrix_and_forces(Workspace& w, double t, const Eigen::VectorXd& q,
+                              const Eigen::VectorXd& q_dot, Eigen::MatrixXd& M,
+                              Eigen::VectorXd& f) const;
   /// q̈ and λ at (t, q, q̇), with Baumgarte rate `stabilization` (1/s).
   /// @throws rigid::Error naming t and q for a singular mass matrix or dependent constraints.
+  void accelerations(Workspace& w, double t, const Eigen::VectorXd& q,
+                     const Eigen::VectorXd& q_dot, Eigen::VectorXd& q_ddot,
+                     Eigen::VectorXd& lambda, double stabilization = 0.0) const;
+  /// T + V and the Jacobi integral h at (t, q, q̇).
+  [[nodiscard]] double energy(Workspace& w, double t, const Eigen::VectorXd& q,
+                              const Eigen::VectorXd& q_dot) const;
+  [[nodiscard]] double jacobi_integral(Workspace& w, double t, const Eigen::VectorXd& q,
+                                       const Eigen::VectorXd& q_dot) const;
+  /// g(q, t).
+  [[nodiscard]] Eigen::VectorXd constraint_residual(Workspace& w, double t,
+                                                    const Eigen::VectorXd& q) const;
+  /// Poses of the bodies at (t, q), in the order of body_names().
+  [[nodiscard]] std::vector<BodyPose> body_poses(Workspace& w, double t,
+                                                 const Eigen::VectorXd& q) const;
+
+  /// The same evaluations with a workspace made for the call (convenient, not for loops).
+  void mass_matrix_and_forces(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& q_dot,
+                              Eigen::MatrixXd& M, Eigen::VectorXd& f) const;
   void accelerations(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& q_dot,
                      Eigen::VectorXd& q_ddot, Eigen::VectorXd& lambda,
                      double stabilization = 0.0) const;
-  /// T + V and the Jacobi integral h at (t, q, q̇).
   [[nodiscard]] double energy(double t, const Eigen::VectorXd& q,
                               const Eigen::VectorXd& q_dot) const;
   [[nodiscard]] double jacobi_integral(double t, const Eigen::VectorXd& q,
                                        const Eigen::VectorXd& q_dot) const;
-  /// g(q, t).
   [[nodiscard]] Eigen::VectorXd constraint_residual(double t, const Eigen::VectorXd& q) const;
+  [[nodiscard]] std::vector<BodyPose> body_poses(double t, const Eigen::VectorXd& q) const;
 
   /// Names of the bodies of the spec, in order ("body<i>" for an unnamed body i, from 0).
   [[nodiscard]] const std::vector<std::string>& body_names() const;
-  /// Poses of the bodies at (t, q), in the order of body_names().
-  [[nodiscard]] std::vector<BodyPose> body_poses(double t, const Eigen::VectorXd& q) const;
 
   /// Number of instructions of the compiled dynamics tape (M, f, G, γ, g, ġ).
   [[nodiscard]] std::size_t tape_size() const;
 
-  /// Simulates from the initial state of the spec (or the given q0, q̇0).
+  /// Simulates from the initial state of the spec (or the given q0, q̇0), with a workspace of
+  /// its own: several threads may simulate one System at once.
   /// @throws rigid::Error for inconsistent initial conditions (with the residual) unless
   ///   project_initial, dependent constraints (redundant or inconsistent, named), a mass
   ///   matrix that is not positive definite, a singular mass matrix or non-finite state
-  ///   during the run (naming t and q), and bad options.
+  ///   during the run (naming t and the coordinate), an unknown parameter override, and bad
+  ///   options; rigid::Cancelled from options.control.
   [[nodiscard]] Trajectory simulate(const SimulationOptions& options) const;
   [[nodiscard]] Trajectory simulate(const SimulationOptions& options, const Eigen::VectorXd& q0,
                                     const Eigen::VectorXd& q_dot0) const;
 
- private:
   struct Impl;
+
+ private:
   std::unique_ptr<Impl> impl_;
 };
+
+/// Euler's equations of one free body (or of a heavy top about its pivot) in the body frame B,
+/// with the inertia as the expressions of `mass`, for printing: text or LaTeX lines
+///   I ω̇ + ω × (I ω) = τ   (one line per axis, I about the COM or the pivot),
+///   Ṙ_WB = R_WB [ω]×,  and the COM's m c̈ = m g (free) or the gravity torque (top).
+/// Parameters keep their names; the inertia about a pivot is I_C + m (|d|² 1 − d dᵀ) with
+/// d = COM − pivot, simplified.
+/// @throws rigid::Error for a parse error or an undefined name in an expression.
+struct FreeBodyEquationsSpec {
+  std::string name;
+  BodyMass mass;
+  bool has_pivot = false;
+  Vector3Expression pivot_B;     ///< m, in B (with has_pivot)
+  Vector3Expression gravity_W;   ///< m/s²
+};
+[[nodiscard]] std::vector<std::string> free_body_equations(const std::vector<Parameter>& parameters,
+                                                           const FreeBodyEquationsSpec& body,
+                                                           bool latex);
 
 }  // namespace rigid::lagrange

@@ -23,10 +23,16 @@ struct Instruction {
 };
 
 /// A flat instruction sequence computing a list of outputs from a list of inputs.
-/// Slots: [inputs | constants | instruction results].
+/// Slots: [inputs | constants | instruction results]. Immutable once built: every evaluation
+/// writes into a scratch of the caller's, so one tape serves several threads at once.
 class Tape {
  public:
-  /// Evaluates; `inputs` has num_inputs() values, `outputs` receives num_outputs().
+  /// Scratch slots for evaluate(), with the constants in place (one per thread or run).
+  [[nodiscard]] std::vector<double> make_scratch() const;
+  /// Evaluates; `inputs` has num_inputs() values, `outputs` receives num_outputs(); `scratch`
+  /// comes from make_scratch() of this tape.
+  void evaluate(const double* inputs, double* outputs, std::vector<double>& scratch) const;
+  /// The same with a scratch made for this call.
   void evaluate(const double* inputs, double* outputs) const;
   [[nodiscard]] std::size_t size() const { return code_.size(); }
   [[nodiscard]] std::size_t num_inputs() const { return num_inputs_; }
@@ -44,7 +50,6 @@ class Tape {
   std::vector<double> constants_;
   std::vector<Instruction> code_;
   std::vector<std::int32_t> outputs_;
-  mutable std::vector<double> slots_;
 };
 
 /// Compiles GiNaC expressions to a Tape, sharing every repeated subexpression (GiNaC

@@ -1,0 +1,39 @@
+#pragma once
+
+// Symbolic building blocks of the Lagrangian engine (GiNaC): names, derivatives, the
+// simplification that cancels sin² + cos², printing, exact numbers and 3×3 rotations.
+
+#include <array>
+#include <set>
+#include <string>
+
+#include <Eigen/Core>
+#include <ginac/ginac.h>
+
+namespace rigid::lagrange::detail {
+
+/// Letters, digits and '_', not starting with a digit.
+[[nodiscard]] bool is_identifier(const std::string& s);
+/// t, pi and the function names.
+[[nodiscard]] const std::set<std::string>& reserved_names();
+/// TeX for a name: Greek letter names become the letter, trailing digits or "_x" a subscript.
+[[nodiscard]] std::string tex_name(const std::string& name);
+/// ∂e/∂x by the sum, product, power and chain rules (subtrees free of x are skipped).
+[[nodiscard]] GiNaC::ex d(const GiNaC::ex& e, const GiNaC::symbol& x);
+/// expand, with sinⁿx → sin^(n mod 2)x · (1 − cos²x)^(n/2) so that sin² + cos² cancels.
+[[nodiscard]] GiNaC::ex simplify(const GiNaC::ex& e);
+[[nodiscard]] std::string to_text(const GiNaC::ex& e);
+[[nodiscard]] std::string to_latex(const GiNaC::ex& e);
+/// A double as the exact rational of its shortest round-trip decimal (0.7 → 7/10).
+[[nodiscard]] GiNaC::ex number(double v);
+
+using Mat3 = std::array<std::array<GiNaC::ex, 3>, 3>;
+using Vec3 = std::array<GiNaC::ex, 3>;
+[[nodiscard]] Mat3 mat_mul(const Mat3& A, const Mat3& B);
+[[nodiscard]] Vec3 mat_vec(const Mat3& A, const Vec3& v);
+[[nodiscard]] Vec3 mat_t_vec(const Mat3& A, const Vec3& v);
+[[nodiscard]] Mat3 identity3();
+/// R = exp(θ[a]ₓ) = 1 + sin θ [a]ₓ + (1 − cos θ)[a]ₓ² (Rodrigues), a a unit vector.
+[[nodiscard]] Mat3 rodrigues(const Eigen::Vector3d& a, const GiNaC::ex& theta);
+
+}  // namespace rigid::lagrange::detail

@@ -1,0 +1,61 @@
+#pragma once
+
+// The compiled model behind rigid::lagrange::System (system.cpp derives it, evaluate.cpp
+// evaluates and simulates it) and the per-run scratch behind rigid::lagrange::Workspace.
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+#include <ginac/ginac.h>
+
+#include "tape.hpp"
+#include "rigid/lagrange/system.hpp"
+
+namespace rigid::lagrange {
+
+struct System::Impl {
+  // names
+  std::vector<std::string> coord_names, constraint_names, cyclic_names, param_names, body_names;
+  std::vector<double> param_values;  // defaults; a Workspace copies them
+  // symbols (GiNaC: used only while deriving and printing)
+  std::vector<GiNaC::symbol> q, qd, qdd, params, lambda;
+  GiNaC::symbol t{"t"};
+  Eigen::VectorXd q0, qd0;
+  // derived expressions
+  GiNaC::ex L, T, V, h;
+  std::vector<GiNaC::ex> M, f, G, gamma, g, c, p;
+  std::vector<int> cyclic_index;
+  bool verlet_ok = false;
+  // compiled: inputs (q, q̇, t, parameters) for dyn, diag and pose; the parameters alone for
+  // masses (per body: mass, COM (3), inertia xx yy zz xy xz yz)
+  detail::Tape dyn, diag, pose, masses;
+  int n = 0, m = 0;
+
+  [[nodiscard]] std::size_t num_inputs() const {
+    return static_cast<std::size_t>(2 * n + 1) + param_values.size();
+  }
+  [[nodiscard]] std::size_t parameter_index(const std::string& name) const;
+  /// Throws naming the body if a parameter set makes a body's mass properties unphysical.
+  void check_masses(const std::vector<double>& values, std::string_view context) const;
+  [[nodiscard]] std::string state_text(double time, const Eigen::VectorXd& qv) const;
+};
+
+struct Workspace::Impl {
+  const System::Impl* owner = nullptr;
+  std::vector<double> params;
+  std::vector<double> in, out, diag_out, pose_out;
+  std::vector<double> dyn_scratch, diag_scratch, pose_scratch;
+  Eigen::MatrixXd Mw, Gw, Yw, Sw;
+  Eigen::VectorXd fw, gammaw, cw, gw, Minv_f, rhs_m;
+  Eigen::LLT<Eigen::MatrixXd> llt_M;
+  Eigen::LDLT<Eigen::MatrixXd> ldlt_S;
+  double mass_scale = 0.0;  // largest pivot of M at the start of a run
+};
+
+struct Workspace::Access {
+  static Workspace::Impl* impl(Workspace& w) { return w.impl_.get(); }
+};
+
+}  // namespace rigid::lagrange

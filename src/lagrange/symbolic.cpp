@@ -1,0 +1,205 @@
+#include "detail/symbolic.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <sstream>
+
+#include <fmt/format.h>
+
+namespace rigid::lagrange::detail {
+
+using GiNaC::ex;
+using GiNaC::symbol;
+
+namespace {
+
+// sinⁿx → sin^(n mod 2)x · (1 − cos²x)^(n/2) for n ≥ 2, so that expand() cancels the
+// sin² + cos² pairs that |ċ|² and ωᵀIω produce
+struct ReduceSines : GiNaC::map_function {
+  ex operator()(const ex& e) override {
+    if (GiNaC::is_a<GiNaC::power>(e) && GiNaC::is_a<GiNaC::function>(e.op(0)) &&
+        GiNaC::ex_to<GiNaC::function>(e.op(0)).get_name() == "sin" &&
+        GiNaC::is_a<GiNaC::numeric>(e.op(1)) && GiNaC::ex_to<GiNaC::numeric>(e.op(1)).is_integer()) {
+      const long n = GiNaC::ex_to<GiNaC::numeric>(e.op(1)).to_long();
+      if (n >= 2) {
+        const ex x = e.op(0).op(0);
+        return GiNaC::pow(GiNaC::sin(x), n % 2) * GiNaC::pow(1 - GiNaC::pow(GiNaC::cos(x), 2), n / 2);
+      }
+    }
+    return e.map(*this);
+  }
+};
+
+}  // namespace
+
+bool is_identifier(const std::string& s) {
+  if (s.empty() || !(std::isalpha(static_cast<unsigned char>(s[0])) || s[0] == '_')) return false;
+  return std::all_of(s.begin(), s.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+  });
+}
+
+const std::set<std::string>& reserved_names() {
+  static const std::set<std::string> kReserved = {
+      "t", "pi", "sin", "cos", "tan", "asin", "acos", "atan", "exp", "log", "sqrt", "abs",
+      "sinh", "cosh", "tanh"};
+  return kReserved;
+}
+
+// TeX for a name: Greek letter names become the letter, trailing digits or "_x" a subscript
+std::string tex_name(const std::string& name) {
+  static const std::set<std::string> kGreek = {
+      "alpha", "beta",  "gamma", "delta", "epsilon", "zeta", "eta",   "theta", "iota",
+      "kappa", "lambda", "mu",   "nu",    "xi",      "rho",  "sigma", "tau",   "upsilon",
+      "phi",   "chi",   "psi",   "omega", "Gamma",   "Delta", "Theta", "Lambda", "Xi",
+      "Pi",    "Sigma", "Phi",   "Psi",   "Omega"};
+  std::string base = name, sub;
+  if (auto u = name.find('_'); u != std::string::npos && u > 0) {
+    base = name.substr(0, u);
+    sub = name.substr(u + 1);
+  } else {
+    auto d = name.find_last_not_of("0123456789");
+    if (d != std::string::npos && d + 1 < name.size()) {
+      base = name.substr(0, d + 1);
+      sub = name.substr(d + 1);
+    }
+  }
+  std::string out = kGreek.count(base) ? "\\" + base : (base.size() > 1 ? "\\mathrm{" + base + "}" : base);
+  if (!sub.empty()) out += "_{" + sub + "}";
+  return out;
+}
+
+// ∂e/∂x by the sum, product, power and chain rules. GiNaC's own ex::diff signals "no explicit
+// derivative" of sin/cos by throwing and catching an exception per call, which dominated the
+// derivation time; subtrees free of x are skipped.
+ex d(const ex& e, const symbol& x) {
+  using namespace GiNaC;
+  if (is_a<symbol>(e)) return e.is_equal(x) ? 1 : 0;
+  if (is_a<numeric>(e) || is_a<constant>(e) || !e.has(x)) return 0;
+  if (is_a<add>(e)) {
+    exvector terms;
+    terms.reserve(e.nops());
+    for (const ex& term : e) terms.push_back(d(term, x));
+    return add(terms);
+  }
+  if (is_a<mul>(e)) {
+    exvector terms;
+    const exvector factors(e.begin(), e.end());
+    for (std::size_t i = 0; i < factors.size(); ++i) {
+      ex di = d(factors[i], x);
+      if (di.is_zero()) continue;
+      exvector f = factors;
+      f[i] = di;
+      terms.push_back(mul(f));
+    }
+    return add(terms);
+  }
+  if (is_a<power>(e)) {
+    const ex b = e.op(0), p = e.op(1);
+    if (!p.has(x)) return p * pow(b, p - 1) * d(b, x);
+    return e * (d(p, x) * log(b) + p * d(b, x) / b);
+  }
+  if (is_a<function>(e) && e.nops() == 1) {
+    const std::string name = ex_to<function>(e).get_name();
+    const ex a = e.op(0), da = d(a, x);
+    if (name == "sin") return cos(a) * da;
+    if (name == "cos") return -sin(a) * da;
+    if (name == "tan") return (1 + pow(tan(a), 2)) * da;
+    if (name == "asin") return da / sqrt(1 - pow(a, 2));
+    if (name == "acos") return -da / sqrt(1 - pow(a, 2));
+    if (name == "atan") return da / (1 + pow(a, 2));
+    if (name == "exp") return exp(a) * da;
+    if (name == "log") return da / a;
+    if (name == "sinh") return cosh(a) * da;
+    if (name == "cosh") return sinh(a) * da;
+    if (name == "tanh") return (1 - pow(tanh(a), 2)) * da;
+  }
+  return e.diff(x);
+}
+
+ex simplify(const ex& e) {
+  ReduceSines reduce;
+  return reduce(e.expand()).expand();
+}
+
+std::string to_text(const ex& e) {
+  std::ostringstream os;
+  os << e;
+  return os.str();
+}
+std::string to_latex(const ex& e) {
+  std::ostringstream os;
+  os << GiNaC::latex << e;
+  return os.str();
+}
+
+// a double as the exact rational of its shortest round-trip decimal (0.7 → 7/10), so that
+// printed equations show 7/10 rather than 0.6999999999999999556 and products stay exact
+ex number(double v) {
+  if (v == std::round(v) && std::abs(v) < 1e15) return GiNaC::numeric(static_cast<long>(v));
+  const std::string text = fmt::format("{}", v);
+  std::string digits;
+  long scale = 0;
+  bool fraction = false, negative = false;
+  std::size_t k = 0;
+  if (k < text.size() && text[k] == '-') {
+    negative = true;
+    ++k;
+  }
+  for (; k < text.size(); ++k) {
+    const char c = text[k];
+    if (c == '.') {
+      fraction = true;
+    } else if (c == 'e' || c == 'E') {
+      scale += std::stol(text.substr(k + 1));
+      break;
+    } else {
+      digits += c;
+      if (fraction) --scale;
+    }
+  }
+  const GiNaC::numeric r = GiNaC::numeric(digits.c_str()) * GiNaC::numeric(10).power(scale);
+  return negative ? -r : r;
+}
+
+Mat3 mat_mul(const Mat3& A, const Mat3& B) {
+  Mat3 C;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) C[i][j] = A[i][0] * B[0][j] + A[i][1] * B[1][j] + A[i][2] * B[2][j];
+  return C;
+}
+Vec3 mat_vec(const Mat3& A, const Vec3& v) {
+  Vec3 w;
+  for (int i = 0; i < 3; ++i) w[i] = A[i][0] * v[0] + A[i][1] * v[1] + A[i][2] * v[2];
+  return w;
+}
+Vec3 mat_t_vec(const Mat3& A, const Vec3& v) {
+  Vec3 w;
+  for (int i = 0; i < 3; ++i) w[i] = A[0][i] * v[0] + A[1][i] * v[1] + A[2][i] * v[2];
+  return w;
+}
+Mat3 identity3() {
+  Mat3 I;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) I[i][j] = i == j ? 1 : 0;
+  return I;
+}
+
+// R = exp(θ[a]ₓ) = 1 + sin θ [a]ₓ + (1 − cos θ)[a]ₓ² (Rodrigues), a a unit vector
+Mat3 rodrigues(const Eigen::Vector3d& a, const ex& theta) {
+  const Vec3 u{number(a.x()), number(a.y()), number(a.z())};
+  const ex s = GiNaC::sin(theta), c = GiNaC::cos(theta);
+  Mat3 K;
+  K[0] = {0, -u[2], u[1]};
+  K[1] = {u[2], 0, -u[0]};
+  K[2] = {-u[1], u[0], 0};
+  const Mat3 K2 = mat_mul(K, K);
+  Mat3 R = identity3();
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) R[i][j] = (R[i][j] + s * K[i][j] + (1 - c) * K2[i][j]).expand();
+  return R;
+}
+
+
+}  // namespace rigid::lagrange::detail
