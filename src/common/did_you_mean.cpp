@@ -29,7 +29,7 @@ std::size_t distance(std::string_view a, std::string_view b) {
 }  // namespace
 
 std::optional<std::string> did_you_mean(std::string_view word,
-                                        std::span<const std::string> candidates) {
+                                        const std::vector<std::string>& candidates) {
   std::optional<std::string> best;
   std::size_t best_d = std::max<std::size_t>(1, word.size() / 3) + 1;
   for (const auto& c : candidates) {
@@ -42,7 +42,7 @@ std::optional<std::string> did_you_mean(std::string_view word,
   return best;
 }
 
-std::string did_you_mean_hint(std::string_view word, std::span<const std::string> candidates) {
+std::string did_you_mean_hint(std::string_view word, const std::vector<std::string>& candidates) {
   if (auto g = did_you_mean(word, candidates)) return fmt::format("; did you mean '{}'?", *g);
   return {};
 }

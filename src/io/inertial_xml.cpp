@@ -7,11 +7,12 @@
 #include <sstream>
 #include <string_view>
 
-#include <Eigen/Geometry>
 #include <fmt/format.h>
 #include <tinyxml2.h>
 
 #include "rigid/common/error.hpp"
+#include "rigid/lie/euler.hpp"
+#include "rigid/lie/so3.hpp"
 
 namespace rigid::io {
 namespace {
@@ -101,15 +102,16 @@ void read_mjcf(const tinyxml2::XMLElement* inertial, InertialEntry& entry) {
   const char* pos = inertial->Attribute("pos");
   if (pos == nullptr) throw EntryProblem{"<inertial> has no attribute 'pos'"};
   entry.com = vec3(parse_numbers(pos, 3, "<inertial> attribute 'pos'"));
-  Eigen::Quaterniond q = Eigen::Quaterniond::Identity();
+  SO3d q = SO3d::identity();
   if (const char* t = inertial->Attribute("quat")) {
     const auto v = parse_numbers(t, 4, "<inertial> attribute 'quat'");
-    q = Eigen::Quaterniond(v[0], v[1], v[2], v[3]);  // MJCF order: w x y z
-    if (!(q.norm() > 0.0) || !std::isfinite(q.norm())) {
+    // MJCF order: w x y z
+    const double norm = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2] + v[3] * v[3]);
+    if (!(norm >= 1e-12) || !std::isfinite(norm)) {
       throw EntryProblem{fmt::format("<inertial> attribute 'quat': expected a non-zero "
                                      "quaternion, got '{}'", t)};
     }
-    q.normalize();  // MuJoCo normalises quat as well
+    q = SO3d::from_quaternion(v[0], v[1], v[2], v[3]);  // normalised, as MuJoCo does
   }
   entry.mass = required_number(inertial, "mass", "inertial");
   const char* diag = inertial->Attribute("diaginertia");
@@ -126,7 +128,7 @@ void read_mjcf(const tinyxml2::XMLElement* inertial, InertialEntry& entry) {
     const auto v = parse_numbers(full, 6, "<inertial> attribute 'fullinertia'");
     I_in = tensor(v[0], v[1], v[2], v[3], v[4], v[5]);
   }
-  const Eigen::Matrix3d R = q.toRotationMatrix();
+  const Eigen::Matrix3d R = q.matrix();
   entry.inertia_com = R * I_in * R.transpose();
 }
 
@@ -226,23 +228,14 @@ const char* to_string(InertialFormat format) {
   return "?";
 }
 
+// URDF/SDF rpy: R = Rz(yaw) Ry(pitch) Rx(roll), the extrinsic X-Y-Z sequence of rigid::lie
+// (at gimbal lock it sets the first angle, roll, to 0)
 Eigen::Matrix3d rotation_from_rpy(const Eigen::Vector3d& rpy) {
-  return (Eigen::AngleAxisd(rpy.z(), Eigen::Vector3d::UnitZ()) *
-          Eigen::AngleAxisd(rpy.y(), Eigen::Vector3d::UnitY()) *
-          Eigen::AngleAxisd(rpy.x(), Eigen::Vector3d::UnitX()))
-      .toRotationMatrix();
+  return from_euler(rpy, EulerConvention::parse("XYZ", false)).matrix();
 }
 
 Eigen::Vector3d rpy_from_rotation(const Eigen::Matrix3d& R) {
-  // R = Rz(y) Ry(p) Rx(r): R20 = −sin p, R21 = cos p sin r, R22 = cos p cos r,
-  // R10 = sin y cos p, R00 = cos y cos p.
-  const double c = std::hypot(R(2, 1), R(2, 2));
-  const double pitch = std::atan2(-R(2, 0), c);
-  if (c > 1e-12) {
-    return Eigen::Vector3d(std::atan2(R(2, 1), R(2, 2)), pitch, std::atan2(R(1, 0), R(0, 0)));
-  }
-  // gimbal lock (pitch = ±π/2): only r ∓ y is defined; take r = 0.
-  return Eigen::Vector3d(0.0, pitch, std::atan2(-R(0, 1), R(1, 1)));
+  return to_euler(SO3d::from_matrix(R), EulerConvention::parse("XYZ", false));
 }
 
 std::string write_inertial_document(const MassProperties& mp, InertialFormat format,
@@ -278,7 +271,7 @@ std::string write_inertial_document(const MassProperties& mp, InertialFormat for
     case InertialFormat::mjcf: {
       std::string inertia;
       if (options.principal) {
-        const Eigen::Quaterniond q(R);
+        const SO3d q = SO3d::from_matrix(R);
         inertia = fmt::format("quat=\"{} {} {} {}\" diaginertia=\"{} {} {}\"", q.w(), q.x(), q.y(),
                               q.z(), I(0, 0), I(1, 1), I(2, 2));
       } else {

@@ -7,6 +7,7 @@
 
 #include "detail/edge_table.hpp"
 #include "rigid/common/error.hpp"
+#include "rigid/common/wording.hpp"
 
 namespace rigid::mesh {
 namespace {
@@ -43,8 +44,8 @@ HoleFillReport fill_holes(TriangleMesh& mesh) {
         "boundary loop through vertex {} at ({:.9g}, {:.9g}, {:.9g}) m is not simple: the vertex "
         "is on {} boundary edges (expected 2: holes that touch, a non-manifold border, or "
         "inconsistent winding; run repair_mesh first); only simple holes can be filled, use "
-        "--shell or repair the mesh in a modelling tool",
-        v, p.x(), p.y(), p.z(), starts[v] + ends[v]);
+        "{} or repair the mesh in a modelling tool",
+        v, p.x(), p.y(), p.z(), starts[v] + ends[v], setting("shell"));
   }
 
   // Walk each loop from its lowest vertex and close it.

@@ -2,6 +2,8 @@
 
 #include <utility>
 
+#include <fmt/format.h>
+
 #include "detail/read_mesh.hpp"
 #include "detail/repair.hpp"
 
@@ -12,7 +14,43 @@ MeshFileMass mesh_mass_from_file(const std::string& path, double scale, const Ma
   detail::ReadResult read = detail::read_mesh(path, scale);
   RepairReport report = detail::repair_mesh(read.mesh, options, read.vertices_distinct);
   MeshMassResult mass = mesh_mass_properties(read.mesh, spec, report);
-  return {std::move(report), std::move(mass)};
+  return {std::move(report), std::nullopt, std::nullopt, std::move(mass)};
+}
+
+MeshFileMass mesh_mass_from_file(const std::string& path, double scale, const MassSpec& spec,
+                                 const RepairOptions& options, bool fill) {
+  if (!fill) return mesh_mass_from_file(path, scale, spec, options);
+  detail::ReadResult read = detail::read_mesh(path, scale);
+  RepairReport first = detail::repair_mesh(read.mesh, options, read.vertices_distinct);
+  if (first.boundary_edges == 0) {
+    MeshMassResult mass = mesh_mass_properties(read.mesh, spec, first);
+    return {std::move(first), std::nullopt, std::nullopt, std::move(mass)};
+  }
+  HoleFillReport filled = fill_holes(read.mesh);
+  RepairReport after = repair_mesh(read.mesh, options);
+  MeshMassResult mass = mesh_mass_properties(read.mesh, spec, after);
+  return {std::move(after), std::move(filled), std::move(first), std::move(mass)};
+}
+
+std::vector<std::string> MeshFileMass::warnings() const {
+  std::vector<std::string> out;
+  if (filled) {
+    for (const auto& w : before_fill->warnings) {  // what the filled mesh no longer shows
+      if (w.find("the mesh is open") == std::string::npos) out.push_back(w);
+    }
+    out.push_back(describe(*filled));
+  }
+  out.insert(out.end(), repair.warnings.begin(), repair.warnings.end());
+  out.insert(out.end(), mass.warnings.begin(), mass.warnings.end());
+  return out;
+}
+
+std::string describe(const HoleFillReport& f) {
+  std::string s = fmt::format("filled {} hole{} ({} triangles added, patch area {:.9g} m²):",
+                              f.holes.size(), f.holes.size() == 1 ? "" : "s", f.triangles_added, f.area);
+  for (const auto& h : f.holes) s += fmt::format(" {} edges/{:.6g} m²;", h.boundary_edges, h.area);
+  s.pop_back();
+  return s;
 }
 
 }  // namespace rigid::mesh

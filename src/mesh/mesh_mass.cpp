@@ -9,6 +9,7 @@
 
 #include "detail/accumulate.hpp"
 #include "rigid/common/error.hpp"
+#include "rigid/common/wording.hpp"
 #include "rigid/mesh/repair.hpp"
 
 namespace rigid::mesh {
@@ -200,8 +201,8 @@ MeshMassResult mesh_mass_properties(const TriangleMesh& mesh, const MassSpec& sp
                   "density {}: expected a positive finite value", *spec.density);
   }
   if (spec.thickness) {
-    RIGID_REQUIRE(spec.shell, "thickness {} m given for a solid: thickness applies to --shell only",
-                  *spec.thickness);
+    RIGID_REQUIRE(spec.shell, "thickness {} m given for a solid: a thickness applies to a shell ({}) only",
+                  *spec.thickness, setting("shell"));
     RIGID_REQUIRE(std::isfinite(*spec.thickness) && *spec.thickness > 0,
                   "thickness {} m: expected a positive finite value", *spec.thickness);
   }
@@ -211,9 +212,8 @@ MeshMassResult mesh_mass_properties(const TriangleMesh& mesh, const MassSpec& sp
     const EdgeCounts e = known_edges ? *known_edges : count_edges(mesh);
     RIGID_REQUIRE(e.boundary == 0 && e.non_manifold == 0,
                   "the mesh is not closed ({} boundary edges, {} non-manifold edges), so it "
-                  "bounds no solid: use --shell for a thin shell, or --fill-holes (fill_holes) "
-                  "to close simple holes",
-                  e.boundary, e.non_manifold);
+                  "bounds no solid: use {} for a thin shell, or {} to close simple holes",
+                  e.boundary, e.non_manifold, setting("shell"), setting("fill_holes"));
   }
   // one pass for the box: its centre is the reference point, its diagonal the size
   const auto box = mesh.bounding_box();
@@ -240,7 +240,7 @@ MeshMassResult mesh_mass_properties(const TriangleMesh& mesh, const MassSpec& sp
   const double size = (box[1] - box[0]).norm();
   if (size > kMaxSize) {
     out.warnings.push_back(fmt::format(
-        "the mesh is {:.4g} m across: if the file is in millimetres, use --units mm", size));
+        "the mesh is {:.4g} m across: if the file is in millimetres, use {}", size, setting("units", "mm")));
   }
   if (!spec.shell || spec.thickness) {
     const double density = spec.shell ? rho / *spec.thickness : rho;
@@ -248,8 +248,8 @@ MeshMassResult mesh_mass_properties(const TriangleMesh& mesh, const MassSpec& sp
       out.warnings.push_back(fmt::format(
           "implied density {:.4g} kg/m³ is outside any real material ({} to {} kg/m³): {}",
           density, kMinDensity, kMaxDensity,
-          density < kMinDensity ? "if the file is in millimetres, use --units mm"
-                                : "check --units (the file may be in metres, not mm)"));
+          density < kMinDensity ? "if the file is in millimetres, use " + setting("units", "mm")
+                                : "check the length unit, " + setting("units", "m") + " (the file may be in metres, not mm)"));
     }
   }
   return out;

@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 
 #include "rigid/common/error.hpp"
+#include "rigid/common/wording.hpp"
 #include "detail/edge_table.hpp"
 #include "detail/repair.hpp"
 
@@ -327,9 +328,9 @@ RepairReport detail::repair_mesh(TriangleMesh& mesh, const RepairOptions& option
   }
   if (report.boundary_edges > 0) {
     report.warnings.push_back(fmt::format(
-        "the mesh is open: {} boundary edges; as a solid its volume is undefined (use --shell, "
-        "or --fill-holes to close simple holes)",
-        report.boundary_edges));
+        "the mesh is open: {} boundary edges; as a solid its volume is undefined (use {}, or {} "
+        "to close simple holes)",
+        report.boundary_edges, setting("shell"), setting("fill_holes")));
   }
   if (report.non_manifold_edges > 0) {
     report.warnings.push_back(fmt::format(

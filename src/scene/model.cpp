@@ -3,16 +3,18 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 
 #include <fnmatch.h>
 
-#include <Eigen/Geometry>
 #include <fmt/format.h>
 
 #include "rigid/body/free_body_exact.hpp"
 #include "rigid/body/free_body_integrators.hpp"
 #include "rigid/body/heavy_top.hpp"
+#include "rigid/body/rigid_body.hpp"
 #include "rigid/common/error.hpp"
+#include "rigid/common/wording.hpp"
 #include "rigid/mass/primitive_table.hpp"
 #include "rigid/mass/primitives.hpp"
 #include "rigid/mesh/mass_from_file.hpp"
@@ -27,13 +29,16 @@ using Clock = std::chrono::steady_clock;
 lagrange::Expression to_lagrange(const Expression& e) { return {e.text, e.at(0)}; }
 
 // Rethrows an error of a library call at a position of the scene file, unless the error
-// already names a position in that file (expressions report their own column).
+// already names a position in that file (expressions report their own column). The remedy is
+// worded for a scene (its settings are the body's keys).
 template <typename F>
 auto at_location(const SourceLocation& where, const std::string& context, F&& f) {
   try {
     return f();
+  } catch (const Cancelled&) {
+    throw;
   } catch (const Error& e) {
-    const std::string_view what = e.what();
+    const std::string what = word_for(Surface::kScene, e.what());
     if (!where.file.empty() && what.starts_with(where.file + ":")) throw;
     detail::throw_error_at(where, fmt::format("{}: {}", context, what));
   }
@@ -50,42 +55,104 @@ Eigen::Vector3d vector_of(const std::array<Expression, 3>& e,
   return {value_of(e[0], params, what), value_of(e[1], params, what), value_of(e[2], params, what)};
 }
 
-MassProperties mass_of(const Body& b, const std::vector<lagrange::Parameter>& params,
-                       std::vector<std::string>& warnings) {
+lagrange::Vector3Expression expressions_of(const std::array<Expression, 3>& e) {
+  return lagrange::Vector3Expression(std::array<lagrange::Expression, 3>{to_lagrange(e[0]), to_lagrange(e[1]),
+                                                                         to_lagrange(e[2])});
+}
+
+// A body's mass properties twice: the numbers (checked by the libraries, for the simulation)
+// and expressions of the parameters (for the equations), plus the constants a file or a
+// vertex list contributes, which get names of their own.
+struct BodyMass {
+  MassProperties numeric;
+  lagrange::BodyMass symbolic;
+};
+
+// (text) × (text) etc. for the point-mass sums; every operand in parentheses
+std::string paren(const std::string& s) { return "(" + s + ")"; }
+
+// Names for the constants of a body that the scene did not write (a mesh file's mass
+// properties, a tetrahedron's): <body>_mass, <body>_com_x, …, <body>_ixx, …; zero entries
+// stay 0. The names are added to `derived` with their values.
+lagrange::BodyMass named_constants(const std::string& body, const MassProperties& mp,
+                                   const std::vector<lagrange::Parameter>& taken,
+                                   std::vector<lagrange::Parameter>& derived) {
+  auto name = [&](const std::string& suffix, double value) -> lagrange::Expression {
+    if (value == 0.0) return lagrange::Expression("0");
+    std::string n = body + "_" + suffix;
+    auto used = [&](const std::string& x) {
+      auto same = [&](const lagrange::Parameter& p) { return p.name == x; };
+      return std::any_of(taken.begin(), taken.end(), same) || std::any_of(derived.begin(), derived.end(), same);
+    };
+    while (used(n)) n += "_";
+    derived.push_back({n, value});
+    return lagrange::Expression(n);
+  };
+  lagrange::BodyMass b;
+  b.mass = name("mass", mp.mass());
+  static constexpr const char* kCom[3] = {"com_x", "com_y", "com_z"};
+  for (std::size_t k = 0; k < 3; ++k) b.com[k] = name(kCom[k], mp.com()[static_cast<Eigen::Index>(k)]);
+  const Eigen::Matrix3d& I = mp.inertia_com();
+  const double v[6] = {I(0, 0), I(1, 1), I(2, 2), I(0, 1), I(0, 2), I(1, 2)};
+  static constexpr const char* kI[6] = {"ixx", "iyy", "izz", "ixy", "ixz", "iyz"};
+  for (std::size_t k = 0; k < 6; ++k) b.inertia[k] = name(kI[k], v[k]);
+  return b;
+}
+
+BodyMass mass_of(const Body& b, const std::vector<lagrange::Parameter>& params,
+                 std::vector<lagrange::Parameter>& derived, std::vector<std::string>& warnings) {
   const MassSpec& m = b.mass;
   const std::string ctx = fmt::format("body '{}'", b.name);
   switch (m.kind) {
     case MassSpec::Kind::kPrimitive: {
-      std::vector<std::pair<std::string, double>> sizes;
-      for (const auto& [key, e] : m.dimensions) sizes.emplace_back(key, value_of(e, params, ctx + " " + key));
+      const mass::PrimitiveEntry& entry = mass::find_primitive(m.primitive);
+      mass::PrimitiveArguments args;
+      for (const auto& [key, e] : m.dimensions) args.sizes.emplace_back(key, value_of(e, params, ctx + " " + key));
+      for (const auto& [key, e] : m.vertices) args.points.emplace_back(key, vector_of(e, params, ctx + " " + key));
       const bool by_mass = m.mass.has_value();
-      const double amount = value_of(by_mass ? *m.mass : *m.density, params,
-                                     ctx + (by_mass ? " mass" : " density"));
-      return at_location(m.where, ctx, [&] {
-        return mass::make_primitive(m.primitive, by_mass ? mass::Amount::kMass : mass::Amount::kDensity,
-                                    amount, sizes);
-      });
+      const Expression& amount = by_mass ? *m.mass : *m.density;
+      const double value = value_of(amount, params, ctx + (by_mass ? " mass" : " density"));
+      const mass::Amount kind = by_mass ? mass::Amount::kMass : mass::Amount::kDensity;
+      MassProperties numeric = at_location(m.where, ctx, [&] { return mass::make_primitive(m.primitive, kind, value, args); });
+      if (entry.formulas.mass.empty()) return {numeric, named_constants(b.name, numeric, params, derived)};
+      // the closed forms with the sizes as the file wrote them, in the entry's order
+      std::vector<std::string> sizes(entry.sizes.size());
+      for (const auto& [key, e] : m.dimensions) sizes[*entry.size_index(key)] = e.text;
+      const std::array<std::string, 10> text = mass::primitive_expressions(entry, kind, amount.text, sizes);
+      lagrange::BodyMass symbolic;
+      symbolic.mass = text[0];
+      for (std::size_t k = 0; k < 3; ++k) symbolic.com[k] = text[1 + k];
+      for (std::size_t k = 0; k < 6; ++k) symbolic.inertia[k] = text[4 + k];
+      return {numeric, symbolic};
     }
     case MassSpec::Kind::kMesh: {
       mesh::MassSpec spec;
       if (m.mass) spec.mass = value_of(*m.mass, params, ctx + " mass");
       if (m.density) spec.density = value_of(*m.density, params, ctx + " density");
-      return at_location(m.where, ctx, [&] {
-        const mesh::MeshFileMass r = mesh::mesh_mass_from_file(m.mesh_file.string(), mesh::unit_scale(m.units), spec);
-        for (const auto& w : r.repair.warnings) warnings.push_back(fmt::format("{}: {}", ctx, w));
-        for (const auto& w : r.mass.warnings) warnings.push_back(fmt::format("{}: {}", ctx, w));
+      spec.shell = m.shell;
+      if (m.thickness) spec.thickness = value_of(*m.thickness, params, ctx + " thickness");
+      MassProperties numeric = at_location(m.where, ctx, [&] {
+        const mesh::MeshFileMass r =
+            mesh::mesh_mass_from_file(m.mesh_file.string(), mesh::unit_scale(m.units), spec, {}, m.fill_holes);
+        for (const auto& w : r.warnings()) warnings.push_back(fmt::format("{}: {}", ctx, word_for(Surface::kScene, w)));
         return r.mass.properties;
       });
+      return {numeric, named_constants(b.name, numeric, params, derived)};
     }
     case MassSpec::Kind::kExplicit: {
       const double mass = value_of(*m.mass, params, ctx + " inertia mass");
       const Eigen::Vector3d com = vector_of(m.com, params, ctx + " inertia com");
       std::array<double, 6> v{};
-      const char* names[6] = {"ixx", "iyy", "izz", "ixy", "ixz", "iyz"};
-      for (std::size_t i = 0; i < 6; ++i) v[i] = value_of(m.inertia[i], params, ctx + " " + names[i]);
+      static constexpr const char* kNames[6] = {"ixx", "iyy", "izz", "ixy", "ixz", "iyz"};
+      for (std::size_t i = 0; i < 6; ++i) v[i] = value_of(m.inertia[i], params, ctx + " " + kNames[i]);
       Eigen::Matrix3d I;
       I << v[0], v[3], v[4], v[3], v[1], v[5], v[4], v[5], v[2];
-      return at_location(m.where, ctx, [&] { return MassProperties(mass, com, I); });
+      MassProperties numeric = at_location(m.where, ctx, [&] { return MassProperties(mass, com, I); });
+      lagrange::BodyMass symbolic;
+      symbolic.mass = to_lagrange(*m.mass);
+      symbolic.com = expressions_of(m.com);
+      for (std::size_t i = 0; i < 6; ++i) symbolic.inertia[i] = to_lagrange(m.inertia[i]);
+      return {numeric, symbolic};
     }
     case MassSpec::Kind::kPointMasses: {
       std::vector<double> masses;
@@ -94,36 +161,98 @@ MassProperties mass_of(const Body& b, const std::vector<lagrange::Parameter>& pa
         masses.push_back(value_of(m.points[i].mass, params, ctx + " point mass"));
         points.col(static_cast<Eigen::Index>(i)) = vector_of(m.points[i].position, params, ctx + " point position");
       }
-      return at_location(m.where, ctx, [&] { return mass::point_masses(masses, points); });
+      MassProperties numeric = at_location(m.where, ctx, [&] { return mass::point_masses(masses, points); });
+      // Σ mᵢ, c = Σ mᵢ pᵢ / Σ mᵢ, I = Σ mᵢ (|pᵢ − c|² 1 − (pᵢ − c)(pᵢ − c)ᵀ) as expressions;
+      // the Lagrangian engine simplifies them (one point at the origin gives m and zeros)
+      std::string total;
+      std::array<std::string, 3> moment;
+      for (const PointMass& pm : m.points) {
+        total += (total.empty() ? "" : " + ") + paren(pm.mass.text);
+        for (std::size_t k = 0; k < 3; ++k) {
+          moment[k] += (moment[k].empty() ? "" : " + ") + paren(pm.mass.text) + "*" + paren(pm.position[k].text);
+        }
+      }
+      lagrange::BodyMass symbolic;
+      symbolic.mass = total;
+      std::array<std::string, 3> c;
+      for (std::size_t k = 0; k < 3; ++k) {
+        c[k] = paren(moment[k]) + "/" + paren(total);
+        symbolic.com[k] = c[k];
+      }
+      static constexpr int kRow[6] = {0, 1, 2, 0, 0, 1}, kCol[6] = {0, 1, 2, 1, 2, 2};
+      for (std::size_t k = 0; k < 6; ++k) {
+        std::string sum;
+        for (const PointMass& pm : m.points) {
+          std::array<std::string, 3> d;
+          for (std::size_t a = 0; a < 3; ++a) d[a] = paren(paren(pm.position[a].text) + " - " + paren(c[a]));
+          const auto r = static_cast<std::size_t>(kRow[k]), col = static_cast<std::size_t>(kCol[k]);
+          const std::string term = r == col ? fmt::format("{}^2 + {}^2", d[(r + 1) % 3], d[(r + 2) % 3])
+                                            : fmt::format("-{}*{}", d[r], d[col]);
+          sum += (sum.empty() ? "" : " + ") + paren(pm.mass.text) + "*" + paren(term);
+        }
+        symbolic.inertia[k] = sum;
+      }
+      return {numeric, symbolic};
     }
   }
   RIGID_THROW("unreachable mass kind");
 }
 
-// A free body integrated in its principal frame P (B → P by R_BP).
-struct FreeModel {
+// The integrator of a run, parsed once.
+struct Method {
   std::string name;
-  double mass = 0;
-  Eigen::Vector3d I_P = Eigen::Vector3d::Ones();  // principal moments (about COM or pivot)
-  Eigen::Quaterniond q_BP = Eigen::Quaterniond::Identity();
-  Eigen::Vector3d p_BC = Eigen::Vector3d::Zero();  // COM in B
-  bool top = false;                                // pivot: heavy top
-  Eigen::Vector3d pivot_B = Eigen::Vector3d::Zero();
-  Eigen::Vector3d pivot_W = Eigen::Vector3d::Zero();
-  body::HeavyTop heavy;
-  // initial state
-  body::FreeBodyState rot0;  // q_WP, w_P
-  Eigen::Vector3d p_WC0 = Eigen::Vector3d::Zero(), v_WC0 = Eigen::Vector3d::Zero();
+  bool exact = false;                                       // free bodies: closed form
+  integrate::Method coordinates = integrate::Method::kDopri5;
+  body::FreeBodyMethod free = body::FreeBodyMethod::kSplitting4;
 };
 
-std::string format_vec(const Eigen::Vector3d& v) { return fmt::format("({:.10g}, {:.10g}, {:.10g})", v.x(), v.y(), v.z()); }
+// A free body of the scene: a rigid body in uniform gravity, or a heavy top on its pivot. It
+// is stepped in its principal frame P (about the COM, or about the pivot for a top), where its
+// inertia is diagonal and the free-body kernels need no change of frame; the outputs are those
+// of the scene's body frame B: R_WB = R_WP R_BPᵀ, ω_B = R_BP ω_P.
+struct FreeBody {
+  std::string name;
+  std::optional<body::RigidBody> rigid;  // in P, origin at the COM
+  std::optional<body::HeavyTop> top;     // in P, origin that of B
+  SO3d R_BP = SO3d::identity();
+  Eigen::Vector3d com_B = Eigen::Vector3d::Zero(), pivot_B = Eigen::Vector3d::Zero();
+  lagrange::BodyMass symbolic;
+  std::optional<std::array<Expression, 3>> pivot_expressions;
+  Eigen::Vector3d pivot_W = Eigen::Vector3d::Zero();
+  body::RigidBodyState initial;  // R_WP, ω_P and (free) p_WC, v_WC
+};
+
+// Appends p and R's quaternion (sign chosen to continue `previous`, so the columns are
+// continuous).
+void push_pose(std::vector<double>& row, const Eigen::Vector3d& p, const SO3d& R, Eigen::Vector4d& previous) {
+  Eigen::Vector4d q = R.quaternion();
+  if (q.dot(previous) < 0) q = -q;
+  previous = q;
+  row.insert(row.end(), {p.x(), p.y(), p.z(), q(0), q(1), q(2), q(3)});
+}
+
+void add_pose_columns(std::vector<std::string>& cols, const std::string& body) {
+  for (const char* c : {"x", "y", "z", "qw", "qx", "qy", "qz"}) cols.push_back(body + "." + c);
+}
+
+// Largest |x_k − x_0| over the samples.
+double max_change(const std::vector<double>& x) {
+  double m = 0;
+  for (double v : x) m = std::max(m, std::abs(v - x.front()));
+  return m;
+}
+
+std::string format_vec(const Eigen::Vector3d& v) {
+  return fmt::format("({:.8g}, {:.8g}, {:.8g})", v.x(), v.y(), v.z());
+}
 
 }  // namespace
 
 struct Model::Impl {
   Scene scene;
   SceneKind kind = SceneKind::kCoordinates;
-  std::vector<lagrange::Parameter> params;
+  std::vector<lagrange::Parameter> params;   // the scene's, then the derived constants
+  std::size_t scene_params = 0;              // how many of params the scene wrote
   std::vector<ModelBody> bodies;
   std::vector<std::string> warnings;
   Eigen::Vector3d gravity = Eigen::Vector3d::Zero();
@@ -132,7 +261,7 @@ struct Model::Impl {
   // coordinates
   std::unique_ptr<lagrange::System> system;
   // free bodies
-  std::vector<FreeModel> free;
+  std::vector<FreeBody> free;
 
   void read_simulation() {
     const Simulation& s = scene.simulation;
@@ -152,9 +281,12 @@ struct Model::Impl {
                                                               "t_end = {} s; expected at most t_end",
                                                               output_dt, t_end));
     }
+    // the output grid is made (and refused when too fine) before anything runs
+    const double spacing = output_dt > 0 ? output_dt : dt;
+    at_location(s.where, "[simulation]", [&] { return integrate::TimeGrid::uniform(0.0, t_end, spacing); });
   }
 
-  void build_coordinates() {
+  void build_coordinates(const std::vector<lagrange::BodyMass>& masses) {
     lagrange::SystemSpec spec;
     spec.parameters = params;
     for (const Coordinate& c : scene.coordinates) {
@@ -163,14 +295,14 @@ struct Model::Impl {
     }
     for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
       const Body& b = scene.bodies[i];
-      lagrange::Body lb{b.name, bodies[i].mass, {}, {}};
-      for (int k = 0; k < 3; ++k) lb.position[static_cast<std::size_t>(k)] = to_lagrange(b.position[static_cast<std::size_t>(k)]);
+      lagrange::Body lb{b.name, masses[i], {}, {}};
+      for (std::size_t k = 0; k < 3; ++k) lb.position[k] = to_lagrange(b.position[k]);
       for (const AxisRotation& r : b.rotations) {
         lb.rotations.push_back({Eigen::Vector3d(r.axis[0], r.axis[1], r.axis[2]), to_lagrange(r.angle)});
       }
       spec.bodies.push_back(std::move(lb));
     }
-    spec.gravity_W = gravity;
+    spec.gravity_W = expressions_of(scene.gravity);
     for (const auto& p : scene.potentials) spec.potentials.push_back({p.name, to_lagrange(p.expression)});
     for (const auto& f : scene.forces) spec.forces.push_back({f.name, to_lagrange(f.expression)});
     for (const auto& c : scene.constraints) spec.constraints.push_back({c.name, to_lagrange(c.expression)});
@@ -190,7 +322,7 @@ struct Model::Impl {
     }));
   }
 
-  void build_free_bodies() {
+  void build_free_bodies(const std::vector<lagrange::BodyMass>& masses) {
     if (!scene.springs.empty()) {
       detail::throw_error_at(scene.springs.front().where,
                              "springs between free bodies are not simulated; pose the bodies by "
@@ -204,64 +336,58 @@ struct Model::Impl {
     for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
       const Body& b = scene.bodies[i];
       const MassProperties& mp = bodies[i].mass;
-      FreeModel f;
+      FreeBody f;
       f.name = b.name;
-      f.mass = mp.mass();
-      f.p_BC = mp.com();
-      const Eigen::Quaterniond q_WB0(b.initial_orientation[0], b.initial_orientation[1],
-                                     b.initial_orientation[2], b.initial_orientation[3]);
+      f.symbolic = masses[i];
+      const SO3d R_WB0 = SO3d::from_quaternion(b.initial_orientation[0], b.initial_orientation[1],
+                                               b.initial_orientation[2], b.initial_orientation[3]);
       const Eigen::Vector3d p_WB0(b.initial_position[0], b.initial_position[1], b.initial_position[2]);
       const Eigen::Vector3d w_B0(b.angular_velocity[0], b.angular_velocity[1], b.angular_velocity[2]);
       const Eigen::Vector3d v0(b.initial_velocity[0], b.initial_velocity[1], b.initial_velocity[2]);
-      Eigen::Matrix3d I_about = mp.inertia_com();
+      const std::string ctx = fmt::format("free body '{}'", b.name);
+      f.com_B = mp.com();
       if (b.pivot) {
-        f.top = true;
         f.pivot_B = Eigen::Vector3d((*b.pivot)[0], (*b.pivot)[1], (*b.pivot)[2]);
-        I_about = mp.inertia_about(f.pivot_B);
-        f.pivot_W = p_WB0 + q_WB0 * f.pivot_B;
         if (v0.norm() != 0) {
           detail::throw_error_at(b.where, fmt::format("body '{}' turns about its pivot, so its COM "
                                                       "velocity follows from angular_velocity; "
                                                       "remove initial_velocity",
                                                       b.name));
         }
+        // P: the principal axes of the inertia about the pivot (rigid::MassProperties)
+        const PrincipalAxes pa = at_location(b.where, ctx, [&] {
+          return MassProperties(mp.mass(), Eigen::Vector3d::Zero(), mp.inertia_about(f.pivot_B)).principal_axes();
+        });
+        f.R_BP = SO3d::from_matrix(pa.R_BP);
+        const SO3d R_PB = f.R_BP.inverse();
+        const MassProperties mass_P(mp.mass(), R_PB * mp.com(),
+                                    R_PB.matrix() * mp.inertia_com() * R_PB.matrix().transpose());
+        f.top.emplace(at_location(b.where, ctx, [&] { return body::HeavyTop(mass_P, R_PB * f.pivot_B, gravity); }));
+        f.pivot_W = p_WB0 + R_WB0 * f.pivot_B;
+        std::array<Expression, 3> pv;
+        for (std::size_t k = 0; k < 3; ++k) {
+          const double v = (*b.pivot)[k];
+          pv[k] = Expression{fmt::format("{}", v), b.where, v, false};
+        }
+        f.pivot_expressions = pv;
+      } else {
+        // P: the principal axes of the inertia about the COM; the body there is diagonal
+        const PrincipalAxes pa = mp.principal_axes();
+        f.R_BP = SO3d::from_matrix(pa.R_BP);
+        const MassProperties mass_P(mp.mass(), Eigen::Vector3d::Zero(), pa.moments.asDiagonal().toDenseMatrix());
+        f.rigid.emplace(at_location(b.where, ctx, [&] { return body::RigidBody(mass_P, gravity); }));
+        f.initial.p_WC = p_WB0 + R_WB0 * mp.com();
+        f.initial.v_WC = v0;
       }
-      const PrincipalAxes pa = MassProperties(mp.mass(), Eigen::Vector3d::Zero(), I_about).principal_axes();
-      if (!(pa.moments.minCoeff() > 1e-12 * pa.moments.sum())) {
-        detail::throw_error_at(
-            b.where, fmt::format("free body '{}' has principal moments {} kg·m² about its {}: a "
-                                 "zero moment (a point mass or a thin rod) leaves its rotation "
-                                 "undefined; give it a finite size",
-                                 b.name, format_vec(pa.moments), f.top ? "pivot" : "COM"));
-      }
-      f.I_P = pa.moments;
-      f.q_BP = Eigen::Quaterniond(pa.R_BP);
-      f.rot0.q_WB = (q_WB0 * f.q_BP).normalized();
-      f.rot0.w_B = f.q_BP.conjugate() * w_B0;
-      f.p_WC0 = p_WB0 + q_WB0 * f.p_BC;
-      f.v_WC0 = v0;
-      if (f.top) {
-        f.heavy.mass = f.mass;
-        f.heavy.I_B = f.I_P;
-        f.heavy.p_PC_B = f.q_BP.conjugate() * (f.p_BC - f.pivot_B);
-        f.heavy.g_W = gravity;
-        f.v_WC0 = q_WB0 * w_B0.cross(f.p_BC - f.pivot_B);
-      }
-      free.push_back(f);
+      f.initial.R_WB = R_WB0 * f.R_BP;
+      f.initial.w_B = f.R_BP.inverse() * w_B0;
+      free.push_back(std::move(f));
     }
   }
 
-  std::vector<double> output_times() const {
-    const double spacing = output_dt > 0 ? output_dt : dt;
-    std::vector<double> times;
-    const auto n = static_cast<std::size_t>(std::floor(t_end / spacing * (1 + 1e-12)));
-    for (std::size_t k = 0; k <= n; ++k) times.push_back(std::min(t_end, static_cast<double>(k) * spacing));
-    if (t_end - times.back() > 1e-12 * t_end) times.push_back(t_end);
-    return times;
-  }
-
-  RunResult run_coordinates(const std::string& method, const RunOptions& o) const;
-  RunResult run_free(const std::string& method, const RunOptions& o) const;
+  [[nodiscard]] Method parse_method(const std::string& requested) const;
+  RunResult run_coordinates(const Method& method, const RunOptions& o) const;
+  RunResult run_free(const Method& method, const RunOptions& o) const;
 };
 
 Model::Model(const Scene& scene) : impl_(std::make_unique<Impl>()) {
@@ -271,13 +397,21 @@ Model::Model(const Scene& scene) : impl_(std::make_unique<Impl>()) {
   for (const Parameter& p : scene.parameters) {
     m.params.push_back({p.name, value_of(p.value, m.params, "parameter " + p.name)});
   }
+  m.scene_params = m.params.size();
   m.gravity = vector_of(scene.gravity, m.params, "gravity");
-  for (const Body& b : scene.bodies) m.bodies.push_back({b.name, mass_of(b, m.params, m.warnings), b.free});
+  std::vector<lagrange::Parameter> derived;
+  std::vector<lagrange::BodyMass> masses;
+  for (const Body& b : scene.bodies) {
+    BodyMass bm = mass_of(b, m.params, derived, m.warnings);
+    m.bodies.push_back({b.name, bm.numeric, b.free});
+    masses.push_back(std::move(bm.symbolic));
+  }
+  m.params.insert(m.params.end(), derived.begin(), derived.end());
   m.read_simulation();
   if (m.kind == SceneKind::kCoordinates) {
-    m.build_coordinates();
+    m.build_coordinates(masses);
   } else {
-    m.build_free_bodies();
+    m.build_free_bodies(masses);
   }
   (void)integrator();  // an unknown [simulation] integrator is an error of the scene
 }
@@ -298,39 +432,45 @@ const lagrange::System& Model::system() const {
   return *impl_->system;
 }
 
-std::string Model::integrator(const std::string& requested) const {
-  const Impl& m = *impl_;
-  const bool from_scene = requested.empty() && !m.scene.simulation.integrator.empty();
-  const std::string name = !requested.empty() ? requested
-                           : from_scene       ? m.scene.simulation.integrator
-                           : m.kind == SceneKind::kCoordinates ? "dopri5"
-                                                               : "splitting4";
+Method Model::Impl::parse_method(const std::string& requested) const {
+  const bool from_scene = requested.empty() && !scene.simulation.integrator.empty();
+  Method method;
+  method.name = !requested.empty() ? requested
+                : from_scene       ? scene.simulation.integrator
+                : kind == SceneKind::kCoordinates ? "dopri5"
+                                                  : "splitting4";
   try {
-    if (m.kind == SceneKind::kCoordinates) {
-      (void)integrate::parse_method(name);
-    } else {
-      const bool any_top = std::any_of(m.free.begin(), m.free.end(), [](const FreeModel& f) { return f.top; });
-      if (name == "exact") {
-        RIGID_REQUIRE(!any_top, "integrator 'exact' is the closed-form motion of the torque-free "
-                      "body; a body on a pivot feels the gravity torque: use splitting2, "
-                      "splitting4 or splitting6");
-        return name;
-      }
-      const body::FreeBodyMethod method = body::free_body_method_from_name(name);
-      if (any_top && method != body::FreeBodyMethod::kSplitting2 &&
-          method != body::FreeBodyMethod::kSplitting4 && method != body::FreeBodyMethod::kSplitting6) {
+    if (kind == SceneKind::kCoordinates) {
+      method.coordinates = integrate::parse_method(method.name);
+      return method;
+    }
+    const bool any_top = std::any_of(free.begin(), free.end(), [](const FreeBody& f) { return f.top.has_value(); });
+    if (method.name == "exact") {
+      RIGID_REQUIRE(!any_top, "integrator 'exact' is the closed-form motion of the torque-free "
+                    "body; a body on a pivot feels the gravity torque: use splitting2, "
+                    "splitting4 or splitting6");
+      method.exact = true;
+      return method;
+    }
+    method.free = body::free_body_method_from_name(method.name);
+    if (any_top) {
+      const body::FreeBodyMethod m = method.free;
+      if (m != body::FreeBodyMethod::kSplitting2 && m != body::FreeBodyMethod::kSplitting4 &&
+          m != body::FreeBodyMethod::kSplitting6) {
         RIGID_THROW("integrator '{}' cannot take the gravity torque of a body on a pivot; a heavy "
                     "top is integrated by the gravity-kick splitting around the free flow: use "
                     "splitting2, splitting4 or splitting6",
-                    name);
+                    method.name);
       }
     }
   } catch (const Error& e) {
-    if (from_scene) detail::throw_error_at(m.scene.simulation.where, fmt::format("[simulation] integrator: {}", e.what()));
+    if (from_scene) detail::throw_error_at(scene.simulation.where, fmt::format("[simulation] integrator: {}", e.what()));
     throw;
   }
-  return name;
+  return method;
 }
+
+std::string Model::integrator(const std::string& requested) const { return impl_->parse_method(requested).name; }
 
 std::string Model::equations(bool latex) const {
   const Impl& m = *impl_;
@@ -344,59 +484,46 @@ std::string Model::equations(bool latex) const {
       out += fmt::format("energy (Jacobi integral) h = {}\n", eq.energy_text);
       if (!eq.cyclic.empty()) out += fmt::format("cyclic coordinates: {}\n", fmt::join(eq.cyclic, ", "));
     }
-    return out;
+  } else {
+    for (const FreeBody& f : m.free) {
+      lagrange::FreeBodyEquationsSpec spec;
+      spec.name = f.name;
+      spec.mass = f.symbolic;
+      spec.gravity_W = expressions_of(m.scene.gravity);
+      if (f.pivot_expressions) {
+        spec.has_pivot = true;
+        spec.pivot_B = expressions_of(*f.pivot_expressions);
+      }
+      for (const auto& line : lagrange::free_body_equations(m.params, spec, latex)) out += line + "\n";
+      if (!latex) {
+        const Eigen::Vector3d I = f.top ? f.top->principal_moments() : f.rigid->principal_moments();
+        const Eigen::Matrix3d R = f.R_BP.matrix();
+        out += fmt::format("  principal moments about the {} (ascending) I = {} kg·m², axes in B (columns "
+                           "of R_BP): {}, {}, {}\n",
+                           f.top ? "pivot" : "COM", format_vec(I), format_vec(R.col(0)), format_vec(R.col(1)),
+                           format_vec(R.col(2)));
+      }
+    }
   }
-  for (const FreeModel& f : m.free) {
-    const Eigen::Vector3d& I = f.I_P;
-    const Eigen::Matrix3d R_BP = f.q_BP.toRotationMatrix();
-    if (latex) {
-      out += fmt::format("% body {}: principal frame P, I = \\mathrm{{diag}}({:.10g}, {:.10g}, {:.10g})\n", f.name, I[0], I[1], I[2]);
-      const char* tau = f.top ? " + \\tau_{{{}}}" : "";
-      for (int i = 0; i < 3; ++i) {
-        const int j = (i + 1) % 3, k = (i + 2) % 3;
-        out += fmt::format("{:.10g}\\,\\dot\\omega_{} = ({:.10g})\\,\\omega_{}\\,\\omega_{}{}\n", I[i], i + 1,
-                           I[j] - I[k], j + 1, k + 1, f.top ? fmt::format(fmt::runtime(tau), i + 1) : "");
-      }
-      out += "\\dot R_{WP} = R_{WP}\\,[\\omega]_\\times\n";
-      if (f.top) {
-        out += fmt::format("\\tau = {:.10g}\\, p_{{PC}} \\times (R_{{WP}}^T g),\\quad p_{{PC}} = ({:.10g}, {:.10g}, {:.10g})\n",
-                           f.mass, f.heavy.p_PC_B.x(), f.heavy.p_PC_B.y(), f.heavy.p_PC_B.z());
-      } else {
-        out += fmt::format("{:.10g}\\,\\ddot c = {:.10g}\\,({:.10g}, {:.10g}, {:.10g})\n", f.mass, f.mass,
-                           m.gravity.x(), m.gravity.y(), m.gravity.z());
-      }
-      continue;
+  // constants the scene did not write (from mesh files, vertices), named in the equations
+  if (m.params.size() > m.scene_params) {
+    out += latex ? "% where " : "where ";
+    for (std::size_t k = m.scene_params; k < m.params.size(); ++k) {
+      out += fmt::format("{}{} = {:.8g}", k > m.scene_params ? ", " : "", m.params[k].name, m.params[k].value);
     }
-    out += fmt::format("body '{}' ({}): mass {:.10g} kg, principal moments about the {} I = {} kg·m²\n",
-                       f.name, f.top ? fmt::format("heavy top on the pivot {} of B", format_vec(f.pivot_B)) : "free",
-                       f.mass, f.top ? "pivot" : "COM", format_vec(I));
-    out += fmt::format("  principal axes in the body frame B (columns of R_BP): {}, {}, {}\n",
-                       format_vec(R_BP.col(0)), format_vec(R_BP.col(1)), format_vec(R_BP.col(2)));
-    for (int i = 0; i < 3; ++i) {
-      const int j = (i + 1) % 3, k = (i + 2) % 3;
-      out += fmt::format("  {:.10g} w{}_dot = ({:.10g}) w{} w{}{}\n", I[i], i + 1, I[j] - I[k], j + 1, k + 1,
-                         f.top ? fmt::format(" + tau{}", i + 1) : "");
-    }
-    out += "  R_WP_dot = R_WP [w]x   (w = (w1, w2, w3) in the principal frame, rad/s)\n";
-    if (f.top) {
-      out += fmt::format("  tau = m p_PC x (R_WP^T g) with m = {:.10g} kg, p_PC = {} m, g = {} m/s²\n", f.mass,
-                         format_vec(f.heavy.p_PC_B), format_vec(m.gravity));
-    } else {
-      out += fmt::format("  {:.10g} c_ddot = {:.10g} g with g = {} m/s² (the COM c moves on a parabola)\n",
-                         f.mass, f.mass, format_vec(m.gravity));
-    }
+    out += " (SI units; computed from the bodies' files and vertices)\n";
   }
   return out;
 }
 
 void Model::check(const RunOptions& options) const {
   const Impl& m = *impl_;
-  const std::string method = integrator(options.integrator);
+  const Method method = m.parse_method(options.integrator);
   if (m.kind == SceneKind::kCoordinates) {
     // one output interval runs every check of a full run: initial consistency, the mass
     // matrix, the step and output spacing
     lagrange::SimulationOptions so;
-    so.method = integrate::parse_method(method);
+    so.method = method.coordinates;
     so.dt = m.dt;
     so.tolerance = m.tolerance;
     so.output_dt = m.output_dt;
@@ -444,12 +571,13 @@ io::Table select_columns(const io::Table& table, const std::vector<std::string>&
 }  // namespace
 
 RunResult Model::run(const RunOptions& options) const {
-  const std::string method = integrator(options.integrator);
+  const Method method = impl_->parse_method(options.integrator);
   const auto start = Clock::now();
   RunResult r = impl_->kind == SceneKind::kCoordinates ? impl_->run_coordinates(method, options)
                                                        : impl_->run_free(method, options);
   r.summary.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  r.summary.integrator = method;
+  r.summary.scene = impl_->scene.file.string();
+  r.summary.integrator = method.name;
   r.summary.t_end = impl_->t_end;
   r.summary.samples = r.trajectory.rows();
   for (const auto& p : impl_->params) r.summary.parameters.emplace_back(p.name, p.value);
@@ -459,35 +587,28 @@ RunResult Model::run(const RunOptions& options) const {
   return r;
 }
 
-namespace {
-
-void add_pose_columns(std::vector<std::string>& cols, const std::string& body) {
-  for (const char* c : {"x", "y", "z", "qw", "qx", "qy", "qz"}) cols.push_back(body + "." + c);
+std::filesystem::path Model::output_directory(const std::string& requested) const {
+  if (!requested.empty()) return requested;
+  if (!impl_->scene.output.directory.empty()) return impl_->scene.output.directory;
+  return "out";
 }
 
-// Appends p and q (sign chosen to continue `previous`, so the columns are continuous).
-void push_pose(std::vector<double>& row, const Eigen::Vector3d& p, Eigen::Quaterniond q,
-               Eigen::Quaterniond& previous) {
-  if (q.coeffs().dot(previous.coeffs()) < 0) q.coeffs() = -q.coeffs();
-  previous = q;
-  row.insert(row.end(), {p.x(), p.y(), p.z(), q.w(), q.x(), q.y(), q.z()});
+std::vector<io::OutputFormat> Model::output_formats(const std::vector<std::string>& requested) const {
+  const std::vector<std::string>& names = requested.empty() ? impl_->scene.output.formats : requested;
+  std::vector<io::OutputFormat> formats;
+  for (const std::string& n : names) formats.push_back(io::parse_output_format(n));
+  RIGID_REQUIRE(!formats.empty(), "no output format selected; expected csv, npy or json");
+  return formats;
 }
 
-// Largest |x_k − x_0| over the samples.
-double max_change(const Eigen::VectorXd& x) {
-  return x.size() ? (x.array() - x[0]).abs().maxCoeff() : 0.0;
-}
-
-}  // namespace
-
-RunResult Model::Impl::run_coordinates(const std::string& method, const RunOptions& o) const {
+RunResult Model::Impl::run_coordinates(const Method& method, const RunOptions& o) const {
   lagrange::SimulationOptions so;
-  so.method = integrate::parse_method(method);
+  so.method = method.coordinates;
   so.t_end = t_end;
   so.dt = dt;
   so.tolerance = tolerance;
   so.output_dt = output_dt;
-  so.progress = o.progress;
+  so.control = o.control;
   const lagrange::Trajectory tr = system->simulate(so);
 
   std::vector<std::string> cols{"t"};
@@ -502,15 +623,16 @@ RunResult Model::Impl::run_coordinates(const std::string& method, const RunOptio
 
   RunResult r;
   r.trajectory = io::Table(cols);
-  std::vector<Eigen::Quaterniond> previous(system->body_names().size(), Eigen::Quaterniond::Identity());
+  lagrange::Workspace workspace = system->make_workspace();
+  std::vector<Eigen::Vector4d> previous(system->body_names().size(), Eigen::Vector4d(1, 0, 0, 0));
   std::vector<double> row;
   for (Eigen::Index k = 0; k < tr.t.size(); ++k) {
     row.clear();
     row.push_back(tr.t[k]);
     for (Eigen::Index i = 0; i < tr.q.cols(); ++i) row.push_back(tr.q(k, i));
     for (Eigen::Index i = 0; i < tr.q.cols(); ++i) row.push_back(tr.q_dot(k, i));
-    const std::vector<lagrange::BodyPose> poses = system->body_poses(tr.t[k], tr.q.row(k).transpose());
-    for (std::size_t b = 0; b < poses.size(); ++b) push_pose(row, poses[b].p_WB, poses[b].q_WB, previous[b]);
+    const std::vector<lagrange::BodyPose> poses = system->body_poses(workspace, tr.t[k], tr.q.row(k).transpose());
+    for (std::size_t b = 0; b < poses.size(); ++b) push_pose(row, poses[b].p_WB, poses[b].R_WB, previous[b]);
     row.push_back(tr.energy[k]);
     row.push_back(tr.jacobi[k]);
     for (Eigen::Index c = 0; c < tr.lambda.cols(); ++c) row.push_back(tr.lambda(k, c));
@@ -525,34 +647,27 @@ RunResult Model::Impl::run_coordinates(const std::string& method, const RunOptio
   s.tolerance = so.method == integrate::Method::kDopri5 ? tolerance : 0.0;
   s.steps = tr.steps;
   s.rhs_evaluations = tr.rhs_evaluations;
-  const double e0 = tr.energy.size() ? tr.energy[0] : 0.0;
-  s.diagnostics.emplace_back("energy_initial", e0);
-  s.diagnostics.emplace_back("energy_final", tr.energy.size() ? tr.energy[tr.energy.size() - 1] : 0.0);
-  s.diagnostics.emplace_back("energy_max_change", max_change(tr.energy));
-  s.diagnostics.emplace_back("jacobi_max_change", max_change(tr.jacobi));
+  const std::vector<double> energy(tr.energy.data(), tr.energy.data() + tr.energy.size());
+  const std::vector<double> jacobi(tr.jacobi.data(), tr.jacobi.data() + tr.jacobi.size());
+  s.diagnostics.emplace_back("energy_initial", energy.front());
+  s.diagnostics.emplace_back("energy_final", energy.back());
+  s.diagnostics.emplace_back("energy_max_change", max_change(energy));
+  s.diagnostics.emplace_back("jacobi_max_change", max_change(jacobi));
   if (!tr.constraint_names.empty()) {
     s.diagnostics.emplace_back("constraint_residual_max", tr.residual.maxCoeff());
     s.diagnostics.emplace_back("constraint_velocity_residual_max", tr.velocity_residual.maxCoeff());
   }
   for (Eigen::Index c = 0; c < tr.cyclic_momenta.cols(); ++c) {
+    const Eigen::VectorXd col = tr.cyclic_momenta.col(c);
     s.diagnostics.emplace_back("p_" + tr.cyclic_names[static_cast<std::size_t>(c)] + "_max_change",
-                               max_change(tr.cyclic_momenta.col(c)));
+                               max_change(std::vector<double>(col.data(), col.data() + col.size())));
   }
   return r;
 }
 
-RunResult Model::Impl::run_free(const std::string& method_name, const RunOptions& o) const {
-  // "exact": the closed-form rotation (Jacobi elliptic functions), evaluated at each output
-  // time; otherwise a stepping method
-  const bool exact = method_name == "exact";
-  const body::FreeBodyMethod method =
-      exact ? body::FreeBodyMethod::kSplitting4 : body::free_body_method_from_name(method_name);
-  std::vector<body::FreeBodyMotion> motions;
-  if (exact) {
-    for (const FreeModel& f : free) motions.emplace_back(f.I_P, f.rot0.q_WB, f.rot0.w_B);
-  }
+RunResult Model::Impl::run_free(const Method& method, const RunOptions& o) const {
   std::vector<std::string> cols{"t"};
-  for (const FreeModel& f : free) {
+  for (const FreeBody& f : free) {
     add_pose_columns(cols, f.name);
     for (const char* c : {"vx", "vy", "vz", "wx", "wy", "wz", "Lx", "Ly", "Lz"}) cols.push_back(f.name + "." + c);
   }
@@ -560,90 +675,117 @@ RunResult Model::Impl::run_free(const std::string& method_name, const RunOptions
   RunResult r;
   r.trajectory = io::Table(cols);
 
-  const std::vector<double> times = output_times();
-  std::vector<body::FreeBodyState> state;
-  for (const FreeModel& f : free) state.push_back(f.rot0);
-  std::vector<Eigen::Quaterniond> previous(free.size(), Eigen::Quaterniond::Identity());
-  // per body: |L| (free: about the COM) or g·L (top: about the pivot), and |RᵀR − 1|
-  std::vector<double> L0(free.size()), L_change(free.size(), 0.0), ortho(free.size(), 0.0);
-  Eigen::VectorXd energy(static_cast<Eigen::Index>(times.size()));
+  const integrate::TimeGrid grid = integrate::TimeGrid::uniform(0.0, t_end, output_dt > 0 ? output_dt : dt);
+  std::vector<body::RigidBodyState> state;
+  std::vector<std::string> owners;
+  for (const FreeBody& f : free) {
+    state.push_back(f.initial);
+    owners.push_back(fmt::format("body '{}'", f.name));
+  }
+  std::vector<Eigen::Vector4d> previous(free.size(), Eigen::Vector4d(1, 0, 0, 0));
+  // per body: |L| about the COM (free) or g·L about the pivot (top), and |RᵀR − 1|
+  std::vector<std::vector<double>> L(free.size());
+  std::vector<double> ortho(free.size(), 0.0), energy;
   const Eigen::Vector3d g_dir = gravity.norm() > 0 ? Eigen::Vector3d(gravity.normalized()) : Eigen::Vector3d::UnitZ();
-  std::size_t steps = 0;
   std::vector<double> row;
-  double t_prev = 0.0;
-  for (std::size_t k = 0; k < times.size(); ++k) {
-    const double t = times[k];
-    if (k > 0 && exact) {
-      for (std::size_t i = 0; i < free.size(); ++i) state[i] = motions[i].state(t);
-      if (o.progress) o.progress(t);
-    } else if (k > 0) {
-      const auto n = static_cast<std::size_t>(std::max(1.0, std::ceil((t - t_prev) / dt * (1 - 1e-12))));
-      const double h = (t - t_prev) / static_cast<double>(n);
-      for (std::size_t i = 0; i < free.size(); ++i) {
-        for (std::size_t j = 0; j < n; ++j) {
-          state[i] = free[i].top ? body::step_heavy_top(free[i].heavy, state[i], h, method)
-                                 : body::step_free_body(method, free[i].I_P, state[i], h);
-        }
-      }
-      steps += n;
-      if (!std::isfinite(state.front().w_B.sum())) {
-        RIGID_THROW("the angular velocity became non-finite at t = {} s; reduce [simulation] dt "
-                    "(now {} s)", t, dt);
-      }
-      if (o.progress) o.progress(t);
-    }
-    t_prev = t;
+  auto observe = [&](std::size_t, double t) {
     row.clear();
     row.push_back(t);
     double e_total = 0;
     for (std::size_t i = 0; i < free.size(); ++i) {
-      const FreeModel& f = free[i];
-      const body::FreeBodyState& st = state[i];
-      const Eigen::Quaterniond q_WB = st.q_WB * f.q_BP.conjugate();
-      const Eigen::Vector3d w_B = f.q_BP * st.w_B;
-      const body::FreeBodyDiagnostics d = body::diagnose(f.I_P, st);
-      Eigen::Vector3d p_WB, v_WC;
-      double e = d.energy;
+      const FreeBody& f = free[i];
+      const body::RigidBodyState& s = state[i];  // in P
+      const body::FreeBodyState rot{s.R_WB, s.w_B};
+      const SO3d R_WB = s.R_WB * f.R_BP.inverse();
+      const Eigen::Vector3d w_B = f.R_BP * s.w_B;
+      Eigen::Vector3d p_WB, v_WC, L_W;
       if (f.top) {
-        p_WB = f.pivot_W - q_WB * f.pivot_B;
-        v_WC = st.q_WB * st.w_B.cross(f.heavy.p_PC_B);
-        e = body::heavy_top_energy(f.heavy, st);
+        p_WB = f.pivot_W - R_WB * f.pivot_B;
+        v_WC = s.R_WB * s.w_B.cross(f.top->com_from_pivot());
+        L_W = f.top->angular_momentum_world(rot);  // about the pivot
+        e_total += f.top->energy(rot);
+        L[i].push_back(g_dir.dot(L_W));
       } else {
-        const Eigen::Vector3d p_WC = f.p_WC0 + f.v_WC0 * t + 0.5 * gravity * t * t;
-        v_WC = f.v_WC0 + gravity * t;
-        p_WB = p_WC - q_WB * f.p_BC;
-        e += 0.5 * f.mass * v_WC.squaredNorm() - f.mass * gravity.dot(p_WC);
+        p_WB = s.p_WC - R_WB * f.com_B;
+        v_WC = s.v_WC;
+        L_W = s.R_WB * (f.rigid->inertia() * s.w_B);  // about the COM
+        e_total += f.rigid->diagnose(s).energy;
+        L[i].push_back(L_W.norm());
       }
-      push_pose(row, p_WB, q_WB, previous[i]);
-      row.insert(row.end(), {v_WC.x(), v_WC.y(), v_WC.z(), w_B.x(), w_B.y(), w_B.z(), d.L_W.x(), d.L_W.y(), d.L_W.z()});
-      e_total += e;
-      const double L = f.top ? g_dir.dot(d.L_W) : d.L_W.norm();
-      if (k == 0) L0[i] = L;
-      L_change[i] = std::max(L_change[i], std::abs(L - L0[i]));
-      ortho[i] = std::max(ortho[i], d.orthonormality_error);
+      push_pose(row, p_WB, R_WB, previous[i]);
+      row.insert(row.end(), {v_WC.x(), v_WC.y(), v_WC.z(), w_B.x(), w_B.y(), w_B.z(), L_W.x(), L_W.y(), L_W.z()});
+      const Eigen::Matrix3d R = s.R_WB.matrix();
+      ortho[i] = std::max(ortho[i], (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff());
     }
     row.push_back(e_total);
-    energy[static_cast<Eigen::Index>(k)] = e_total;
+    energy.push_back(e_total);
     r.trajectory.add_row(row);
+  };
+
+  std::size_t steps = 0;
+  if (method.exact) {
+    // the closed-form rotation (Jacobi elliptic functions) and the COM's parabola, evaluated
+    // at each output time
+    std::vector<body::FreeBodyMotion> motions;
+    for (std::size_t i = 0; i < free.size(); ++i) {
+      motions.emplace_back(free[i].rigid->principal_moments(), free[i].initial.R_WB, free[i].initial.w_B);
+    }
+    for (std::size_t k = 0; k < grid.size(); ++k) {
+      const double t = grid[k];
+      for (std::size_t i = 0; i < free.size(); ++i) {
+        const body::RigidBodyState& s0 = free[i].initial;
+        state[i].R_WB = motions[i].orientation(t);
+        state[i].w_B = motions[i].omega_body(t);
+        state[i].p_WC = s0.p_WC + s0.v_WC * t + 0.5 * gravity * t * t;
+        state[i].v_WC = s0.v_WC + gravity * t;
+      }
+      observe(k, t);
+      integrate::poll(o.control, t);
+    }
+  } else {
+    // every body by its library model: a rigid body's kick–drift–kick (the kick is exact for
+    // gravity alone, the drift's rotation is the free-body method), a top's gravity splitting
+    auto step = [&](double t, double h) {
+      for (std::size_t i = 0; i < free.size(); ++i) {
+        const FreeBody& f = free[i];
+        body::RigidBodyState& s = state[i];
+        if (f.top) {
+          const body::FreeBodyState next = f.top->step({s.R_WB, s.w_B}, h, method.free);
+          s.R_WB = next.R_WB;
+          s.w_B = next.w_B;
+        } else {
+          s = body::step_rigid_body(*f.rigid, body::RigidBodyMethod::kSplitting2, t, s, h, method.free);
+        }
+      }
+    };
+    auto find_nonfinite = [&]() -> std::optional<integrate::NonFinite> {
+      for (std::size_t i = 0; i < free.size(); ++i) {
+        if (auto bad = body::find_nonfinite(state[i], owners[i])) return bad;
+      }
+      return std::nullopt;
+    };
+    steps = integrate::march(grid, dt, step, find_nonfinite, observe, o.control).steps;
   }
 
   RunSummary& s = r.summary;
   s.kind = "free_bodies";
   s.dt = dt;
   s.steps = steps;
-  s.diagnostics.emplace_back("energy_initial", energy[0]);
-  s.diagnostics.emplace_back("energy_final", energy[energy.size() - 1]);
+  s.diagnostics.emplace_back("energy_initial", energy.front());
+  s.diagnostics.emplace_back("energy_final", energy.back());
   s.diagnostics.emplace_back("energy_max_change", max_change(energy));
   for (std::size_t i = 0; i < free.size(); ++i) {
     const std::string& n = free[i].name;
-    if (free[i].top) {
-      s.diagnostics.emplace_back(n + ".L_vertical_max_change", L_change[i]);
-    } else {
-      s.diagnostics.emplace_back(n + ".L_norm_max_change", L_change[i]);
-    }
+    s.diagnostics.emplace_back(n + (free[i].top ? ".L_vertical_max_change" : ".L_norm_max_change"), max_change(L[i]));
     s.diagnostics.emplace_back(n + ".orthonormality_max", ortho[i]);
   }
   return r;
+}
+
+Model load_model(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
+  Scene s = load_scene(file);
+  apply_overrides(s, overrides);
+  return Model(s);
 }
 
 }  // namespace rigid::scene

@@ -1,6 +1,7 @@
 #include "rigid/scene/scene.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <fstream>
@@ -8,6 +9,9 @@
 
 #include <fmt/format.h>
 #include <toml++/toml.h>
+
+#include "rigid/common/did_you_mean.hpp"
+#include "rigid/mass/primitive_table.hpp"
 
 namespace rigid::scene {
 namespace {
@@ -173,17 +177,89 @@ class Parser {
   std::filesystem::path file_;
 };
 
-const Keys kDimensionKeys = {"radius", "inner_radius", "outer_radius", "height", "length",
-                             "width", "depth", "size", "semi_axes", "top_radius",
-                             "bottom_radius", "major_radius", "minor_radius", "thickness",
-                             "vertices", "dimension"};
+// A size alias "<group>_<digit>" (size_0, semi_axes_1) makes "<group>" a key that takes an
+// array: size = [lx, ly, lz] gives size_0, size_1, size_2.
+std::optional<std::string> vector_group(const std::string& alias) {
+  const auto u = alias.rfind('_');
+  if (u == std::string::npos || u + 2 != alias.size() || !std::isdigit(static_cast<unsigned char>(alias.back()))) {
+    return std::nullopt;
+  }
+  return alias.substr(0, u);
+}
+
+// The primitive keys of a body, from the catalogue: every size name and alias, the array
+// groups, and the vertices of the shapes given by points.
+const Keys kDimensionKeys = [] {
+  Keys k;
+  auto add = [&](const std::string& key) {
+    if (std::find(k.begin(), k.end(), key) == k.end()) k.push_back(key);
+  };
+  for (const mass::PrimitiveEntry& e : mass::primitive_table()) {
+    for (const mass::PrimitiveSize& sz : e.sizes) {
+      add(sz.name);
+      for (const std::string& a : sz.aliases) {
+        add(a);
+        if (auto g = vector_group(a)) add(*g);
+      }
+    }
+    for (const mass::PrimitivePoint& pt : e.points) add(pt.name);
+  }
+  return k;
+}();
+const Keys kMeshKeys = {"units", "shell", "thickness", "fill_holes"};
 const Keys kBodyKeys = [] {
-  Keys k = {"name", "primitive", "mesh", "units", "inertia", "point_masses", "mass", "density",
+  Keys k = {"name", "primitive", "mesh", "inertia", "point_masses", "mass", "density",
             "position", "rotation", "free", "initial_position", "initial_quaternion",
             "initial_rotation", "initial_velocity", "angular_velocity", "pivot"};
+  k.insert(k.end(), kMeshKeys.begin(), kMeshKeys.end());
   k.insert(k.end(), kDimensionKeys.begin(), kDimensionKeys.end());
   return k;
 }();
+
+// The sizes and vertices of the body's primitive, each checked against the catalogue entry
+// (an unknown size names the ones the shape takes); an array key (size = [..]) is split.
+void parse_primitive(const Parser& p, const toml::table& t, const std::string& context, MassSpec& m) {
+  const toml::node& name_node = *t.get("primitive");
+  const std::string name = p.string(name_node, context + " primitive");
+  const mass::PrimitiveEntry* entry = nullptr;
+  try {
+    entry = &mass::find_primitive(name);
+  } catch (const Error& e) {
+    p.fail(name_node, fmt::format("{} primitive: {}", context, e.what()));
+  }
+  m.primitive = entry->name;
+  std::vector<std::string> takes;
+  for (const auto& sz : entry->sizes) takes.push_back(sz.name);
+  for (const auto& pt : entry->points) takes.push_back(pt.name);
+  const std::string takes_text = takes.empty() ? "nothing" : fmt::format("{}", fmt::join(takes, ", "));
+  auto size_of = [&](const std::string& key, const toml::source_region& at) {
+    const auto i = entry->size_index(key);
+    if (!i) {
+      p.fail(at, fmt::format("'{}' is not a size of primitive '{}'{}; it takes {} (m)", key, entry->name,
+                             did_you_mean_hint(key, takes), takes_text));
+    }
+    return entry->sizes[*i].name;
+  };
+  for (auto&& [k, node] : t) {
+    const std::string key(k.str());
+    if (std::find(kDimensionKeys.begin(), kDimensionKeys.end(), key) == kDimensionKeys.end()) continue;
+    if (entry->point_index(key)) {
+      m.vertices.emplace_back(entry->points[*entry->point_index(key)].name,
+                            p.expression3(node, fmt::format("{} {} (x, y, z in m)", context, key)));
+      continue;
+    }
+    if (const toml::array* a = node.as_array()) {
+      // vector sizes (size = [x, y, z], semi_axes = [a, b, c]) become key_0, key_1, ...
+      std::size_t i = 0;
+      for (const toml::node& e : *a) {
+        m.dimensions.emplace_back(size_of(fmt::format("{}_{}", key, i++), k.source()),
+                                  p.expression(e, fmt::format("{} {}", context, key)));
+      }
+    } else {
+      m.dimensions.emplace_back(size_of(key, k.source()), p.expression(node, fmt::format("{} {}", context, key)));
+    }
+  }
+}
 
 void parse_mass(const Parser& p, const toml::table& t, const std::string& context, Body& body) {
   MassSpec& m = body.mass;
@@ -198,22 +274,13 @@ void parse_mass(const Parser& p, const toml::table& t, const std::string& contex
   if (auto n = t.get("mass")) m.mass = p.expression(*n, context + " mass");
   if (auto n = t.get("density")) m.density = p.expression(*n, context + " density");
   for (const auto& key : kDimensionKeys) {
-    if (auto n = t.get(key)) {
-      if (!t.contains("primitive")) {
-        p.fail(*n, fmt::format("'{}' in {} is a primitive's dimension, but the body has no "
-                               "'primitive'",
-                               key, context));
-      }
-      if (auto a = n->as_array()) {
-        // vector dimensions (size = [x, y, z], semi_axes = [a, b, c]) become key_0, key_1, ...
-        std::size_t i = 0;
-        for (const toml::node& e : *a) {
-          m.dimensions.emplace_back(fmt::format("{}_{}", key, i++),
-                                    p.expression(e, fmt::format("{} {}", context, key)));
-        }
-      } else {
-        m.dimensions.emplace_back(key, p.expression(*n, fmt::format("{} {}", context, key)));
-      }
+    if (auto n = t.get(key); n != nullptr && !t.contains("primitive")) {
+      p.fail(*n, fmt::format("'{}' in {} is a primitive's size, but the body has no 'primitive'", key, context));
+    }
+  }
+  for (const auto& key : kMeshKeys) {
+    if (auto n = t.get(key); n != nullptr && !t.contains("mesh")) {
+      p.fail(*n, fmt::format("'{}' in {} goes with 'mesh', but the body has no 'mesh'", key, context));
     }
   }
   const bool needs_amount = t.contains("primitive") || t.contains("mesh");
@@ -226,14 +293,17 @@ void parse_mass(const Parser& p, const toml::table& t, const std::string& contex
                                    "carries its own mass and point masses each have one",
                                    context));
   }
-  if (auto n = t.get("primitive")) {
+  if (t.contains("primitive")) {
     m.kind = MassSpec::Kind::kPrimitive;
-    m.primitive = p.string(*n, context + " primitive");
+    parse_primitive(p, t, context, m);
   } else if (auto mesh = t.get("mesh")) {
     m.kind = MassSpec::Kind::kMesh;
     std::filesystem::path f = p.string(*mesh, context + " mesh");
     m.mesh_file = f.is_absolute() ? f : p.file().parent_path() / f;
     if (auto u = t.get("units")) m.units = p.string(*u, context + " units");
+    if (auto n = t.get("shell")) m.shell = p.boolean(*n, context + " shell");
+    if (auto n = t.get("fill_holes")) m.fill_holes = p.boolean(*n, context + " fill_holes");
+    if (auto n = t.get("thickness")) m.thickness = p.expression(*n, context + " thickness (m)");
   } else if (auto inertia = t.get("inertia")) {
     m.kind = MassSpec::Kind::kExplicit;
     const toml::table& it = p.table(*inertia, context + " inertia");
@@ -255,7 +325,6 @@ void parse_mass(const Parser& p, const toml::table& t, const std::string& contex
         m.inertia[static_cast<std::size_t>(i)] = Expression{"0", p.where(inertia->source()), 0.0, false};
       }
     }
-    if (t.contains("units")) p.fail(*t.get("units"), "'units' goes with 'mesh'");
   } else {
     m.kind = MassSpec::Kind::kPointMasses;
     const toml::node& pm = *t.get("point_masses");
@@ -555,36 +624,6 @@ bool Scene::is_free_body_scene() const {
   return !bodies.empty() && bodies.front().free;
 }
 
-std::optional<std::string> did_you_mean(std::string_view word, const std::vector<std::string>& candidates) {
-  // Optimal-string-alignment distance: Levenshtein plus the transposition of two
-  // neighbouring characters as one edit ("t_ned" is one slip away from "t_end").
-  auto distance = [](std::string_view a, std::string_view b) {
-    std::vector<std::vector<std::size_t>> d(a.size() + 1, std::vector<std::size_t>(b.size() + 1));
-    for (std::size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
-    for (std::size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
-    for (std::size_t i = 1; i <= a.size(); ++i) {
-      for (std::size_t j = 1; j <= b.size(); ++j) {
-        const std::size_t subst = d[i - 1][j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1);
-        d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, subst});
-        if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) {
-          d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
-        }
-      }
-    }
-    return d[a.size()][b.size()];
-  };
-  std::optional<std::string> best;
-  std::size_t best_d = std::max<std::size_t>(1, word.size() / 3) + 1;
-  for (const auto& c : candidates) {
-    const std::size_t d = distance(word, c);
-    if (d < best_d) {
-      best_d = d;
-      best = c;
-    }
-  }
-  return best;
-}
-
 Scene parse_scene(std::string_view toml_text, const std::filesystem::path& file) {
   Parser p(file);
   toml::table root;
@@ -608,8 +647,9 @@ Scene load_scene(const std::filesystem::path& file) {
 void apply_overrides(Scene& scene, const std::vector<std::string>& assignments) {
   for (const std::string& a : assignments) {
     const auto eq = a.find('=');
-    RIGID_REQUIRE(eq != std::string::npos && eq > 0 && eq + 1 < a.size(),
-                  "--set '{}' is not of the form name=value", a);
+    if (eq == std::string::npos || eq == 0 || eq + 1 == a.size()) {
+      throw Error(fmt::format("parameter override '{}' is not of the form name=value", a));
+    }
     const std::string name = a.substr(0, eq);
     const std::string value = a.substr(eq + 1);
     auto it = std::find_if(scene.parameters.begin(), scene.parameters.end(),
@@ -619,10 +659,10 @@ void apply_overrides(Scene& scene, const std::vector<std::string>& assignments) 
       for (const auto& p : scene.parameters) names.push_back(p.name);
       std::string hint;
       if (auto g = did_you_mean(name, names)) hint = fmt::format("; did you mean '{}'?", *g);
-      RIGID_THROW("--set {}: the scene has no parameter '{}'{} (parameters: {})", a, name, hint,
-                  names.empty() ? std::string("none") : fmt::format("{}", fmt::join(names, ", ")));
+      throw Error(fmt::format("parameter override '{}': the scene has no parameter '{}'{} (parameters: {})", a,
+                              name, hint, names.empty() ? std::string("none") : fmt::format("{}", fmt::join(names, ", "))));
     }
-    it->value = Expression{value, {"--set", 0, 0}, std::nullopt, false};
+    it->value = Expression{value, {fmt::format("override '{}'", a), 0, 0}, std::nullopt, false};
     double v = 0;
     const auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), v);
     if (ec == std::errc() && end == value.data() + value.size() && std::isfinite(v)) it->value.number = v;

@@ -179,8 +179,8 @@ TEST(Scene, OverridesReplaceParameters) {
   EXPECT_EQ(s.parameters[2].value.text, "pi/6");
   EXPECT_FALSE(s.parameters[2].value.number.has_value());
   EXPECT_RIGID_ERROR(apply_overrides(s, {"rr=1"}),
-                     "--set rr=1: the scene has no parameter 'rr'; did you mean 'r'?");
-  EXPECT_RIGID_ERROR(apply_overrides(s, {"r"}), "--set 'r' is not of the form name=value");
+                     "parameter override 'rr=1': the scene has no parameter 'rr'; did you mean 'r'?");
+  EXPECT_RIGID_ERROR(apply_overrides(s, {"r"}), "parameter override 'r' is not of the form name=value");
 }
 
 TEST(Scene, DidYouMeanOnlyForCloseWords) {

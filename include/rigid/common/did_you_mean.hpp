@@ -1,7 +1,7 @@
 #pragma once
 
 #include <optional>
-#include <span>
+#include <vector>
 #include <string>
 #include <string_view>
 
@@ -11,10 +11,10 @@ namespace rigid {
 /// plus the transposition of two neighbouring characters as one edit), if close enough to be
 /// a plausible typo: distance ≤ max(1, |word|/3). Ties go to the earlier candidate.
 [[nodiscard]] std::optional<std::string> did_you_mean(std::string_view word,
-                                                      std::span<const std::string> candidates);
+                                                      const std::vector<std::string>& candidates);
 
 /// "; did you mean 'x'?" when did_you_mean finds a candidate, else "" (for messages).
 [[nodiscard]] std::string did_you_mean_hint(std::string_view word,
-                                            std::span<const std::string> candidates);
+                                            const std::vector<std::string>& candidates);
 
 }  // namespace rigid

@@ -1,17 +1,31 @@
 #pragma once
 
+#include <optional>
 #include <string>
+#include <vector>
 
+#include "rigid/mesh/fill_holes.hpp"
 #include "rigid/mesh/mesh_mass.hpp"
 #include "rigid/mesh/repair.hpp"
 
 namespace rigid::mesh {
 
-/// What mesh_mass_from_file found: the repair report and the mass properties.
+/// What mesh_mass_from_file found: the repair report, what hole filling did, the mass
+/// properties.
 struct MeshFileMass {
-  RepairReport repair;  ///< of the mesh as read (its warnings are the caller's to show)
+  RepairReport repair;  ///< of the mesh that was measured (after filling, if it ran)
+  /// With fill_holes and an open mesh: what filling added, and the report of the mesh as read.
+  std::optional<HoleFillReport> filled;
+  std::optional<RepairReport> before_fill;
   MeshMassResult mass;
+  /// Every warning for the user, in order: the repair of the mesh as read (without "the mesh
+  /// is open" when filling closed it), what filling did, the repair after filling, the
+  /// plausibility of the result.
+  [[nodiscard]] std::vector<std::string> warnings() const;
 };
+
+/// One line on what fill_holes did: holes, triangles added, patch areas.
+[[nodiscard]] std::string describe(const HoleFillReport& filled);
 
 /// Mass properties of a mesh file: read_mesh(path, scale), repair_mesh(mesh, options),
 /// mesh_mass_properties(mesh, spec), with the same mesh, report and result bit for bit, and
@@ -24,5 +38,13 @@ struct MeshFileMass {
 [[nodiscard]] MeshFileMass mesh_mass_from_file(const std::string& path, double scale,
                                                const MassSpec& spec,
                                                const RepairOptions& options = {});
+
+/// The same with `fill_holes`: when the repaired mesh is open, its simple holes are closed
+/// (rigid::mesh::fill_holes), it is repaired again (orienting the closed components) and then
+/// measured. Without fill_holes, or for a closed mesh, the result is the overload's above.
+/// @throws rigid::Error as above, and as fill_holes does for a hole that is not simple.
+[[nodiscard]] MeshFileMass mesh_mass_from_file(const std::string& path, double scale,
+                                               const MassSpec& spec, const RepairOptions& options,
+                                               bool fill_holes);
 
 }  // namespace rigid::mesh

@@ -52,10 +52,10 @@ struct MeshMassResult {
 };
 
 /// Mass properties of a repaired mesh (see repair_mesh). A solid must be closed: otherwise
-/// rigid::Error counts the boundary and non-manifold edges and points to --shell and to
-/// --fill-holes (fill_holes).
+/// rigid::Error counts the boundary and non-manifold edges and points to the `shell` and
+/// `fill_holes` settings (rigid::setting, worded by each front end).
 /// Warns when the implied density or size is implausible (e.g. a part in millimetres read
-/// as metres: 10⁹ times the mass), naming --units mm.
+/// as metres: 10⁹ times the mass), naming the `units` setting.
 /// @throws rigid::Error for a bad MassSpec, an open solid or a zero volume/area.
 [[nodiscard]] MeshMassResult mesh_mass_properties(const TriangleMesh& mesh, const MassSpec& spec);
 

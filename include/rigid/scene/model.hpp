@@ -1,23 +1,25 @@
 #pragma once
 
-/// A scene turned into something that runs: parameters evaluated, mass properties built,
-/// equations derived, and a simulation that produces a trajectory table and a summary.
-///
-/// Two kinds of scene (see docs/scene-format.md):
-///  - generalized coordinates: a rigid::lagrange::System derived from the bodies' poses,
+/// A scene turned into the libraries' own models, and run. The scene is a thin front end: it
+/// evaluates and checks what the file says, then hands over to
+///  - rigid::lagrange::System for a scene of generalized coordinates (its bodies' masses and
+///    gravity stay expressions of the parameters, so the equations print their names),
 ///    integrated by rigid::integrate (rk4, dopri5, implicit_midpoint, stormer_verlet);
-///  - free bodies: each body's COM moves on its exact parabola under uniform gravity and
-///    its rotation is integrated on SO(3) by the free-body methods of rigid::body, or
-///    evaluated in closed form ("exact"); a body with a pivot is a heavy top, integrated by
-///    the gravity-kick splitting.
+///  - rigid::body::RigidBody (a free body in uniform gravity) and rigid::body::HeavyTop (a body
+///    on a pivot) for a scene of free bodies, all marched together by rigid::integrate::march
+///    with the free-body methods of rigid::body as the rotation's flow, or evaluated in closed
+///    form (rigid::body::FreeBodyMotion, "exact").
+/// Run outputs are rigid::io::RunResult and are written by rigid::io::write_run, so every front
+/// end writes the same files.
 
-#include <functional>
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <utility>
 #include <vector>
 
-#include "rigid/io/table.hpp"
+#include "rigid/integrate/march.hpp"
+#include "rigid/io/run_output.hpp"
 #include "rigid/lagrange/system.hpp"
 #include "rigid/mass/mass_properties.hpp"
 #include "rigid/scene/scene.hpp"
@@ -26,37 +28,19 @@ namespace rigid::scene {
 
 enum class SceneKind { kCoordinates, kFreeBodies };
 
-/// What a run measured, for summary.json and the printed summary.
-struct RunSummary {
-  std::string kind;        ///< "coordinates" or "free_bodies"
-  std::string integrator;  ///< the method that ran
-  double t_end = 0;        ///< s
-  double dt = 0;           ///< fixed or initial step (s)
-  double tolerance = 0;    ///< adaptive methods' tolerance (0 when fixed-step)
-  std::size_t steps = 0;
-  std::size_t rhs_evaluations = 0;  ///< 0 for the free-body methods (they count steps)
-  std::size_t samples = 0;          ///< rows of the trajectory
-  double wall_seconds = 0;
-  std::vector<std::pair<std::string, double>> parameters;
-  /// Conservation and constraint diagnostics, name → value (SI units; see docs/scene-format.md).
-  std::vector<std::pair<std::string, double>> diagnostics;
-  std::vector<std::string> warnings;
-};
-
-struct RunResult {
-  io::Table trajectory{{"t"}};
-  RunSummary summary;
-};
+using RunSummary = io::RunSummary;
+using RunResult = io::RunResult;
 
 struct RunOptions {
   /// Overrides [simulation] integrator when not empty.
   std::string integrator;
-  /// Called with the simulated time reached (s) as the run advances; may throw
-  /// rigid::Error to stop it (the CLI does on Ctrl-C). Empty: not called.
-  std::function<void(double t)> progress;
+  /// Progress reports and cancellation (the command line's progress bar and Ctrl-C, Python's
+  /// KeyboardInterrupt).
+  integrate::MarchControl control{};
 };
 
-/// A body of the model with its mass properties in its own frame B.
+/// A body of the model with its mass properties in its own frame B (the numbers of the scene's
+/// parameters).
 struct ModelBody {
   std::string name;
   MassProperties mass;
@@ -66,8 +50,8 @@ struct ModelBody {
 class Model {
  public:
   /// Evaluates the parameters (in file order; each may use the ones before it), the
-  /// coordinates' initial values, gravity and every body's mass properties, and derives
-  /// the equations of a coordinate scene.
+  /// coordinates' initial values, gravity and every body's mass properties, and builds the
+  /// library models (the equations of a coordinate scene are derived here).
   /// @throws rigid::Error at file:line:col for an undefined name or a parse error in an
   ///   expression, a non-finite value, a physically invalid body (non-positive mass,
   ///   sizes, an inertia violating the triangle inequality, an open mesh), a free body
@@ -83,6 +67,8 @@ class Model {
   /// End time of a run (s), from [simulation] t_end.
   [[nodiscard]] double t_end() const;
   [[nodiscard]] const Scene& scene() const;
+  /// The scene's parameters with their values, then the derived constants of bodies whose
+  /// mass properties come from a file or from points (named <body>_mass, <body>_ixx, …).
   [[nodiscard]] const std::vector<lagrange::Parameter>& parameters() const;
   [[nodiscard]] const std::vector<ModelBody>& bodies() const;
   /// Warnings found while building (e.g. a mesh that was repaired).
@@ -95,7 +81,8 @@ class Model {
   [[nodiscard]] std::string integrator(const std::string& requested = {}) const;
 
   /// The equations of motion: Euler–Lagrange equations of a coordinate scene, Euler's
-  /// equations (with the numbers of each body) of a free-body scene; text or LaTeX.
+  /// equations of each free body; text or LaTeX. Parameters keep their names; constants
+  /// derived from files are named and listed with their values.
   [[nodiscard]] std::string equations(bool latex) const;
 
   /// The coordinate system (only for kind() == kCoordinates). @throws rigid::Error otherwise.
@@ -108,19 +95,32 @@ class Model {
 
   /// Simulates from t = 0 to t_end. Columns of the trajectory (one row per output time):
   ///  - coordinates: t, each q and q_dot, each body's pose `<body>.x .y .z .qw .qx .qy .qz`
-  ///    (origin of B in W, m; q_WB), energy, jacobi, `lambda_<constraint>` (the
-  ///    multipliers: generalized constraint forces, N or N·m), constraint_residual,
+  ///    (origin of B in W, m; R_WB as a quaternion), energy, jacobi, `lambda_<constraint>`
+  ///    (the multipliers: generalized constraint forces, N or N·m), constraint_residual,
   ///    `p_<q>` for each cyclic coordinate;
   ///  - free bodies: t, each body's pose, `<body>.vx .vy .vz` (COM velocity in W, m/s),
   ///    `<body>.wx .wy .wz` (ω in B, rad/s), `<body>.Lx .Ly .Lz` (angular momentum in W
   ///    about the COM, or about the pivot for a heavy top, kg·m²/s), energy (J, total).
-  /// @throws rigid::Error for anything that stops the run (diverging state, singular mass
-  ///   matrix, a progress callback that throws).
+  /// A run is const: a Model may run on several threads at once.
+  /// @throws rigid::Error for anything that stops the run (a diverging state naming the body,
+  ///   the component and t; a singular mass matrix), rigid::Cancelled from options.control.
   [[nodiscard]] RunResult run(const RunOptions& options = {}) const;
+
+  /// The directory a run writes to: `requested` if not empty, else [output] directory, else
+  /// "out".
+  [[nodiscard]] std::filesystem::path output_directory(const std::string& requested = {}) const;
+  /// The files a run writes: `requested` if not empty, else [output] formats.
+  /// @throws rigid::Error for an unknown format name.
+  [[nodiscard]] std::vector<io::OutputFormat> output_formats(const std::vector<std::string>& requested = {}) const;
 
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+/// Reads a scene file, applies `name=value` parameter overrides and builds the model: what
+/// the command line and Python do with a scene path.
+/// @throws rigid::Error as load_scene, apply_overrides and Model do.
+[[nodiscard]] Model load_model(const std::filesystem::path& file, const std::vector<std::string>& overrides = {});
 
 }  // namespace rigid::scene

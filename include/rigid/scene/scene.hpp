@@ -8,9 +8,12 @@
 #include <utility>
 #include <vector>
 
+#include "rigid/common/did_you_mean.hpp"
 #include "rigid/common/error.hpp"
 
 namespace rigid::scene {
+
+using rigid::did_you_mean;
 
 /// A number or an expression string exactly as the scene file gave it, with the
 /// position of the value so that later errors (undefined symbol, parse error inside
@@ -55,15 +58,22 @@ struct PointMass {
 struct MassSpec {
   enum class Kind { kPrimitive, kMesh, kExplicit, kPointMasses };
   Kind kind = Kind::kPrimitive;
-  /// kPrimitive: the shape name (e.g. "solid_cylinder") and its dimensions in metres.
+  /// kPrimitive: the shape's canonical name in the catalogue (rigid::mass::primitive_table;
+  /// the file may use any alias), its sizes in metres (canonical size names, in the file's
+  /// order), and its vertices (the tetrahedron).
   std::string primitive;
   std::vector<std::pair<std::string, Expression>> dimensions;
+  std::vector<std::pair<std::string, std::array<Expression, 3>>> vertices;
   /// kPrimitive, kMesh: exactly one of total mass (kg) and density (kg/m³).
   std::optional<Expression> mass;
   std::optional<Expression> density;
-  /// kMesh: the file (resolved against the scene file's directory) and its length unit.
+  /// kMesh: the file (resolved against the scene file's directory), its length unit, a thin
+  /// shell instead of a solid (with an optional wall thickness, m), and hole filling.
   std::filesystem::path mesh_file;
   std::string units = "m";
+  bool shell = false;
+  std::optional<Expression> thickness;
+  bool fill_holes = false;
   /// kExplicit: mass, COM in the body frame, inertia about the COM (xx yy zz xy xz yz,
   /// tensor elements, kg·m²).
   std::array<Expression, 3> com;
@@ -159,13 +169,10 @@ struct Scene {
 /// Reads and parses a scene file. @throws rigid::Error if it cannot be read or parsed.
 [[nodiscard]] Scene load_scene(const std::filesystem::path& file);
 
-/// Replaces the values of parameters by `name=value` assignments (the CLI's --set).
-/// @throws rigid::Error for a malformed assignment or an unknown parameter name.
+/// Replaces the values of parameters by `name=value` assignments (the command line's --set,
+/// Python's set=[...]).
+/// @throws rigid::Error for a malformed assignment or an unknown parameter name (with "did
+/// you mean").
 void apply_overrides(Scene& scene, const std::vector<std::string>& assignments);
-
-/// The closest of `candidates` to `word` by edit distance, if close enough to be a
-/// plausible typo (distance ≤ max(1, |word|/3)).
-[[nodiscard]] std::optional<std::string> did_you_mean(std::string_view word,
-                                                      const std::vector<std::string>& candidates);
 
 }  // namespace rigid::scene
