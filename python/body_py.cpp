@@ -1,4 +1,6 @@
-// rigid.body: exact free rigid body and free-body steppers.
+// rigid.body: exact free rigid body, free-body steppers, the general rigid body and the heavy
+// top. Long runs without Python callbacks release the GIL and stop on Ctrl-C
+// (KeyboardInterrupt).
 #include <string>
 #include <vector>
 
@@ -6,6 +8,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include "interrupt.hpp"
 #include "rigid/body.hpp"
 #include "rigid/body/rigid_body.hpp"
 #include "rigid/common/error.hpp"
@@ -14,14 +17,49 @@ namespace py = pybind11;
 
 namespace {
 
-// rigid.body.RigidBody: mass, inertia about the COM, gravity and Python loads; simulate()
-// returns the sampled trajectory as numpy arrays. The GIL stays held (loads are Python).
+using rigid::SO3d;
+
+// q_wxyz arguments must be unit quaternions (within 1e-9, as a scene's initial_quaternion)
+SO3d rotation_of(const Eigen::Vector4d& q_wxyz) {
+  return SO3d::from_unit_quaternion(q_wxyz(0), q_wxyz(1), q_wxyz(2), q_wxyz(3), 1e-9);
+}
+
+// The trajectory of a free body or a heavy top as numpy arrays.
+py::dict free_trajectory(const rigid::body::FreeBodyTrajectory& traj) {
+  const auto n = static_cast<Eigen::Index>(traj.t.size());
+  Eigen::MatrixXd q(n, 4), w(n, 3), L(n, 3);
+  Eigen::VectorXd E(n), ortho(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const auto& st = traj.states[static_cast<std::size_t>(i)];
+    const auto& d = traj.diagnostics[static_cast<std::size_t>(i)];
+    q.row(i) = st.R_WB.quaternion().transpose();
+    w.row(i) = st.w_B.transpose();
+    L.row(i) = d.L_W.transpose();
+    E(i) = d.energy;
+    ortho(i) = d.orthonormality_error;
+  }
+  py::dict out;
+  out["t"] = traj.t;
+  out["q_wxyz"] = q;
+  out["omega_body"] = w;
+  out["L_world"] = L;
+  out["energy"] = E;
+  out["orthonormality_error"] = ortho;
+  return out;
+}
+
+// rigid.body.RigidBody: mass properties, gravity and Python loads; simulate() returns the
+// sampled trajectory as numpy arrays. With Python loads the GIL stays held (the loads run
+// Python); without, it is released.
 void bind_rigid_body(py::module_& body) {
   using rigid::body::RigidBody;
   using rigid::body::RigidBodyState;
   py::class_<RigidBody>(body, "RigidBody",
-                        "A rigid body: mass (kg), inertia about the COM in the body frame (kg·m², "
-                        "any symmetric tensor), uniform gravity (m/s²) and applied loads.")
+                        "A rigid body: mass properties (a rigid.MassProperties in the body frame B, "
+                        "or mass in kg and the inertia about the COM in kg·m², any symmetric "
+                        "tensor), uniform gravity (m/s²) and applied loads. The state follows the COM.")
+      .def(py::init<const rigid::MassProperties&, const Eigen::Vector3d&>(), py::arg("mass_properties"),
+           py::arg("gravity") = Eigen::Vector3d::Zero())
       .def(py::init<double, const Eigen::Matrix3d&, const Eigen::Vector3d&>(), py::arg("mass"),
            py::arg("inertia"), py::arg("gravity") = Eigen::Vector3d::Zero())
       .def(
@@ -34,6 +72,7 @@ void bind_rigid_body(py::module_& body) {
             load.frame = frame == "world" ? rigid::body::LoadFrame::kWorld : rigid::body::LoadFrame::kBody;
             load.p_CQ_B = point;
             load.wrench = [fn](double t, const RigidBodyState& st) {
+              py::gil_scoped_acquire gil;  // a no-op when it is held already
               const Eigen::Vector4d q = st.R_WB.quaternion();
               py::dict state;
               state["q_wxyz"] = q;
@@ -50,6 +89,7 @@ void bind_rigid_body(py::module_& body) {
           "the force acts at the body point `point` (from the COM, body frame, m). `state` is a "
           "dict with q_wxyz, omega_body, p_world, v_world.")
       .def_property_readonly("mass", &RigidBody::mass)
+      .def_property_readonly("com", &RigidBody::com, "COM in the body frame (m).")
       .def_property_readonly("principal_moments", &RigidBody::principal_moments)
       .def(
           "simulate",
@@ -57,13 +97,20 @@ void bind_rigid_body(py::module_& body) {
              const Eigen::Vector3d& w_B, const Eigen::Vector3d& p, const Eigen::Vector3d& v, double h_max,
              const std::vector<double>& times, const std::string& free_method) {
             RigidBodyState s;
-            s.R_WB = rigid::SO3d::from_quaternion(q_wxyz(0), q_wxyz(1), q_wxyz(2), q_wxyz(3));
+            s.R_WB = rotation_of(q_wxyz);
             s.w_B = w_B;
             s.p_WC = p;
             s.v_WC = v;
-            const auto tr = rigid::body::simulate_rigid_body(
-                b, rigid::body::rigid_body_method_from_name(method), s, h_max, times,
-                rigid::body::free_body_method_from_name(free_method));
+            const auto m = rigid::body::rigid_body_method_from_name(method);
+            const auto fm = rigid::body::free_body_method_from_name(free_method);
+            rigid::python::Interruptible interrupt;
+            rigid::body::RigidBodyTrajectory tr;
+            if (b.load_count() > 0) {  // the loads are Python: keep the GIL
+              tr = rigid::body::simulate_rigid_body(b, m, s, h_max, times, fm, interrupt.control());
+            } else {
+              py::gil_scoped_release release;
+              tr = rigid::body::simulate_rigid_body(b, m, s, h_max, times, fm, interrupt.control());
+            }
             const auto n = static_cast<Eigen::Index>(tr.t.size());
             Eigen::MatrixXd q(n, 4), w(n, 3), pw(n, 3), vw(n, 3), P(n, 3), L(n, 3);
             Eigen::VectorXd E(n);
@@ -95,6 +142,41 @@ void bind_rigid_body(py::module_& body) {
           "of arrays (angular momentum about the world origin).");
 }
 
+void bind_heavy_top(py::module_& body) {
+  using rigid::body::HeavyTop;
+  py::class_<HeavyTop>(body, "HeavyTop",
+                       "A rigid body on a fixed frictionless pivot in uniform gravity: its mass "
+                       "properties in the body frame B, the pivot in B (m), gravity (m/s²).")
+      .def(py::init<const rigid::MassProperties&, const Eigen::Vector3d&, const Eigen::Vector3d&>(),
+           py::arg("mass_properties"), py::arg("pivot"), py::arg("gravity") = Eigen::Vector3d(0, 0, -9.81))
+      .def_property_readonly("mass", &HeavyTop::mass)
+      .def_property_readonly("inertia_about_pivot", &HeavyTop::inertia_about_pivot)
+      .def_property_readonly("com_from_pivot", &HeavyTop::com_from_pivot)
+      .def(
+          "energy",
+          [](const HeavyTop& top, const Eigen::Vector4d& q_wxyz, const Eigen::Vector3d& w_B) {
+            return top.energy({rotation_of(q_wxyz), w_B});
+          },
+          py::arg("q_wxyz"), py::arg("omega_body"), "Kinetic + gravitational energy (J).")
+      .def(
+          "simulate",
+          [](const HeavyTop& top, const Eigen::Vector4d& q_wxyz, const Eigen::Vector3d& w_B, double h_max,
+             const std::vector<double>& times, const std::string& free_method) {
+            const auto fm = rigid::body::free_body_method_from_name(free_method);
+            rigid::python::Interruptible interrupt;
+            rigid::body::FreeBodyTrajectory traj;
+            {
+              py::gil_scoped_release release;
+              traj = top.simulate({rotation_of(q_wxyz), w_B}, h_max, times, fm, interrupt.control());
+            }
+            return free_trajectory(traj);
+          },
+          py::arg("q_wxyz"), py::arg("omega_body"), py::arg("h_max"), py::arg("times"),
+          py::arg("free_method") = "splitting2",
+          "Integrates by the gravity-kick splitting around the free flow (splitting2/4/6); returns a "
+          "dict of arrays sampled at `times` (L_world about the pivot).");
+}
+
 }  // namespace
 
 void bind_body(py::module_& m) {
@@ -110,19 +192,22 @@ void bind_body(py::module_& m) {
       .def_property_readonly("angular_momentum_norm", &rigid::body::FreeBodyExact::angular_momentum_norm);
   py::class_<rigid::body::FreeBodyMotion>(
       body, "FreeBodyMotion",
-      "Exact torque-free motion: orientation q_WB(t) and body angular velocity in closed form.")
+      "Exact torque-free motion: orientation R_WB(t) and body angular velocity in closed form.")
       .def(py::init([](const Eigen::Vector3d& I_B, const Eigen::Vector4d& q_wxyz, const Eigen::Vector3d& w_B) {
-             return rigid::body::FreeBodyMotion(I_B, Eigen::Quaterniond(q_wxyz(0), q_wxyz(1), q_wxyz(2), q_wxyz(3)),
-                                                w_B);
+             return rigid::body::FreeBodyMotion(I_B, rotation_of(q_wxyz), w_B);
            }),
            py::arg("principal_moments"), py::arg("q_wxyz"), py::arg("omega_body"))
+      .def(py::init([](const rigid::MassProperties& mp, const Eigen::Vector4d& q_wxyz, const Eigen::Vector3d& w_B) {
+             return rigid::body::FreeBodyMotion(mp, rotation_of(q_wxyz), w_B);
+           }),
+           py::arg("mass_properties"), py::arg("q_wxyz"), py::arg("omega_body"),
+           "The motion of a body with these mass properties in any body frame.")
       .def(
           "orientation",
           [](const rigid::body::FreeBodyMotion& motion, double t) {
-            const Eigen::Quaterniond q = motion.orientation(t);
-            return Eigen::Vector4d(q.w(), q.x(), q.y(), q.z());
+            return Eigen::Vector4d(motion.orientation(t).quaternion());
           },
-          py::arg("t"), "Orientation q_WB(t) as (w, x, y, z).")
+          py::arg("t"), "Orientation R_WB(t) as a quaternion (w, x, y, z).")
       .def("omega_body", &rigid::body::FreeBodyMotion::omega_body, py::arg("t"), "Body angular velocity at t (s).")
       .def_property_readonly("angular_momentum_world", &rigid::body::FreeBodyMotion::angular_momentum_world)
       .def_property_readonly("period", [](const rigid::body::FreeBodyMotion& motion) { return motion.omega_solution().period(); })
@@ -131,37 +216,21 @@ void bind_body(py::module_& m) {
       "simulate_free_body",
       [](const std::string& method, const Eigen::Vector3d& I_B, const Eigen::Vector4d& q_wxyz,
          const Eigen::Vector3d& w_B, double h_max, const std::vector<double>& times) {
-        rigid::body::FreeBodyState s;
-        s.q_WB = Eigen::Quaterniond(q_wxyz(0), q_wxyz(1), q_wxyz(2), q_wxyz(3));
-        s.w_B = w_B;
-        const auto traj = rigid::body::simulate_free_body(rigid::body::free_body_method_from_name(method), I_B,
-                                                          s, h_max, times);
-        const auto n = static_cast<Eigen::Index>(traj.t.size());
-        Eigen::MatrixXd q(n, 4), w(n, 3), L(n, 3);
-        Eigen::VectorXd E(n), ortho(n);
-        for (Eigen::Index i = 0; i < n; ++i) {
-          const auto& st = traj.states[static_cast<std::size_t>(i)];
-          const auto& d = traj.diagnostics[static_cast<std::size_t>(i)];
-          q.row(i) << st.q_WB.w(), st.q_WB.x(), st.q_WB.y(), st.q_WB.z();
-          w.row(i) = st.w_B.transpose();
-          L.row(i) = d.L_W.transpose();
-          E(i) = d.energy;
-          ortho(i) = d.orthonormality_error;
+        const rigid::body::FreeBodyState s{rotation_of(q_wxyz), w_B};
+        const auto stepper = rigid::body::free_body_method_from_name(method);
+        rigid::python::Interruptible interrupt;
+        rigid::body::FreeBodyTrajectory traj;
+        {
+          py::gil_scoped_release release;
+          traj = rigid::body::simulate_free_body(stepper, I_B, s, h_max, times, interrupt.control());
         }
-        py::dict out;
-        out["t"] = traj.t;
-        out["q_wxyz"] = q;
-        out["omega_body"] = w;
-        out["L_world"] = L;
-        out["energy"] = E;
-        out["orthonormality_error"] = ortho;
-        return out;
+        return free_trajectory(traj);
       },
       py::arg("method"), py::arg("principal_moments"), py::arg("q_wxyz"), py::arg("omega_body"),
       py::arg("h_max"), py::arg("times"),
-      "Integrate a free body (method: rk4, splitting2, splitting4, splitting6, midpoint, rkmk4, moser_veselov); "
-      "returns a dict of "
-      "arrays sampled at `times`.");
+      "Integrate a free body in its principal frame (method: rk4, splitting2, splitting4, "
+      "splitting6, midpoint, rkmk4, moser_veselov); returns a dict of arrays sampled at `times`.");
 
   bind_rigid_body(body);
+  bind_heavy_top(body);
 }

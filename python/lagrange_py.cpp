@@ -4,6 +4,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include "interrupt.hpp"
 #include "rigid/lagrange/system.hpp"
 
 namespace py = pybind11;
@@ -95,7 +96,7 @@ void bind_lagrange(py::module_& root) {
              for (std::size_t i = 0; i < bodies.size(); ++i) {
                spec.bodies.push_back(body_from_dict(bodies[i], i));
              }
-             spec.gravity_W = gravity;
+             spec.gravity_W = rigid::lagrange::Vector3Expression(gravity);
              spec.potentials = named(potentials);
              spec.forces = named(forces);
              spec.constraints = named(constraints);
@@ -157,13 +158,20 @@ void bind_lagrange(py::module_& root) {
           [](const System& s, double t_end, const std::string& method, double dt,
              double tolerance, double output_dt, double stabilization, bool project_initial,
              std::optional<Eigen::VectorXd> q0, std::optional<Eigen::VectorXd> q_dot0) {
+            rigid::python::Interruptible interrupt;
             rigid::lagrange::SimulationOptions o{
                 .t_end = t_end, .method = rigid::integrate::parse_method(method), .dt = dt,
                 .tolerance = tolerance, .output_dt = output_dt, .stabilization = stabilization,
-                .project_initial = project_initial, .progress = {}};
-            // the GIL stays held: a System's compiled tape has one scratch buffer
-            const rigid::lagrange::Trajectory tr =
-                s.simulate(o, q0 ? *q0 : s.initial_q(), q_dot0 ? *q_dot0 : s.initial_q_dot());
+                .project_initial = project_initial, .parameters = {}, .control = interrupt.control()};
+            const Eigen::VectorXd q_start = q0 ? *q0 : s.initial_q();
+            const Eigen::VectorXd qd_start = q_dot0 ? *q_dot0 : s.initial_q_dot();
+            // a System is immutable and each run has its own workspace: other Python threads
+            // may run while this one integrates
+            rigid::lagrange::Trajectory tr;
+            {
+              py::gil_scoped_release release;
+              tr = s.simulate(o, q_start, qd_start);
+            }
             py::dict d;
             d["t"] = tr.t;
             d["q"] = tr.q;

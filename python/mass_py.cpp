@@ -9,6 +9,7 @@
 #include "rigid/common/format.hpp"
 #include "rigid/io/inertial_xml.hpp"
 #include "rigid/mass.hpp"
+#include "rigid/mass/primitive_table.hpp"
 
 namespace py = pybind11;
 
@@ -111,6 +112,77 @@ void bind_mass(py::module_& m) {
   RIGID_BIND_PRIMITIVE(rectangle_lamina, py::arg("lx"), py::arg("ly"));
   RIGID_BIND_PRIMITIVE(polygon_lamina, py::arg("vertices"));
 #undef RIGID_BIND_PRIMITIVE
+  // the primitive catalogue: one factory per name and alias (rigid.mass.solid_cylinder,
+  // rigid.mass.cylinder, ...), taking mass= or density= and the sizes by name
+  auto make = [](const std::string& name, const py::kwargs& kwargs) {
+    const rm::PrimitiveEntry& e = rm::find_primitive(name);
+    std::optional<double> amount_mass, amount_density;
+    rm::PrimitiveArguments args;
+    for (auto item : kwargs) {
+      const auto key = item.first.cast<std::string>();
+      if (key == "mass") {
+        amount_mass = item.second.cast<double>();
+      } else if (key == "density") {
+        amount_density = item.second.cast<double>();
+      } else if (e.point_index(key)) {
+        args.points.emplace_back(key, item.second.cast<Eigen::Vector3d>());
+      } else {
+        args.sizes.emplace_back(key, item.second.cast<double>());
+      }
+    }
+    if (amount_mass.has_value() == amount_density.has_value()) {
+      throw rigid::Error(fmt::format("rigid.mass.{}(): give exactly one of mass= (kg) and density= ({}), got {}",
+                                     name, e.density_unit, amount_mass ? "both" : "neither"));
+    }
+    return rm::make_primitive(name, amount_mass ? rm::Amount::kMass : rm::Amount::kDensity,
+                              amount_mass ? *amount_mass : *amount_density, args);
+  };
+  mass.def(
+      "primitive", [make](const std::string& name, const py::kwargs& kwargs) { return make(name, kwargs); },
+      py::arg("name"),
+      "Mass properties of the catalogue's primitive `name` (any name or alias, as in scene files and "
+      "`rigid inertia`): primitive('cylinder', mass=2.0, radius=0.1, height=0.5). Sizes in m, "
+      "mass in kg or density in kg/m³ (kg/m² shells and plates, kg/m rods); vertices as (x, y, z).");
+  for (const rm::PrimitiveEntry& e : rm::primitive_table()) {
+    std::string doc = fmt::format("{} in its own frame: {}(mass= or density=, ", e.description, e.name);
+    std::vector<std::string> args;
+    for (const auto& sz : e.sizes) args.push_back(fmt::format("{}= ({}, {})", sz.name, sz.help, sz.unit));
+    for (const auto& pt : e.points) args.push_back(fmt::format("{}= ({} as (x, y, z), m)", pt.name, pt.help));
+    doc += fmt::format("{}). Density in {}.", fmt::join(args, ", "), e.density_unit);
+    if (!e.aliases.empty()) doc += fmt::format(" Also called: {}.", fmt::join(e.aliases, ", "));
+    for (const std::string& n : e.names()) {
+      mass.def(n.c_str(), [make, n](const py::kwargs& kwargs) { return make(n, kwargs); }, doc.c_str());
+    }
+  }
+  mass.def(
+      "primitives",
+      [] {
+        py::list out;
+        for (const rm::PrimitiveEntry& e : rm::primitive_table()) {
+          py::dict d;
+          d["name"] = e.name;
+          d["aliases"] = e.aliases;
+          d["description"] = e.description;
+          py::list sizes;
+          for (const auto& sz : e.sizes) {
+            py::dict z;
+            z["name"] = sz.name;
+            z["help"] = sz.help;
+            z["unit"] = sz.unit;
+            z["aliases"] = sz.aliases;
+            sizes.append(z);
+          }
+          d["sizes"] = sizes;
+          py::list points;
+          for (const auto& pt : e.points) points.append(pt.name);
+          d["points"] = points;
+          d["density_unit"] = e.density_unit;
+          out.append(d);
+        }
+        return out;
+      },
+      "The primitive catalogue: every shape with its name, aliases, sizes (name, help, unit, "
+      "aliases), vertices and density unit.");
   mass.def("n_ball_with_mass", &rm::n_ball_with_mass, py::arg("n"), py::arg("m"), py::arg("r"));
   mass.def("n_ball_with_density", &rm::n_ball_with_density, py::arg("n"), py::arg("rho"), py::arg("r"));
   mass.def("n_box_with_mass", &rm::n_box_with_mass, py::arg("m"), py::arg("sizes"));

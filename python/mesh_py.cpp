@@ -3,11 +3,22 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
 
 #include "rigid/common/error.hpp"
+#include "rigid/common/wording.hpp"
 #include "rigid/mesh.hpp"
 
 namespace py = pybind11;
+
+namespace {
+// the library's remedies (`shell = true`) in Python's terms (shell=True)
+std::vector<std::string> worded(const std::vector<std::string>& messages) {
+  std::vector<std::string> out;
+  for (const auto& m : messages) out.push_back(rigid::word_for(rigid::Surface::kPython, m));
+  return out;
+}
+}  // namespace
 
 namespace {
 
@@ -78,9 +89,9 @@ void bind_mesh(py::module_& m) {
       .def_readonly("inverted_components", &rm::RepairReport::inverted_components)
       .def_readonly("tolerance_weld", &rm::RepairReport::tolerance_weld)
       .def_readonly("components", &rm::RepairReport::components)
-      .def_readonly("warnings", &rm::RepairReport::warnings)
+      .def_property_readonly("warnings", [](const rm::RepairReport& r) { return worded(r.warnings); })
       .def_property_readonly("closed", &rm::RepairReport::closed)
-      .def("__str__", &rm::describe);
+      .def("__str__", [](const rm::RepairReport& r) { return rm::describe(r); });
 
   py::class_<rm::FilledHole>(mesh, "FilledHole")
       .def_readonly("boundary_edges", &rm::FilledHole::boundary_edges)
@@ -112,10 +123,28 @@ void bind_mesh(py::module_& m) {
       [](const TriangleMesh& t, std::optional<double> mass, std::optional<double> density,
          bool shell, std::optional<double> thickness) {
         auto r = rm::mesh_mass_properties(t, {mass, density, shell, thickness});
-        return py::make_tuple(r.properties, r.warnings);
+        return py::make_tuple(r.properties, worded(r.warnings));
       },
       py::arg("mesh"), py::kw_only(), py::arg("mass") = py::none(),
       py::arg("density") = py::none(), py::arg("shell") = false,
       py::arg("thickness") = py::none(),
       "(rigid.MassProperties, warnings) of a solid or thin shell; exactly one of mass, density.");
+  mesh.def(
+      "mass_from_file",
+      [](const std::filesystem::path& path, std::optional<double> mass, std::optional<double> density,
+         const std::string& units, bool shell, std::optional<double> thickness, bool fill_holes) {
+        std::optional<rm::MeshFileMass> r;
+        {
+          py::gil_scoped_release release;
+          r.emplace(rm::mesh_mass_from_file(path.string(), rm::unit_scale(units), {mass, density, shell, thickness},
+                                            {}, fill_holes));
+        }
+        return py::make_tuple(r->mass.properties, worded(r->warnings()));
+      },
+      py::arg("path"), py::kw_only(), py::arg("mass") = py::none(), py::arg("density") = py::none(),
+      py::arg("units") = "m", py::arg("shell") = false, py::arg("thickness") = py::none(),
+      py::arg("fill_holes") = false,
+      "(rigid.MassProperties, warnings) of a mesh file read, repaired (holes filled with "
+      "fill_holes=True) and integrated: what `rigid inertia FILE` prints. Exactly one of mass, "
+      "density; units m, cm, mm or in.");
 }

@@ -3,6 +3,7 @@
 #include <pybind11/pybind11.h>
 
 #include "rigid/common/error.hpp"
+#include "rigid/common/wording.hpp"
 #include "rigid/version.hpp"
 
 namespace py = pybind11;
@@ -17,7 +18,18 @@ void bind_scene(py::module_& m);
 PYBIND11_MODULE(rigid, m) {
   m.doc() = "rigid: rigid-body mechanics from isometries and inertia tensors to Euler's equations";
   m.attr("__version__") = RIGID_VERSION_STRING;
-  py::register_exception<rigid::Error>(m, "Error", PyExc_ValueError);
+  // rigid.Error (a ValueError) with the remedy worded for Python (`shell=True`, not --shell);
+  // a cancelled run (Ctrl-C while the GIL was released) is a KeyboardInterrupt
+  static py::exception<rigid::Error> error(m, "Error", PyExc_ValueError);
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const rigid::Cancelled& e) {
+      PyErr_SetString(PyExc_KeyboardInterrupt, e.what());
+    } catch (const rigid::Error& e) {
+      error(rigid::word_for(rigid::Surface::kPython, e.what()).c_str());
+    }
+  });
   bind_lie(m);
   bind_mass(m);
   bind_lagrange(m);

@@ -1,10 +1,17 @@
 // Python bindings of scene files: rigid.Scene(path, set=[...]) builds the model of a TOML
-// scene (docs/scene-format.md); .run() returns the trajectory as a dict of numpy columns
-// and the summary as a dict, the same numbers `rigid run` writes.
+// scene (docs/scene-format.md); .run() returns the trajectory as a dict of numpy columns and
+// the summary as a dict — the same numbers `rigid run` writes — and, given an output
+// directory, writes the same files. A run releases the GIL and stops on Ctrl-C.
+#include <filesystem>
+#include <optional>
+
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
 
+#include "interrupt.hpp"
+#include "rigid/io/run_output.hpp"
 #include "rigid/scene/model.hpp"
 #include "rigid/scene/scene.hpp"
 
@@ -14,11 +21,7 @@ namespace {
 
 using rigid::scene::Model;
 
-py::dict run_to_python(const Model& model, const std::string& integrator) {
-  rigid::scene::RunOptions options;
-  options.integrator = integrator;
-  // the GIL stays held: a model's compiled tape has one scratch buffer
-  const rigid::scene::RunResult r = model.run(options);
+py::dict to_python(const rigid::io::RunResult& r) {
   const rigid::io::Table& t = r.trajectory;
   py::dict columns;
   for (std::size_t c = 0; c < t.columns().size(); ++c) {
@@ -27,14 +30,17 @@ py::dict run_to_python(const Model& model, const std::string& integrator) {
     for (std::size_t k = 0; k < t.rows(); ++k) v(static_cast<py::ssize_t>(k)) = t(k, c);
     columns[py::str(t.columns()[c])] = a;
   }
-  const rigid::scene::RunSummary& s = r.summary;
+  const rigid::io::RunSummary& s = r.summary;
   py::dict summary;
+  summary["scene"] = s.scene;
   summary["kind"] = s.kind;
   summary["integrator"] = s.integrator;
   summary["t_end"] = s.t_end;
   summary["dt"] = s.dt;
+  summary["tolerance"] = s.tolerance;
   summary["steps"] = s.steps;
   summary["rhs_evaluations"] = s.rhs_evaluations;
+  summary["samples"] = s.samples;
   summary["wall_time_s"] = s.wall_seconds;
   py::dict parameters, diagnostics;
   for (const auto& [name, value] : s.parameters) parameters[py::str(name)] = value;
@@ -48,19 +54,42 @@ py::dict run_to_python(const Model& model, const std::string& integrator) {
   return out;
 }
 
+py::dict run(const Model& model, const std::string& integrator, std::optional<std::filesystem::path> output,
+             const std::vector<std::string>& formats) {
+  rigid::python::Interruptible interrupt;
+  rigid::scene::RunOptions options;
+  options.integrator = integrator;
+  options.control = interrupt.control();
+  // formats are checked before the run, so a typo costs no simulation
+  const std::vector<rigid::io::OutputFormat> chosen = output ? model.output_formats(formats)
+                                                             : std::vector<rigid::io::OutputFormat>{};
+  rigid::io::RunResult r;
+  {
+    // a Model is immutable and each run has its own state: other Python threads run meanwhile
+    py::gil_scoped_release release;
+    r = model.run(options);
+    if (output) (void)rigid::io::write_run(*output, r, chosen);
+  }
+  py::dict out = to_python(r);
+  if (output) {
+    py::list written;
+    for (const auto f : chosen) written.append(py::str((*output / rigid::io::file_name(f)).string()));
+    out["written"] = written;
+  }
+  return out;
+}
+
 }  // namespace
 
 void bind_scene(py::module_& m) {
   py::class_<Model>(m, "Scene",
                     "A scene file turned into a model (parameters evaluated, mass properties and "
                     "equations built). Errors are rigid.Error with file:line:col.")
-      .def(py::init([](const std::string& path, const std::vector<std::string>& set) {
-             rigid::scene::Scene s = rigid::scene::load_scene(path);
-             rigid::scene::apply_overrides(s, set);
-             return Model(s);
+      .def(py::init([](const std::filesystem::path& path, const std::vector<std::string>& set) {
+             return rigid::scene::load_model(path, set);
            }),
            py::arg("path"), py::arg("set") = std::vector<std::string>{},
-           "Loads a TOML scene; `set` holds 'name=value' parameter overrides.")
+           "Loads a TOML scene (a str or pathlib.Path); `set` holds 'name=value' parameter overrides.")
       .def_property_readonly("kind", [](const Model& mo) {
         return mo.kind() == rigid::scene::SceneKind::kCoordinates ? "coordinates" : "free_bodies";
       })
@@ -69,6 +98,12 @@ void bind_scene(py::module_& m) {
         for (const auto& p : mo.parameters()) d[py::str(p.name)] = p.value;
         return d;
       })
+      .def_property_readonly("bodies", [](const Model& mo) {
+        py::dict d;
+        for (const auto& b : mo.bodies()) d[py::str(b.name)] = b.mass;
+        return d;
+      }, "The bodies' mass properties (rigid.MassProperties in each body's frame), by name.")
+      .def_property_readonly("warnings", &Model::warnings)
       .def_property_readonly("t_end", &Model::t_end)
       .def("integrator", &Model::integrator, py::arg("requested") = std::string{},
            "The method a run uses (the requested one, the scene's, or the kind's default).")
@@ -79,7 +114,11 @@ void bind_scene(py::module_& m) {
              mo.check(o);
            }, py::arg("integrator") = std::string{},
            "Runs the checks of a run (initial conditions, mass matrix, steps) without integrating.")
-      .def("run", &run_to_python, py::arg("integrator") = std::string{},
-           "Simulates to t_end: {'columns': {name: numpy array}, 'summary': {...}} with the "
-           "columns of docs/scene-format.md.");
+      .def("run", &run, py::arg("integrator") = std::string{}, py::arg("output") = py::none(),
+           py::arg("formats") = std::vector<std::string>{},
+           "Simulates to t_end: {'columns': {name: numpy array}, 'summary': {...}} with the columns "
+           "of docs/scene-format.md. With `output` (a directory), also writes the files `rigid run` "
+           "writes (trajectory.csv, trajectory.npy, summary.json; `formats` as in the scene's "
+           "[output] by default), each atomically, only after the run succeeded; the paths are "
+           "under 'written'. Ctrl-C raises KeyboardInterrupt and writes nothing.");
 }

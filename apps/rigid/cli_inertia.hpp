@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "cmd_inertia.hpp"
+#include "rigid/mass/primitive_table.hpp"
 
 /// --about, --frame, --format, --name, --output (shared by every inertia source).
 inline void add_inertia_output_options(CLI::App* cmd, rigid::cli::InertiaOutputOptions& out) {
@@ -26,22 +27,36 @@ inline void add_inertia_command(CLI::App& app) {
       "inertia", "Mass properties of a primitive, or check the inertials of a URDF/MJCF/SDF file");
   inertia->require_subcommand(0, 1);
 
-  for (const auto& spec : rigid::cli::inertia_primitives()) {
+  // one subcommand per entry of the primitive catalogue, answering to its every name and alias
+  // with '-' or '_'; one option per size, under every name of the size
+  for (const auto& entry : rigid::mass::primitive_table()) {
     auto opts = std::make_shared<rigid::cli::InertiaPrimitiveOptions>();
-    opts->primitive = spec.name;
-    auto* cmd = inertia->add_subcommand(spec.name, spec.help);
-    for (const auto& [name, help] : spec.sizes) {
-      cmd->add_option_function<double>(
-          "--" + name, [opts, key = name](double v) { opts->sizes[key] = v; }, help);
+    opts->primitive = entry.name;
+    auto* cmd = inertia->add_subcommand(rigid::cli::cli_name(entry.name), entry.description);
+    cmd->alias(entry.name);
+    for (const auto& a : entry.aliases) {
+      cmd->alias(rigid::cli::cli_name(a));
+      if (a.find('_') != std::string::npos) cmd->alias(a);
     }
-    for (const auto& [name, help] : spec.points) {
+    for (const auto& size : entry.sizes) {
+      std::string flags = "--" + rigid::cli::cli_name(size.name);
+      if (size.name.find('_') != std::string::npos) flags += ",--" + size.name;
+      for (const auto& a : size.aliases) {
+        flags += ",--" + rigid::cli::cli_name(a);
+        if (a.find('_') != std::string::npos) flags += ",--" + a;
+      }
+      cmd->add_option_function<double>(
+          flags, [opts, key = size.name](double v) { opts->sizes[key] = v; }, size.help + " (" + size.unit + ")");
+    }
+    for (const auto& point : entry.points) {
       cmd->add_option_function<std::string>(
-          "--" + name, [opts, key = name](const std::string& v) { opts->points[key] = v; }, help);
+          "--" + point.name, [opts, key = point.name](const std::string& v) { opts->points[key] = v; },
+          point.help + " as x,y,z (m)");
     }
     cmd->add_option_function<double>(
         "--mass", [opts](double v) { opts->mass = v; }, "mass (kg)");
     cmd->add_option_function<double>(
-        "--density", [opts](double v) { opts->density = v; }, "density (" + spec.density_unit + ")");
+        "--density", [opts](double v) { opts->density = v; }, "density (" + entry.density_unit + ")");
     add_inertia_output_options(cmd, opts->output);
     cmd->callback([opts] { rigid::cli::run_inertia_primitive(*opts); });
   }

@@ -9,8 +9,10 @@
 #include <fmt/format.h>
 
 #include "rigid/body/free_body_exact.hpp"
+#include "cli_error.hpp"
 #include "rigid/common/error.hpp"
 #include "rigid/io/atomic_file.hpp"
+#include "rigid/io/run_output.hpp"
 #include "rigid/io/table.hpp"
 #include "rigid/scene/model.hpp"
 #include "rigid/scene/scene.hpp"
@@ -59,7 +61,7 @@ double diagnostic(const scene::RunSummary& s, const std::string& name) {
   for (const auto& [n, v] : s.diagnostics) {
     if (n == name) return v;
   }
-  RIGID_THROW("the run has no diagnostic '{}'", name);
+  CLI_THROW("the run has no diagnostic '{}'", name);
 }
 
 // Runs the embedded racket scene into ./rigid-demo/ and says what to look at: the flips
@@ -71,7 +73,8 @@ void tennis_racket_scene() {
   io::write_file_atomically(scene_file, kRacketScene);
   const scene::Model model(scene::parse_scene(kRacketScene, scene_file));
   const scene::RunResult result = model.run();
-  const auto written = write_scene_outputs(dir, scene_file.string(), result, {"csv", "npy", "json"});
+  const io::OutputFormat formats[] = {io::OutputFormat::kCsv, io::OutputFormat::kNpy, io::OutputFormat::kJson};
+  const auto written = io::write_run(dir, result, formats);
 
   const io::Table& tr = result.trajectory;
   const std::size_t ct = tr.column("t");
@@ -108,7 +111,9 @@ void tennis_racket_scene() {
   fmt::print("  energy drift {:.2e} J, |L| drift {:.2e} kg m^2/s, |R^T R - 1| = {:.1e}\n",
              diagnostic(s, "energy_max_change"), diagnostic(s, "racket.L_norm_max_change"),
              diagnostic(s, "racket.orthonormality_max"));
-  fmt::print("  wrote {}\n", fmt::join(written, ", "));
+  std::vector<std::string> names;
+  for (const auto& p : written) names.push_back(p.string());
+  fmt::print("  wrote {}\n", fmt::join(names, ", "));
   fmt::print("  look at: racket.wy (flips sign every half period), racket.Lx/Ly/Lz (the world\n"
              "  angular momentum: constant), energy (constant), racket.qw..qz (the orientation:\n"
              "  a half turn at each flip)\n");

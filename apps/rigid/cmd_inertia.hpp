@@ -27,23 +27,16 @@ struct InertiaOutputOptions {
 /// Writes format_inertia(mp, out) to out.output or standard output.
 void emit_inertia(const MassProperties& mp, const InertiaOutputOptions& out);
 
-/// One primitive of `rigid inertia <primitive>`: its sizes (option names without "--").
-struct PrimitiveSpec {
-  std::string name;
-  std::string help;
-  std::vector<std::pair<std::string, std::string>> sizes;  ///< (option, help)
-  std::string density_unit;                                ///< kg/m³, kg/m² or kg/m
-  std::vector<std::pair<std::string, std::string>> points;  ///< (option, help): "x,y,z" values
-};
+/// A name of the primitive catalogue (rigid::mass::primitive_table) as the command line spells
+/// it: '_' becomes '-' ("solid_cylinder" → "solid-cylinder", "inner_radius" → "inner-radius").
+[[nodiscard]] std::string cli_name(const std::string& catalogue_name);
 
-/// The primitives `rigid inertia` knows, in help order.
-[[nodiscard]] const std::vector<PrimitiveSpec>& inertia_primitives();
-
-/// Options of `rigid inertia <primitive>`.
+/// Options of `rigid inertia <primitive>`; the subcommands, their aliases and their size
+/// options are the catalogue's.
 struct InertiaPrimitiveOptions {
-  std::string primitive;
-  std::map<std::string, double> sizes;        ///< option name → value (m)
-  std::map<std::string, std::string> points;  ///< option name → "x,y,z" (m)
+  std::string primitive;                      ///< the catalogue's canonical name
+  std::map<std::string, double> sizes;        ///< canonical size name → value (m)
+  std::map<std::string, std::string> points;  ///< point name → "x,y,z" (m)
   std::optional<double> mass;           ///< kg
   std::optional<double> density;        ///< kg/m³ (kg/m² shells and plates, kg/m rods)
   InertiaOutputOptions output;

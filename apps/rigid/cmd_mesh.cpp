@@ -7,42 +7,16 @@
 
 #include <fmt/format.h>
 
+#include "cli_error.hpp"
 #include "rigid/common/error.hpp"
+#include "rigid/common/wording.hpp"
 #include "rigid/mesh.hpp"
 
 namespace rigid::cli {
 namespace {
 
 void warn(const std::string& s) {
-  std::fputs(fmt::format("rigid: warning: {}\n", s).c_str(), stderr);
-}
-
-// One line on what fill_holes did.
-std::string describe_fill(const mesh::HoleFillReport& f) {
-  std::string s = fmt::format("filled {} hole{} ({} triangles added, patch area {:.9g} m²):",
-                              f.holes.size(), f.holes.size() == 1 ? "" : "s",
-                              f.triangles_added, f.area);
-  for (const auto& h : f.holes) s += fmt::format(" {} edges/{:.6g} m²;", h.boundary_edges, h.area);
-  s.pop_back();
-  return s;
-}
-
-// Repairs `m`; with `fill` and holes present, closes the simple holes and repairs again
-// (orienting the now closed components).
-struct RepairAndFill {
-  mesh::RepairReport first;                  ///< of the mesh as read
-  std::optional<mesh::HoleFillReport> fill;  ///< what fill_holes added, if it ran
-  std::optional<mesh::RepairReport> after;   ///< of the filled mesh
-  [[nodiscard]] const mesh::RepairReport& final_report() const { return after ? *after : first; }
-};
-
-RepairAndFill repair_and_fill(mesh::TriangleMesh& m, const mesh::RepairOptions& ro, bool fill) {
-  RepairAndFill r{mesh::repair_mesh(m, ro), std::nullopt, std::nullopt};
-  if (fill && r.first.boundary_edges > 0) {
-    r.fill = mesh::fill_holes(m);
-    r.after = mesh::repair_mesh(m, ro);
-  }
-  return r;
+  std::fputs(fmt::format("rigid: warning: {}\n", word_for(Surface::kCli, s)).c_str(), stderr);
 }
 
 }  // namespace
@@ -60,17 +34,21 @@ void run_mesh_check(const MeshCheckOptions& opts) {
   mesh::TriangleMesh m = mesh::read_mesh(opts.file, mesh::unit_scale(opts.units));
   mesh::RepairOptions ro;
   ro.weld_tolerance = opts.weld_tolerance;
-  const RepairAndFill rf = repair_and_fill(m, ro, opts.fill_holes);
-  const mesh::RepairReport& rep = rf.final_report();
+  const mesh::RepairReport first = mesh::repair_mesh(m, ro);
+  std::optional<mesh::HoleFillReport> filled;
+  std::optional<mesh::RepairReport> after;
+  if (opts.fill_holes && first.boundary_edges > 0) {
+    filled = mesh::fill_holes(m);
+    after = mesh::repair_mesh(m, ro);
+  }
+  const mesh::RepairReport& rep = after ? *after : first;
   const auto box = m.bounding_box();
   std::string out = fmt::format("{}\n", opts.file);
   out += fmt::format("bounding box: ({:.6g}, {:.6g}, {:.6g}) to ({:.6g}, {:.6g}, {:.6g}) m\n",
                      box[0].x(), box[0].y(), box[0].z(), box[1].x(), box[1].y(), box[1].z());
-  out += mesh::describe(rf.first);
-  if (rf.fill) {
-    out += describe_fill(*rf.fill) + "\nafter filling:\n" + mesh::describe(*rf.after);
-  }
-  for (const auto& w : rep.warnings) out += fmt::format("warning: {}\n", w);
+  out += mesh::describe(first);
+  if (filled) out += mesh::describe(*filled) + "\nafter filling:\n" + mesh::describe(*after);
+  for (const auto& w : rep.warnings) out += fmt::format("warning: {}\n", word_for(Surface::kCli, w));
   std::string problem;
   if (!rep.closed()) {
     problem = fmt::format("the mesh is not closed ({} boundary edges, {} non-manifold edges): "
@@ -93,32 +71,16 @@ void run_mesh_check(const MeshCheckOptions& opts) {
                          : "mass properties: NOT trustworthy as a solid\n";
   std::fputs(out.c_str(), stdout);
   std::fflush(stdout);
-  if (!problem.empty()) RIGID_THROW("{}: {}", opts.file, problem);
+  if (!problem.empty()) CLI_THROW("{}: {}", opts.file, problem);
 }
 
 void run_inertia_mesh(const std::string& file, const MeshInertiaOptions& opts,
                       const InertiaOutputOptions& out) {
   const mesh::MassSpec spec{opts.mass, opts.density, opts.shell, opts.thickness};
-  const double scale = mesh::unit_scale(opts.units);
-  if (!opts.fill_holes) {  // read, repair and integrate without repeated work
-    const mesh::MeshFileMass r = mesh::mesh_mass_from_file(file, scale, spec);
-    for (const auto& w : r.repair.warnings) warn(fmt::format("{}: {}", file, w));
-    for (const auto& w : r.mass.warnings) warn(fmt::format("{}: {}", file, w));
-    emit_inertia(r.mass.properties, out);
-    return;
-  }
-  mesh::TriangleMesh m = mesh::read_mesh(file, scale);
-  const RepairAndFill rf = repair_and_fill(m, {}, opts.fill_holes);
-  if (rf.fill) {
-    for (const auto& w : rf.first.warnings) {  // what the filled mesh no longer shows
-      if (w.find("the mesh is open") == std::string::npos) warn(fmt::format("{}: {}", file, w));
-    }
-    warn(fmt::format("{}: {}", file, describe_fill(*rf.fill)));
-  }
-  for (const auto& w : rf.final_report().warnings) warn(fmt::format("{}: {}", file, w));
-  const auto res = mesh::mesh_mass_properties(m, spec, rf.final_report());
-  for (const auto& w : res.warnings) warn(fmt::format("{}: {}", file, w));
-  emit_inertia(res.properties, out);
+  const mesh::MeshFileMass r =
+      mesh::mesh_mass_from_file(file, mesh::unit_scale(opts.units), spec, {}, opts.fill_holes);
+  for (const auto& w : r.warnings()) warn(fmt::format("{}: {}", file, w));
+  emit_inertia(r.mass.properties, out);
 }
 
 }  // namespace rigid::cli

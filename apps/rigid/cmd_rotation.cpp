@@ -8,6 +8,7 @@
 
 #include <fmt/core.h>
 
+#include "cli_error.hpp"
 #include "rigid/common/error.hpp"
 #include "rigid/lie.hpp"
 
@@ -25,14 +26,14 @@ std::vector<double> parse_numbers(std::string_view text, std::size_t count, std:
     while (!item.empty() && item.back() == ' ') item.remove_suffix(1);
     double v = 0;
     const auto [ptr, ec] = std::from_chars(item.data(), item.data() + item.size(), v);
-    RIGID_REQUIRE(ec == std::errc() && ptr == item.data() + item.size() && !item.empty(),
+    CLI_REQUIRE(ec == std::errc() && ptr == item.data() + item.size() && !item.empty(),
                   "{}: '{}' is not a number", option, item);
-    RIGID_REQUIRE(std::isfinite(v), "{}: value {} is not finite", option, item);
+    CLI_REQUIRE(std::isfinite(v), "{}: value {} is not finite", option, item);
     out.push_back(v);
     if (end == text.size()) break;
     start = end + 1;
   }
-  RIGID_REQUIRE(out.size() == count, "{} takes {} comma-separated numbers, got {} in '{}'", option, count,
+  CLI_REQUIRE(out.size() == count, "{} takes {} comma-separated numbers, got {} in '{}'", option, count,
                 out.size(), text);
   return out;
 }
@@ -46,8 +47,8 @@ std::string list(const Eigen::VectorXd& v) {
 }  // namespace
 
 void run_rotation(const RotationOptions& o) {
-  RIGID_REQUIRE(o.unit == "deg" || o.unit == "rad", "--unit is '{}', expected deg or rad", o.unit);
-  RIGID_REQUIRE(o.order == "wxyz" || o.order == "xyzw", "--order is '{}', expected wxyz or xyzw", o.order);
+  CLI_REQUIRE(o.unit == "deg" || o.unit == "rad", "--unit is '{}', expected deg or rad", o.unit);
+  CLI_REQUIRE(o.order == "wxyz" || o.order == "xyzw", "--order is '{}', expected wxyz or xyzw", o.order);
   const double to_rad = o.unit == "deg" ? std::numbers::pi / 180.0 : 1.0;
   const EulerConvention conv = EulerConvention::parse(o.convention, !o.extrinsic);
   const EulerConvention out_conv =

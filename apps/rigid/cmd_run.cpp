@@ -10,11 +10,10 @@
 #include <filesystem>
 
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 
 #include "rigid/common/error.hpp"
-#include "rigid/io/atomic_file.hpp"
-#include "rigid/io/table.hpp"
+#include "rigid/common/wording.hpp"
+#include "rigid/io/run_output.hpp"
 #include "rigid/scene/model.hpp"
 #include "scene_output.hpp"
 
@@ -24,22 +23,30 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
+// Set by Ctrl-C; the run polls it (integrate::MarchControl::cancel) and stops with
+// rigid::Cancelled, so nothing is written.
 std::atomic<bool> g_interrupted{false};
 extern "C" void on_interrupt(int /*signal*/) { g_interrupted = true; }
 
-scene::Model load_model(const SceneOptions& opts) {
-  scene::Scene s = scene::load_scene(opts.scene);
-  scene::apply_overrides(s, opts.set);
-  return scene::Model(s);
+scene::Model load(const SceneOptions& opts) {
+  try {
+    return scene::load_model(opts.scene, opts.set);
+  } catch (const Error& e) {
+    // an override comes from --set: say so
+    const std::string what = e.what();
+    if (what.starts_with("parameter override")) throw Error("--set: " + what);
+    throw;
+  }
 }
 
 void print_warnings(const std::vector<std::string>& warnings) {
-  for (const auto& w : warnings) std::fprintf(stderr, "rigid: warning: %s\n", w.c_str());
+  for (const auto& w : warnings) {
+    std::fprintf(stderr, "rigid: warning: %s\n", word_for(Surface::kCli, w).c_str());
+  }
 }
 
 // A one-line progress bar on standard error, redrawn at most ten times a second, shown only
-// when standard error is a terminal and the run has taken more than half a second. Ctrl-C
-// stops the run through it (nothing is written).
+// when standard error is a terminal and the run has taken more than half a second.
 class Progress {
  public:
   Progress(double t_end, bool enabled) : t_end_(t_end), enabled_(enabled && isatty(STDERR_FILENO) != 0) {}
@@ -48,10 +55,6 @@ class Progress {
   Progress& operator=(const Progress&) = delete;
 
   void operator()(double t) {
-    if (g_interrupted) {
-      clear();
-      throw Error(fmt::format("interrupted at t = {:.6g} s of {:.6g} s; no output was written", t, t_end_));
-    }
     if (!enabled_) return;
     const auto now = Clock::now();  // ~20 ns: small next to a step or a right-hand side
     if (now - start_ < std::chrono::milliseconds(500) || now - last_ < std::chrono::milliseconds(100)) return;
@@ -66,12 +69,12 @@ class Progress {
                  elapsed);
     drawn_ = true;
   }
-
- private:
   void clear() {
     if (drawn_) std::fputs("\r\033[K", stderr);
     drawn_ = false;
   }
+
+ private:
   double t_end_;
   bool enabled_;
   bool drawn_ = false;
@@ -81,48 +84,47 @@ class Progress {
 }  // namespace
 
 void run_run(const RunOptions& opts) {
-  const scene::Model model = load_model(opts.scene);
+  const scene::Model model = load(opts.scene);
   print_warnings(model.warnings());
-  const scene::Scene& s = model.scene();
-  std::vector<std::string> formats = opts.formats.empty() ? s.output.formats : opts.formats;
-  for (const auto& f : formats) {
-    RIGID_REQUIRE(f == "csv" || f == "npy" || f == "json",
-                  "--format '{}' is not an output format; expected csv, npy or json", f);
-  }
-  RIGID_REQUIRE(!formats.empty(), "no output format selected; expected csv, npy or json");
-  const fs::path dir = !opts.output_dir.empty()         ? fs::path(opts.output_dir)
-                       : !s.output.directory.empty()    ? s.output.directory
-                                                        : fs::path("out");
+  const std::vector<io::OutputFormat> formats = [&] {
+    try {
+      return model.output_formats(opts.formats);
+    } catch (const Error& e) {
+      if (opts.formats.empty()) throw;
+      throw Error(fmt::format("--format: {}", e.what()));
+    }
+  }();
+  const fs::path dir = model.output_directory(opts.output_dir);
 
   g_interrupted = false;
   const auto previous = std::signal(SIGINT, on_interrupt);
-  scene::RunResult result;
+  io::RunResult result;
   {
     Progress progress(model.t_end(), !opts.quiet);
     scene::RunOptions ro;
     ro.integrator = opts.scene.integrator;
-    ro.progress = [&progress](double t) { progress(t); };
+    ro.control.progress = [&progress](double t) { progress(t); };
+    ro.control.cancel = &g_interrupted;
     try {
       result = model.run(ro);
     } catch (...) {
+      progress.clear();
       std::signal(SIGINT, previous);
       throw;
     }
   }
   std::signal(SIGINT, previous);
 
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  RIGID_REQUIRE(!ec && fs::is_directory(dir), "cannot create the output directory '{}': {}",
-                dir.string(), ec ? ec.message() : "a file of that name exists");
-  const std::vector<std::string> written = write_scene_outputs(dir, s.file.string(), result, formats);
+  const std::vector<fs::path> written = io::write_run(dir, result, formats);
   if (opts.quiet) return;
-  fmt::print("{}", describe_run(s.file.string(), model, result));
-  fmt::print("wrote {}\n", fmt::join(written, ", "));
+  fmt::print("{}", describe_run(opts.scene.scene, model, result));
+  std::vector<std::string> names;
+  for (const auto& p : written) names.push_back(p.string());
+  fmt::print("wrote {}\n", fmt::join(names, ", "));
 }
 
 void run_check(const SceneOptions& opts) {
-  const scene::Model model = load_model(opts);
+  const scene::Model model = load(opts);
   print_warnings(model.warnings());
   scene::RunOptions ro;
   ro.integrator = opts.integrator;
@@ -132,7 +134,7 @@ void run_check(const SceneOptions& opts) {
 }
 
 void run_eom(const SceneOptions& opts, bool latex) {
-  const scene::Model model = load_model(opts);
+  const scene::Model model = load(opts);
   print_warnings(model.warnings());
   fmt::print("{}", model.equations(latex));
 }

@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 
 #include "rigid/common/error.hpp"
+#include "rigid/common/wording.hpp"
 #include "rigid/version.hpp"
 
 // One header per subcommand, each defining add_<verb>_command(CLI::App&).
@@ -37,8 +38,12 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     // CLI11's own messages for --help, --version and bad command lines.
     return app.exit(e);
+  } catch (const rigid::Cancelled& e) {
+    std::fprintf(stderr, "rigid: interrupted: %s\n", e.what());
+    return 130;  // the shell's code for a command stopped by SIGINT
   } catch (const rigid::Error& e) {
-    std::fprintf(stderr, "rigid: error: %s\n", e.what());
+    // the library names its settings in its own terms; here they are flags
+    std::fprintf(stderr, "rigid: error: %s\n", rigid::word_for(rigid::Surface::kCli, e.what()).c_str());
     return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "rigid: error: %s\n", e.what());

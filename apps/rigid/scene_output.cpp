@@ -4,60 +4,10 @@
 #include <cmath>
 
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 
-#include "rigid/io/atomic_file.hpp"
 #include "rigid/io/table.hpp"
 
 namespace rigid::cli {
-
-std::string summary_json(const std::string& scene_file, const scene::RunResult& result) {
-  const scene::RunSummary& s = result.summary;
-  nlohmann::ordered_json j;
-  j["scene"] = scene_file;
-  j["kind"] = s.kind;
-  j["integrator"] = s.integrator;
-  j["t_end"] = s.t_end;
-  j["dt"] = s.dt;
-  if (s.tolerance > 0) j["tolerance"] = s.tolerance;
-  j["steps"] = s.steps;
-  if (s.rhs_evaluations > 0) j["rhs_evaluations"] = s.rhs_evaluations;
-  j["samples"] = s.samples;
-  j["wall_time_s"] = s.wall_seconds;
-  j["parameters"] = nlohmann::ordered_json::object();
-  for (const auto& [name, value] : s.parameters) j["parameters"][name] = value;
-  j["diagnostics"] = nlohmann::ordered_json::object();
-  for (const auto& [name, value] : s.diagnostics) j["diagnostics"][name] = value;
-  const io::Table& t = result.trajectory;
-  j["columns"] = t.columns();
-  j["final"] = nlohmann::ordered_json::object();
-  if (t.rows() > 0) {
-    for (std::size_t c = 0; c < t.columns().size(); ++c) j["final"][t.columns()[c]] = t(t.rows() - 1, c);
-  }
-  j["warnings"] = s.warnings;
-  // nlohmann prints doubles in their shortest round-trip form
-  return j.dump(2) + "\n";
-}
-
-std::vector<std::string> write_scene_outputs(const std::filesystem::path& dir, const std::string& scene_file,
-                                             const scene::RunResult& result,
-                                             const std::vector<std::string>& formats) {
-  std::vector<std::string> written;
-  auto wants = [&](const char* f) { return std::find(formats.begin(), formats.end(), f) != formats.end(); };
-  if (wants("csv")) {
-    io::write_csv(dir / "trajectory.csv", result.trajectory);
-    written.push_back((dir / "trajectory.csv").string());
-  }
-  if (wants("npy")) {
-    io::write_npy(dir / "trajectory.npy", result.trajectory);
-    written.push_back((dir / "trajectory.npy").string());
-  }
-  if (wants("json")) {
-    io::write_file_atomically(dir / "summary.json", summary_json(scene_file, result));
-    written.push_back((dir / "summary.json").string());
-  }
-  return written;
-}
 
 namespace {
 

@@ -67,6 +67,17 @@ SO3<Scalar> SO3<Scalar>::from_unit_quaternion(const Scalar& w, const Scalar& x, 
 }
 
 template <typename Scalar>
+SO3<Scalar> SO3<Scalar>::from_unit_quaternion(const Scalar& w, const Scalar& x, const Scalar& y,
+                                              const Scalar& z, double tolerance) {
+  const double n = std::sqrt(value_of(w * w + x * x + y * y + z * z));
+  RIGID_REQUIRE(std::isfinite(n) && std::abs(n - 1.0) <= tolerance,
+                "quaternion (w, x, y, z) = ({}, {}, {}, {}) has norm {}; expected a unit quaternion "
+                "(norm within {} of 1)",
+                value_of(w), value_of(x), value_of(y), value_of(z), n, tolerance);
+  return from_quaternion(w, x, y, z);
+}
+
+template <typename Scalar>
 SO3<Scalar> SO3<Scalar>::from_matrix(const Matrix3& R, double tol) {
   using std::sqrt;
   Eigen::Matrix3d Rd;

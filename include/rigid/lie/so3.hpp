@@ -45,6 +45,11 @@ class SO3 {
   /// @throws rigid::Error if a component is not finite or the norm is below 1e-12.
   [[nodiscard]] static SO3 from_quaternion(const Scalar& w, const Scalar& x, const Scalar& y,
                                            const Scalar& z);
+  /// Unit quaternion (w, x, y, z) from input that claims to be unit: refused unless its norm is
+  /// within `tolerance` of 1 (a scene's initial_quaternion, a Python argument), then normalised.
+  /// @throws rigid::Error giving the norm and the tolerance.
+  [[nodiscard]] static SO3 from_unit_quaternion(const Scalar& w, const Scalar& x, const Scalar& y,
+                                                const Scalar& z, double tolerance);
   /// Unit quaternion (w, x, y, z) whose norm the caller guarantees to be 1 within a few ulps
   /// (built from unit factors, or from cosines and sines of the same angle); not normalised.
   /// The guarantee is checked by RIGID_ASSERT (1e-12). Use from_quaternion for other input.
