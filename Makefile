@@ -4,7 +4,7 @@ PRESET ?= ci
 BUILD  := build/$(PRESET)
 PYTHON := /usr/bin/python3
 
-.PHONY: all deps configure build test test-cpp test-python test-asan demo bench asan clean
+.PHONY: all deps configure build test test-cpp test-python test-asan test-tsan demo bench asan clean
 
 all: build
 
@@ -17,7 +17,7 @@ configure: deps
 build: configure
 	cmake --build --preset $(PRESET)
 
-test: build test-asan
+test: build test-asan test-tsan
 	ctest --preset $(PRESET)
 	RIGID_PYTHON_DIR=$(CURDIR)/$(BUILD)/python RIGID_EXE=$(CURDIR)/$(BUILD)/bin/rigid \
 	  $(PYTHON) -m pytest -q python/tests tests/cli
@@ -37,6 +37,14 @@ test-asan: deps
 	cmake --preset asan >/dev/null
 	cmake --build --preset asan --target rigid_mesh_tests
 	build/asan/bin/rigid_mesh_tests --gtest_brief=1
+
+# One model run from several threads at once, under ThreadSanitizer: a Lagrangian system
+# (per-run workspaces) and scenes (immutable models); builds only those two test binaries.
+test-tsan: deps
+	cmake --preset tsan >/dev/null
+	cmake --build --preset tsan --target rigid_lagrange_tests rigid_scene_tests
+	TSAN_OPTIONS=halt_on_error=1 build/tsan/bin/rigid_lagrange_tests --gtest_brief=1 --gtest_filter='Workspace.*'
+	TSAN_OPTIONS=halt_on_error=1 build/tsan/bin/rigid_scene_tests --gtest_brief=1 --gtest_filter='ModelThreads.*'
 
 asan: deps
 	cmake --preset asan >/dev/null

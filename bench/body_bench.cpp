@@ -106,11 +106,11 @@ void composition(int order, Eigen::Quaterniond& q, Eigen::Vector3d& L, double h)
   for (const double g : {g1, 1.0 - 2.0 * g1, g1}) composition(order - 2, q, L, g * h);
 }
 FreeBodyState step(int order, const FreeBodyState& st, double h) {
-  Eigen::Quaterniond q = st.q_WB;
+  Eigen::Quaterniond q(st.R_WB.w(), st.R_WB.x(), st.R_WB.y(), st.R_WB.z());
   Eigen::Vector3d L = kI.cwiseProduct(st.w_B);
   composition(order, q, L, h);
   q.normalize();
-  return {q, L.cwiseQuotient(kI)};
+  return {rigid::SO3d::from_unit_quaternion(q.w(), q.x(), q.y(), q.z()), L.cwiseQuotient(kI)};
 }
 }  // namespace previous
 
@@ -182,9 +182,9 @@ void BM_ExactOmega(benchmark::State& st) {
   }
 }
 
-// Closed-form orientation q_WB(t) of the same motion (one evaluation).
+// Closed-form orientation R_WB(t) of the same motion (one evaluation).
 void BM_ExactOrientation(benchmark::State& st) {
-  const rigid::body::FreeBodyMotion motion(kI, Eigen::Quaterniond::Identity(), kW0);
+  const rigid::body::FreeBodyMotion motion(kI, rigid::SO3d::identity(), kW0);
   double t = 0;
   for (auto _ : st) {
     t += 0.0137;
@@ -199,7 +199,7 @@ void BM_ExactOrientation(benchmark::State& st) {
 // FreeBodyMotion as the tests' reference: the before/after pair in one run.
 namespace rigid::body {
 struct FreeBodyMotionPeer {
-  static Eigen::Quaterniond orientation_carlson(const FreeBodyMotion& m, double t) {
+  static rigid::SO3d orientation_carlson(const FreeBodyMotion& m, double t) {
     return m.orientation_impl(t, true);
   }
 };
@@ -208,7 +208,7 @@ struct FreeBodyMotionPeer {
 namespace {
 
 void BM_ExactOrientationCarlson(benchmark::State& st) {
-  const rigid::body::FreeBodyMotion motion(kI, Eigen::Quaterniond::Identity(), kW0);
+  const rigid::body::FreeBodyMotion motion(kI, rigid::SO3d::identity(), kW0);
   double t = 0;
   for (auto _ : st) {
     t += 0.0137;
@@ -231,6 +231,21 @@ void BM_LongRun(benchmark::State& st, FreeBodyMethod m) {
   st.counters["absL_drift"] = std::abs(kI.cwiseProduct(s.w_B).norm() - d0.L_W.norm()) / d0.L_W.norm();
   st.counters["E_drift"] = std::abs(d.energy - d0.energy) / d0.energy;
   st.counters["orthonormality"] = d.orthonormality_error;
+}
+
+// The racket for 100 s through simulate_free_body (splitting4, h ≤ 0.01 s, a sample every
+// 0.05 s with its diagnostics): the stepping loop with its output, per-step finiteness check
+// and bookkeeping around the kernel.
+void BM_SimulateFreeBody(benchmark::State& st) {
+  FreeBodyState s;
+  s.w_B = kW0;
+  std::vector<double> times;
+  for (int k = 0; k <= 2000; ++k) times.push_back(0.05 * k);
+  for (auto _ : st) {
+    const auto traj = rigid::body::simulate_free_body(FreeBodyMethod::kSplitting4, kI, s, 0.01, times);
+    benchmark::DoNotOptimize(traj.states.back());
+  }
+  st.SetItemsProcessed(st.iterations() * 10'000);
 }
 
 // MuJoCo 2.2: the racket as a model with one free-joint body (diaginertia = I, no geoms,
@@ -437,6 +452,7 @@ void BM_BatchMuJoCo(benchmark::State& st, int integrator) {
 BENCHMARK_CAPTURE(BM_LongRun, splitting2, FreeBodyMethod::kSplitting2)->Iterations(1)->Unit(benchmark::kSecond);
 BENCHMARK_CAPTURE(BM_LongRun, midpoint, FreeBodyMethod::kLiePoissonMidpoint)->Iterations(1)->Unit(benchmark::kSecond);
 BENCHMARK(BM_ExactOmega);
+BENCHMARK(BM_SimulateFreeBody)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ExactOrientation);
 BENCHMARK(BM_ExactOrientationCarlson);
 BENCHMARK_CAPTURE(BM_Rigid, rk4, FreeBodyMethod::kRk4)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);

@@ -89,3 +89,18 @@ def test_errors_are_rigid_errors():
     assert "violate" in rigid.MassProperties.check(1.0, np.zeros(3), np.diag([1.0, 2.0, 4.0]))
     with pytest.raises(rigid.Error, match="format must be 'urdf', 'mjcf' or 'sdf'"):
         rigid.mass.write_inertial_document(rigid.mass.point_mass(1.0, np.zeros(3)), "obj")
+
+
+def test_catalogue_factories_take_mass_first_and_sizes_by_name():
+    a = rigid.mass.solid_cylinder(mass=2.0, radius=0.1, height=0.5)
+    b = rigid.mass.cylinder(mass=2.0, radius=0.1, height=0.5)
+    c = rigid.mass.solid_cylinder_with_mass(2.0, 0.1, 0.5)
+    np.testing.assert_array_equal(a.inertia_com, b.inertia_com)
+    np.testing.assert_array_equal(a.inertia_com, c.inertia_com)
+    # I_zz = m r²/2, I_xx = m (3r² + h²)/12 (closed form)
+    assert a.inertia_com[2, 2] == pytest.approx(2.0 * 0.01 / 2, rel=1e-15)
+    assert a.inertia_com[0, 0] == pytest.approx(2.0 * (0.03 + 0.25) / 12, rel=1e-15)
+    names = {e["name"] for e in rigid.mass.primitives()}
+    assert {"solid_cylinder", "thin_rod", "solid_tetrahedron"} <= names
+    with pytest.raises(rigid.Error, match="give exactly one of mass= .* and density="):
+        rigid.mass.rod(length=1.0)

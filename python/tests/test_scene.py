@@ -44,3 +44,66 @@ def test_errors_carry_the_file_position(tmp_path):
         rigid.Scene(str(p))
     with pytest.raises(rigid.Error, match="no parameter 'q'"):
         rigid.Scene(str(EXAMPLES / "atwood.toml"), set=["q=1"])
+
+
+LONG_RUN = """
+[[bodies]]
+name = "racket"
+free = true
+inertia = {mass = 0.35, ixx = 1, iyy = 2, izz = 3}
+angular_velocity = [0.01, 1, 0.01]
+[simulation]
+t_end = 1e5
+integrator = "splitting6"
+dt = 1e-3
+output_dt = 10
+"""
+
+
+def test_a_run_releases_the_gil(tmp_path):
+    # while one thread runs a scene, another Python thread keeps running: the counter moves
+    import threading
+    import time
+
+    scene = tmp_path / "long.toml"
+    scene.write_text(LONG_RUN.replace("t_end = 1e5", "t_end = 3000"))  # ≈ 1 s of stepping
+    model = rigid.Scene(scene)
+    done = threading.Event()
+    counts = []
+
+    def count():
+        n = 0
+        while not done.is_set():
+            n += 1
+            time.sleep(0.001)
+        counts.append(n)
+
+    t = threading.Thread(target=count)
+    t.start()
+    start = time.monotonic()
+    model.run()
+    elapsed = time.monotonic() - start
+    done.set()
+    t.join()
+    # with the GIL held the counter could not move during the run; released, it ticks about
+    # once per millisecond (a loaded machine may slow it tenfold, not stop it)
+    assert elapsed > 0.1 and counts[0] >= 20, (counts, elapsed)
+
+
+def test_ctrl_c_stops_a_run_with_keyboard_interrupt_and_writes_nothing(tmp_path):
+    import os
+    import signal
+    import threading
+
+    scene = tmp_path / "long.toml"
+    scene.write_text(LONG_RUN)
+    model = rigid.Scene(scene)
+    out = tmp_path / "out"
+    timer = threading.Timer(0.3, lambda: os.kill(os.getpid(), signal.SIGINT))
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt, match="cancelled at t = "):
+            model.run(output=out)
+    finally:
+        timer.cancel()
+    assert not out.exists()

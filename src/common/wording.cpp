@@ -46,7 +46,7 @@ bool parse_reference(std::string_view text, std::string_view& key, std::string_v
 }  // namespace
 
 std::string word_for(Surface surface, std::string_view message) {
-  if (surface == Surface::kLibrary || surface == Surface::kScene) return std::string(message);
+  if (surface == Surface::kLibrary) return std::string(message);
   std::string out;
   out.reserve(message.size());
   std::size_t i = 0;
@@ -59,6 +59,10 @@ std::string word_for(Surface surface, std::string_view message) {
         std::string flag(key);
         for (char& c : flag) c = c == '_' ? '-' : c;
         out += boolean ? fmt::format("--{}", flag) : fmt::format("--{} {}", flag, value);
+      } else if (surface == Surface::kScene) {
+        // a key of the body's table, quoted as the scene's messages quote keys (and no longer a
+        // reference: a front end that shows a scene's error leaves it as the file spells it)
+        out += boolean ? fmt::format("'{} = true'", key) : fmt::format("'{} = \"{}\"'", key, value);
       } else {
         out += boolean ? fmt::format("{}=True", key) : fmt::format("{}=\"{}\"", key, value);
       }

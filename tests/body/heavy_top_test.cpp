@@ -155,3 +155,18 @@ TEST(HeavyTop, RefusesAMomentlessAxisAndDivergence) {
 
 }  // namespace
 }  // namespace rigid::body
+
+namespace rigid::body {
+namespace {
+
+TEST(HeavyTop, OverflowingStateIsRefusedDuringTheRun) {
+  // ω ≈ 1e308 rad/s about every axis: finite, but the sub-flows' angles and L = I ω overflow in
+  // the first step; the march names the component and t
+  const HeavyTop top = make_top(1.0, Eigen::Vector3d(1, 1, 0.5), Eigen::Vector3d(0, 0, 0.1));
+  const FreeBodyState s{SO3d::identity(), Eigen::Vector3d::Constant(1e308)};
+  EXPECT_RIGID_ERROR((void)top.simulate(s, 0.01, {1.0}, FreeBodyMethod::kSplitting2),
+                     "non-finite state at step 1, t = 0.01 s");
+}
+
+}  // namespace
+}  // namespace rigid::body

@@ -1,8 +1,14 @@
-"""The CLI tests run the built `rigid` executable named by RIGID_EXE."""
+"""The CLI tests run the built `rigid` executable named by RIGID_EXE; the tests that compare it
+with the Python module import the one built next to it (RIGID_PYTHON_DIR)."""
 import os
 import subprocess
+import sys
 
 import pytest
+
+_dir = os.environ.get("RIGID_PYTHON_DIR")
+if _dir and _dir not in sys.path:
+    sys.path.insert(0, _dir)
 
 
 @pytest.fixture(scope="session")

@@ -19,7 +19,11 @@ TEST(Wording, EachSurfaceWordsTheRemedy) {
   EXPECT_EQ(word_for(Surface::kPython, msg),
             "the mesh is open: use shell=True, or fill_holes=True; if it is in millimetres, use "
             "units=\"mm\"");
-  EXPECT_EQ(word_for(Surface::kScene, msg), msg);
+  const std::string scene = word_for(Surface::kScene, msg);
+  EXPECT_EQ(scene, "the mesh is open: use 'shell = true', or 'fill_holes = true'; if it is in millimetres, use "
+                   "'units = \"mm\"'");
+  // a scene's wording is final: another front end showing it keeps it
+  EXPECT_EQ(word_for(Surface::kPython, scene), scene);
   EXPECT_EQ(word_for(Surface::kLibrary, msg), msg);
 }
 

@@ -4,10 +4,10 @@
 ///
 /// A library error that suggests a setting names it as the setting's C++ field in backticks,
 /// `` `shell = true` `` or `` `units = "mm"` ``, built by `setting()`. The command line prints
-/// it as a flag (`--shell`, `--units mm`), a scene file as its key (`shell = true`), Python
+/// it as a flag (`--shell`, `--units mm`), a scene file as its key ('shell = true'), Python
 /// as a keyword argument (`shell=True`, `units="mm"`): `word_for()` rewrites every such
-/// reference of a message for one surface. The library, C++ users and scene files read the
-/// message unchanged.
+/// reference of a message for one surface. The library and C++ users read the message
+/// unchanged.
 
 #include <string>
 #include <string_view>
@@ -25,7 +25,9 @@ enum class Surface { kLibrary, kCli, kScene, kPython };
 /// `message` with every setting reference in the terms of `surface`:
 ///  - kCli: `--key-with-dashes` for `true`, `--key value` for a text value;
 ///  - kPython: `key=True`, `key="value"`;
-///  - kLibrary, kScene: unchanged.
+///  - kScene: 'key = true', 'key = "value"' (quoted as the scene's key, no longer a reference,
+///    so a scene's error keeps the file's spelling whichever front end shows it);
+///  - kLibrary: unchanged.
 [[nodiscard]] std::string word_for(Surface surface, std::string_view message);
 
 }  // namespace rigid
