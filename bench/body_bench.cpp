@@ -233,21 +233,6 @@ void BM_LongRun(benchmark::State& st, FreeBodyMethod m) {
   st.counters["orthonormality"] = d.orthonormality_error;
 }
 
-// The racket for 100 s through simulate_free_body (splitting4, h ≤ 0.01 s, a sample every
-// 0.05 s with its diagnostics): the stepping loop with its output, per-step finiteness check
-// and bookkeeping around the kernel.
-void BM_SimulateFreeBody(benchmark::State& st) {
-  FreeBodyState s;
-  s.w_B = kW0;
-  std::vector<double> times;
-  for (int k = 0; k <= 2000; ++k) times.push_back(0.05 * k);
-  for (auto _ : st) {
-    const auto traj = rigid::body::simulate_free_body(FreeBodyMethod::kSplitting4, kI, s, 0.01, times);
-    benchmark::DoNotOptimize(traj.states.back());
-  }
-  st.SetItemsProcessed(st.iterations() * 10'000);
-}
-
 // MuJoCo 2.2: the racket as a model with one free-joint body (diaginertia = I, no geoms,
 // gravity 0). The free joint's qvel is (v_W, ω_B): linear velocity in the world frame,
 // angular velocity in the body's local frame, so qvel[3..5] is ω_B directly.
@@ -452,7 +437,6 @@ void BM_BatchMuJoCo(benchmark::State& st, int integrator) {
 BENCHMARK_CAPTURE(BM_LongRun, splitting2, FreeBodyMethod::kSplitting2)->Iterations(1)->Unit(benchmark::kSecond);
 BENCHMARK_CAPTURE(BM_LongRun, midpoint, FreeBodyMethod::kLiePoissonMidpoint)->Iterations(1)->Unit(benchmark::kSecond);
 BENCHMARK(BM_ExactOmega);
-BENCHMARK(BM_SimulateFreeBody)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ExactOrientation);
 BENCHMARK(BM_ExactOrientationCarlson);
 BENCHMARK_CAPTURE(BM_Rigid, rk4, FreeBodyMethod::kRk4)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);

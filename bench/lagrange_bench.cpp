@@ -109,22 +109,6 @@ void BM_Lagrange_rhs(benchmark::State& state) {
   }
 }
 
-// A whole run: the N-link chain for 10 s by RK4 at dt = 1e-3 s, sampled every 0.01 s
-// (10⁴ steps, 4·10⁴ right-hand sides, 1001 output rows with energy and Jacobi integral).
-void BM_Lagrange_simulate(benchmark::State& state) {
-  const int n = static_cast<int>(state.range(0));
-  const rigid::lagrange::System sys(chain_spec(n));
-  rigid::lagrange::SimulationOptions o;
-  o.t_end = 10.0;
-  o.method = rigid::integrate::Method::kRk4;
-  o.dt = 1e-3;
-  o.output_dt = 0.01;
-  for (auto _ : state) {
-    const rigid::lagrange::Trajectory tr = sys.simulate(o);
-    benchmark::DoNotOptimize(tr.q.data());
-  }
-}
-
 void BM_Handwritten_rhs(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
   HandChain hand(n);
@@ -139,6 +123,5 @@ void BM_Handwritten_rhs(benchmark::State& state) {
 BENCHMARK(BM_Lagrange_derive)->Arg(2)->Arg(4)->Arg(8)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Lagrange_rhs)->Arg(2)->Arg(4)->Arg(8)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Handwritten_rhs)->Arg(2)->Arg(4)->Arg(8)->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_Lagrange_simulate)->Arg(2)->Arg(4)->Unit(benchmark::kMillisecond);
 
 }  // namespace
