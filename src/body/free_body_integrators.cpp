@@ -25,7 +25,7 @@ constexpr std::array<std::pair<std::string_view, FreeBodyMethod>, 7> kMethods{{
 
 // RK4 on (q, ω) with q the unnormalised quaternion coefficients of the stages,
 // q̇ = ½ q ⊗ (0, ω_B) (SO3::quaternion_rate) and Euler's equations for ω̇; the result is
-// projected back onto |q| = 1 (SO3's invariant).
+// projected back onto |q| = 1 (SO3's invariant; SO3::from_integrated_quaternion).
 FreeBodyState step_rk4(const Eigen::Vector3d& I_B, const FreeBodyState& s, double h) {
   const Eigen::Vector3d z = Eigen::Vector3d::Zero();
   const Eigen::Vector4d q0 = s.R_WB.quaternion();
@@ -42,9 +42,8 @@ FreeBodyState step_rk4(const Eigen::Vector3d& I_B, const FreeBodyState& s, doubl
   const Eigen::Vector4d k4q = SO3d::quaternion_rate(q0 + h * k3q, w4);
   const Eigen::Vector3d k4w = euler_rhs<double>(I_B, w4, z);
   const Eigen::Vector4d q1 = q0 + h / 6.0 * (k1q + 2.0 * k2q + 2.0 * k3q + k4q);
-  // a step that overflowed returns SO3d::invalid() for the finiteness check to report
-  return {q1.allFinite() ? SO3d::from_quaternion(q1(0), q1(1), q1(2), q1(3)) : SO3d::invalid(),
-          w0 + h / 6.0 * (k1w + 2.0 * k2w + 2.0 * k3w + k4w)};
+  // back onto |q| = 1 (a step that overflowed gives SO3d::invalid() for the check to report)
+  return {SO3d::from_integrated_quaternion(q1), w0 + h / 6.0 * (k1w + 2.0 * k2w + 2.0 * k3w + k4w)};
 }
 
 // sin x and cos x − 1 for |x| ≤ 0.5 by their Maclaurin series [DLMF, eqs. 4.19.1, 4.19.2]:
@@ -275,6 +274,9 @@ FreeBodyState step_free_body(FreeBodyMethod method, const Eigen::Vector3d& I_B,
 }
 
 std::optional<integrate::NonFinite> find_nonfinite(const FreeBodyState& s, std::string_view owner) {
+  // fast path, every step: a NaN or an infinity makes the sum non-finite (finite values whose
+  // sum overflows fall through to the scan, which then finds nothing)
+  if (std::isfinite(s.R_WB.quaternion().sum() + s.w_B.sum())) [[likely]] return std::nullopt;
   static constexpr const char* kNames[7] = {"R_WB.w", "R_WB.x", "R_WB.y", "R_WB.z",
                                             "w_B.x",  "w_B.y",  "w_B.z"};
   const Eigen::Vector4d q = s.R_WB.quaternion();

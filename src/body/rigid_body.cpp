@@ -32,6 +32,11 @@ FreeBodyState RigidBody::free_flow(const FreeBodyState& s, double h, FreeBodyMet
 }
 
 std::optional<integrate::NonFinite> find_nonfinite(const RigidBodyState& s, std::string_view owner) {
+  // fast path, every step: a NaN or an infinity makes the sum non-finite (finite values whose
+  // sum overflows fall through to the scan, which then finds nothing)
+  if (std::isfinite(s.R_WB.quaternion().sum() + s.w_B.sum() + s.p_WC.sum() + s.v_WC.sum())) [[likely]] {
+    return std::nullopt;
+  }
   static constexpr const char* kNames[13] = {"R_WB.w", "R_WB.x", "R_WB.y", "R_WB.z", "w_B.x",
                                              "w_B.y",  "w_B.z",  "p_WC.x", "p_WC.y", "p_WC.z",
                                              "v_WC.x", "v_WC.y", "v_WC.z"};
@@ -99,6 +104,10 @@ namespace {
 // Kick of length `tau`: v̇ = F_W/m, L̇_B = τ_B with p, R and t frozen, by the explicit
 // midpoint rule (exact when the loads do not depend on v or ω: then the rates are constant).
 void kick(const RigidBody& body, double t, RigidBodyState& s, double tau, bool has_loads) {
+  if (!has_loads) {  // gravity alone: no torque about C, a constant acceleration g
+    s.v_WC += tau * body.gravity();
+    return;
+  }
   const Eigen::Matrix3d& I_inv = body.inertia_inverse();
   Wrench w = body.total_wrench(t, s);
   if (has_loads) {
@@ -121,32 +130,26 @@ void drift(const RigidBody& body, RigidBodyState& s, double h, FreeBodyMethod fr
   s.w_B = fs.w_B;
 }
 
-// RK4 state y = (q_WB (w, x, y, z), ω_B, p_WC, v_WC).
-using Vec13 = Eigen::Matrix<double, 13, 1>;
+// RK4 on y = (q, ω_B, p_WC, v_WC), q the quaternion coefficients of R_WB: the stages carry
+// q unnormalised (q̇ = ½ q ⊗ (0, ω_B), SO3::quaternion_rate); the loads see the stage's
+// rotation back on |q| = 1 (SO3::from_integrated_quaternion), and so does the step's result.
+struct Rk4Point {
+  Eigen::Vector4d q;
+  Eigen::Vector3d w, p, v;
+};
 
-Vec13 pack(const RigidBodyState& s) {
-  Vec13 y;
-  y << s.R_WB.quaternion(), s.w_B, s.p_WC, s.v_WC;
-  return y;
+// y + c k
+Rk4Point advanced(const Rk4Point& y, double c, const Rk4Point& k) {
+  return {y.q + c * k.q, y.w + c * k.w, y.p + c * k.p, y.v + c * k.v};
 }
 
-// from_quaternion renormalises q (SO3d keeps |q| = 1 as its invariant); a step that overflowed
-// gives SO3d::invalid() for the finiteness check to report
-RigidBodyState unpack(const Vec13& y) {
-  const SO3d R = y.head<4>().allFinite() ? SO3d::from_quaternion(y(0), y(1), y(2), y(3)) : SO3d::invalid();
-  return {R, y.segment<3>(4), y.segment<3>(7), y.segment<3>(10)};
+RigidBodyState state_of(const Rk4Point& y) {
+  return {SO3d::from_integrated_quaternion(y.q), y.w, y.p, y.v};
 }
 
-Vec13 rk4_rate(const RigidBody& body, double t, const Vec13& y) {
-  const RigidBodyState s = unpack(y);
-  const RigidBodyAcceleration a = body.acceleration(t, s);
-  // q̇ = ½ q ⊗ (0, ω_B) on the unnormalised stage quaternion
-  Vec13 r;
-  r.head<4>() = SO3d::quaternion_rate(y.head<4>(), y.segment<3>(4));
-  r.segment<3>(4) = a.alpha_B;
-  r.segment<3>(7) = y.segment<3>(10);
-  r.segment<3>(10) = a.a_WC;
-  return r;
+Rk4Point rk4_rate(const RigidBody& body, double t, const Rk4Point& y) {
+  const RigidBodyAcceleration a = body.acceleration(t, state_of(y));
+  return {SO3d::quaternion_rate(y.q, y.w), a.alpha_B, y.v, a.a_WC};
 }
 
 }  // namespace
@@ -175,13 +178,14 @@ RigidBodyState step_rigid_body(const RigidBody& body, RigidBodyMethod method, do
     kick(body, t + h, s, 0.5 * h, has_loads);
     return s;
   }
-  const Vec13 y = pack(state);
-  const Vec13 k1 = rk4_rate(body, t, y);
-  const Vec13 k2 = rk4_rate(body, t + 0.5 * h, y + 0.5 * h * k1);
-  const Vec13 k3 = rk4_rate(body, t + 0.5 * h, y + 0.5 * h * k2);
-  const Vec13 k4 = rk4_rate(body, t + h, y + h * k3);
-  // from_quaternion renormalises q (SO3d keeps |q| = 1 as its invariant)
-  return unpack(y + (h / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4));
+  const Rk4Point y{state.R_WB.quaternion(), state.w_B, state.p_WC, state.v_WC};
+  const Rk4Point k1 = rk4_rate(body, t, y);
+  const Rk4Point k2 = rk4_rate(body, t + 0.5 * h, advanced(y, 0.5 * h, k1));
+  const Rk4Point k3 = rk4_rate(body, t + 0.5 * h, advanced(y, 0.5 * h, k2));
+  const Rk4Point k4 = rk4_rate(body, t + h, advanced(y, h, k3));
+  const double c = h / 6.0;
+  return state_of({y.q + c * (k1.q + 2.0 * k2.q + 2.0 * k3.q + k4.q), y.w + c * (k1.w + 2.0 * k2.w + 2.0 * k3.w + k4.w),
+                   y.p + c * (k1.p + 2.0 * k2.p + 2.0 * k3.p + k4.p), y.v + c * (k1.v + 2.0 * k2.v + 2.0 * k3.v + k4.v)});
 }
 
 RigidBodyTrajectory simulate_rigid_body(const RigidBody& body, RigidBodyMethod method,

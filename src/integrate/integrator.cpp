@@ -156,11 +156,11 @@ Solution run_fixed(const Problem& p, const Options& o) {
   Eigen::Index np = p.n_position;
   if (o.method == Method::kStormerVerlet) {
     if (np < 0) {
-      RIGID_REQUIRE(n % 2 == 0,
+      RIGID_REQUIRE_AS("integrate", n % 2 == 0,
                     "Störmer–Verlet needs y = (q, v) of even size or n_position, got size {}", n);
       np = n / 2;
     }
-    RIGID_REQUIRE(2 * np == n, "Störmer–Verlet needs y = (q, v) with |q| = |v|, got n_position "
+    RIGID_REQUIRE_AS("integrate", 2 * np == n, "Störmer–Verlet needs y = (q, v) with |q| = |v|, got n_position "
                   "= {} for a state of size {}", np, n);
   }
 
@@ -223,7 +223,7 @@ Solution run_dopri5(const Problem& p, const Options& o) {
   if (o.output_dt > 0) grid = TimeGrid::uniform(p.t0, p.t_end, o.output_dt);
   StdState xo(static_cast<std::size_t>(n));
   auto sample = [&](double t, const StdState& state) {
-    RIGID_REQUIRE(sol.t.size() < TimeGrid::kMaxOutputs,
+    RIGID_REQUIRE_AS("integrate", sol.t.size() < TimeGrid::kMaxOutputs,
                   "dopri5 sampled every step for more than {} steps before t_end = {} s (at t = {} "
                   "s); set an output spacing",
                   TimeGrid::kMaxOutputs, p.t_end, t);
@@ -235,7 +235,7 @@ Solution run_dopri5(const Problem& p, const Options& o) {
   std::size_t next_output = 1;  // grid index of the next sample (output 0 is t0)
   double h_last = 0.0;
   while (stepper.current_time() < p.t_end) {
-    RIGID_REQUIRE(sol.steps < control.max_steps, "dopri5 took more than max_steps = {} steps before "
+    RIGID_REQUIRE_AS("integrate", sol.steps < control.max_steps, "dopri5 took more than max_steps = {} steps before "
                   "t_end = {} s (at t = {} s)", control.max_steps, p.t_end, stepper.current_time());
     const double before = stepper.current_time();
     stepper.do_step(sys);

@@ -101,7 +101,7 @@ void solve(const Impl& s, WorkImpl& w, double time, const Eigen::VectorXd& qv,
 WorkImpl& checked(const Impl& s, Workspace& w);
 
 void require_sizes(const Impl& s, const Eigen::VectorXd& q, const Eigen::VectorXd& q_dot) {
-  RIGID_REQUIRE(q.size() == s.n && q_dot.size() == s.n,
+  RIGID_REQUIRE_AS("System", q.size() == s.n && q_dot.size() == s.n,
                 "expected q and q_dot of size {} (one per coordinate), got {} and {}", s.n, q.size(),
                 q_dot.size());
 }
@@ -150,7 +150,7 @@ Workspace System::make_workspace() const {
 namespace {
 WorkImpl& checked(const Impl& s, Workspace& w) {
   WorkImpl* impl = Workspace::Access::impl(w);
-  RIGID_REQUIRE(impl != nullptr && impl->owner == &s,
+  RIGID_REQUIRE_AS("System", impl != nullptr && impl->owner == &s,
                 "the workspace belongs to another System (or was moved from); make one with "
                 "this System's make_workspace()");
   return *impl;

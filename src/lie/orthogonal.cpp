@@ -9,15 +9,15 @@
 namespace rigid {
 
 namespace {
-void require_square_finite(const Eigen::MatrixXd& M) {
-  RIGID_REQUIRE(M.rows() == M.cols() && M.rows() > 0, "matrix is {}x{}, expected a non-empty square matrix",
+void require_square_finite(const Eigen::MatrixXd& M, const char* function) {
+  RIGID_REQUIRE_AS(function, M.rows() == M.cols() && M.rows() > 0, "matrix is {}x{}, expected a non-empty square matrix",
                 M.rows(), M.cols());
-  RIGID_REQUIRE(M.allFinite(), "matrix {} has a non-finite entry", to_string(M));
+  RIGID_REQUIRE_AS(function, M.allFinite(), "matrix {} has a non-finite entry", to_string(M));
 }
 }  // namespace
 
 OrthogonalityReport check_orthogonal(const Eigen::MatrixXd& M, double tol) {
-  require_square_finite(M);
+  require_square_finite(M, __func__);
   OrthogonalityReport r;
   const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(M.rows(), M.cols());
   r.defect = (M.transpose() * M - I).cwiseAbs().maxCoeff();
@@ -28,7 +28,7 @@ OrthogonalityReport check_orthogonal(const Eigen::MatrixXd& M, double tol) {
 }
 
 Eigen::MatrixXd nearest_rotation(const Eigen::MatrixXd& M) {
-  require_square_finite(M);
+  require_square_finite(M, __func__);
   const Eigen::JacobiSVD<Eigen::MatrixXd> svd(M, Eigen::ComputeFullU | Eigen::ComputeFullV);
   Eigen::MatrixXd U = svd.matrixU();
   const Eigen::MatrixXd& V = svd.matrixV();

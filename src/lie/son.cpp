@@ -54,7 +54,7 @@ struct SchurAngles {
 SchurAngles schur_angles(const MatrixXd& R) {
   const Index n = R.rows();
   const Eigen::RealSchur<MatrixXd> schur(R);
-  RIGID_REQUIRE(schur.info() == Eigen::Success, "the real Schur decomposition of {} did not converge",
+  RIGID_REQUIRE_AS("SOn::log", schur.info() == Eigen::Success, "the real Schur decomposition of {} did not converge",
                 to_string(R));
   const MatrixXd& T = schur.matrixT();
   SchurAngles out{schur.matrixU(), MatrixXd::Zero(n, n), {}};
@@ -89,7 +89,7 @@ SchurAngles schur_angles(const MatrixXd& R) {
 }
 
 void require_same_n(int a, int b, const char* what) {
-  RIGID_REQUIRE(a == b, "{}: SO({}) and SO({}) differ, expected the same n", what, a, b);
+  RIGID_REQUIRE_AS("SOn", a == b, "{}: SO({}) and SO({}) differ, expected the same n", what, a, b);
 }
 
 }  // namespace

@@ -122,7 +122,7 @@ void evaluate(const Integrand& f, Cell& cell) {
 DensityIntegration integrate(const Integrand& f, const Eigen::Vector3d& lo,
                              const Eigen::Vector3d& hi, double length_scale,
                              const CubatureOptions& options) {
-  RIGID_REQUIRE(options.relative_tolerance > 0.0 && options.max_cells >= 1,
+  RIGID_REQUIRE_AS(f.function, options.relative_tolerance > 0.0 && options.max_cells >= 1,
                 "relative_tolerance must be positive and max_cells at least 1, got {} and {}",
                 options.relative_tolerance, options.max_cells);
   // first pass: one cell, to learn the scales
@@ -172,7 +172,7 @@ DensityIntegration integrate(const Integrand& f, const Eigen::Vector3d& lo,
   Moments total = Moments::Zero();
   for (const Cell& c : cells) total += c.kronrod;
   const double m = total(0);
-  RIGID_REQUIRE(m > 0.0, "the density integrates to a mass of {} kg; expected a positive mass", m);
+  RIGID_REQUIRE_AS(f.function, m > 0.0, "the density integrates to a mass of {} kg; expected a positive mass", m);
   const Eigen::Vector3d F = total.segment<3>(1);
   Eigen::Matrix3d S;
   S << total(4), total(7), total(8), total(7), total(5), total(9), total(8), total(9), total(6);

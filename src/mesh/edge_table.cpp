@@ -14,7 +14,7 @@ EdgeTable edge_table(const TriangleMesh& mesh, EdgeTableOptions options) {
   const std::size_t nf = mesh.triangles.size();
   const std::size_t nh = 3 * nf;
   const std::size_t nv = mesh.vertices.size();
-  RIGID_REQUIRE(nh < EdgeTable::kNonManifold, "{} triangles: at most 1.4e9 are supported", nf);
+  RIGID_REQUIRE_AS("repair_mesh", nh < EdgeTable::kNonManifold, "{} triangles: at most 1.4e9 are supported", nf);
   const auto* tri = mesh.triangles.data();
   // bucket the half-edges by their lower vertex, each entry (upper vertex << 32 | h), in
   // increasing h within a bucket (counting sort)

@@ -100,7 +100,7 @@ std::uint64_t coordinate_bits(double x) {
 std::size_t weld_exact(TriangleMesh& mesh) {
   const std::size_t n = mesh.vertices.size();
   if (n == 0) return 0;
-  RIGID_REQUIRE(n < kNone, "{} vertices: at most 2³² − 2 are supported", n);
+  RIGID_REQUIRE_AS("repair_mesh", n < kNone, "{} vertices: at most 2³² − 2 are supported", n);
   auto& v = mesh.vertices;
   const auto hash = [&](const Eigen::Vector3d& p) {
     // multiply-xorshift mix of the three 64-bit patterns (constants: odd, well-mixed)

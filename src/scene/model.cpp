@@ -215,6 +215,7 @@ struct FreeBody {
   std::optional<body::RigidBody> rigid;  // in P, origin at the COM
   std::optional<body::HeavyTop> top;     // in P, origin that of B
   SO3d R_BP = SO3d::identity();
+  bool principal_is_body = true;  // R_BP = 1
   Eigen::Vector3d com_B = Eigen::Vector3d::Zero(), pivot_B = Eigen::Vector3d::Zero();
   lagrange::BodyMass symbolic;
   std::optional<std::array<Expression, 3>> pivot_expressions;
@@ -379,6 +380,7 @@ struct Model::Impl {
         f.initial.p_WC = p_WB0 + R_WB0 * mp.com();
         f.initial.v_WC = v0;
       }
+      f.principal_is_body = f.R_BP.w() == 1.0;
       f.initial.R_WB = R_WB0 * f.R_BP;
       f.initial.w_B = f.R_BP.inverse() * w_B0;
       free.push_back(std::move(f));
@@ -446,9 +448,10 @@ Method Model::Impl::parse_method(const std::string& requested) const {
     }
     const bool any_top = std::any_of(free.begin(), free.end(), [](const FreeBody& f) { return f.top.has_value(); });
     if (method.name == "exact") {
-      RIGID_REQUIRE(!any_top, "integrator 'exact' is the closed-form motion of the torque-free "
-                    "body; a body on a pivot feels the gravity torque: use splitting2, "
-                    "splitting4 or splitting6");
+      if (any_top) {
+        throw Error("integrator 'exact' is the closed-form motion of the torque-free body; a body "
+                    "on a pivot feels the gravity torque: use splitting2, splitting4 or splitting6");
+      }
       method.exact = true;
       return method;
     }
@@ -457,10 +460,10 @@ Method Model::Impl::parse_method(const std::string& requested) const {
       const body::FreeBodyMethod m = method.free;
       if (m != body::FreeBodyMethod::kSplitting2 && m != body::FreeBodyMethod::kSplitting4 &&
           m != body::FreeBodyMethod::kSplitting6) {
-        RIGID_THROW("integrator '{}' cannot take the gravity torque of a body on a pivot; a heavy "
-                    "top is integrated by the gravity-kick splitting around the free flow: use "
-                    "splitting2, splitting4 or splitting6",
-                    method.name);
+        throw Error(fmt::format("integrator '{}' cannot take the gravity torque of a body on a pivot; "
+                                "a heavy top is integrated by the gravity-kick splitting around the "
+                                "free flow: use splitting2, splitting4 or splitting6",
+                                method.name));
       }
     }
   } catch (const Error& e) {
@@ -695,27 +698,30 @@ RunResult Model::Impl::run_free(const Method& method, const RunOptions& o) const
     for (std::size_t i = 0; i < free.size(); ++i) {
       const FreeBody& f = free[i];
       const body::RigidBodyState& s = state[i];  // in P
-      const body::FreeBodyState rot{s.R_WB, s.w_B};
-      const SO3d R_WB = s.R_WB * f.R_BP.inverse();
-      const Eigen::Vector3d w_B = f.R_BP * s.w_B;
+      const SO3d R_WB = f.principal_is_body ? s.R_WB : s.R_WB * f.R_BP.inverse();
+      const Eigen::Vector3d w_B = f.principal_is_body ? s.w_B : Eigen::Vector3d(f.R_BP * s.w_B);
+      const Eigen::Matrix3d R_WP = s.R_WB.matrix();
       Eigen::Vector3d p_WB, v_WC, L_W;
       if (f.top) {
+        const body::FreeBodyState rot{s.R_WB, s.w_B};
         p_WB = f.pivot_W - R_WB * f.pivot_B;
-        v_WC = s.R_WB * s.w_B.cross(f.top->com_from_pivot());
-        L_W = f.top->angular_momentum_world(rot);  // about the pivot
+        v_WC = R_WP * s.w_B.cross(f.top->com_from_pivot());
+        L_W = R_WP * (f.top->inertia_about_pivot() * s.w_B);  // about the pivot
         e_total += f.top->energy(rot);
         L[i].push_back(g_dir.dot(L_W));
       } else {
+        // P is principal: I ω is a componentwise product; energy ½ m |v|² + ½ ωᵀ I ω − m g·p
+        const Eigen::Vector3d L_P = f.rigid->principal_moments().cwiseProduct(s.w_B);
         p_WB = s.p_WC - R_WB * f.com_B;
         v_WC = s.v_WC;
-        L_W = s.R_WB * (f.rigid->inertia() * s.w_B);  // about the COM
-        e_total += f.rigid->diagnose(s).energy;
+        L_W = R_WP * L_P;  // about the COM
+        e_total += 0.5 * f.rigid->mass() * s.v_WC.squaredNorm() + 0.5 * s.w_B.dot(L_P) -
+                   f.rigid->mass() * gravity.dot(s.p_WC);
         L[i].push_back(L_W.norm());
       }
       push_pose(row, p_WB, R_WB, previous[i]);
       row.insert(row.end(), {v_WC.x(), v_WC.y(), v_WC.z(), w_B.x(), w_B.y(), w_B.z(), L_W.x(), L_W.y(), L_W.z()});
-      const Eigen::Matrix3d R = s.R_WB.matrix();
-      ortho[i] = std::max(ortho[i], (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff());
+      ortho[i] = std::max(ortho[i], (R_WP.transpose() * R_WP - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff());
     }
     row.push_back(e_total);
     energy.push_back(e_total);

@@ -56,6 +56,15 @@ namespace detail {
     }                                                                      \
   } while (false)
 
+/// RIGID_REQUIRE for a check made in a helper on behalf of the public entry point `function`
+/// (a string literal such as "integrate"), so that the message names what the caller called.
+#define RIGID_REQUIRE_AS(function, cond, ...)                              \
+  do {                                                                     \
+    if (!(cond)) [[unlikely]] {                                            \
+      ::rigid::detail::throw_error(function, ::fmt::format(__VA_ARGS__));  \
+    }                                                                      \
+  } while (false)
+
 /// Unconditional throw with the same message format as RIGID_REQUIRE.
 #define RIGID_THROW(...) ::rigid::detail::throw_error(__func__, ::fmt::format(__VA_ARGS__))
 

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cmath>
 #include <limits>
 #include <random>
 #include <type_traits>
@@ -45,6 +46,31 @@ class SO3 {
   /// @throws rigid::Error if a component is not finite or the norm is below 1e-12.
   [[nodiscard]] static SO3 from_quaternion(const Scalar& w, const Scalar& x, const Scalar& y,
                                            const Scalar& z);
+  /// The rotation of quaternion coefficients q that a time integrator carried (Runge–Kutta
+  /// stages and steps: |q|² = 1 + δ drifts by the truncation error). For |δ| ≤ 1e-8 (the end
+  /// of a step) one Newton step q (3 − |q|²)/2 leaves O(δ²) ≤ 1e-16, round-off, with no square
+  /// root or division; a larger drift (a stage, δ = O(h²)) is normalised exactly; a
+  /// non-finite or vanishing q gives invalid() (a diverged step, for the finiteness check to
+  /// report).
+  [[nodiscard]] static SO3 from_integrated_quaternion(const Vector4& q) {
+    using std::sqrt;
+    const Scalar n2 = q.squaredNorm();
+    double v = 0;  // |q|² as a double (the value of an AutoDiff scalar)
+    if constexpr (std::is_same_v<Scalar, double>) {
+      v = n2;
+    } else {
+      v = n2.value();
+    }
+    SO3 r;
+    if (std::abs(v - 1.0) <= 1e-8) {
+      r.q_ = (1.5 - 0.5 * n2) * q;
+    } else if (std::isfinite(v) && v > 1e-24) {
+      r.q_ = q * (1.0 / sqrt(n2));
+    } else {
+      return invalid();
+    }
+    return r;
+  }
   /// Unit quaternion (w, x, y, z) from input that claims to be unit: refused unless its norm is
   /// within `tolerance` of 1 (a scene's initial_quaternion, a Python argument), then normalised.
   /// @throws rigid::Error giving the norm and the tolerance.
