@@ -26,11 +26,10 @@ std::vector<std::string> free_body_equations(const std::vector<Parameter>& param
 
   // inertia about the COM, then about the pivot by the parallel-axis theorem
   const ex m = parse(body.mass.mass, "mass");
-  static constexpr int kRow[6] = {0, 1, 2, 0, 0, 1}, kCol[6] = {0, 1, 2, 1, 2, 2};
-  static constexpr const char* kNames[6] = {"ixx", "iyy", "izz", "ixy", "ixz", "iyz"};
   detail::Mat3 I;
-  for (int k = 0; k < 6; ++k) {
-    I[kRow[k]][kCol[k]] = I[kCol[k]][kRow[k]] = parse(body.mass.inertia[static_cast<std::size_t>(k)], kNames[k]);
+  for (std::size_t k = 0; k < 6; ++k) {
+    const auto& [name, row, col] = BodyMass::kInertiaElements[k];
+    I[row][col] = I[col][row] = parse(body.mass.inertia[k], name);
   }
   detail::Vec3 d;  // COM from the pivot (or 0)
   for (std::size_t k = 0; k < 3; ++k) {

@@ -45,8 +45,9 @@ Vector3Expression::Vector3Expression(const Eigen::Vector3d& v)
 BodyMass::BodyMass(const MassProperties& mp)
     : mass(fmt::format("{}", mp.mass())), com(mp.com()) {
   const Eigen::Matrix3d& I = mp.inertia_com();
-  const double v[6] = {I(0, 0), I(1, 1), I(2, 2), I(0, 1), I(0, 2), I(1, 2)};
-  for (std::size_t k = 0; k < 6; ++k) inertia[k] = Expression(fmt::format("{}", v[k]));
+  for (std::size_t k = 0; k < 6; ++k) {
+    inertia[k] = Expression(fmt::format("{}", I(kInertiaElements[k].row, kInertiaElements[k].col)));
+  }
 }
 
 std::size_t System::Impl::parameter_index(const std::string& name) const {
@@ -208,16 +209,14 @@ System::System(const SystemSpec& spec) : impl_(std::make_unique<Impl>()) {
     const ex mass = parse_constant(b.mass.mass, ctx + " mass");
     Vec3 com_B;
     for (int k = 0; k < 3; ++k) com_B[k] = parse_constant(b.mass.com[k], fmt::format("{} com[{}]", ctx, k));
-    static constexpr const char* kInertiaNames[6] = {"ixx", "iyy", "izz", "ixy", "ixz", "iyz"};
-    static constexpr int kRow[6] = {0, 1, 2, 0, 0, 1}, kCol[6] = {0, 1, 2, 1, 2, 2};
     Mat3 I;
-    for (int k = 0; k < 6; ++k) {
-      const ex v = parse_constant(b.mass.inertia[static_cast<std::size_t>(k)], ctx + " " + kInertiaNames[k]);
-      I[kRow[k]][kCol[k]] = I[kCol[k]][kRow[k]] = v;
+    for (std::size_t k = 0; k < 6; ++k) {
+      const auto& [name, row, col] = BodyMass::kInertiaElements[k];
+      I[row][col] = I[col][row] = parse_constant(b.mass.inertia[k], ctx + " " + name);
     }
     mass_outputs.push_back(mass);
     for (int k = 0; k < 3; ++k) mass_outputs.push_back(com_B[k]);
-    for (int k = 0; k < 6; ++k) mass_outputs.push_back(I[kRow[k]][kCol[k]]);
+    for (const auto& e : BodyMass::kInertiaElements) mass_outputs.push_back(I[e.row][e.col]);
     Vec3 c = mat_vec(R, com_B);
     ex v2 = 0;
     for (int k = 0; k < 3; ++k) {

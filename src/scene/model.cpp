@@ -93,9 +93,10 @@ lagrange::BodyMass named_constants(const std::string& body, const MassProperties
   static constexpr const char* kCom[3] = {"com_x", "com_y", "com_z"};
   for (std::size_t k = 0; k < 3; ++k) b.com[k] = name(kCom[k], mp.com()[static_cast<Eigen::Index>(k)]);
   const Eigen::Matrix3d& I = mp.inertia_com();
-  const double v[6] = {I(0, 0), I(1, 1), I(2, 2), I(0, 1), I(0, 2), I(1, 2)};
-  static constexpr const char* kI[6] = {"ixx", "iyy", "izz", "ixy", "ixz", "iyz"};
-  for (std::size_t k = 0; k < 6; ++k) b.inertia[k] = name(kI[k], v[k]);
+  for (std::size_t k = 0; k < 6; ++k) {
+    const auto& [element, row, col] = lagrange::BodyMass::kInertiaElements[k];
+    b.inertia[k] = name(element, I(row, col));
+  }
   return b;
 }
 
@@ -142,11 +143,11 @@ BodyMass mass_of(const Body& b, const std::vector<lagrange::Parameter>& params,
     case MassSpec::Kind::kExplicit: {
       const double mass = value_of(*m.mass, params, ctx + " inertia mass");
       const Eigen::Vector3d com = vector_of(m.com, params, ctx + " inertia com");
-      std::array<double, 6> v{};
-      static constexpr const char* kNames[6] = {"ixx", "iyy", "izz", "ixy", "ixz", "iyz"};
-      for (std::size_t i = 0; i < 6; ++i) v[i] = value_of(m.inertia[i], params, ctx + " " + kNames[i]);
       Eigen::Matrix3d I;
-      I << v[0], v[3], v[4], v[3], v[1], v[5], v[4], v[5], v[2];
+      for (std::size_t i = 0; i < 6; ++i) {
+        const auto& [element, row, col] = lagrange::BodyMass::kInertiaElements[i];
+        I(row, col) = I(col, row) = value_of(m.inertia[i], params, ctx + " " + element);
+      }
       MassProperties numeric = at_location(m.where, ctx, [&] { return MassProperties(mass, com, I); });
       lagrange::BodyMass symbolic;
       symbolic.mass = to_lagrange(*m.mass);

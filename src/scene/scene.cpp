@@ -11,6 +11,7 @@
 #include <toml++/toml.h>
 
 #include "rigid/common/did_you_mean.hpp"
+#include "rigid/lagrange/system.hpp"
 #include "rigid/mass/primitive_table.hpp"
 
 namespace rigid::scene {
@@ -315,14 +316,14 @@ void parse_mass(const Parser& p, const toml::table& t, const std::string& contex
     } else {
       for (auto& e : m.com) e = Expression{"0", p.where(inertia->source()), 0.0, false};
     }
-    const char* names[6] = {"ixx", "iyy", "izz", "ixy", "ixz", "iyz"};
-    for (int i = 0; i < 6; ++i) {
-      if (auto v = it.get(names[i])) {
-        m.inertia[static_cast<std::size_t>(i)] = p.expression(*v, ic + " " + names[i]);
-      } else if (i < 3) {
-        p.fail(inertia->source(), fmt::format("{} is missing '{}' (kg·m², about the COM)", ic, names[i]));
+    for (std::size_t i = 0; i < 6; ++i) {
+      const auto& e = lagrange::BodyMass::kInertiaElements[i];
+      if (auto v = it.get(e.name)) {
+        m.inertia[i] = p.expression(*v, ic + " " + e.name);
+      } else if (e.row == e.col) {
+        p.fail(inertia->source(), fmt::format("{} is missing '{}' (kg·m², about the COM)", ic, e.name));
       } else {
-        m.inertia[static_cast<std::size_t>(i)] = Expression{"0", p.where(inertia->source()), 0.0, false};
+        m.inertia[i] = Expression{"0", p.where(inertia->source()), 0.0, false};
       }
     }
   } else {

@@ -48,6 +48,15 @@ struct Vector3Expression {
 /// written, so a mass `m1` prints as m1. The System checks the numbers (mass > 0, a physical
 /// tensor: rigid::MassProperties::check) for the parameters' values.
 struct BodyMass {
+  /// The order of `inertia`: each element's name (as a scene's [inertia] table spells it)
+  /// and its (row, column) in the symmetric tensor.
+  struct InertiaElement {
+    const char* name;
+    int row, col;
+  };
+  static constexpr std::array<InertiaElement, 6> kInertiaElements{
+      {{"ixx", 0, 0}, {"iyy", 1, 1}, {"izz", 2, 2}, {"ixy", 0, 1}, {"ixz", 0, 2}, {"iyz", 1, 2}}};
+
   Expression mass = "0";
   Vector3Expression com;
   std::array<Expression, 6> inertia{Expression("0"), Expression("0"), Expression("0"),
