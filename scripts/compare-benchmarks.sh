@@ -13,7 +13,7 @@ old="${TMPDIR:-/tmp}/rigid-bench-$(git -C "$top" rev-parse --short "$commit")"
 out="${TMPDIR:-/tmp}/rigid-bench-compare"
 mkdir -p "$out"
 
-"$top/scripts/install-deps.sh" bench
+"$top/scripts/install-deps.sh" bench >&2
 if [[ ! -d "$old" ]]; then git -C "$top" worktree add --detach "$old" "$commit" >/dev/null; fi
 cp "$top/bench/run_bench.cpp" "$old/bench/"
 grep -q 'rigid_add_bench(run ' "$old/bench/CMakeLists.txt" ||
