@@ -52,7 +52,8 @@ def test_inertia_of_a_mesh_in_millimetres(run, tmp_path):
     d = json.loads(proc.stdout)
     assert d["mass"] == pytest.approx(6.0, rel=1e-12)
     assert d["inertia"][0][0] == pytest.approx(0.065, rel=1e-12)
-    assert proc.stderr == ""
+    # the size with its unit, and no warning
+    assert proc.stderr == f"rigid: {p}: size 0.1 × 0.2 × 0.3 m (file read in mm)\n"
     # Forgetting --units mm: 10⁹ times the mass, and a warning naming the fix.
     proc = run("inertia", p, "--mass", 6, check=True)
     assert "implied density 1e-06 kg/m³" in proc.stderr and "--units mm" in proc.stderr

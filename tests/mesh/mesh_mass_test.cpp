@@ -217,15 +217,22 @@ TEST(MeshMass, MillimetresReadAsMetresAreFlagged) {
   // A 50 mm cube of steel with its coordinates read as metres: 50 m across.
   const auto cube = test::box_mesh(50, 50, 50);
   const auto by_mass = mesh_mass_properties(cube, {0.98, std::nullopt, false, {}});
-  ASSERT_EQ(by_mass.warnings.size(), 1u);
-  EXPECT_NE(by_mass.warnings[0].find("implied density 7.84e-06 kg/m³"), std::string::npos);
+  // the size (50 m > 10 m) and the density
+  ASSERT_EQ(by_mass.warnings.size(), 2u);
+  EXPECT_NE(by_mass.warnings[0].find("the part is 50 × 50 × 50 m, more than 10 m long"),
+            std::string::npos);
+  EXPECT_NE(by_mass.warnings[1].find("implied density 7.84e-06 kg/m³"), std::string::npos);
   // the remedy in library terms (the command line words it --units mm, see wording.hpp)
-  EXPECT_NE(by_mass.warnings[0].find("`units = \"mm\"`"), std::string::npos);
+  EXPECT_NE(by_mass.warnings[1].find("`units = \"mm\"`"), std::string::npos);
   const auto huge = test::box_mesh(200, 200, 200);
   const auto by_density = mesh_mass_properties(huge, density(7850));
-  ASSERT_EQ(by_density.warnings.size(), 1u);
-  EXPECT_NE(by_density.warnings[0].find("346.4 m across: if the file is in millimetres, use "
+  // the size and the mass: 200³ m³ × 7850 kg/m³ = 6.28e7 t
+  ASSERT_EQ(by_density.warnings.size(), 2u);
+  EXPECT_NE(by_density.warnings[0].find("the part is 200 × 200 × 200 m, more than 10 m long: if "
+                                        "the file's numbers are millimetres, use "
                                         "`units = \"mm\"`"),
+            std::string::npos);
+  EXPECT_NE(by_density.warnings[1].find("the implied mass 6.28e+07 t is more than 1000 t"),
             std::string::npos);
 }
 

@@ -174,6 +174,8 @@ TEST_F(RealFiles, MassFromFileMatchesTheStepByStepPath) {
         message = e.what();
       }
       ASSERT_FALSE(message.empty());
+      // the path without repair's report adds the remedy for a mesh that skipped repair
+      message = message.substr(0, message.find(" (if the mesh has not been through"));
       EXPECT_RIGID_ERROR((void)mesh_mass_from_file(cgal_meshes() + name, 1.0, unit_density()),
                          message);
       continue;
