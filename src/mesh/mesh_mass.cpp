@@ -271,7 +271,7 @@ MeshMassResult mesh_mass_properties(const TriangleMesh& mesh, const MassSpec& sp
 
   out.bounding_box = box;
   out.warnings = size_warnings(box);
-  if (m > kMaxMass) {
+  if (spec.density && m > kMaxMass) {  // a given mass is the user's, not implied
     out.warnings.push_back(fmt::format(
         "the implied mass {:.4g} t is more than {:.4g} t: if the file's numbers are millimetres, "
         "use {}",

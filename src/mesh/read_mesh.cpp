@@ -500,11 +500,18 @@ TriangleMesh read_ply(const std::string& path, const std::string& data, double s
   // limits before allocation: every row of an element takes at least the bytes of its
   // scalars and list counts (binary) or two characters per property, a digit and a separator
   // (ascii); the declared counts must fit in what follows the header. An element without
-  // properties holds no data: it is skipped whatever its count.
+  // properties would hold rows of no data, which no file size bounds: refused.
   {
     std::uint64_t left = data.size() - std::min(pos, data.size()) + (ascii ? 1 : 0);
     for (const auto& e : elements) {
       std::uint64_t row = 0;
+      if (e.props.empty() && e.count > 0) {
+        fail_line(path, e.line,
+                  fmt::format("element {} declares {} rows but no properties: expected at least "
+                              "one property per element (rows without data cannot be counted "
+                              "in the file)",
+                              e.name, e.count));
+      }
       for (const auto& p : e.props) row += ascii ? 2 : ply_size(p.list ? p.count_type : p.type);
       if (row == 0) continue;
       if (e.count > left / row) {
@@ -527,7 +534,7 @@ TriangleMesh read_ply(const std::string& path, const std::string& data, double s
   for (const auto& e : elements) {
     const bool is_vertex = e.name == "vertex";
     const bool is_face = e.name == "face";
-    if (e.props.empty() && !is_vertex && !is_face) continue;  // no data, whatever its count
+    if (e.props.empty() && !is_vertex && !is_face) continue;  // a count of 0 (others refused)
     int xyz[3] = {-1, -1, -1};
     int index_prop = -1;
     for (std::size_t k = 0; k < e.props.size(); ++k) {

@@ -95,9 +95,9 @@ std::optional<std::string> triangulate_polygon(const std::vector<Eigen::Vector3d
   if (!(norm > 2 * tol * diameter)) {
     // area below that of a sliver as thin as the tolerance: every vertex on one line (the
     // fan's triangles are degenerate), or a figure of eight whose lobes cancel (refused)
-    std::size_t far = 0;
+    std::size_t far = 0;  // the vertex farthest from the first
     for (std::size_t k = 1; k < n; ++k) {
-      if (r[k].squaredNorm() > r[far].squaredNorm()) far = k;
+      if ((r[k] - r[0]).squaredNorm() > (r[far] - r[0]).squaredNorm()) far = k;
     }
     const Eigen::Vector3d axis = (r[far] - r[0]).normalized();
     for (std::size_t k = 0; k < n && diameter > 0; ++k) {
