@@ -18,6 +18,22 @@ std::vector<std::string> worded(const std::vector<std::string>& messages) {
   for (const auto& m : messages) out.push_back(rigid::word_for(rigid::Surface::kPython, m));
   return out;
 }
+
+// The library's remedy "run repair_mesh(mesh) first" in Python's terms: rigid.mesh.repair.
+template <class F>
+auto with_repair_worded(F&& f) -> decltype(f()) {
+  try {
+    return f();
+  } catch (const rigid::Error& e) {
+    std::string m = e.what();
+    const std::string from = "repair_mesh(mesh)";
+    for (std::size_t at = m.find(from); at != std::string::npos; at = m.find(from, at)) {
+      m.replace(at, from.size(), "rigid.mesh.repair(mesh)");
+      at += from.size();
+    }
+    throw rigid::Error(m);
+  }
+}
 }  // namespace
 
 namespace {
@@ -103,7 +119,10 @@ void bind_mesh(py::module_& m) {
       .def_readonly("vertices_added", &rm::HoleFillReport::vertices_added)
       .def_readonly("area", &rm::HoleFillReport::area);
 
-  mesh.def("fill_holes", &rm::fill_holes, py::arg("mesh"),
+  mesh.def(
+      "fill_holes",
+      [](TriangleMesh& t) { return with_repair_worded([&] { return rm::fill_holes(t); }); },
+      py::arg("mesh"),
            "Close every hole whose border is a simple loop (in place; run repair first and "
            "again after); a planar hole is closed exactly. Returns the report.");
   mesh.def("read", &rm::read_mesh, py::arg("path"), py::arg("scale") = 1.0,
@@ -122,13 +141,18 @@ void bind_mesh(py::module_& m) {
       "mass_properties",
       [](const TriangleMesh& t, std::optional<double> mass, std::optional<double> density,
          bool shell, std::optional<double> thickness) {
-        auto r = rm::mesh_mass_properties(t, {mass, density, shell, thickness});
+        // a mesh that has not been through repair: refused unless closed and consistently
+        // oriented (the library checks), with the remedy rigid.mesh.repair(mesh)
+        auto r = with_repair_worded(
+            [&] { return rm::mesh_mass_properties(t, {mass, density, shell, thickness}); });
         return py::make_tuple(r.properties, worded(r.warnings));
       },
       py::arg("mesh"), py::kw_only(), py::arg("mass") = py::none(),
       py::arg("density") = py::none(), py::arg("shell") = false,
       py::arg("thickness") = py::none(),
-      "(rigid.MassProperties, warnings) of a solid or thin shell; exactly one of mass, density.");
+      "(rigid.MassProperties, warnings) of a solid or thin shell; exactly one of mass, density. "
+      "A solid must be closed and consistently oriented (run rigid.mesh.repair(mesh) first): "
+      "otherwise rigid.Error.");
   mesh.def(
       "mass_from_file",
       [](const std::filesystem::path& path, std::optional<double> mass, std::optional<double> density,

@@ -8,8 +8,8 @@ build_packages=(
   g++ cmake ninja-build pkg-config make
   libeigen3-dev libboost-dev libboost-math-dev libginac-dev libcln-dev
   libfmt-dev libspdlog-dev libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
-  libtinyobjloader-dev libtinyxml2-dev
-  libcgal-demo
+  libtinyxml2-dev
+  libcgal-demo assimp-testmodels
   libgtest-dev libgmock-dev libbenchmark-dev
   pybind11-dev python3-dev python3-numpy python3-pytest python3-scipy python3-sympy
 )

@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <functional>
 
 #include <fmt/format.h>
@@ -158,7 +159,12 @@ void run_inertia_source(const InertiaSourceOptions& opts) {
   std::vector<std::string> names;
   for (const auto& e : mass::primitive_table()) names.push_back(cli_name(e.name));
   CLI_REQUIRE(!opts.source.empty(), "give a primitive ({}), a mesh file or `check FILE`", fmt::join(names, ", "));
-  if (is_mesh_file(opts.source)) {
+  // a path (an existing file, or a name with an extension or a folder; primitive names have
+  // neither): the mesh library reads it or says it is not a supported mesh format
+  std::error_code ec;
+  const bool path_like = is_mesh_file(opts.source) || std::filesystem::exists(opts.source, ec) ||
+                         opts.source.find_first_of("./\\") != std::string::npos;
+  if (path_like) {
     run_inertia_mesh(
         opts.source,
         {opts.mass, opts.density, opts.units, opts.shell, opts.thickness, opts.fill_holes},

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
+#include <array>
 #include <optional>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -17,6 +19,13 @@ namespace {
 
 void warn(const std::string& s) {
   std::fputs(fmt::format("rigid: warning: {}\n", word_for(Surface::kCli, s)).c_str(), stderr);
+}
+
+// "0.02 × 0.03 × 0.01 m (read in mm)": the part's size next to every mesh result, so that a
+// wrong unit shows
+std::string box_size(const std::array<Eigen::Vector3d, 2>& box, const std::string& units) {
+  const Eigen::Vector3d d = box[1] - box[0];
+  return fmt::format("{:.6g} × {:.6g} × {:.6g} m (file read in {})", d.x(), d.y(), d.z(), units);
 }
 
 }  // namespace
@@ -46,9 +55,12 @@ void run_mesh_check(const MeshCheckOptions& opts) {
   std::string out = fmt::format("{}\n", opts.file);
   out += fmt::format("bounding box: ({:.6g}, {:.6g}, {:.6g}) to ({:.6g}, {:.6g}, {:.6g}) m\n",
                      box[0].x(), box[0].y(), box[0].z(), box[1].x(), box[1].y(), box[1].z());
+  out += fmt::format("size: {}\n", box_size(box, opts.units));
   out += mesh::describe(first);
   if (filled) out += mesh::describe(*filled) + "\nafter filling:\n" + mesh::describe(*after);
   for (const auto& w : rep.warnings) out += fmt::format("warning: {}\n", word_for(Surface::kCli, w));
+  const std::vector<std::string> units = mesh::size_warnings(box);
+  for (const auto& w : units) out += fmt::format("warning: {}\n", word_for(Surface::kCli, w));
   std::string problem;
   if (!rep.closed()) {
     problem = fmt::format("the mesh is not closed ({} boundary edges, {} non-manifold edges): "
@@ -60,15 +72,13 @@ void run_mesh_check(const MeshCheckOptions& opts) {
     out += fmt::format("volume: {:.9g} m³, area: {:.9g} m²\n", v,
                        mesh::surface_moments(m).measure);
     if (!(v > 0)) problem = fmt::format("the enclosed volume is {} m³: expected positive", v);
-    const double size = m.bounding_box_diagonal();
-    if (size > 100.0) {
-      out += fmt::format("warning: the mesh is {:.4g} m across: if the file is in millimetres, "
-                         "use --units mm\n",
-                         size);
-    }
   }
-  out += problem.empty() ? "mass properties: trustworthy as a solid\n"
-                         : "mass properties: NOT trustworthy as a solid\n";
+  // a closed solid whose size is implausible for the unit: the geometry is sound, the mass
+  // properties only if the unit is right (a warning, exit 0)
+  out += !problem.empty() ? "mass properties: NOT trustworthy as a solid\n"
+         : units.empty()  ? "mass properties: trustworthy as a solid\n"
+                          : "mass properties: a closed solid, but its size is implausible for "
+                            "the unit (see the warning above)\n";
   std::fputs(out.c_str(), stdout);
   std::fflush(stdout);
   if (!problem.empty()) CLI_THROW("{}: {}", opts.file, problem);
@@ -79,6 +89,9 @@ void run_inertia_mesh(const std::string& file, const MeshInertiaOptions& opts,
   const mesh::MassSpec spec{opts.mass, opts.density, opts.shell, opts.thickness};
   const mesh::MeshFileMass r =
       mesh::mesh_mass_from_file(file, mesh::unit_scale(opts.units), spec, {}, opts.fill_holes);
+  std::fputs(fmt::format("rigid: {}: size {}\n", file,
+                         box_size(r.mass.bounding_box, opts.units)).c_str(),
+             stderr);
   for (const auto& w : r.warnings()) warn(fmt::format("{}: {}", file, w));
   emit_inertia(r.mass.properties, out);
 }

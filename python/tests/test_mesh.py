@@ -58,3 +58,38 @@ def test_fill_holes_closes_a_missing_face_exactly():
     mp, _ = rigid.mesh.mass_properties(mesh, density=1.0)
     assert mp.mass == pytest.approx(6.0, rel=1e-12)
     np.testing.assert_allclose(np.diag(mp.inertia_com), [6.5, 5.0, 2.5], rtol=1e-12)
+
+
+def test_unrepaired_flipped_triangle_is_refused_with_the_remedy():
+    # 0.2 × 0.3 × 0.1 m of aluminium is 16.2 kg; with one triangle flipped and no repair the
+    # sum gave 13.5 kg without a word. Now refused, naming rigid.mesh.repair.
+    v, f = box(0.2, 0.3, 0.1)
+    f = f.copy()
+    f[4] = f[4][[0, 2, 1]]
+    mesh = rigid.mesh.TriangleMesh(v, f)
+    with pytest.raises(rigid.Error, match=r"not consistently oriented \(3 edges.*run "
+                                          r"rigid\.mesh\.repair\(mesh\) first"):
+        rigid.mesh.mass_properties(mesh, density=2700)
+    rigid.mesh.repair(mesh)
+    mp, warnings = rigid.mesh.mass_properties(mesh, density=2700)
+    assert mp.mass == pytest.approx(16.2, rel=1e-12)  # closed form, a few dozen terms of round-off
+    assert warnings == []
+
+
+def test_fill_holes_before_repair_is_an_error_not_an_assertion():
+    # a box without one triangle plus a triangle that repeats a vertex (repair would drop it)
+    v, f = box(1, 1, 1)
+    mesh = rigid.mesh.TriangleMesh(v, np.vstack([f[1:], [[1, 1, 2]]]))
+    with pytest.raises(rigid.Error, match=r"repeats a vertex: holes can be filled only in a "
+                                          r"repaired mesh; run rigid\.mesh\.repair\(mesh\) first"):
+        rigid.mesh.fill_holes(mesh)
+
+
+@pytest.mark.parametrize("bad", ["nan", "-1", "inf"])
+def test_weld_tolerance_must_be_a_fraction(bad):
+    # the same refusal as `rigid mesh check --weld-tolerance` (tests/cli/test_cli_mesh.py)
+    mesh = rigid.mesh.TriangleMesh(*box(1, 1, 1))
+    with pytest.raises(rigid.Error, match=rf"repair_mesh\(\): weld tolerance {bad}: expected a "
+                                          r"finite number from 0 up to \(not including\) 1"):
+        rigid.mesh.repair(mesh, weld_tolerance=float(bad))
+    assert len(mesh.vertices) == 8  # unchanged

@@ -18,7 +18,21 @@ constexpr Index kNone = 0xffffffffu;
 }  // namespace
 
 HoleFillReport fill_holes(TriangleMesh& mesh) {
-  const detail::EdgeTable edges = detail::edge_table(mesh, {.mates = true, .lengths = false});
+  // a repaired mesh: holes are loops of boundary edges only once triangles repeat no vertex
+  // and neighbours agree on the winding
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    const auto& t = mesh.triangles[f];
+    RIGID_REQUIRE(t[0] != t[1] && t[1] != t[2] && t[0] != t[2],
+                  "triangle {} ({}, {}, {}) repeats a vertex: holes can be filled only in a "
+                  "repaired mesh; run repair_mesh(mesh) first",
+                  f, t[0], t[1], t[2]);
+  }
+  const detail::EdgeTable edges =
+      detail::edge_table(mesh, {.mates = true, .lengths = false, .misoriented = true});
+  RIGID_REQUIRE(edges.misoriented == 0,
+                "{} edges are traversed twice in the same direction (inconsistent winding): "
+                "holes can be filled only in a repaired mesh; run repair_mesh(mesh) first",
+                edges.misoriented);
   HoleFillReport report;
   if (edges.boundary == 0) return report;
 
@@ -61,7 +75,9 @@ HoleFillReport fill_holes(TriangleMesh& mesh) {
       done[v] = 1;
       loop.push_back(v);
     }
-    RIGID_ASSERT(loop.size() >= 3);  // two boundary half-edges a→b, b→a would be one edge
+    // two boundary half-edges a→b, b→a would be one edge, a→a a repeated vertex (refused)
+    RIGID_REQUIRE(loop.size() >= 3, "a boundary loop of {} edges through vertex {}: expected at "
+                  "least 3; run repair_mesh(mesh) first", loop.size(), v0);
     FilledHole hole;
     hole.boundary_edges = loop.size();
     if (loop.size() == 3) {

@@ -176,12 +176,31 @@ MeshMoments surface_moments(const TriangleMesh& mesh, std::optional<Eigen::Vecto
 namespace {
 
 // Plausibility: the densest engineering material (osmium) is 22.6e3 kg/m³, the lightest
-// solid foams ~1 kg/m³; a mesh in millimetres read as metres is 10³ times too long.
+// solid foams ~1 kg/m³; a mesh in millimetres read as metres is 10³ times too long and, at a
+// given density, 10⁹ times too heavy.
 constexpr double kMaxDensity = 3e4;
 constexpr double kMinDensity = 0.5;
-constexpr double kMaxSize = 100.0;  // m: larger than any part one computes an inertia for
+constexpr double kMaxMass = 1e6;  // kg: a solid of more than 1000 t is not a part
 
 }  // namespace
+
+std::vector<std::string> size_warnings(const std::array<Eigen::Vector3d, 2>& box) {
+  const Eigen::Vector3d size = box[1] - box[0];
+  const double longest = size.maxCoeff();
+  std::vector<std::string> out;
+  if (longest > kMaxPartSize) {
+    out.push_back(fmt::format(
+        "the part is {:.4g} × {:.4g} × {:.4g} m, more than {} m long: if the file's numbers are "
+        "millimetres, use {}",
+        size.x(), size.y(), size.z(), kMaxPartSize, setting("units", "mm")));
+  } else if (longest < kMinPartSize) {
+    out.push_back(fmt::format(
+        "the part is {:.4g} × {:.4g} × {:.4g} m, less than {} m long: check the length unit "
+        "({} reads the numbers as metres)",
+        size.x(), size.y(), size.z(), kMinPartSize, setting("units", "m")));
+  }
+  return out;
+}
 
 namespace detail {
 
@@ -209,11 +228,24 @@ MeshMassResult mesh_mass_properties(const TriangleMesh& mesh, const MassSpec& sp
   RIGID_REQUIRE(!mesh.triangles.empty(), "the mesh has no triangles");
 
   if (!spec.shell) {
+    // a solid: each directed edge once and its reverse once (closed, consistently wound);
+    // without repair's report the edges are matched here, and a mesh that has not been
+    // repaired gets that remedy first
     const EdgeCounts e = known_edges ? *known_edges : count_edges(mesh);
+    const char* unrepaired =
+        known_edges ? ""
+                    : " (if the mesh has not been through repair_mesh(mesh), run it first: it "
+                      "welds duplicate vertices and orients the triangles)";
     RIGID_REQUIRE(e.boundary == 0 && e.non_manifold == 0,
                   "the mesh is not closed ({} boundary edges, {} non-manifold edges), so it "
-                  "bounds no solid: use {} for a thin shell, or {} to close simple holes",
-                  e.boundary, e.non_manifold, setting("shell"), setting("fill_holes"));
+                  "bounds no solid: use {} for a thin shell, or {} to close simple holes{}",
+                  e.boundary, e.non_manifold, setting("shell"), setting("fill_holes"),
+                  unrepaired);
+    RIGID_REQUIRE(e.misoriented == 0,
+                  "the mesh's triangles are not consistently oriented ({} edges are traversed "
+                  "twice in the same direction), so its volume would be wrong: run "
+                  "repair_mesh(mesh) first (it orients every component outward)",
+                  e.misoriented);
   }
   // one pass for the box: its centre is the reference point, its diagonal the size
   const auto box = mesh.bounding_box();
@@ -235,12 +267,15 @@ MeshMassResult mesh_mass_properties(const TriangleMesh& mesh, const MassSpec& sp
   Eigen::Matrix3d C = rho * (mom.second - mom.measure * p_RC * p_RC.transpose());
   C = 0.5 * (C + C.transpose()).eval();
   const Eigen::Matrix3d I = C.trace() * Eigen::Matrix3d::Identity() - C;
-  MeshMassResult out{MassProperties(m, mom.p_OR_M + p_RC, I), mom.measure, {}};
+  MeshMassResult out{MassProperties(m, mom.p_OR_M + p_RC, I), mom.measure, {}, {}};
 
-  const double size = (box[1] - box[0]).norm();
-  if (size > kMaxSize) {
+  out.bounding_box = box;
+  out.warnings = size_warnings(box);
+  if (spec.density && m > kMaxMass) {  // a given mass is the user's, not implied
     out.warnings.push_back(fmt::format(
-        "the mesh is {:.4g} m across: if the file is in millimetres, use {}", size, setting("units", "mm")));
+        "the implied mass {:.4g} t is more than {:.4g} t: if the file's numbers are millimetres, "
+        "use {}",
+        m / 1000, kMaxMass / 1000, setting("units", "mm")));
   }
   if (!spec.shell || spec.thickness) {
     const double density = spec.shell ? rho / *spec.thickness : rho;

@@ -16,125 +16,30 @@
 
 #include <fmt/format.h>
 #include <Eigen/Geometry>
-#include <tiny_obj_loader.h>
-
 #include "detail/read_mesh.hpp"
+#include "detail/read_text.hpp"
+#include "detail/triangulate.hpp"
 #include "rigid/common/error.hpp"
 
 namespace rigid::mesh {
 namespace {
 
 using Index = std::uint32_t;
+using detail::fail_byte;
+using detail::fail_file;
+using detail::fail_line;
+using detail::slurp;
+using detail::Tokens;
 
-[[noreturn]] void fail_line(const std::string& path, int line, const std::string& msg) {
-  rigid::detail::throw_error_at(SourceLocation{path, line, 0}, msg);
-}
-
-[[noreturn]] void fail_byte(const std::string& path, std::size_t byte, const std::string& msg) {
-  rigid::detail::throw_error_at(SourceLocation{path, 0, 0}, fmt::format("byte {}: {}", byte, msg));
-}
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) rigid::detail::throw_error_at(SourceLocation{path, 0, 0}, "cannot open the file for reading");
-  in.seekg(0, std::ios::end);
-  const std::streamoff size = in.tellg();
-  in.seekg(0, std::ios::beg);
-  std::string data(static_cast<std::size_t>(std::max<std::streamoff>(size, 0)), '\0');
-  if (!data.empty() && !in.read(data.data(), static_cast<std::streamsize>(data.size()))) {
-    rigid::detail::throw_error_at(SourceLocation{path, 0, 0}, "reading the file failed");
-  }
-  if (data.empty()) {
-    rigid::detail::throw_error_at(SourceLocation{path, 0, 0}, "the file is empty: expected a mesh");
-  }
-  return data;
-}
-
-// Whitespace-separated tokens with their line numbers; '#' comments optional.
-class Tokens {
- public:
-  Tokens(const std::string& path, const std::string& text, std::size_t pos, int line,
-         bool hash_comments)
-      : path_(path), text_(text), pos_(pos), line_(line), hash_(hash_comments) {}
-
-  std::optional<std::string_view> next() {
-    skip();
-    if (pos_ >= text_.size()) return std::nullopt;
-    const std::size_t start = pos_;
-    while (pos_ < text_.size() && !std::isspace(static_cast<unsigned char>(text_[pos_]))) ++pos_;
-    token_line_ = line_;
-    return std::string_view(text_).substr(start, pos_ - start);
-  }
-
-  std::string_view expect(const char* what) {
-    auto t = next();
-    if (!t) fail_line(path_, line_, fmt::format("unexpected end of file: expected {}", what));
-    return *t;
-  }
-
-  double number(const char* what) {
-    const std::string_view t = expect(what);
-    double v = 0;
-    // from_chars rejects "nan"/"inf" spelled differently on some inputs; parse via strtod.
-    std::string s(t);
-    char* end = nullptr;
-    v = std::strtod(s.c_str(), &end);
-    if (end != s.c_str() + s.size() || s.empty()) {
-      fail_line(path_, token_line_, fmt::format("'{}' is not a number: expected {}", s, what));
-    }
-    if (!std::isfinite(v)) {
-      fail_line(path_, token_line_, fmt::format("{} is {}: expected a finite number", what, s));
-    }
-    return v;
-  }
-
-  long long integer(const char* what) {
-    const std::string_view t = expect(what);
-    long long v = 0;
-    const auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
-    if (ec != std::errc() || p != t.data() + t.size()) {
-      fail_line(path_, token_line_, fmt::format("'{}' is not an integer: expected {}", t, what));
-    }
-    return v;
-  }
-
-  /// Skips the rest of the current line (trailing per-vertex colours, normals, ...).
-  void skip_line() {
-    while (pos_ < text_.size() && text_[pos_] != '\n') ++pos_;
-  }
-
-  [[nodiscard]] int line() const { return token_line_; }
-  [[nodiscard]] std::size_t pos() const { return pos_; }
-
- private:
-  void skip() {
-    while (pos_ < text_.size()) {
-      const char c = text_[pos_];
-      if (c == '\n') {
-        ++line_;
-        ++pos_;
-      } else if (std::isspace(static_cast<unsigned char>(c))) {
-        ++pos_;
-      } else if (hash_ && c == '#') {
-        while (pos_ < text_.size() && text_[pos_] != '\n') ++pos_;
-      } else {
-        break;
-      }
-    }
-  }
-
-  const std::string& path_;
-  const std::string& text_;
-  std::size_t pos_;
-  int line_;
-  int token_line_ = 0;
-  bool hash_;
-};
-
-void add_polygon(TriangleMesh& mesh, const std::vector<Index>& poly) {
-  for (std::size_t k = 1; k + 1 < poly.size(); ++k) {
-    mesh.triangles.push_back({poly[0], poly[k], poly[k + 1]});
-  }
+// Appends the triangles of polygon `face` (counted from 1) read at `line` (or at byte `byte`
+// of a binary file, when line is 0); a polygon triangulate_polygon refuses is an error there.
+void add_polygon(const std::string& path, TriangleMesh& mesh, const std::vector<Index>& poly,
+                 std::size_t face, int line, std::uint64_t byte = 0) {
+  const auto problem = detail::triangulate_polygon(mesh.vertices, poly, mesh.triangles);
+  if (!problem) return;
+  const std::string msg = fmt::format("face {}: {}", face, *problem);
+  if (line > 0) fail_line(path, line, msg);
+  fail_byte(path, byte, msg);
 }
 
 template <class T>
@@ -263,42 +168,65 @@ TriangleMesh read_stl_binary(const std::string& path, const std::string& data, d
   return read_stl_binary_records(path, in, n, scale);
 }
 
+// ASCII STL: one or more `solid NAME … endsolid NAME` blocks (several exporters write one
+// block per part or per colour), each a list of facets. Every block is read: the mesh is
+// their union.
 TriangleMesh read_stl_ascii(const std::string& path, const std::string& data, double scale) {
-  Tokens tok(path, data, 0, 1, false);
-  tok.expect("'solid'");
-  // The solid's name runs to the end of the first line.
-  std::size_t pos = data.find('\n');
-  Tokens body(path, data, pos == std::string::npos ? data.size() : pos, 1, false);
+  Tokens body(path, data, 0, 1, false);
   TriangleMesh mesh;
-  for (;;) {
-    const auto t = body.next();
-    if (!t) fail_line(path, body.line(), "unexpected end of file: expected 'endsolid'");
-    if (*t == "endsolid") break;
-    if (*t != "facet") {
-      fail_line(path, body.line(), fmt::format("'{}': expected 'facet' or 'endsolid'", *t));
+  std::vector<Index> poly;
+  std::size_t facet = 0;
+  for (int solids = 0;; ++solids) {
+    const auto start = body.next();
+    if (!start) {
+      if (solids > 0) break;
+      fail_line(path, body.current_line(), "the file is empty: expected 'solid'");
     }
-    if (body.expect("'normal'") != "normal") fail_line(path, body.line(), "expected 'normal'");
-    for (int c = 0; c < 3; ++c) (void)body.expect("normal component");
-    if (body.expect("'outer'") != "outer") fail_line(path, body.line(), "expected 'outer loop'");
-    if (body.expect("'loop'") != "loop") fail_line(path, body.line(), "expected 'outer loop'");
-    std::vector<Index> poly;
+    if (*start != "solid") {
+      fail_line(path, body.line(), fmt::format("'{}': expected 'solid'{}", start->substr(0, 40),
+                                               solids > 0 ? " or the end of the file" : ""));
+    }
+    body.skip_line();  // the solid's name runs to the end of its line
     for (;;) {
-      const auto w = body.expect("'vertex' or 'endloop'");
-      if (w == "endloop") break;
-      if (w != "vertex") {
-        fail_line(path, body.line(), fmt::format("'{}': expected 'vertex' or 'endloop'", w));
+      const auto t = body.next();
+      if (!t) fail_line(path, body.current_line(), "unexpected end of file: expected 'endsolid'");
+      if (*t == "endsolid") break;
+      if (*t != "facet") {
+        fail_line(path, body.line(),
+                  fmt::format("'{}': expected 'facet' or 'endsolid'", t->substr(0, 40)));
       }
-      Eigen::Vector3d p;
-      for (int c = 0; c < 3; ++c) p[c] = body.number("a vertex coordinate") * scale;
-      poly.push_back(static_cast<Index>(mesh.vertices.size()));
-      mesh.vertices.push_back(p);
+      ++facet;
+      const int facet_line = body.line();
+      if (body.expect("'normal'") != "normal") fail_line(path, body.line(), "expected 'normal'");
+      for (int c = 0; c < 3; ++c) (void)body.number("a normal component", false);
+      if (body.expect("'outer'") != "outer") fail_line(path, body.line(), "expected 'outer loop'");
+      if (body.expect("'loop'") != "loop") fail_line(path, body.line(), "expected 'outer loop'");
+      poly.clear();
+      for (;;) {
+        const auto w = body.expect("'vertex' or 'endloop'");
+        if (w == "endloop") break;
+        if (w != "vertex") {
+          fail_line(path, body.line(),
+                    fmt::format("'{}': expected 'vertex' or 'endloop'", w.substr(0, 40)));
+        }
+        Eigen::Vector3d p;
+        for (int c = 0; c < 3; ++c) p[c] = body.number("a vertex coordinate") * scale;
+        if (mesh.vertices.size() >= 0xfffffffeu) {
+          fail_line(path, body.line(), "more than 2³² − 2 vertices: not supported");
+        }
+        poly.push_back(static_cast<Index>(mesh.vertices.size()));
+        mesh.vertices.push_back(p);
+      }
+      if (poly.size() < 3) {
+        fail_line(path, body.line(),
+                  fmt::format("facet with {} vertices: expected at least 3", poly.size()));
+      }
+      add_polygon(path, mesh, poly, facet, facet_line);
+      if (body.expect("'endfacet'") != "endfacet") {
+        fail_line(path, body.line(), "expected 'endfacet'");
+      }
     }
-    if (poly.size() < 3) {
-      fail_line(path, body.line(),
-                fmt::format("facet with {} vertices: expected at least 3", poly.size()));
-    }
-    add_polygon(mesh, poly);
-    if (body.expect("'endfacet'") != "endfacet") fail_line(path, body.line(), "expected 'endfacet'");
+    body.skip_line();  // `endsolid NAME`
   }
   return mesh;
 }
@@ -378,6 +306,7 @@ struct PlyProperty {
 
 struct PlyElement {
   std::string name;
+  int line = 0;  // of its `element` line in the header
   std::size_t count = 0;
   std::vector<PlyProperty> props;
 };
@@ -398,18 +327,17 @@ namespace {
 TriangleMesh read_stl(const std::string& path, double scale, bool* binary_records) {
   *binary_records = true;
   // A binary file is recognised by its size (84 + 50 n), whatever its header says; it is
-  // read record by record, never whole.
-  {
+  // read record by record, never whole. The size is that of a regular file within the limit
+  // (mesh_file_size), so the declared count is checked against it before anything is
+  // allocated.
+  const std::uint64_t size = detail::mesh_file_size(path);
+  if (size >= 84) {
     std::ifstream in(path, std::ios::binary);
-    if (in) {
-      in.seekg(0, std::ios::end);
-      const std::streamoff size = in.tellg();
-      in.seekg(0, std::ios::beg);
-      char header[84];
-      if (size >= 84 && in.read(header, 84)) {
-        const auto n = load<std::uint32_t>(header + 80, false);
-        if (84 + 50ll * n == size) return read_stl_binary_records(path, in, n, scale);
-      }
+    if (!in) fail_file(path, "cannot open the file for reading");
+    char header[84];
+    if (in.read(header, 84)) {
+      const auto n = load<std::uint32_t>(header + 80, false);
+      if (84 + 50ull * n == size) return read_stl_binary_records(path, in, n, scale);
     }
   }
   const std::string data = slurp(path);
@@ -449,12 +377,18 @@ TriangleMesh read_off(const std::string& path, double scale) {
   const long long nv = tok.integer("the vertex count");
   const long long nf = tok.integer("the face count");
   (void)tok.integer("the edge count");
-  if (nv < 0 || nf < 0 || nv > (1ll << 31) || nf > (1ll << 31)) {
-    fail_line(path, tok.line(), fmt::format("counts {} vertices, {} faces: expected 0 to 2^31",
-                                            nv, nf));
+  // limits before allocation: a vertex line holds at least three numbers ("0 0 0" and its
+  // end of line, 6 bytes), a face line at least four ("3 0 1 2", 8 bytes)
+  const auto size = static_cast<long long>(data.size());
+  if (nv < 0 || nf < 0 || nv > size / 6 || nf > size / 8 || 6 * nv + 8 * nf > size + 1) {
+    fail_line(path, tok.line(),
+              fmt::format("the header declares {} vertices and {} faces: expected counts from 0 "
+                          "that fit in the file's {} bytes (at least 6 per vertex and 8 per "
+                          "face): truncated or corrupt",
+                          nv, nf, data.size()));
   }
   TriangleMesh mesh;
-  mesh.vertices.reserve(static_cast<std::size_t>(std::min(nv, 1ll << 24)));
+  mesh.vertices.reserve(static_cast<std::size_t>(nv));
   for (long long i = 0; i < nv; ++i) {
     Eigen::Vector3d p;
     for (int c = 0; c < 3; ++c) p[c] = tok.number("a vertex coordinate") * scale;
@@ -465,8 +399,11 @@ TriangleMesh read_off(const std::string& path, double scale) {
   for (long long f = 0; f < nf; ++f) {
     const long long k = tok.integer("a face's vertex count");
     const int line = tok.line();
-    if (k < 3 || k > 1'000'000) {
-      fail_line(path, line, fmt::format("face with {} vertices: expected at least 3", k));
+    if (k < 3 || k > size / 2) {
+      fail_line(path, line,
+                fmt::format("face {} with {} vertices: expected at least 3 (and at most one per "
+                            "two bytes of the file)",
+                            f + 1, k));
     }
     poly.clear();
     for (long long j = 0; j < k; ++j) {
@@ -477,7 +414,7 @@ TriangleMesh read_off(const std::string& path, double scale) {
       }
       poly.push_back(static_cast<Index>(i));
     }
-    add_polygon(mesh, poly);
+    add_polygon(path, mesh, poly, static_cast<std::size_t>(f + 1), line);
     tok.skip_line();  // face colours may follow the indices
   }
   return mesh;
@@ -523,6 +460,7 @@ TriangleMesh read_ply(const std::string& path, const std::string& data, double s
       ls >> e.name >> n;
       if (!ls || n < 0) fail_line(path, line, "expected 'element <name> <count>'");
       e.count = static_cast<std::size_t>(n);
+      e.line = line;
       elements.push_back(e);
     } else if (word == "property") {
       if (elements.empty()) fail_line(path, line, "property before any element");
@@ -557,15 +495,46 @@ TriangleMesh read_ply(const std::string& path, const std::string& data, double s
   if (!ended) fail_line(path, line, "no 'end_header': truncated PLY header");
   if (format.empty()) fail_line(path, line, "no 'format' line in the PLY header");
 
-  TriangleMesh mesh;
-  std::size_t nv = 0;
   const bool ascii = format == "ascii";
   const bool big = format == "binary_big_endian";
+  // limits before allocation: every row of an element takes at least the bytes of its
+  // scalars and list counts (binary) or two characters per property, a digit and a separator
+  // (ascii); the declared counts must fit in what follows the header. An element without
+  // properties would hold rows of no data, which no file size bounds: refused.
+  {
+    std::uint64_t left = data.size() - std::min(pos, data.size()) + (ascii ? 1 : 0);
+    for (const auto& e : elements) {
+      std::uint64_t row = 0;
+      if (e.props.empty() && e.count > 0) {
+        fail_line(path, e.line,
+                  fmt::format("element {} declares {} rows but no properties: expected at least "
+                              "one property per element (rows without data cannot be counted "
+                              "in the file)",
+                              e.name, e.count));
+      }
+      for (const auto& p : e.props) row += ascii ? 2 : ply_size(p.list ? p.count_type : p.type);
+      if (row == 0) continue;
+      if (e.count > left / row) {
+        fail_line(path, e.line,
+                  fmt::format("element {} declares {} rows of at least {} bytes each, but only {} "
+                              "bytes of data follow the header: truncated or corrupt",
+                              e.name, e.count, row, left));
+      }
+      left -= e.count * row;
+      if (e.name == "vertex" && e.count >= 0xfffffffeu) {
+        fail_line(path, e.line, fmt::format("{} vertices: at most 2³² − 2 are supported", e.count));
+      }
+    }
+  }
+
+  TriangleMesh mesh;
+  std::size_t nv = 0;
   Tokens tok(path, data, pos, line + 1, false);
   std::vector<Index> poly;
   for (const auto& e : elements) {
     const bool is_vertex = e.name == "vertex";
     const bool is_face = e.name == "face";
+    if (e.props.empty() && !is_vertex && !is_face) continue;  // a count of 0 (others refused)
     int xyz[3] = {-1, -1, -1};
     int index_prop = -1;
     for (std::size_t k = 0; k < e.props.size(); ++k) {
@@ -580,14 +549,14 @@ TriangleMesh read_ply(const std::string& path, const std::string& data, double s
       }
     }
     if (is_vertex && (xyz[0] < 0 || xyz[1] < 0 || xyz[2] < 0)) {
-      fail_line(path, line, "element vertex lacks x, y or z properties");
+      fail_line(path, e.line, "element vertex lacks x, y or z properties");
     }
     if (is_face && index_prop < 0) {
-      fail_line(path, line, "element face lacks a vertex_indices list");
+      fail_line(path, e.line, "element face lacks a vertex_indices list");
     }
     if (is_vertex) {
       nv = e.count;
-      mesh.vertices.reserve(std::min<std::size_t>(e.count, data.size()));
+      mesh.vertices.reserve(e.count);  // checked against the file's size above
     }
     for (std::size_t r = 0; r < e.count; ++r) {
       Eigen::Vector3d p = Eigen::Vector3d::Zero();
@@ -639,8 +608,12 @@ TriangleMesh read_ply(const std::string& path, const std::string& data, double s
         } else {
           double v = 0;
           std::size_t at = pos;
+          // a coordinate must be finite; other properties (normals, colours) are not used
+          const bool coordinate =
+              is_vertex && (static_cast<int>(k) == xyz[0] || static_cast<int>(k) == xyz[1] ||
+                            static_cast<int>(k) == xyz[2]);
           if (ascii) {
-            v = tok.number("a property value");
+            v = tok.number(coordinate ? "a vertex coordinate" : "a property value", coordinate);
           } else {
             if (pos + ply_size(prop.type) > data.size()) {
               fail_byte(path, pos, fmt::format("truncated PLY: element {} {} of {}", e.name,
@@ -648,7 +621,7 @@ TriangleMesh read_ply(const std::string& path, const std::string& data, double s
             }
             v = ply_load(prop.type, data.data() + pos, big);
             pos += ply_size(prop.type);
-            if (!std::isfinite(v)) {
+            if (coordinate && !std::isfinite(v)) {
               fail_byte(path, at, fmt::format("{} of {} {} is {}: expected a finite number",
                                               prop.name, e.name, r + 1, v));
             }
@@ -666,61 +639,11 @@ TriangleMesh read_ply(const std::string& path, const std::string& data, double s
           if (ascii) fail_line(path, tok.line(), msg);
           fail_byte(path, pos, msg);
         }
-        add_polygon(mesh, poly);
+        add_polygon(path, mesh, poly, r + 1, ascii ? tok.line() : 0, pos);
       }
     }
   }
   if (mesh.triangles.empty()) fail_line(path, line, "the PLY file has no faces");
-  return mesh;
-}
-
-TriangleMesh read_obj(const std::string& path, double scale) {
-  (void)slurp(path);  // named errors for missing and empty files
-  tinyobj::ObjReaderConfig config;
-  config.triangulate = false;  // fan-triangulate here, keeping the face order
-  config.vertex_color = false;
-  tinyobj::ObjReader reader;
-  if (!reader.ParseFromFile(path, config)) {
-    rigid::detail::throw_error_at(SourceLocation{path, 0, 0},
-                           fmt::format("not a readable OBJ file: {}", reader.Error()));
-  }
-  const auto& attrib = reader.GetAttrib();
-  TriangleMesh mesh;
-  const std::size_t nv = attrib.vertices.size() / 3;
-  mesh.vertices.reserve(nv);
-  for (std::size_t i = 0; i < nv; ++i) {
-    Eigen::Vector3d p(attrib.vertices[3 * i], attrib.vertices[3 * i + 1],
-                      attrib.vertices[3 * i + 2]);
-    if (!p.allFinite()) {
-      rigid::detail::throw_error_at(SourceLocation{path, 0, 0},
-                             fmt::format("vertex {} is ({}, {}, {}): expected finite coordinates",
-                                         i + 1, p.x(), p.y(), p.z()));
-    }
-    mesh.vertices.push_back(p * scale);
-  }
-  std::vector<Index> poly;
-  for (const auto& shape : reader.GetShapes()) {
-    std::size_t offset = 0;
-    for (std::size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f) {
-      const std::size_t n = shape.mesh.num_face_vertices[f];
-      poly.clear();
-      for (std::size_t j = 0; j < n; ++j) {
-        const int i = shape.mesh.indices[offset + j].vertex_index;
-        if (i < 0 || static_cast<std::size_t>(i) >= nv) {
-          rigid::detail::throw_error_at(
-              SourceLocation{path, 0, 0},
-              fmt::format("face {} of '{}' uses vertex {}: the file has {} vertices", f + 1,
-                          shape.name, i + 1, nv));
-        }
-        poly.push_back(static_cast<Index>(i));
-      }
-      offset += n;
-      add_polygon(mesh, poly);
-    }
-  }
-  if (mesh.triangles.empty()) {
-    rigid::detail::throw_error_at(SourceLocation{path, 0, 0}, "no faces: not a mesh OBJ file");
-  }
   return mesh;
 }
 
@@ -743,7 +666,11 @@ ReadResult read_mesh(const std::string& path, double scale) {
   } else if (ext == "off") {
     mesh = read_off(path, scale);
   } else {
-    RIGID_THROW("{}: unknown mesh extension '{}': expected .stl, .obj, .ply or .off", path, ext);
+    fail_file(path, fmt::format("{} is not a supported mesh format: the supported extensions "
+                                "are {} (any case)",
+                                ext.empty() ? std::string("a name without an extension")
+                                            : fmt::format("'.{}'", ext),
+                                kSupportedExtensions));
   }
   check_indices(path, mesh);
   if (mesh.triangles.empty()) {

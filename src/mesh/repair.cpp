@@ -177,6 +177,13 @@ RepairReport repair_mesh(TriangleMesh& mesh, const RepairOptions& options) {
 
 RepairReport detail::repair_mesh(TriangleMesh& mesh, const RepairOptions& options,
                                  bool vertices_distinct) {
+  RIGID_REQUIRE_AS("repair_mesh",
+                   std::isfinite(options.weld_tolerance) && options.weld_tolerance >= 0 &&
+                       options.weld_tolerance < 1,
+                   "weld tolerance {}: expected a finite number from 0 up to (not including) 1, "
+                   "the fraction of the bounding-box diagonal within which vertices merge "
+                   "(default 1e-7; 1 or more would merge every vertex into one)",
+                   options.weld_tolerance);
   RepairReport report;
   report.input_vertices = mesh.vertices.size();
   report.input_triangles = mesh.triangles.size();

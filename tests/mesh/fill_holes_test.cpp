@@ -114,5 +114,22 @@ TEST(FillHoles, HolesTouchingAtAVertexAreRefused) {
   EXPECT_EQ(open.triangles.size(), 10u);  // unchanged
 }
 
+TEST(FillHoles, UnrepairedMeshIsRefused) {
+  // A triangle that repeats a vertex (which repair removes) made a loop of one edge that
+  // tripped an internal check; inconsistent winding makes loops that are not holes.
+  auto box = without(test::box_mesh(1, 1, 1), {0});
+  box.triangles.push_back({1, 1, 2});
+  EXPECT_RIGID_ERROR((void)fill_holes(box), "fill_holes(): triangle 11 (1, 1, 2) repeats a vertex: "
+                                            "holes can be filled only in a repaired mesh; run "
+                                            "repair_mesh(mesh) first");
+  auto flipped = without(test::box_mesh(1, 1, 1), {0});
+  std::swap(flipped.triangles[3][1], flipped.triangles[3][2]);
+  EXPECT_RIGID_ERROR((void)fill_holes(flipped), "edges are traversed twice in the same direction "
+                                                "(inconsistent winding): holes can be filled only "
+                                                "in a repaired mesh");
+  EXPECT_EQ(flipped.triangles.size(), 11u);  // unchanged
+  repair_mesh(flipped);
+  EXPECT_EQ(fill_holes(flipped).holes.size(), 1u);
+}
 }  // namespace
 }  // namespace rigid::mesh

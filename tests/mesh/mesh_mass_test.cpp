@@ -217,15 +217,22 @@ TEST(MeshMass, MillimetresReadAsMetresAreFlagged) {
   // A 50 mm cube of steel with its coordinates read as metres: 50 m across.
   const auto cube = test::box_mesh(50, 50, 50);
   const auto by_mass = mesh_mass_properties(cube, {0.98, std::nullopt, false, {}});
-  ASSERT_EQ(by_mass.warnings.size(), 1u);
-  EXPECT_NE(by_mass.warnings[0].find("implied density 7.84e-06 kg/m³"), std::string::npos);
+  // the size (50 m > 10 m) and the density
+  ASSERT_EQ(by_mass.warnings.size(), 2u);
+  EXPECT_NE(by_mass.warnings[0].find("the part is 50 × 50 × 50 m, more than 10 m long"),
+            std::string::npos);
+  EXPECT_NE(by_mass.warnings[1].find("implied density 7.84e-06 kg/m³"), std::string::npos);
   // the remedy in library terms (the command line words it --units mm, see wording.hpp)
-  EXPECT_NE(by_mass.warnings[0].find("`units = \"mm\"`"), std::string::npos);
+  EXPECT_NE(by_mass.warnings[1].find("`units = \"mm\"`"), std::string::npos);
   const auto huge = test::box_mesh(200, 200, 200);
   const auto by_density = mesh_mass_properties(huge, density(7850));
-  ASSERT_EQ(by_density.warnings.size(), 1u);
-  EXPECT_NE(by_density.warnings[0].find("346.4 m across: if the file is in millimetres, use "
+  // the size and the mass: 200³ m³ × 7850 kg/m³ = 6.28e7 t
+  ASSERT_EQ(by_density.warnings.size(), 2u);
+  EXPECT_NE(by_density.warnings[0].find("the part is 200 × 200 × 200 m, more than 10 m long: if "
+                                        "the file's numbers are millimetres, use "
                                         "`units = \"mm\"`"),
+            std::string::npos);
+  EXPECT_NE(by_density.warnings[1].find("the implied mass 6.28e+07 t is more than 1000 t"),
             std::string::npos);
 }
 
@@ -291,5 +298,67 @@ TEST(MeshMass, AccumulationVariantsAreBitwiseEqual) {
             detail::accumulate_volume_avx2(m, p_OR).measure / 6.0);
 }
 
+TEST(MeshMass, UnrepairedMeshWithAFlippedTriangleIsRefused) {
+  // 0.2 × 0.3 × 0.1 m, 2700 kg/m³: 16.2 kg. One triangle flipped: closed, but its signed
+  // tetrahedra no longer cancel (the sum gave 13.5 kg). Without repair's report the edges are
+  // matched: three are traversed twice the same way, so it is refused with the remedy.
+  auto box = test::box_mesh(0.2, 0.3, 0.1);
+  std::swap(box.triangles[4][1], box.triangles[4][2]);
+  EXPECT_EQ(count_edges(box).misoriented, 3u);
+  EXPECT_RIGID_ERROR((void)mesh_mass_properties(box, density(2700)),
+                     "mesh_mass_properties(): the mesh's triangles are not consistently "
+                     "oriented (3 edges are traversed twice in the same direction), so its "
+                     "volume would be wrong: run repair_mesh(mesh) first");
+  // as a shell the winding does not matter
+  EXPECT_NEAR(mesh_mass_properties(box, {std::nullopt, 1.0, true, {}}).measure, 0.22, kExact);
+  const RepairReport rep = repair_mesh(box);
+  EXPECT_EQ(rep.reoriented_triangles, 1u);
+  // 16.2 kg: the closed form, to the round-off of a few dozen terms
+  EXPECT_NEAR(mesh_mass_properties(box, density(2700)).properties.mass(), 16.2, 16.2 * kExact);
+  // an unwelded soup is "not closed": the message says repair welds it
+  TriangleMesh soup;
+  for (const auto& t : test::box_mesh(1, 1, 1).triangles) {
+    const auto n = static_cast<std::uint32_t>(soup.vertices.size());
+    for (auto i : t) soup.vertices.push_back(test::box_mesh(1, 1, 1).vertices[i]);
+    soup.triangles.push_back({n, n + 1, n + 2});
+  }
+  EXPECT_RIGID_ERROR((void)mesh_mass_properties(soup, density(1)),
+                     "(if the mesh has not been through repair_mesh(mesh), run it first: it "
+                     "welds duplicate vertices and orients the triangles)");
+}
+
+TEST(MeshMass, UnitsPlausibility) {
+  // A 20 × 30 × 10 mm part whose numbers are read as metres: 20 × 30 × 10 m, 16 200 t of
+  // aluminium. Both the size and the mass say so, with the remedy.
+  const auto part = test::box_mesh(20, 30, 10);
+  const auto r = mesh_mass_properties(part, density(2700));
+  ASSERT_EQ(r.warnings.size(), 2u);
+  EXPECT_EQ(r.warnings[0],
+            "the part is 20 × 30 × 10 m, more than 10 m long: if the file's numbers are "
+            "millimetres, use `units = \"mm\"`");
+  EXPECT_EQ(r.warnings[1],
+            "the implied mass 1.62e+04 t is more than 1000 t: if the file's numbers are "
+            "millimetres, use `units = \"mm\"`");
+  EXPECT_EQ(r.bounding_box[1], Eigen::Vector3d(20, 30, 10));
+  // numbers in metres read as millimetres: 20 µm
+  auto tiny = test::box_mesh(0.02, 0.03, 0.01);
+  tiny.scale(1e-3);
+  const auto t = mesh_mass_properties(tiny, density(2700));
+  ASSERT_EQ(t.warnings.size(), 1u);
+  EXPECT_NE(t.warnings[0].find("less than 0.001 m long: check the length unit "
+                               "(`units = \"m\"` reads the numbers as metres)"),
+            std::string::npos);
+  // real parts from 1 cm to 10 m, in steel, aluminium, plastic and foam: no warning. The
+  // heaviest, a 10 × 1 × 1 m steel beam, is 78.5 t.
+  for (const Eigen::Vector3d& size : {Eigen::Vector3d(0.01, 0.01, 0.01), Eigen::Vector3d(0.02, 0.03, 0.01),
+                                     Eigen::Vector3d(0.5, 0.2, 0.1), Eigen::Vector3d(1, 1, 1),
+                                     Eigen::Vector3d(10, 1, 1), Eigen::Vector3d(10, 2, 0.02)}) {
+    for (const double rho : {7850.0, 2700.0, 1100.0, 30.0}) {
+      const auto ok = mesh_mass_properties(test::box_mesh(size.x(), size.y(), size.z()), density(rho));
+      EXPECT_TRUE(ok.warnings.empty()) << size.transpose() << " m, " << rho << " kg/m³: "
+                                       << (ok.warnings.empty() ? "" : ok.warnings[0]);
+    }
+  }
+}
 }  // namespace
 }  // namespace rigid::mesh

@@ -1,5 +1,6 @@
 #include "rigid/mesh/read_mesh.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -173,7 +174,7 @@ TEST(ReadMesh, EmptyFile) {
 
 TEST(ReadMesh, MissingFileAndUnknownExtension) {
   EXPECT_RIGID_ERROR((void)read_mesh(temp_path("nope.stl")), "nope.stl: cannot open the file");
-  EXPECT_RIGID_ERROR((void)read_mesh(write("x.dae", "x")), "unknown mesh extension 'dae'");
+  EXPECT_RIGID_ERROR((void)read_mesh(write("x.dae", "x")), "x.dae: '.dae' is not a supported mesh format: the supported extensions are .stl, .obj, .ply and .off");
 }
 
 TEST(ReadMesh, TruncatedBinaryStl) {
@@ -201,7 +202,7 @@ TEST(ReadMesh, NaNCoordinates) {
   std::string ply = box_ply("ascii");
   ply.replace(ply.find("0 0 0 255"), 9, "0 0 inf 255");
   const auto r = write("nan.ply", ply);
-  EXPECT_RIGID_ERROR((void)read_mesh(r), r + ":12: a property value is inf");
+  EXPECT_RIGID_ERROR((void)read_mesh(r), r + ":12: a vertex coordinate is inf");
   std::string stl = ascii_stl(box);
   stl.replace(stl.find("vertex 0 0 0"), 12, "vertex 0 0 NaN");
   const auto s = write("nan_ascii.stl", stl);
@@ -283,6 +284,103 @@ TEST(ReadMesh, BinaryStlSharesExactCopiesOfAVertex) {
     std::memcpy(bytes.data() + 84 + 12 + 4 * k, &f, 4);
   }
   EXPECT_EQ(read_mesh(write("signed_zero.stl", bytes)).vertices.size(), 8u);
+}
+
+TEST(ReadMesh, MultiSolidAsciiStlReadsEverySolid) {
+  // Two closed unit cubes, one `solid … endsolid` block each (as exporters write one block per
+  // part), and an empty block between them: V = 2, two components.
+  auto first = test::box_mesh(1, 1, 1);
+  auto second = test::box_mesh(1, 1, 1);
+  second.translate(Eigen::Vector3d(3, 0, 0));
+  const std::string text = ascii_stl(first, "first") + "solid empty\nendsolid empty\n" +
+                           ascii_stl(second, "second part");
+  const auto p = write("two_solids.stl", text);
+  auto m = read_mesh(p);
+  EXPECT_EQ(m.triangles.size(), 24u);
+  const auto rep = repair_mesh(m);
+  EXPECT_TRUE(rep.closed());
+  EXPECT_EQ(rep.components.size(), 2u);
+  EXPECT_NEAR(mesh_mass_properties(m, {std::nullopt, 1.0, false, {}}).measure, 2.0, 1e-15);
+  // something other than a solid after the first is an error with its line
+  const auto q = write("trailing.stl", ascii_stl(first) + "garbage\n");
+  EXPECT_RIGID_ERROR((void)read_mesh(q), q + ":87: 'garbage': expected 'solid' or the end of "
+                                             "the file");
+}
+
+TEST(ReadMesh, NonFiniteCoordinatesAreRefusedInEveryFormat) {
+  // every text format, each spelling a strtod or from_chars reads as non-finite (OBJ: see
+  // read_obj_test.cpp)
+  for (const std::string bad : {"nan", "-inf", "Infinity", "1e400"}) {
+    std::string off = box_off();
+    off.replace(off.find("1 2 3"), 5, "1 " + bad + " 3");  // the last vertex, line 11
+    const auto p = write("bad.off", off);
+    EXPECT_RIGID_ERROR((void)read_mesh(p), p + ":11: a vertex coordinate is " + bad);
+    std::string ply = box_ply("ascii");
+    ply.replace(ply.find("1 2 3 255"), 9, bad + " 2 3 255");  // line 19
+    const auto q = write("bad.ply", ply);
+    EXPECT_RIGID_ERROR((void)read_mesh(q), q + ":19: a vertex coordinate is " + bad);
+    std::string stl = ascii_stl(test::box_mesh(1, 2, 3));
+    const std::size_t at = stl.find("vertex 1 2 3");
+    stl.replace(at, 12, "vertex 1 2 " + bad);
+    const auto r = write("bad.stl", stl);
+    const int line = 1 + static_cast<int>(std::count(stl.begin(), stl.begin() + at, '\n'));
+    EXPECT_RIGID_ERROR((void)read_mesh(r), fmt::format("{}:{}: a vertex coordinate is {}", r, line, bad));
+  }
+  // non-finite values of properties that are not coordinates are not used: accepted
+  std::string ply = box_ply("ascii");
+  ply.replace(ply.find("property uchar red"), 18, "property float nx");
+  ply.replace(ply.find("1 2 3 255"), 9, "1 2 3 nan");
+  EXPECT_EQ(read_mesh(write("normal.ply", ply)).triangles.size(), 12u);
+  // binary PLY, both byte orders and float and double, and binary STL
+  for (const std::string format : {"binary_little_endian", "binary_big_endian"}) {
+    std::string bin = box_ply(format);
+    const std::size_t data = bin.find("end_header\n") + 11;
+    const bool big = format == "binary_big_endian";
+    std::string value;
+    put(value, std::numeric_limits<float>::infinity(), big);
+    bin.replace(data + 13 * 7 + 4, 4, value);  // vertex 8, y
+    const auto p = write("bad_bin.ply", bin);
+    EXPECT_RIGID_ERROR((void)read_mesh(p), fmt::format("{}: byte {}: y of vertex 8 is inf: "
+                                                       "expected a finite number",
+                                                       p, data + 13 * 7 + 4));
+  }
+  std::string stl = binary_stl(test::box_mesh(1, 2, 3), "inf");
+  const float inf = -std::numeric_limits<float>::infinity();
+  std::memcpy(stl.data() + 84 + 50 * 11 + 12 + 4 * 8, &inf, 4);  // triangle 12, third z
+  const auto s = write("inf.stl", stl);
+  EXPECT_RIGID_ERROR((void)read_mesh(s), fmt::format("{}: byte {}: coordinate of triangle 12 is "
+                                                     "-inf",
+                                                     s, 84 + 50 * 11 + 12 + 4 * 8));
+}
+
+TEST(ReadMesh, ConcaveFacesAreTriangulatedInTheirPlane) {
+  // The chevron (0,0), (2,1), (0,2), (1,1) (area 1) extruded by 3, as an OFF and a PLY file
+  // of 4-gons: V = 3, area 2 + 3 (2√5 + 2√2). A fan from each face's first vertex covered 3
+  // instead of 1 per end face (its second triangle lies outside the chevron).
+  const double xy[4][2] = {{0, 0}, {2, 1}, {0, 2}, {1, 1}};
+  std::string verts;
+  for (double z : {0.0, 3.0}) {
+    for (const auto& p : xy) verts += fmt::format("{} {} {}\n", p[0], p[1], z);
+  }
+  const std::string faces = "4 3 2 1 0\n4 4 5 6 7\n4 0 1 5 4\n4 1 2 6 5\n4 2 3 7 6\n4 3 0 4 7\n";
+  const auto off = write("chevron.off", "OFF\n8 6 0\n" + verts + faces);
+  const auto ply = write("chevron.ply",
+                         "ply\nformat ascii 1.0\nelement vertex 8\nproperty double x\nproperty "
+                         "double y\nproperty double z\nelement face 6\nproperty list uchar int "
+                         "vertex_indices\nend_header\n" + verts + faces);
+  const double surface = 2 + 3 * (2 * std::sqrt(5.0) + 2 * std::sqrt(2.0));
+  for (const auto& p : {off, ply}) {
+    auto m = read_mesh(p);
+    ASSERT_TRUE(repair_mesh(m).closed());
+    // sums of a few dozen terms of size ≤ 20: a few ulps
+    EXPECT_NEAR(mesh_mass_properties(m, {std::nullopt, 1.0, false, {}}).measure, 3.0, 1e-14);
+    EXPECT_NEAR(mesh_mass_properties(m, {std::nullopt, 1.0, true, {}}).measure, surface,
+                1e-14 * surface);
+  }
+  // the top face (face 2, line 12) bent out of its plane: refused with the face and its line
+  const auto bent = write("bent.off", "OFF\n8 6 0\n" + verts.substr(0, verts.rfind("1 1 3")) +
+                                          "1 1 3.5\n" + faces);
+  EXPECT_RIGID_ERROR((void)read_mesh(bent), bent + ":12: face 2: the polygon of 4 vertices is not planar");
 }
 
 }  // namespace

@@ -1,9 +1,14 @@
 #include "rigid/mesh/repair.hpp"
 
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "mesh/mesh_builders.hpp"
 #include "rigid/mesh/mesh_mass.hpp"
+#include "support/expect_error.hpp"
 
 namespace rigid::mesh {
 namespace {
@@ -221,5 +226,23 @@ TEST(Repair, HighDegreeVertexAndLargeSoupAreFast) {
   EXPECT_EQ(r.components.size(), 1u);
 }
 
+TEST(Repair, WeldToleranceMustBeAFraction) {
+  // NaN would weld nothing silently, a negative tolerance makes no sense, infinity (or 1 and
+  // more: the whole bounding-box diagonal) welds every vertex into one
+  for (const double bad : {std::nan(""), -1.0, std::numeric_limits<double>::infinity(), 1.0}) {
+    auto box = test::box_mesh(1, 1, 1);
+    RepairOptions o;
+    o.weld_tolerance = bad;
+    EXPECT_RIGID_ERROR((void)repair_mesh(box, o),
+                       fmt::format("repair_mesh(): weld tolerance {}: expected a finite number "
+                                   "from 0 up to (not including) 1",
+                                   bad));
+    EXPECT_EQ(box.vertices.size(), 8u);
+  }
+  auto box = test::box_mesh(1, 1, 1);
+  RepairOptions zero;
+  zero.weld_tolerance = 0;
+  EXPECT_TRUE(repair_mesh(box, zero).closed());
+}
 }  // namespace
 }  // namespace rigid::mesh

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -49,14 +50,29 @@ struct MeshMassResult {
   MassProperties properties;
   double measure = 0.0;  ///< volume (m³) or area (m²)
   std::vector<std::string> warnings;
+  std::array<Eigen::Vector3d, 2> bounding_box;  ///< corners (min, max) of the mesh (m)
 };
 
-/// Mass properties of a repaired mesh (see repair_mesh). A solid must be closed: otherwise
-/// rigid::Error counts the boundary and non-manifold edges and points to the `shell` and
-/// `fill_holes` settings (rigid::setting, worded by each front end).
-/// Warns when the implied density or size is implausible (e.g. a part in millimetres read
-/// as metres: 10⁹ times the mass), naming the `units` setting.
-/// @throws rigid::Error for a bad MassSpec, an open solid or a zero volume/area.
+/// A part longer than this (m) is taken for a file in millimetres read as metres.
+inline constexpr double kMaxPartSize = 10.0;
+/// A part shorter than this (m) is taken for a file in metres read in a smaller unit.
+inline constexpr double kMinPartSize = 1e-3;
+
+/// Units plausibility of a part's bounding box (corners in m): a warning naming the `units`
+/// setting when its longest side is more than kMaxPartSize (a 20 × 30 × 10 mm part read as
+/// metres) or less than kMinPartSize; nothing for parts from 1 mm to 10 m.
+[[nodiscard]] std::vector<std::string> size_warnings(const std::array<Eigen::Vector3d, 2>& box);
+
+/// Mass properties of a repaired mesh (see repair_mesh). A solid must be closed and
+/// consistently oriented (every directed edge once, its reverse once): otherwise
+/// rigid::Error counts the boundary, non-manifold or misoriented edges and points to
+/// repair_mesh and to the `shell` and `fill_holes` settings (rigid::setting, worded by each
+/// front end), so a mesh that skipped repair never gives a wrong volume silently.
+/// Warns when the implied size, mass or density is implausible (size_warnings; a mass over
+/// 1000 t; a density outside 0.5–30 000 kg/m³: e.g. a part in millimetres read as metres,
+/// 10⁹ times the mass), naming the `units` setting.
+/// @throws rigid::Error for a bad MassSpec, an open or misoriented solid or a zero
+/// volume/area.
 [[nodiscard]] MeshMassResult mesh_mass_properties(const TriangleMesh& mesh, const MassSpec& spec);
 
 /// The same for a mesh that `repaired`, the report of repair_mesh on it, describes (the mesh
