@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cctype>
 #include <charconv>
+#include <cerrno>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 
@@ -11,6 +14,7 @@
 #include <toml++/toml.h>
 
 #include "rigid/common/did_you_mean.hpp"
+#include "rigid/io/run_output.hpp"
 #include "rigid/mass/primitive_table.hpp"
 
 namespace rigid::scene {
@@ -79,8 +83,7 @@ class Parser {
       return e;
     }
     if (n.is_number()) {
-      const double v = n.value<double>().value();
-      if (!std::isfinite(v)) fail(n, fmt::format("{} is {}; expected a finite number", what, v));
+      const double v = finite(n, what);
       e.number = v;
       e.text = fmt::format("{}", v);
       return e;
@@ -116,7 +119,23 @@ class Parser {
 
   [[nodiscard]] double number(const toml::node& n, std::string_view what) const {
     if (!n.is_number()) fail(n, fmt::format("{} must be a number, got {}", what, type_name(n)));
-    const double v = n.value<double>().value();
+    return finite(n, what);
+  }
+
+  // The double of a TOML number: a float as written (finite), an integer only if a double holds
+  // it exactly (|n| ≤ 2^53; above, toml++ gives no double and the value would be rounded).
+  [[nodiscard]] double finite(const toml::node& n, std::string_view what) const {
+    if (auto i = n.as_integer()) {
+      const std::int64_t v = i->get();
+      constexpr std::int64_t kExact = std::int64_t{1} << 53;
+      if (v > kExact || v < -kExact) {
+        fail(n, fmt::format("{} is the integer {}, beyond the integers a double holds exactly (|n| ≤ "
+                            "2^53 = {}); write it as a float (e.g. {:e}) to accept rounding",
+                            what, v, kExact, static_cast<double>(v)));
+      }
+      return static_cast<double>(v);
+    }
+    const double v = n.as_floating_point()->get();
     if (!std::isfinite(v)) fail(n, fmt::format("{} is {}; expected a finite number", what, v));
     return v;
   }
@@ -537,7 +556,23 @@ Scene parse_document(const toml::table& root, const Parser& p) {
 
   if (auto n = root.get("output")) {
     const toml::table& ot = p.table(*n, "[output]");
-    p.check_keys(ot, "[output]", {"directory", "formats", "quantities"});
+    p.check_keys(ot, "[output]", {"directory", "formats", "quantities", "max_memory"});
+    if (auto m = ot.get("max_memory")) {
+      s.output.max_memory_where = p.where(m->source());
+      if (auto i = m->as_integer(); i != nullptr && i->get() > 0) {
+        s.output.max_memory = static_cast<std::uint64_t>(i->get());
+      } else if (auto text = m->as_string()) {
+        try {
+          s.output.max_memory = io::parse_memory_size(text->get());
+        } catch (const Error& e) {
+          p.fail(*m, fmt::format("[output] max_memory: {}", e.what()));
+        }
+      } else {
+        p.fail(*m, fmt::format("[output] max_memory must be a positive number of bytes or a size such "
+                               "as \"512MiB\", got {}",
+                               m->is_integer() ? "a number ≤ 0" : Parser::type_name(*m)));
+      }
+    }
     if (auto q = ot.get("quantities")) {
       const toml::array* a = q->as_array();
       if (a == nullptr) {
@@ -637,11 +672,46 @@ Scene parse_scene(std::string_view toml_text, const std::filesystem::path& file)
 }
 
 Scene load_scene(const std::filesystem::path& file) {
+  // only a regular file of at most kMaxSceneFileBytes is read: a device (/dev/zero), a FIFO or
+  // a directory would otherwise be read without end, or fail with the system's words
+  std::error_code ec;
+  const std::filesystem::file_status st = std::filesystem::status(file, ec);
+  if (ec || !std::filesystem::exists(st)) {
+    throw Error(fmt::format("cannot open scene file '{}': {}", file.string(),
+                            ec ? ec.message() : "no such file"));
+  }
+  if (std::filesystem::is_directory(st)) {
+    throw Error(fmt::format("scene file '{}' is a directory; expected a TOML file", file.string()));
+  }
+  if (!std::filesystem::is_regular_file(st)) {
+    throw Error(fmt::format("scene file '{}' is not a regular file (a device, a pipe or a socket); "
+                            "expected a TOML file",
+                            file.string()));
+  }
+  const std::uintmax_t size = std::filesystem::file_size(file, ec);
+  if (!ec && size > kMaxSceneFileBytes) {
+    throw Error(fmt::format("scene file '{}' has {} bytes, more than the {} (16 MiB) a scene may "
+                            "have",
+                            file.string(), size, kMaxSceneFileBytes));
+  }
   std::ifstream in(file, std::ios::binary);
-  RIGID_REQUIRE(in.good(), "cannot open scene file '{}'", file.string());
-  std::stringstream text;
-  text << in.rdbuf();
-  return parse_scene(text.str(), file);
+  if (!in.good()) {
+    throw Error(fmt::format("cannot open scene file '{}': {}", file.string(), std::strerror(errno)));
+  }
+  // read in chunks up to one byte past the cap (the file may have grown since it was measured)
+  std::string text;
+  char chunk[65536];
+  while (text.size() <= kMaxSceneFileBytes && in.read(chunk, sizeof chunk).gcount() > 0) {
+    text.append(chunk, static_cast<std::size_t>(in.gcount()));
+  }
+  if (in.bad()) {
+    throw Error(fmt::format("cannot read scene file '{}': {}", file.string(), std::strerror(errno)));
+  }
+  if (text.size() > kMaxSceneFileBytes) {
+    throw Error(fmt::format("scene file '{}' has more than the {} bytes (16 MiB) a scene may have",
+                            file.string(), kMaxSceneFileBytes));
+  }
+  return parse_scene(text, file);
 }
 
 void apply_overrides(Scene& scene, const std::vector<std::string>& assignments) {
