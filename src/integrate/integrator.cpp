@@ -221,10 +221,12 @@ Solution run_dopri5(const Problem& p, const Options& o) {
   StdState x0(p.y0.data(), p.y0.data() + n);
   stepper.initialize(x0, p.t0, std::min(o.dt, p.t_end - p.t0));
   // output times of the one grid rule (dense output between steps), or every accepted step
+  StdState xo(static_cast<std::size_t>(n));
   std::optional<TimeGrid> grid;
   if (o.output_dt > 0) grid = TimeGrid::uniform(p.t0, p.t_end, o.output_dt);
-  StdState xo(static_cast<std::size_t>(n));
-  const std::size_t max_outputs = std::min(control.max_outputs, TimeGrid::kMaxOutputs);
+  // the rows of a grid are known before the run (the front end checks them); only every-step
+  // sampling is capped here, as the rows come
+  const std::size_t max_outputs = grid ? TimeGrid::kMaxOutputs : std::min(control.max_outputs, TimeGrid::kMaxOutputs);
   auto sample = [&](double t, const StdState& state) {
     RIGID_REQUIRE_AS("integrate", sol.t.size() < max_outputs,
                   "dopri5 without an output spacing records every step: more than {} rows before "

@@ -329,7 +329,18 @@ class Parser {
 GiNaC::ex parse_expression(const Expression& expression,
                            const std::map<std::string, GiNaC::ex>& names,
                            std::string_view context) {
-  return Parser(expression, names, context).parse();
+  const GiNaC::ex value = Parser(expression, names, context).parse();
+  // a complex number inside (sqrt(-1) is I) has no place in the real model
+  for (auto it = value.preorder_begin(); it != value.preorder_end(); ++it) {
+    if (GiNaC::is_a<GiNaC::numeric>(*it) && !GiNaC::ex_to<GiNaC::numeric>(*it).is_real()) {
+      std::ostringstream text;
+      text << *it;
+      throw_at(expression, 0, context,
+               fmt::format("'{}' holds the complex number {}; expected a real expression", expression.text,
+                           text.str()));
+    }
+  }
+  return value;
 }
 
 }  // namespace rigid::lagrange::detail

@@ -534,7 +534,10 @@ Method Model::Impl::parse_method(const std::string& requested) const {
       }
     }
   } catch (const Error& e) {
-    if (from_scene) detail::throw_error_at(scene.simulation.where, fmt::format("[simulation] integrator: {}", e.what()));
+    if (from_scene) {
+      detail::throw_error_at(scene.simulation.where,
+                             fmt::format("[simulation] integrator: {}", word_for(Surface::kScene, e.what())));
+    }
     throw;
   }
   return method;
@@ -599,7 +602,9 @@ void Model::check(const RunOptions& options) const {
     so.tolerance = m.tolerance;
     so.output_dt = m.output_dt;
     so.t_end = m.output_dt > 0 ? m.output_dt : std::min(m.t_end, m.dt);
-    (void)at_location({m.scene.file.string(), 0, 0}, "the initial state", [&] { return m.system->simulate(so); });
+    // a failure here is the model's at its start, with the run's settings
+    (void)at_location(m.scene.simulation.where, "[simulation] the first output interval",
+                      [&] { return m.system->simulate(so); });
   }
 }
 

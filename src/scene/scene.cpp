@@ -130,7 +130,7 @@ class Parser {
       constexpr std::int64_t kExact = std::int64_t{1} << 53;
       if (v > kExact || v < -kExact) {
         fail(n, fmt::format("{} is the integer {}, beyond the integers a double holds exactly (|n| ≤ "
-                            "2^53 = {}); write it as a float (e.g. {:e}) to accept rounding",
+                            "2^53 = {}); write it as a float (e.g. {:.16e}) to accept rounding",
                             what, v, kExact, static_cast<double>(v)));
       }
       return static_cast<double>(v);
@@ -195,6 +195,19 @@ class Parser {
  private:
   std::filesystem::path file_;
 };
+
+// |v| without overflow or underflow in the squares (components up to 1e308): scaled by the
+// largest component first.
+double safe_norm(const std::array<double, 3>& v) {
+  const double scale = std::max({std::abs(v[0]), std::abs(v[1]), std::abs(v[2])});
+  if (!(scale > 0)) return 0.0;
+  const double x = v[0] / scale, y = v[1] / scale, z = v[2] / scale;
+  return scale * std::sqrt(x * x + y * y + z * z);
+}
+
+// The largest initial rotation angle (rad): a million turns, where its rounding is still below
+// 1e-9 rad.
+constexpr double kMaxAngle = 2 * 3.141592653589793 * 1e6;
 
 // A size alias "<group>_<digit>" (size_0, semi_axes_1) makes "<group>" a key that takes an
 // array: size = [lx, ly, lz] gives size_0, size_1, size_2.
@@ -403,9 +416,15 @@ void parse_pose(const Parser& p, const toml::table& t, const std::string& contex
       p.check_keys(rt, "initial_rotation", {"axis", "angle"});
       const auto axis = p.vector3(p.required(rt, n->source(), "axis", "initial_rotation"), "axis");
       const double angle = p.number(p.required(rt, n->source(), "angle", "initial_rotation"), "angle");
-      const double len = std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
+      const double len = safe_norm(axis);
       if (!(len > 0)) p.fail(*n, "initial_rotation axis is zero; expected a non-zero vector");
-      const double s = std::sin(angle / 2) / len;
+      if (!(std::abs(angle) <= kMaxAngle)) {
+        p.fail(*n, fmt::format("initial_rotation angle {} rad is more than a million turns; expected "
+                               "|angle| ≤ {:.6g} rad",
+                               angle, kMaxAngle));
+      }
+      const double scale = std::max({std::abs(axis[0]), std::abs(axis[1]), std::abs(axis[2])});
+      const double s = std::sin(angle / 2) / (len / scale) / scale;
       body.initial_orientation = {std::cos(angle / 2), axis[0] * s, axis[1] * s, axis[2] * s};
     }
     return;
@@ -434,9 +453,10 @@ void parse_pose(const Parser& p, const toml::table& t, const std::string& contex
       p.check_keys(rt, context + " rotation", {"axis", "angle"});
       AxisRotation r;
       r.axis = p.vector3(p.required(rt, e.source(), "axis", context + " rotation"), "axis");
-      const double len = std::sqrt(r.axis[0] * r.axis[0] + r.axis[1] * r.axis[1] + r.axis[2] * r.axis[2]);
+      const double len = safe_norm(r.axis);
       if (!(len > 0)) p.fail(*rt.get("axis"), "rotation axis is zero; expected a non-zero vector");
-      for (double& c : r.axis) c /= len;
+      const double scale = std::max({std::abs(r.axis[0]), std::abs(r.axis[1]), std::abs(r.axis[2])});
+      for (double& c : r.axis) c = c / scale / (len / scale);
       r.angle = p.expression(p.required(rt, e.source(), "angle", context + " rotation"), "angle");
       body.rotations.push_back(std::move(r));
     }
@@ -526,7 +546,9 @@ Scene parse_document(const toml::table& root, const Parser& p) {
     p.check_keys(t, ctx, {"body_a", "point_a", "body_b", "point_b", "stiffness", "rest_length"});
     Spring sp;
     sp.where = p.where(t.source());
-    sp.body_a = p.string(p.required(t, t.source(), "body_a", ctx), "body_a");
+    const toml::node& body_a = p.required(t, t.source(), "body_a", ctx);
+    sp.body_a = p.string(body_a, "body_a");
+    if (sp.body_a.empty()) p.fail(body_a, ctx + " body_a is empty; expected the name of a body");
     if (auto n = t.get("point_a")) sp.point_a = p.vector3(*n, "point_a");
     if (auto n = t.get("body_b")) sp.body_b = p.string(*n, "body_b");
     if (auto n = t.get("point_b")) sp.point_b = p.vector3(*n, "point_b");
@@ -665,8 +687,19 @@ Scene parse_scene(std::string_view toml_text, const std::filesystem::path& file)
   try {
     root = toml::parse(toml_text, file.string());
   } catch (const toml::parse_error& e) {
-    detail::throw_error_at(p.where(e.source()),
-                           fmt::format("TOML syntax error: {}", e.description()));
+    // toml++ says "Error while parsing key-value pair: cannot redefine …": the reason, with the
+    // construct it was reading as context
+    std::string_view text = e.description();
+    std::string context;
+    constexpr std::string_view kLead = "Error while parsing ";
+    if (text.starts_with(kLead)) {
+      const auto colon = text.find(": ");
+      if (colon != std::string_view::npos) {
+        context = fmt::format(" in a {}", text.substr(kLead.size(), colon - kLead.size()));
+        text.remove_prefix(colon + 2);
+      }
+    }
+    detail::throw_error_at(p.where(e.source()), fmt::format("TOML syntax error{}: {}", context, text));
   }
   return parse_document(root, p);
 }
