@@ -73,14 +73,12 @@ void run_rotation(const RotationOptions& o) {
     require_angle(v[3] * to_rad, "--axis-angle", v[3], o.unit);
     // the axis is normalised: scaled first by its largest component, so that its norm is finite
     const double scale = std::max({std::abs(v[0]), std::abs(v[1]), std::abs(v[2])});
-    CLI_REQUIRE(scale > 0, "--axis-angle: the axis (0, 0, 0) has no direction; expected a non-zero axis");
-    R = SO3d::from_axis_angle(Eigen::Vector3d(v[0], v[1], v[2]) / scale, v[3] * to_rad);
+    R = SO3d::from_axis_angle(Eigen::Vector3d(v[0], v[1], v[2]) / (scale > 0 ? scale : 1.0), v[3] * to_rad);
   } else if (!o.quaternion.empty()) {
     auto v = parse_numbers(o.quaternion, 4, "--quaternion");
     // normalised: scaled first by its largest component, so that its norm is finite
     const double scale = std::max({std::abs(v[0]), std::abs(v[1]), std::abs(v[2]), std::abs(v[3])});
-    CLI_REQUIRE(scale > 0, "--quaternion: (0, 0, 0, 0) is not a rotation; expected a non-zero quaternion");
-    for (double& x : v) x /= scale;
+    for (double& x : v) x /= scale > 0 ? scale : 1.0;  // (0, 0, 0, 0) is refused by SO3d
     R = o.order == "wxyz" ? SO3d::from_quaternion(v[0], v[1], v[2], v[3])
                           : SO3d::from_quaternion(v[3], v[0], v[1], v[2]);
   } else if (!o.matrix.empty()) {
