@@ -332,7 +332,7 @@ Solution integrate(const Problem& problem, const Options& options) {
                 options.atol);
   RIGID_REQUIRE(options.method != Method::kDopri5 || options.rtol >= kMinRelativeTolerance,
                 "dopri5 relative tolerance rtol = {} is below what double precision can deliver; "
-                "expected rtol ≥ {:.3g} (100 ε)",
+                "expected rtol ≥ {:.3g} (10 ε)",
                 options.rtol, kMinRelativeTolerance);
   if (auto bad = find_nonfinite(problem, problem.y0)) {
     RIGID_THROW("the initial state is not finite: {}{} = {}",

@@ -222,6 +222,8 @@ class Parser {
   GiNaC::ex guarded(std::size_t at, F&& f) const {
     try {
       return f();
+    } catch (const Error&) {
+      throw;  // the parser's own refusal (an unknown function), already located
     } catch (const std::exception& e) {
       fail(at, "the expression " + reason_of_library_failure(e));
     }

@@ -282,7 +282,7 @@ struct Model::Impl {
       if (tolerance < integrate::kMinRelativeTolerance) {
         detail::throw_error_at(s.tolerance->where,
                                fmt::format("[simulation] tolerance = {} is below what double precision "
-                                           "can deliver; expected at least {:.3g} (100 ε)",
+                                           "can deliver; expected at least {:.3g} (10 ε)",
                                            tolerance, integrate::kMinRelativeTolerance));
       }
     }

@@ -45,10 +45,10 @@ struct Problem {
   std::string owner;
 };
 
-/// The smallest relative tolerance dopri5 accepts: 100 ε ≈ 2.2e-14. Below it the error
+/// The smallest relative tolerance dopri5 accepts: 10 ε ≈ 2.2e-15. Below it the error
 /// estimate is made of round-off, and no step size satisfies it (the step would shrink to
 /// nothing).
-inline constexpr double kMinRelativeTolerance = 100 * 2.220446049250313e-16;
+inline constexpr double kMinRelativeTolerance = 10 * 2.220446049250313e-16;
 /// A dopri5 step shorter than this many ulps of the time (kStepFloor · ε · max(|t|, t_end − t0))
 /// ends the run with an error: the time no longer advances in double precision.
 inline constexpr double kStepFloor = 16;
