@@ -2,8 +2,11 @@
 // scene (docs/scene-format.md); .run() returns the trajectory as a dict of numpy columns and
 // the summary as a dict — the same numbers `rigid run` writes — and, given an output
 // directory, writes the same files. A run releases the GIL and stops on Ctrl-C.
+#include <cstdint>
 #include <filesystem>
 #include <optional>
+
+#include <fmt/format.h>
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -54,26 +57,41 @@ py::dict to_python(const rigid::io::RunResult& r) {
   return out;
 }
 
+// max_memory=: a number of bytes or a size such as "512MiB" (rigid::io::parse_memory_size).
+std::optional<std::uint64_t> memory_of(const py::object& value) {
+  if (value.is_none()) return std::nullopt;
+  if (py::isinstance<py::str>(value)) return rigid::io::parse_memory_size(value.cast<std::string>());
+  if (py::isinstance<py::int_>(value) && !py::isinstance<py::bool_>(value)) {
+    const auto bytes = value.cast<long long>();
+    if (bytes <= 0) throw rigid::Error(fmt::format("max_memory = {} bytes; expected a positive size", bytes));
+    return static_cast<std::uint64_t>(bytes);
+  }
+  throw rigid::Error("max_memory must be a number of bytes or a size such as \"512MiB\"");
+}
+
 py::dict run(const Model& model, const std::string& integrator, std::optional<std::filesystem::path> output,
-             const std::vector<std::string>& formats) {
+             const std::vector<std::string>& formats, const py::object& max_memory) {
   rigid::python::Interruptible interrupt;
   rigid::scene::RunOptions options;
   options.integrator = integrator;
   options.control = interrupt.control();
-  // formats are checked before the run, so a typo costs no simulation
+  options.max_memory = memory_of(max_memory);
+  // formats and the directory are checked before the run, so a typo costs no simulation
   const std::vector<rigid::io::OutputFormat> chosen = output ? model.output_formats(formats)
                                                              : std::vector<rigid::io::OutputFormat>{};
+  if (output) rigid::io::check_output_directory(*output);
   rigid::io::RunResult r;
+  std::vector<std::filesystem::path> paths;
   {
     // a Model is immutable and each run has its own state: other Python threads run meanwhile
     py::gil_scoped_release release;
     r = model.run(options);
-    if (output) (void)rigid::io::write_run(*output, r, chosen);
+    if (output) paths = rigid::io::write_run(*output, r, chosen);
   }
   py::dict out = to_python(r);
   if (output) {
     py::list written;
-    for (const auto f : chosen) written.append(py::str((*output / rigid::io::file_name(f)).string()));
+    for (const auto& p : paths) written.append(py::str(p.string()));
     out["written"] = written;
   }
   return out;
@@ -108,17 +126,22 @@ void bind_scene(py::module_& m) {
       .def("integrator", &Model::integrator, py::arg("requested") = std::string{},
            "The method a run uses (the requested one, the scene's, or the kind's default).")
       .def("equations", &Model::equations, py::arg("latex") = false, "The equations of motion.")
-      .def("check", [](const Model& mo, const std::string& integrator) {
+      .def("check", [](const Model& mo, const std::string& integrator, const py::object& max_memory) {
              rigid::scene::RunOptions o;
              o.integrator = integrator;
+             o.max_memory = memory_of(max_memory);
              mo.check(o);
-           }, py::arg("integrator") = std::string{},
-           "Runs the checks of a run (initial conditions, mass matrix, steps) without integrating.")
+           }, py::arg("integrator") = std::string{}, py::arg("max_memory") = py::none(),
+           "Runs the checks of a run (initial conditions, mass matrix, steps, the trajectory's "
+           "memory against max_memory) without integrating.")
       .def("run", &run, py::arg("integrator") = std::string{}, py::arg("output") = py::none(),
-           py::arg("formats") = std::vector<std::string>{},
+           py::arg("formats") = std::vector<std::string>{}, py::arg("max_memory") = py::none(),
            "Simulates to t_end: {'columns': {name: numpy array}, 'summary': {...}} with the columns "
            "of docs/scene-format.md. With `output` (a directory), also writes the files `rigid run` "
            "writes (trajectory.csv, trajectory.npy, summary.json; `formats` as in the scene's "
-           "[output] by default), each atomically, only after the run succeeded; the paths are "
-           "under 'written'. Ctrl-C raises KeyboardInterrupt and writes nothing.");
+           "[output] by default; summary.json always comes with trajectory.npy) as one set that "
+           "replaces the directory, only after the run succeeded; the paths are under 'written'. "
+           "`max_memory` (bytes or a size such as \"512MiB\"; default: the scene's [output] "
+           "max_memory, else 2 GiB) caps the trajectory, checked before the run. Ctrl-C raises "
+           "KeyboardInterrupt and writes nothing.");
 }

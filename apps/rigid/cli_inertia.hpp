@@ -88,6 +88,11 @@ inline void add_inertia_command(CLI::App& app) {
   // unknown words after an unknown SOURCE reach the callback, which names the real problem
   inertia->allow_extras();
   inertia->callback([inertia, source] {
-    if (inertia->get_subcommands().empty()) rigid::cli::run_inertia_source(*source);
+    if (!inertia->get_subcommands().empty()) return;
+    // no SOURCE at all is a usage error, as any missing argument (exit status 2)
+    if (source->source.empty()) {
+      throw CLI::RequiredError("SOURCE (a primitive subcommand, a mesh file or `check FILE`)");
+    }
+    rigid::cli::run_inertia_source(*source);
   });
 }

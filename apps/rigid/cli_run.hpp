@@ -16,12 +16,22 @@ inline void add_scene_options(CLI::App* cmd, rigid::cli::SceneOptions& o) {
                   "the further methods of docs/body.md");
 }
 
+inline void add_max_memory_option(CLI::App* cmd, rigid::cli::SceneOptions& o) {
+  cmd->add_option("--max-memory", o.max_memory,
+                  "most memory the trajectory may take (rows x columns x 8 bytes), checked before "
+                  "the run: bytes or 512MiB, 4GiB (default: the scene's [output] max_memory, else "
+                  "2GiB)")
+      ->type_name("SIZE");
+}
+
 inline void add_run_command(CLI::App& app) {
   auto run = std::make_shared<rigid::cli::RunOptions>();
   auto* cmd = app.add_subcommand("run", "Simulate a scene and write its trajectory and summary");
   add_scene_options(cmd, run->scene);
+  add_max_memory_option(cmd, run->scene);
   cmd->add_option("-o,--output", run->output_dir,
-                  "output directory (default: the scene's [output] directory, else ./out)");
+                  "output directory, replaced as a whole by the run's files (default: the scene's "
+                  "[output] directory, else out/<scene file stem>)");
   cmd->add_option("--format", run->formats, "output files: csv, npy, json (repeatable; default: "
                   "the scene's [output] formats, else csv and json)");
   cmd->add_flag("-q,--quiet", run->quiet, "print nothing on success (no summary, no progress bar)");
@@ -31,6 +41,7 @@ inline void add_run_command(CLI::App& app) {
   auto* c = app.add_subcommand("check", "Validate a scene (file, expressions, bodies, initial "
                                         "conditions) without running it");
   add_scene_options(c, *check);
+  add_max_memory_option(c, *check);
   c->callback([check] { rigid::cli::run_check(*check); });
 
   auto eom = std::make_shared<rigid::cli::SceneOptions>();

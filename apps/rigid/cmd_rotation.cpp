@@ -1,5 +1,6 @@
 #include "cmd_rotation.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <numbers>
@@ -38,6 +39,18 @@ std::vector<double> parse_numbers(std::string_view text, std::size_t count, std:
   return out;
 }
 
+// The largest angle taken (rad): a million turns. An angle is reduced modulo 2π in double
+// precision; at 2π·10⁶ rad its rounding is below 1e-9 rad, beyond it the rotation it names is
+// lost to rounding (at 1e308 deg nothing is left, and the conversions gave NaN).
+constexpr double kMaxAngle = 2 * std::numbers::pi * 1e6;
+
+void require_angle(double angle_rad, std::string_view option, double given, std::string_view unit) {
+  CLI_REQUIRE(std::abs(angle_rad) <= kMaxAngle,
+              "{}: the angle {} {} is more than a million turns (|angle| ≤ {:.6g} rad); its "
+              "rotation is lost to rounding: reduce it modulo 360 deg (2π rad) first",
+              option, given, unit, kMaxAngle);
+}
+
 std::string list(const Eigen::VectorXd& v) {
   std::string s = "[";
   for (Eigen::Index i = 0; i < v.size(); ++i) s += fmt::format("{}{}", i ? ", " : "", v(i) + 0.0);  // + 0.0 prints −0 as 0
@@ -57,9 +70,15 @@ void run_rotation(const RotationOptions& o) {
   SO3d R = SO3d::identity();
   if (!o.axis_angle.empty()) {
     const auto v = parse_numbers(o.axis_angle, 4, "--axis-angle");
-    R = SO3d::from_axis_angle(Eigen::Vector3d(v[0], v[1], v[2]), v[3] * to_rad);
+    require_angle(v[3] * to_rad, "--axis-angle", v[3], o.unit);
+    // the axis is normalised: scaled first by its largest component, so that its norm is finite
+    const double scale = std::max({std::abs(v[0]), std::abs(v[1]), std::abs(v[2])});
+    R = SO3d::from_axis_angle(Eigen::Vector3d(v[0], v[1], v[2]) / (scale > 0 ? scale : 1.0), v[3] * to_rad);
   } else if (!o.quaternion.empty()) {
-    const auto v = parse_numbers(o.quaternion, 4, "--quaternion");
+    auto v = parse_numbers(o.quaternion, 4, "--quaternion");
+    // normalised: scaled first by its largest component, so that its norm is finite
+    const double scale = std::max({std::abs(v[0]), std::abs(v[1]), std::abs(v[2]), std::abs(v[3])});
+    for (double& x : v) x /= scale > 0 ? scale : 1.0;  // (0, 0, 0, 0) is refused by SO3d
     R = o.order == "wxyz" ? SO3d::from_quaternion(v[0], v[1], v[2], v[3])
                           : SO3d::from_quaternion(v[3], v[0], v[1], v[2]);
   } else if (!o.matrix.empty()) {
@@ -69,12 +88,18 @@ void run_rotation(const RotationOptions& o) {
     R = SO3d::from_matrix(M);
   } else if (!o.euler.empty()) {
     const auto v = parse_numbers(o.euler, 3, "--euler");
+    for (double a : v) require_angle(a * to_rad, "--euler", a, o.unit);
     R = from_euler(Eigen::Vector3d(v[0], v[1], v[2]) * to_rad, conv);
   } else {
     const auto v = parse_numbers(o.rotvec, 3, "--rotvec");
+    for (double a : v) require_angle(a, "--rotvec", a, "rad");
+    require_angle(Eigen::Vector3d(v[0], v[1], v[2]).norm(), "--rotvec", Eigen::Vector3d(v[0], v[1], v[2]).norm(), "rad");
     R = SO3d::exp(Eigen::Vector3d(v[0], v[1], v[2]));
   }
 
+  // every number printed is finite, or nothing is printed
+  CLI_REQUIRE(R.matrix().allFinite(), "the rotation could not be computed from the input (a non-finite "
+              "result); expected an input of moderate magnitude");
   const Eigen::Vector3d w = R.log();
   const double angle = w.norm();
   const Eigen::Vector3d axis = angle > 0 ? Eigen::Vector3d(w / angle) : Eigen::Vector3d(1, 0, 0);

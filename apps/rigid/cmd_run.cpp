@@ -39,6 +39,20 @@ scene::Model load(const SceneOptions& opts) {
   }
 }
 
+// The run options of a scene command: the integrator and --max-memory.
+scene::RunOptions run_options(const SceneOptions& opts) {
+  scene::RunOptions ro;
+  ro.integrator = opts.integrator;
+  if (!opts.max_memory.empty()) {
+    try {
+      ro.max_memory = io::parse_memory_size(opts.max_memory);
+    } catch (const Error& e) {
+      throw Error(fmt::format("--max-memory: {}", e.what()));
+    }
+  }
+  return ro;
+}
+
 void print_warnings(const std::vector<std::string>& warnings) {
   for (const auto& w : warnings) {
     std::fprintf(stderr, "rigid: warning: %s\n", word_for(Surface::kCli, w).c_str());
@@ -95,14 +109,15 @@ void run_run(const RunOptions& opts) {
     }
   }();
   const fs::path dir = model.output_directory(opts.output_dir);
+  // a run that cannot be written, or would not fit in memory, is refused before it runs
+  io::check_output_directory(dir);
+  scene::RunOptions ro = run_options(opts.scene);
 
   g_interrupted = false;
   const auto previous = std::signal(SIGINT, on_interrupt);
   io::RunResult result;
   {
     Progress progress(model.t_end(), !opts.quiet);
-    scene::RunOptions ro;
-    ro.integrator = opts.scene.integrator;
     ro.control.progress = [&progress](double t) { progress(t); };
     ro.control.cancel = &g_interrupted;
     try {
@@ -126,9 +141,7 @@ void run_run(const RunOptions& opts) {
 void run_check(const SceneOptions& opts) {
   const scene::Model model = load(opts);
   print_warnings(model.warnings());
-  scene::RunOptions ro;
-  ro.integrator = opts.integrator;
-  model.check(ro);
+  model.check(run_options(opts));
   fmt::print("{}", describe_model(opts.scene, model, opts.integrator));
   fmt::print("ok: {} is a valid scene\n", opts.scene);
 }

@@ -10,6 +10,7 @@ struct SceneOptions {
   std::string scene;               ///< the scene file (TOML)
   std::vector<std::string> set;    ///< name=value parameter overrides
   std::string integrator;          ///< overrides [simulation] integrator
+  std::string max_memory;          ///< overrides [output] max_memory (bytes or "512MiB")
 };
 
 /// Options of `rigid run SCENE`.

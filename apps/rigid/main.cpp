@@ -1,6 +1,7 @@
 // The rigid command-line tool: CLI11 parsing and the single error exit path.
 #include <cstdio>
 #include <exception>
+#include <new>
 
 #include <CLI/CLI.hpp>
 
@@ -15,12 +16,25 @@
 #include "cli_mesh.hpp"
 #include "cli_run.hpp"
 
+namespace {
+// The exit status of every subcommand (documented in the --help footer, README and
+// docs/reliability.md).
+constexpr int kExitOk = 0;
+constexpr int kExitRefused = 1;      // a rigid::Error: the input was refused with a reason
+constexpr int kExitUsage = 2;        // the command line itself is wrong
+constexpr int kExitInterrupted = 130;  // Ctrl-C (the shell's 128 + SIGINT)
+}  // namespace
+
 int main(int argc, char** argv) {
   CLI::App app{
       "rigid: rigid-body mechanics from isometries and inertia tensors to Euler's equations.\n"
       "SI units throughout; quaternions are (w, x, y, z) unless an option says otherwise."};
   app.set_version_flag("--version", std::string("rigid ") + RIGID_VERSION_STRING);
   app.require_subcommand(0, 1);
+  app.footer(
+      "Exit status (every subcommand): 0 success; 1 refused input (a file, a scene, a value: the "
+      "message says what, where and what was expected); 2 usage (an unknown subcommand or option, a "
+      "missing or malformed argument); 130 interrupted (Ctrl-C; nothing is written).");
 
   add_demo_command(app);
   add_inertia_command(app);
@@ -33,21 +47,34 @@ int main(int argc, char** argv) {
     if (app.get_subcommands().empty()) {
       std::fputs(app.help().c_str(), stderr);
       std::fputs("rigid: error: a subcommand is required (see the list above)\n", stderr);
-      return 2;
+      return kExitUsage;
     }
-  } catch (const CLI::ParseError& e) {
-    // CLI11's own messages for --help, --version and bad command lines.
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);  // --help: the text on stdout, 0
+  } catch (const CLI::CallForAllHelp& e) {
     return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    // CLI11's message for a bad command line (and its own exit code, e.g. 106, replaced by the
+    // one usage code)
+    (void)app.exit(e);
+    return kExitUsage;
   } catch (const rigid::Cancelled& e) {
     std::fprintf(stderr, "rigid: interrupted: %s\n", e.what());
-    return 130;  // the shell's code for a command stopped by SIGINT
+    return kExitInterrupted;
   } catch (const rigid::Error& e) {
     // the library names its settings in its own terms; here they are flags
     std::fprintf(stderr, "rigid: error: %s\n", rigid::word_for(rigid::Surface::kCli, e.what()).c_str());
-    return 1;
+    return kExitRefused;
+  } catch (const std::bad_alloc&) {
+    std::fputs("rigid: error: out of memory; the input asks for more memory than is available (see "
+               "--max-memory for runs)\n",
+               stderr);
+    return kExitRefused;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "rigid: error: %s\n", e.what());
-    return 1;
+    return kExitRefused;
   }
-  return 0;
+  return kExitOk;
 }

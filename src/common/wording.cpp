@@ -43,10 +43,44 @@ bool parse_reference(std::string_view text, std::string_view& key, std::string_v
   return true;
 }
 
+// The length of a leading "name(): " (a C++ function: letters, digits, '_' and "::"), or 0.
+std::size_t function_prefix(std::string_view text) {
+  std::size_t i = 0;
+  while (i < text.size() && (is_key_char(text[i]) || text[i] == ':')) ++i;
+  if (i == 0 || std::isalpha(static_cast<unsigned char>(text[0])) == 0) return 0;
+  return text.substr(i).starts_with("(): ") ? i + 4 : 0;
+}
+
 }  // namespace
 
-std::string word_for(Surface surface, std::string_view message) {
-  if (surface == Surface::kLibrary) return std::string(message);
+std::string strip_function_names(std::string_view message) {
+  // at the start, and after each "…: " that a front end put before the library's message
+  // (file:line:col: body 'b': make_primitive(): …)
+  std::string out;
+  out.reserve(message.size());
+  std::size_t i = 0;
+  bool at_start = true;
+  while (i < message.size()) {
+    if (at_start) {
+      if (const std::size_t n = function_prefix(message.substr(i)); n > 0) {
+        i += n;
+        continue;
+      }
+    }
+    at_start = message.substr(i).starts_with(": ");
+    if (at_start) {
+      out += ": ";
+      i += 2;
+      continue;
+    }
+    out += message[i++];
+  }
+  return out;
+}
+
+namespace {
+
+std::string word_settings(Surface surface, std::string_view message) {
   std::string out;
   out.reserve(message.size());
   std::size_t i = 0;
@@ -72,6 +106,13 @@ std::string word_for(Surface surface, std::string_view message) {
     out += message[i++];
   }
   return out;
+}
+
+}  // namespace
+
+std::string word_for(Surface surface, std::string_view message) {
+  if (surface == Surface::kLibrary) return std::string(message);
+  return word_settings(surface, strip_function_names(message));
 }
 
 }  // namespace rigid

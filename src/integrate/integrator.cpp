@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <vector>
 
 #include <Eigen/LU>
 #include <boost/numeric/odeint/integrate/null_observer.hpp>
+#include <boost/numeric/odeint/util/odeint_error.hpp>
 #include <boost/numeric/odeint/stepper/generation.hpp>
 #include <boost/numeric/odeint/stepper/runge_kutta4.hpp>
 #include <boost/numeric/odeint/stepper/runge_kutta_dopri5.hpp>
@@ -219,14 +221,18 @@ Solution run_dopri5(const Problem& p, const Options& o) {
   StdState x0(p.y0.data(), p.y0.data() + n);
   stepper.initialize(x0, p.t0, std::min(o.dt, p.t_end - p.t0));
   // output times of the one grid rule (dense output between steps), or every accepted step
+  StdState xo(static_cast<std::size_t>(n));
   std::optional<TimeGrid> grid;
   if (o.output_dt > 0) grid = TimeGrid::uniform(p.t0, p.t_end, o.output_dt);
-  StdState xo(static_cast<std::size_t>(n));
+  // the rows of a grid are known before the run (the front end checks them); only every-step
+  // sampling is capped here, as the rows come
+  const std::size_t max_outputs = grid ? TimeGrid::kMaxOutputs : std::min(control.max_outputs, TimeGrid::kMaxOutputs);
   auto sample = [&](double t, const StdState& state) {
-    RIGID_REQUIRE_AS("integrate", sol.t.size() < TimeGrid::kMaxOutputs,
-                  "dopri5 sampled every step for more than {} steps before t_end = {} s (at t = {} "
-                  "s); set an output spacing",
-                  TimeGrid::kMaxOutputs, p.t_end, t);
+    RIGID_REQUIRE_AS("integrate", sol.t.size() < max_outputs,
+                  "dopri5 without an output spacing records every step: more than {} rows before "
+                  "t_end = {} s (at t = {} s), the most this run may record; set an output spacing "
+                  "(output_dt)",
+                  max_outputs, p.t_end, t);
     sol.t.push_back(t);
     sol.y.emplace_back(Eigen::Map<const Eigen::VectorXd>(state.data(), n));
   };
@@ -238,11 +244,32 @@ Solution run_dopri5(const Problem& p, const Options& o) {
     RIGID_REQUIRE_AS("integrate", sol.steps < control.max_steps, "dopri5 took more than max_steps = {} steps before "
                   "t_end = {} s (at t = {} s)", control.max_steps, p.t_end, stepper.current_time());
     const double before = stepper.current_time();
-    stepper.do_step(sys);
+    try {
+      stepper.do_step(sys);
+    } catch (const odeint::step_adjustment_error&) {
+      // odeint gave up shrinking the step (500 rejections in a row)
+      detail::throw_error("integrate",
+                          fmt::format("dopri5 found no step size that meets the tolerance (rtol = {}, "
+                                      "atol = {}) at t = {} s after 500 rejected tries; the problem is "
+                                      "stiff or not smooth here: loosen the tolerance or use "
+                                      "implicit_midpoint",
+                                      o.rtol, o.atol, before));
+    }
     ++sol.steps;
     const StdState& xc = stepper.current_state();
     const double tc = stepper.current_time();
     h_last = tc - before;
+    // a step at the round-off of t: the time would stand still (and every-step output grow)
+    const double floor = kStepFloor * std::numeric_limits<double>::epsilon() *
+                         std::max(std::abs(before), p.t_end - p.t0);
+    if (!(h_last > floor) && tc < p.t_end) [[unlikely]] {
+      detail::throw_error("integrate",
+                          fmt::format("dopri5 step size underflow at t = {} s: the accepted step {} s "
+                                      "is at the round-off of t (below {} s), so time no longer "
+                                      "advances; the problem is stiff or singular here: loosen the "
+                                      "tolerance (rtol = {}) or use implicit_midpoint",
+                                      before, h_last, floor, o.rtol));
+    }
     const Eigen::Map<const Eigen::VectorXd> yc(xc.data(), n);
     if (auto bad = find_nonfinite(p, yc)) throw_nonfinite(*bad, sol.steps, tc, h_last);
     if (grid) {
@@ -299,9 +326,14 @@ Solution integrate(const Problem& problem, const Options& options) {
                 "dt must be positive and finite, got {} s", options.dt);
   RIGID_REQUIRE(std::isfinite(options.output_dt) && options.output_dt >= 0,
                 "output_dt must be ≥ 0 (0: every step), got {} s", options.output_dt);
-  RIGID_REQUIRE(options.rtol > 0 && options.atol > 0,
-                "tolerances must be positive, got rtol = {}, atol = {}", options.rtol,
+  RIGID_REQUIRE(options.rtol > 0 && options.atol > 0 && std::isfinite(options.rtol) &&
+                    std::isfinite(options.atol),
+                "tolerances must be positive and finite, got rtol = {}, atol = {}", options.rtol,
                 options.atol);
+  RIGID_REQUIRE(options.method != Method::kDopri5 || options.rtol >= kMinRelativeTolerance,
+                "dopri5 relative tolerance rtol = {} is below what double precision can deliver; "
+                "expected rtol ≥ {:.3g} (10 ε)",
+                options.rtol, kMinRelativeTolerance);
   if (auto bad = find_nonfinite(problem, problem.y0)) {
     RIGID_THROW("the initial state is not finite: {}{} = {}",
                 bad->owner.empty() ? "" : bad->owner + " ", bad->component, bad->value);

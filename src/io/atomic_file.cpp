@@ -2,14 +2,20 @@
 
 #include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <random>
 #include <string>
+#include <utility>
 #include <system_error>
 
 #include <fcntl.h>
+#include <signal.h>
 #include <unistd.h>
 
+#include <fmt/format.h>
+
+#include "detail/temporary.hpp"
 #include "rigid/common/error.hpp"
 
 namespace rigid::io {
@@ -18,6 +24,12 @@ namespace {
 // POSIX file descriptors are used (not std::ofstream) because only they give both a
 // reliable error code for every step and fsync before the rename.
 std::string errno_text() { return std::strerror(errno); }
+
+// The messages name the path, which is what a user acts on; no function name.
+template <typename... Args>
+void require(bool ok, fmt::format_string<Args...> format, Args&&... args) {
+  if (!ok) [[unlikely]] throw Error(fmt::format(format, std::forward<Args>(args)...));
+}
 
 class TempFile {
  public:
@@ -43,33 +55,67 @@ class TempFile {
 
 }  // namespace
 
+namespace detail {
+
+namespace {
+constexpr std::string_view kTag = ".rigid-tmp-";
+}  // namespace
+
+std::string temporary_name(std::string_view name) {
+  std::random_device seed;
+  return fmt::format(".{}{}{}-{:08x}", name, kTag, static_cast<long>(::getpid()), seed());
+}
+
+bool is_temporary_of(std::string_view entry, std::string_view name) {
+  const std::string prefix = fmt::format(".{}{}", name, kTag);
+  return entry.size() > prefix.size() && entry.substr(0, prefix.size()) == prefix;
+}
+
+void remove_stale_temporaries(const std::filesystem::path& dir, std::string_view name) {
+  std::error_code ec;
+  std::filesystem::directory_iterator it(dir, ec), end;
+  const std::size_t skip = name.size() + 1 + kTag.size();
+  for (; !ec && it != end; it.increment(ec)) {
+    const std::string entry = it->path().filename().string();
+    if (!is_temporary_of(entry, name)) continue;
+    // the process id follows the tag; a process that no longer exists left it behind
+    const long pid = std::strtol(entry.c_str() + skip, nullptr, 10);
+    if (pid <= 0 || pid == static_cast<long>(::getpid())) continue;
+    if (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH) continue;
+    std::error_code ignored;
+    std::filesystem::remove_all(it->path(), ignored);
+  }
+}
+
+}  // namespace detail
+
 void write_file_atomically(const std::filesystem::path& path, std::string_view contents) {
-  RIGID_REQUIRE(!path.empty(), "the output path is empty");
+  require(!path.empty(), "the output path is empty");
   const std::filesystem::path dir =
       path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
   std::error_code ec;
-  RIGID_REQUIRE(std::filesystem::is_directory(dir, ec),
+  require(std::filesystem::is_directory(dir, ec),
                 "cannot write '{}': directory '{}' does not exist", path.string(), dir.string());
 
-  std::random_device seed;
-  TempFile tmp(dir / fmt::format(".{}.tmp{:08x}", path.filename().string(), seed()));
+  detail::remove_stale_temporaries(dir, path.filename().string());
+  TempFile tmp(dir / detail::temporary_name(path.filename().string()));
   tmp.fd() = ::open(tmp.path().c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
-  RIGID_REQUIRE(tmp.fd() >= 0, "cannot write '{}': {}", path.string(), errno_text());
+  require(tmp.fd() >= 0, "cannot write '{}': {}", path.string(), errno_text());
 
   const char* data = contents.data();
   std::size_t left = contents.size();
   while (left > 0) {
     const ssize_t n = ::write(tmp.fd(), data, left);
     if (n < 0 && errno == EINTR) continue;
-    RIGID_REQUIRE(n > 0, "cannot write '{}': {}", path.string(), errno_text());
+    require(n > 0, "cannot write '{}': {}", path.string(), errno_text());
     data += n;
     left -= static_cast<std::size_t>(n);
   }
-  RIGID_REQUIRE(::fsync(tmp.fd()) == 0, "cannot write '{}': {}", path.string(), errno_text());
+  require(::fsync(tmp.fd()) == 0, "cannot write '{}': {}", path.string(), errno_text());
   const int fd = tmp.fd();
   tmp.fd() = -1;
-  RIGID_REQUIRE(::close(fd) == 0, "cannot write '{}': {}", path.string(), errno_text());
-  RIGID_REQUIRE(std::rename(tmp.path().c_str(), path.c_str()) == 0, "cannot write '{}': {}",
+  require(::close(fd) == 0, "cannot write '{}': {}", path.string(), errno_text());
+  require(std::rename(tmp.path().c_str(), path.c_str()) == 0, "cannot write '{}': {}",
                 path.string(), errno_text());
   tmp.commit();
 }

@@ -2,9 +2,13 @@
 
 #include <cctype>
 #include <cmath>
+#include <new>
 #include <sstream>
+#include <stdexcept>
 #include <vector>
 
+#include <cln/exception.h>
+#include <cln/float.h>
 #include <fmt/format.h>
 
 namespace rigid::lagrange::detail {
@@ -22,6 +26,38 @@ void throw_at(const Expression& expression, std::size_t offset, std::string_view
 
 namespace {
 
+// What a failure inside GiNaC or CLN means for the user: their texts ("log_eval(): log(0)",
+// "floating point underflow.") name internals, so each kind gets a sentence of its own.
+std::string reason_of_library_failure(const std::exception& e) {
+  if (dynamic_cast<const GiNaC::pole_error*>(&e) != nullptr || dynamic_cast<const cln::division_by_0_exception*>(&e) != nullptr) {
+    return "has a pole here (a division by zero, log(0), tan(pi/2), 0 to a negative power); "
+           "expected a finite value";
+  }
+  if (dynamic_cast<const cln::floating_point_underflow_exception*>(&e) != nullptr) {
+    return "underflows: a value is closer to 0 than the smallest positive double (about 1e-308)";
+  }
+  if (dynamic_cast<const cln::floating_point_overflow_exception*>(&e) != nullptr) {
+    return "overflows: a value is larger than the largest double (about 1.8e308)";
+  }
+  if (dynamic_cast<const std::bad_alloc*>(&e) != nullptr) {
+    return "needs more memory than is available to evaluate";
+  }
+  if (dynamic_cast<const std::domain_error*>(&e) != nullptr) {
+    return "is undefined here (outside the domain of a function, or 0^0)";
+  }
+  return "cannot be evaluated to a number";
+}
+
+// log10 |x| of a non-zero real number, also beyond the range of a double (a rational such as
+// 10^400 has no double value; its digits are counted instead)
+double log10_abs(const GiNaC::numeric& x) {
+  const double v = std::abs(x.to_double());
+  if (v > 0 && std::isfinite(v)) return std::log10(v);
+  if (!x.is_rational()) return v > 0 ? 400.0 : -400.0;
+  return (static_cast<double>(x.numer().int_length()) - static_cast<double>(x.denom().int_length())) *
+         std::log10(2.0);
+}
+
 // recursive descent over
 //   sum     = product { ("+" | "-") product }
 //   product = unary { ("*" | "/") unary }
@@ -35,6 +71,11 @@ class Parser {
       : e_(e), s_(e.text), names_(names), context_(context) {}
 
   GiNaC::ex parse() {
+    if (s_.size() > kMaxExpressionLength) {
+      fail(0, fmt::format("the expression is {} characters long, more than the {} an expression "
+                          "may have; split it into parameters",
+                          s_.size(), kMaxExpressionLength));
+    }
     skip();
     if (pos_ >= s_.size()) fail(pos_, "empty expression; expected a number, a name or '('");
     GiNaC::ex value = sum();
@@ -49,6 +90,26 @@ class Parser {
   [[noreturn]] void fail(std::size_t at, const std::string& reason) const {
     throw_at(e_, at, context_, reason);
   }
+  // One level of nesting (parentheses, a function's argument, a sign, an exponent) for the
+  // lifetime of the guard; the recursion (and GiNaC's own, on the tree it builds) stays far
+  // from the end of the stack.
+  class Nest {
+   public:
+    Nest(Parser& p, std::size_t at) : p_(p) {
+      if (++p_.depth_ > kMaxExpressionDepth) {
+        p_.fail(at, fmt::format("the expression nests deeper than {} levels (parentheses, "
+                                "function arguments, signs and exponents); simplify it or "
+                                "split it into parameters",
+                                kMaxExpressionDepth));
+      }
+    }
+    ~Nest() { --p_.depth_; }
+    Nest(const Nest&) = delete;
+    Nest& operator=(const Nest&) = delete;
+
+   private:
+    Parser& p_;
+  };
   void skip() {
     while (pos_ < s_.size() && std::isspace(static_cast<unsigned char>(s_[pos_]))) ++pos_;
   }
@@ -60,49 +121,112 @@ class Parser {
     }
     return false;
   }
+  // Terms and factors are collected and handed to GiNaC once: adding them one by one
+  // would copy the growing sum each time (quadratic in the number of terms).
   GiNaC::ex sum() {
-    GiNaC::ex v = product();
+    GiNaC::exvector terms{product()};
     for (;;) {
       if (accept('+')) {
-        v += product();
+        terms.push_back(product());
       } else if (accept('-')) {
-        v -= product();
+        terms.push_back(-product());
       } else {
-        return v;
+        return terms.size() == 1 ? terms.front() : GiNaC::ex(GiNaC::add(terms));
       }
     }
   }
   GiNaC::ex product() {
-    GiNaC::ex v = unary();
+    GiNaC::exvector factors{unary()};
+    auto done = [&] { return factors.size() == 1 ? factors.front() : GiNaC::ex(GiNaC::mul(factors)); };
     for (;;) {
       skip();
-      if (pos_ + 1 < s_.size() && s_[pos_] == '*' && s_[pos_ + 1] == '*') return v;
+      if (pos_ + 1 < s_.size() && s_[pos_] == '*' && s_[pos_ + 1] == '*') return done();
       if (accept('*')) {
-        v *= unary();
+        factors.push_back(unary());
       } else if (accept('/')) {
         const std::size_t at = pos_;
         GiNaC::ex d = unary();
         if (d.is_zero()) fail(at, "division by zero");
-        v /= d;
+        factors.push_back(guarded(at, [&] { return GiNaC::pow(d, -1); }));
       } else {
-        return v;
+        return done();
       }
     }
   }
   GiNaC::ex unary() {
-    if (accept('-')) return -unary();
-    if (accept('+')) return unary();
+    skip();
+    const std::size_t at = pos_;
+    if (accept('-')) {
+      const Nest nest(*this, at);
+      return -unary();
+    }
+    if (accept('+')) {
+      const Nest nest(*this, at);
+      return unary();
+    }
     return power();
   }
   GiNaC::ex power() {
     GiNaC::ex base = primary();
     skip();
-    if (accept('^')) return GiNaC::pow(base, unary());
-    if (pos_ + 1 < s_.size() && s_[pos_] == '*' && s_[pos_ + 1] == '*') {
+    const std::size_t at = pos_;
+    if (accept('^')) {
+    } else if (pos_ + 1 < s_.size() && s_[pos_] == '*' && s_[pos_ + 1] == '*') {
       pos_ += 2;
-      return GiNaC::pow(base, unary());
+    } else {
+      return base;
     }
-    return base;
+    const Nest nest(*this, at);
+    const GiNaC::ex exponent = unary();
+    return raise(base, exponent, at);
+  }
+  // base^exponent. GiNaC evaluates a power of two numbers at once, exactly for rationals:
+  // 9^9^9 would be an integer of 370 million digits (minutes and gigabytes). So the size of
+  // the result is estimated first: a magnitude beyond 10^±kMaxPowerDigits is refused (no finite
+  // double comes out of it), and an exact result longer than kMaxExactPowerBits is computed in
+  // floating point instead (GiNaC's Digits, at least 17 significant digits).
+  GiNaC::ex raise(const GiNaC::ex& base, const GiNaC::ex& exponent, std::size_t at) const {
+    if (GiNaC::is_a<GiNaC::numeric>(base) && GiNaC::is_a<GiNaC::numeric>(exponent)) {
+      const auto& b = GiNaC::ex_to<GiNaC::numeric>(base);
+      const auto& e = GiNaC::ex_to<GiNaC::numeric>(exponent);
+      if (b.is_zero()) {
+        if (e.is_zero()) fail(at, "0^0 is undefined; expected a base or an exponent other than 0");
+        if (!e.is_real() || !e.is_positive()) fail(at, "0 to a negative power is a division by zero");
+        return 0;
+      }
+      if (b.is_real() && e.is_real() && !e.is_zero()) {
+        // the result is about 10^(e·log10|b|): compared through logarithms, so nothing overflows
+        const double lb = log10_abs(b);
+        const double digits = std::log10(std::abs(lb)) + log10_abs(e);
+        if (lb != 0 && digits > std::log10(kMaxPowerDigits)) {
+          const bool large = (lb > 0) == e.is_positive();
+          fail(at, fmt::format("the power is about 10^{}{:.4g}, far beyond any finite double (a "
+                               "power may reach 10^±{}); check the exponent",
+                               large ? "" : "-", std::pow(10.0, digits), kMaxPowerDigits));
+        }
+        if (b.is_rational() && e.is_rational() && lb != 0) {
+          const double bits = (static_cast<double>(b.numer().int_length()) +
+                               static_cast<double>(b.denom().int_length())) *
+                              std::abs(e.to_double());
+          if (!(bits <= kMaxExactPowerBits)) {
+            return guarded(at, [&] { return GiNaC::pow(b.evalf(), e); });
+          }
+        }
+      }
+    }
+    return guarded(at, [&] { return GiNaC::pow(base, exponent); });
+  }
+  // Runs a GiNaC construction that may evaluate (a pole, an overflow) and reports its failure
+  // at `at`.
+  template <typename F>
+  GiNaC::ex guarded(std::size_t at, F&& f) const {
+    try {
+      return f();
+    } catch (const Error&) {
+      throw;  // the parser's own refusal (an unknown function), already located
+    } catch (const std::exception& e) {
+      fail(at, "the expression " + reason_of_library_failure(e));
+    }
   }
   GiNaC::ex number() {
     // digits [. digits] [e|E [+-] digits] as an exact rational
@@ -145,6 +269,7 @@ class Parser {
     if (std::isdigit(static_cast<unsigned char>(c)) || c == '.') return number();
     if (c == '(') {
       const std::size_t open = pos_++;
+      const Nest nest(*this, open);
       GiNaC::ex v = sum();
       if (!accept(')')) fail(pos_ < s_.size() ? pos_ : open, "missing ')' closing the '(' here");
       return v;
@@ -158,10 +283,11 @@ class Parser {
       const std::string name = s_.substr(start, pos_ - start);
       skip();
       if (pos_ < s_.size() && s_[pos_] == '(') {
+        const Nest nest(*this, pos_);
         ++pos_;
         const GiNaC::ex arg = sum();
         if (!accept(')')) fail(pos_, fmt::format("missing ')' after the argument of {}", name));
-        return apply(name, arg, start);
+        return guarded(start, [&] { return apply(name, arg, start); });
       }
       if (name == "pi") return GiNaC::Pi;
       auto it = names_.find(name);
@@ -197,6 +323,7 @@ class Parser {
   const std::map<std::string, GiNaC::ex>& names_;
   std::string_view context_;
   std::size_t pos_ = 0;
+  std::size_t depth_ = 0;
 };
 
 }  // namespace
@@ -204,7 +331,18 @@ class Parser {
 GiNaC::ex parse_expression(const Expression& expression,
                            const std::map<std::string, GiNaC::ex>& names,
                            std::string_view context) {
-  return Parser(expression, names, context).parse();
+  const GiNaC::ex value = Parser(expression, names, context).parse();
+  // a complex number inside (sqrt(-1) is I) has no place in the real model
+  for (auto it = value.preorder_begin(); it != value.preorder_end(); ++it) {
+    if (GiNaC::is_a<GiNaC::numeric>(*it) && !GiNaC::ex_to<GiNaC::numeric>(*it).is_real()) {
+      std::ostringstream text;
+      text << *it;
+      throw_at(expression, 0, context,
+               fmt::format("'{}' holds the complex number {}; expected a real expression", expression.text,
+                           text.str()));
+    }
+  }
+  return value;
 }
 
 }  // namespace rigid::lagrange::detail
@@ -218,7 +356,14 @@ double evaluate_constant(const Expression& expression, const std::vector<Paramet
   }
   std::map<std::string, GiNaC::ex> names;
   for (const Parameter& p : parameters) names[p.name] = GiNaC::numeric(p.value);
-  const GiNaC::ex value = detail::parse_expression(expression, names, context).evalf();
+  const GiNaC::ex parsed = detail::parse_expression(expression, names, context);
+  GiNaC::ex value;
+  try {
+    value = parsed.evalf();
+  } catch (const std::exception& e) {
+    detail::throw_at(expression, 0, context,
+                     fmt::format("'{}' {}", expression.text, detail::reason_of_library_failure(e)));
+  }
   if (GiNaC::is_a<GiNaC::numeric>(value)) {
     const auto& n = GiNaC::ex_to<GiNaC::numeric>(value);
     if (n.is_real()) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <cmath>
 #include <optional>
 
@@ -15,6 +16,7 @@
 #include "rigid/body/rigid_body.hpp"
 #include "rigid/common/error.hpp"
 #include "rigid/common/wording.hpp"
+#include "rigid/integrate/integrator.hpp"
 #include "rigid/mass/primitive_table.hpp"
 #include "rigid/mass/primitives.hpp"
 #include "rigid/mesh/mass_from_file.hpp"
@@ -276,7 +278,15 @@ struct Model::Impl {
     };
     t_end = positive(s.t_end, "t_end", "s");
     if (s.dt) dt = positive(*s.dt, "dt", "s");
-    if (s.tolerance) tolerance = positive(*s.tolerance, "tolerance", "");
+    if (s.tolerance) {
+      tolerance = positive(*s.tolerance, "tolerance", "");
+      if (tolerance < integrate::kMinRelativeTolerance) {
+        detail::throw_error_at(s.tolerance->where,
+                               fmt::format("[simulation] tolerance = {} is below what double precision "
+                                           "can deliver; expected at least {:.3g} (10 ε)",
+                                           tolerance, integrate::kMinRelativeTolerance));
+      }
+    }
     if (s.output_dt) output_dt = positive(*s.output_dt, "output_dt", "s");
     if (output_dt > t_end) {
       detail::throw_error_at(s.output_dt->where, fmt::format("[simulation] output_dt = {} s is longer than "
@@ -285,7 +295,64 @@ struct Model::Impl {
     }
     // the output grid is made (and refused when too fine) before anything runs
     const double spacing = output_dt > 0 ? output_dt : dt;
-    at_location(s.where, "[simulation]", [&] { return integrate::TimeGrid::uniform(0.0, t_end, spacing); });
+    const SourceLocation& at = s.output_dt ? s.output_dt->where : s.dt ? s.dt->where : s.where;
+    at_location(at, "[simulation]", [&] { return integrate::TimeGrid::uniform(0.0, t_end, spacing); });
+  }
+
+  // The columns of a run's trajectory (before [output] quantities selects some).
+  [[nodiscard]] std::vector<std::string> columns() const {
+    std::vector<std::string> cols{"t"};
+    if (kind == SceneKind::kCoordinates) {
+      for (const auto& c : system->coordinate_names()) cols.push_back(c);
+      for (const auto& c : system->coordinate_names()) cols.push_back(c + "_dot");
+      for (const auto& b : system->body_names()) add_pose_columns(cols, b);
+      cols.push_back("energy");
+      cols.push_back("jacobi");
+      for (const auto& c : system->constraint_names()) cols.push_back("lambda_" + c);
+      if (!system->constraint_names().empty()) cols.push_back("constraint_residual");
+      for (const auto& c : system->cyclic_coordinates()) cols.push_back("p_" + c);
+    } else {
+      for (const FreeBody& f : free) {
+        add_pose_columns(cols, f.name);
+        for (const char* c : {"vx", "vy", "vz", "wx", "wy", "wz", "Lx", "Ly", "Lz"}) cols.push_back(f.name + "." + c);
+      }
+      cols.push_back("energy");
+    }
+    return cols;
+  }
+
+  [[nodiscard]] std::uint64_t max_memory(const RunOptions& o) const {
+    if (o.max_memory) return *o.max_memory;
+    if (scene.output.max_memory) return *scene.output.max_memory;
+    return io::kDefaultMaxMemory;
+  }
+
+  // What a run would refuse, found before it runs: more rows than the memory limit allows
+  // (rows × columns × 8 bytes), more steps than a run may take. Returns the most rows dopri5
+  // may record when it samples every step (their number is known only while it runs).
+  std::size_t check_budget(const Method& method, const RunOptions& o) const {
+    const Simulation& s = scene.simulation;
+    const std::size_t cols = columns().size();
+    const std::uint64_t limit = max_memory(o);
+    const bool every_step = kind == SceneKind::kCoordinates && method.coordinates == integrate::Method::kDopri5 &&
+                            !(output_dt > 0);
+    const integrate::TimeGrid grid = integrate::TimeGrid::uniform(0.0, t_end, output_dt > 0 ? output_dt : dt);
+    if (!every_step) io::check_trajectory_memory(grid.size(), cols, limit);
+    const bool fixed_steps = kind == SceneKind::kFreeBodies ? !method.exact
+                                                            : method.coordinates != integrate::Method::kDopri5;
+    if (fixed_steps) {
+      // the step counts of the march (TimeGrid::steps_in), without stepping
+      const std::size_t max_steps = kind == SceneKind::kFreeBodies ? o.control.max_steps
+                                                                   : std::min(o.control.max_steps, integrate::Options{}.max_steps);
+      const SourceLocation& at = s.dt ? s.dt->where : s.where;
+      at_location(at, "[simulation] dt", [&] {
+        std::size_t total = 0;
+        for (std::size_t k = 0; k < grid.size(); ++k) total += grid.steps_in(k, dt, max_steps - total);
+        return total;
+      });
+    }
+    return static_cast<std::size_t>(std::min<double>(static_cast<double>(limit) / (8.0 * static_cast<double>(cols)),
+                                                     static_cast<double>(integrate::TimeGrid::kMaxOutputs)));
   }
 
   void build_coordinates(const std::vector<lagrange::BodyMass>& masses) {
@@ -468,7 +535,10 @@ Method Model::Impl::parse_method(const std::string& requested) const {
       }
     }
   } catch (const Error& e) {
-    if (from_scene) detail::throw_error_at(scene.simulation.where, fmt::format("[simulation] integrator: {}", e.what()));
+    if (from_scene) {
+      detail::throw_error_at(scene.simulation.where,
+                             fmt::format("[simulation] integrator: {}", word_for(Surface::kScene, e.what())));
+    }
     throw;
   }
   return method;
@@ -523,6 +593,7 @@ std::string Model::equations(bool latex) const {
 void Model::check(const RunOptions& options) const {
   const Impl& m = *impl_;
   const Method method = m.parse_method(options.integrator);
+  (void)m.check_budget(method, options);
   if (m.kind == SceneKind::kCoordinates) {
     // one output interval runs every check of a full run: initial consistency, the mass
     // matrix, the step and output spacing
@@ -532,7 +603,9 @@ void Model::check(const RunOptions& options) const {
     so.tolerance = m.tolerance;
     so.output_dt = m.output_dt;
     so.t_end = m.output_dt > 0 ? m.output_dt : std::min(m.t_end, m.dt);
-    (void)m.system->simulate(so);
+    // a failure here is the model's at its start, with the run's settings
+    (void)at_location(m.scene.simulation.where, "[simulation] the first output interval",
+                      [&] { return m.system->simulate(so); });
   }
 }
 
@@ -576,9 +649,11 @@ io::Table select_columns(const io::Table& table, const std::vector<std::string>&
 
 RunResult Model::run(const RunOptions& options) const {
   const Method method = impl_->parse_method(options.integrator);
+  RunOptions o = options;
+  o.control.max_outputs = std::min(o.control.max_outputs, impl_->check_budget(method, options));
   const auto start = Clock::now();
-  RunResult r = impl_->kind == SceneKind::kCoordinates ? impl_->run_coordinates(method, options)
-                                                       : impl_->run_free(method, options);
+  RunResult r = impl_->kind == SceneKind::kCoordinates ? impl_->run_coordinates(method, o)
+                                                       : impl_->run_free(method, o);
   r.summary.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
   r.summary.scene = impl_->scene.file.string();
   r.summary.integrator = method.name;
@@ -594,7 +669,9 @@ RunResult Model::run(const RunOptions& options) const {
 std::filesystem::path Model::output_directory(const std::string& requested) const {
   if (!requested.empty()) return requested;
   if (!impl_->scene.output.directory.empty()) return impl_->scene.output.directory;
-  return "out";
+  // one directory per scene: runs of different scenes never mix their files
+  const std::string stem = impl_->scene.file.stem().string();
+  return std::filesystem::path("out") / (stem.empty() ? std::string("scene") : stem);
 }
 
 std::vector<io::OutputFormat> Model::output_formats(const std::vector<std::string>& requested) const {
@@ -615,18 +692,8 @@ RunResult Model::Impl::run_coordinates(const Method& method, const RunOptions& o
   so.control = o.control;
   const lagrange::Trajectory tr = system->simulate(so);
 
-  std::vector<std::string> cols{"t"};
-  for (const auto& c : tr.coordinate_names) cols.push_back(c);
-  for (const auto& c : tr.coordinate_names) cols.push_back(c + "_dot");
-  for (const auto& b : system->body_names()) add_pose_columns(cols, b);
-  cols.push_back("energy");
-  cols.push_back("jacobi");
-  for (const auto& c : tr.constraint_names) cols.push_back("lambda_" + c);
-  if (!tr.constraint_names.empty()) cols.push_back("constraint_residual");
-  for (const auto& c : tr.cyclic_names) cols.push_back("p_" + c);
-
   RunResult r;
-  r.trajectory = io::Table(cols);
+  r.trajectory = io::Table(columns());
   lagrange::Workspace workspace = system->make_workspace();
   std::vector<Eigen::Vector4d> previous(system->body_names().size(), Eigen::Vector4d(1, 0, 0, 0));
   std::vector<double> row;
@@ -670,14 +737,8 @@ RunResult Model::Impl::run_coordinates(const Method& method, const RunOptions& o
 }
 
 RunResult Model::Impl::run_free(const Method& method, const RunOptions& o) const {
-  std::vector<std::string> cols{"t"};
-  for (const FreeBody& f : free) {
-    add_pose_columns(cols, f.name);
-    for (const char* c : {"vx", "vy", "vz", "wx", "wy", "wz", "Lx", "Ly", "Lz"}) cols.push_back(f.name + "." + c);
-  }
-  cols.push_back("energy");
   RunResult r;
-  r.trajectory = io::Table(cols);
+  r.trajectory = io::Table(columns());
 
   const integrate::TimeGrid grid = integrate::TimeGrid::uniform(0.0, t_end, output_dt > 0 ? output_dt : dt);
   std::vector<body::RigidBodyState> state;

@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cctype>
 #include <charconv>
+#include <cerrno>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 
@@ -11,6 +14,7 @@
 #include <toml++/toml.h>
 
 #include "rigid/common/did_you_mean.hpp"
+#include "rigid/io/run_output.hpp"
 #include "rigid/lagrange/system.hpp"
 #include "rigid/mass/primitive_table.hpp"
 
@@ -80,8 +84,7 @@ class Parser {
       return e;
     }
     if (n.is_number()) {
-      const double v = n.value<double>().value();
-      if (!std::isfinite(v)) fail(n, fmt::format("{} is {}; expected a finite number", what, v));
+      const double v = finite(n, what);
       e.number = v;
       e.text = fmt::format("{}", v);
       return e;
@@ -117,7 +120,23 @@ class Parser {
 
   [[nodiscard]] double number(const toml::node& n, std::string_view what) const {
     if (!n.is_number()) fail(n, fmt::format("{} must be a number, got {}", what, type_name(n)));
-    const double v = n.value<double>().value();
+    return finite(n, what);
+  }
+
+  // The double of a TOML number: a float as written (finite), an integer only if a double holds
+  // it exactly (|n| ≤ 2^53; above, toml++ gives no double and the value would be rounded).
+  [[nodiscard]] double finite(const toml::node& n, std::string_view what) const {
+    if (auto i = n.as_integer()) {
+      const std::int64_t v = i->get();
+      constexpr std::int64_t kExact = std::int64_t{1} << 53;
+      if (v > kExact || v < -kExact) {
+        fail(n, fmt::format("{} is the integer {}, beyond the integers a double holds exactly (|n| ≤ "
+                            "2^53 = {}); write it as a float (e.g. {:.16e}) to accept rounding",
+                            what, v, kExact, static_cast<double>(v)));
+      }
+      return static_cast<double>(v);
+    }
+    const double v = n.as_floating_point()->get();
     if (!std::isfinite(v)) fail(n, fmt::format("{} is {}; expected a finite number", what, v));
     return v;
   }
@@ -177,6 +196,19 @@ class Parser {
  private:
   std::filesystem::path file_;
 };
+
+// |v| without overflow or underflow in the squares (components up to 1e308): scaled by the
+// largest component first.
+double safe_norm(const std::array<double, 3>& v) {
+  const double scale = std::max({std::abs(v[0]), std::abs(v[1]), std::abs(v[2])});
+  if (!(scale > 0)) return 0.0;
+  const double x = v[0] / scale, y = v[1] / scale, z = v[2] / scale;
+  return scale * std::sqrt(x * x + y * y + z * z);
+}
+
+// The largest initial rotation angle (rad): a million turns, where its rounding is still below
+// 1e-9 rad.
+constexpr double kMaxAngle = 2 * 3.141592653589793 * 1e6;
 
 // A size alias "<group>_<digit>" (size_0, semi_axes_1) makes "<group>" a key that takes an
 // array: size = [lx, ly, lz] gives size_0, size_1, size_2.
@@ -385,9 +417,15 @@ void parse_pose(const Parser& p, const toml::table& t, const std::string& contex
       p.check_keys(rt, "initial_rotation", {"axis", "angle"});
       const auto axis = p.vector3(p.required(rt, n->source(), "axis", "initial_rotation"), "axis");
       const double angle = p.number(p.required(rt, n->source(), "angle", "initial_rotation"), "angle");
-      const double len = std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
+      const double len = safe_norm(axis);
       if (!(len > 0)) p.fail(*n, "initial_rotation axis is zero; expected a non-zero vector");
-      const double s = std::sin(angle / 2) / len;
+      if (!(std::abs(angle) <= kMaxAngle)) {
+        p.fail(*n, fmt::format("initial_rotation angle {} rad is more than a million turns; expected "
+                               "|angle| ≤ {:.6g} rad",
+                               angle, kMaxAngle));
+      }
+      const double scale = std::max({std::abs(axis[0]), std::abs(axis[1]), std::abs(axis[2])});
+      const double s = std::sin(angle / 2) / (len / scale) / scale;
       body.initial_orientation = {std::cos(angle / 2), axis[0] * s, axis[1] * s, axis[2] * s};
     }
     return;
@@ -416,9 +454,10 @@ void parse_pose(const Parser& p, const toml::table& t, const std::string& contex
       p.check_keys(rt, context + " rotation", {"axis", "angle"});
       AxisRotation r;
       r.axis = p.vector3(p.required(rt, e.source(), "axis", context + " rotation"), "axis");
-      const double len = std::sqrt(r.axis[0] * r.axis[0] + r.axis[1] * r.axis[1] + r.axis[2] * r.axis[2]);
+      const double len = safe_norm(r.axis);
       if (!(len > 0)) p.fail(*rt.get("axis"), "rotation axis is zero; expected a non-zero vector");
-      for (double& c : r.axis) c /= len;
+      const double scale = std::max({std::abs(r.axis[0]), std::abs(r.axis[1]), std::abs(r.axis[2])});
+      for (double& c : r.axis) c = c / scale / (len / scale);
       r.angle = p.expression(p.required(rt, e.source(), "angle", context + " rotation"), "angle");
       body.rotations.push_back(std::move(r));
     }
@@ -508,7 +547,9 @@ Scene parse_document(const toml::table& root, const Parser& p) {
     p.check_keys(t, ctx, {"body_a", "point_a", "body_b", "point_b", "stiffness", "rest_length"});
     Spring sp;
     sp.where = p.where(t.source());
-    sp.body_a = p.string(p.required(t, t.source(), "body_a", ctx), "body_a");
+    const toml::node& body_a = p.required(t, t.source(), "body_a", ctx);
+    sp.body_a = p.string(body_a, "body_a");
+    if (sp.body_a.empty()) p.fail(body_a, ctx + " body_a is empty; expected the name of a body");
     if (auto n = t.get("point_a")) sp.point_a = p.vector3(*n, "point_a");
     if (auto n = t.get("body_b")) sp.body_b = p.string(*n, "body_b");
     if (auto n = t.get("point_b")) sp.point_b = p.vector3(*n, "point_b");
@@ -538,7 +579,23 @@ Scene parse_document(const toml::table& root, const Parser& p) {
 
   if (auto n = root.get("output")) {
     const toml::table& ot = p.table(*n, "[output]");
-    p.check_keys(ot, "[output]", {"directory", "formats", "quantities"});
+    p.check_keys(ot, "[output]", {"directory", "formats", "quantities", "max_memory"});
+    if (auto m = ot.get("max_memory")) {
+      s.output.max_memory_where = p.where(m->source());
+      if (auto i = m->as_integer(); i != nullptr && i->get() > 0) {
+        s.output.max_memory = static_cast<std::uint64_t>(i->get());
+      } else if (auto text = m->as_string()) {
+        try {
+          s.output.max_memory = io::parse_memory_size(text->get());
+        } catch (const Error& e) {
+          p.fail(*m, fmt::format("[output] max_memory: {}", e.what()));
+        }
+      } else {
+        p.fail(*m, fmt::format("[output] max_memory must be a positive number of bytes or a size such "
+                               "as \"512MiB\", got {}",
+                               m->is_integer() ? "a number ≤ 0" : Parser::type_name(*m)));
+      }
+    }
     if (auto q = ot.get("quantities")) {
       const toml::array* a = q->as_array();
       if (a == nullptr) {
@@ -631,18 +688,64 @@ Scene parse_scene(std::string_view toml_text, const std::filesystem::path& file)
   try {
     root = toml::parse(toml_text, file.string());
   } catch (const toml::parse_error& e) {
-    detail::throw_error_at(p.where(e.source()),
-                           fmt::format("TOML syntax error: {}", e.description()));
+    // toml++ says "Error while parsing key-value pair: cannot redefine …": the reason, with the
+    // construct it was reading as context
+    std::string_view text = e.description();
+    std::string context;
+    constexpr std::string_view kLead = "Error while parsing ";
+    if (text.starts_with(kLead)) {
+      const auto colon = text.find(": ");
+      if (colon != std::string_view::npos) {
+        context = fmt::format(" in a {}", text.substr(kLead.size(), colon - kLead.size()));
+        text.remove_prefix(colon + 2);
+      }
+    }
+    detail::throw_error_at(p.where(e.source()), fmt::format("TOML syntax error{}: {}", context, text));
   }
   return parse_document(root, p);
 }
 
 Scene load_scene(const std::filesystem::path& file) {
+  // only a regular file of at most kMaxSceneFileBytes is read: a device (/dev/zero), a FIFO or
+  // a directory would otherwise be read without end, or fail with the system's words
+  std::error_code ec;
+  const std::filesystem::file_status st = std::filesystem::status(file, ec);
+  if (ec || !std::filesystem::exists(st)) {
+    throw Error(fmt::format("cannot open scene file '{}': {}", file.string(),
+                            ec ? ec.message() : "no such file"));
+  }
+  if (std::filesystem::is_directory(st)) {
+    throw Error(fmt::format("scene file '{}' is a directory; expected a TOML file", file.string()));
+  }
+  if (!std::filesystem::is_regular_file(st)) {
+    throw Error(fmt::format("scene file '{}' is not a regular file (a device, a pipe or a socket); "
+                            "expected a TOML file",
+                            file.string()));
+  }
+  const std::uintmax_t size = std::filesystem::file_size(file, ec);
+  if (!ec && size > kMaxSceneFileBytes) {
+    throw Error(fmt::format("scene file '{}' has {} bytes, more than the {} (16 MiB) a scene may "
+                            "have",
+                            file.string(), size, kMaxSceneFileBytes));
+  }
   std::ifstream in(file, std::ios::binary);
-  RIGID_REQUIRE(in.good(), "cannot open scene file '{}'", file.string());
-  std::stringstream text;
-  text << in.rdbuf();
-  return parse_scene(text.str(), file);
+  if (!in.good()) {
+    throw Error(fmt::format("cannot open scene file '{}': {}", file.string(), std::strerror(errno)));
+  }
+  // read in chunks up to one byte past the cap (the file may have grown since it was measured)
+  std::string text;
+  char chunk[65536];
+  while (text.size() <= kMaxSceneFileBytes && in.read(chunk, sizeof chunk).gcount() > 0) {
+    text.append(chunk, static_cast<std::size_t>(in.gcount()));
+  }
+  if (in.bad()) {
+    throw Error(fmt::format("cannot read scene file '{}': {}", file.string(), std::strerror(errno)));
+  }
+  if (text.size() > kMaxSceneFileBytes) {
+    throw Error(fmt::format("scene file '{}' has more than the {} bytes (16 MiB) a scene may have",
+                            file.string(), kMaxSceneFileBytes));
+  }
+  return parse_scene(text, file);
 }
 
 void apply_overrides(Scene& scene, const std::vector<std::string>& assignments) {

@@ -93,7 +93,7 @@ def test_sdf_output_parses(run):
 @pytest.mark.parametrize("args,message", [
     (("cone", "--radius", 0.3, "--height", 1), "give exactly one of --mass (kg) and --density (kg/m³), got neither"),
     (("cone", "--radius", 0.3, "--height", 1, "--mass", 1, "--density", 2), "got both"),
-    (("cone", "--radius", -0.3, "--height", 1, "--mass", 1), "solid_cone_with_mass(): radius must be positive and finite, got -0.3 m"),
+    (("cone", "--radius", -0.3, "--height", 1, "--mass", 1), "radius must be positive and finite, got -0.3 m"),
     (("cone", "--radius", "nan", "--height", 1, "--mass", 1), "radius must be positive and finite, got nan m"),
     (("cone", "--radius", "inf", "--height", 1, "--mass", 1), "got inf m"),
     (("cone", "--radius", 0, "--height", 1, "--mass", 1), "got 0 m"),

@@ -34,5 +34,18 @@ TEST(Wording, OtherBackticksAreLeftAlone) {
   EXPECT_EQ(word_for(Surface::kCli, "unterminated `units = \"mm"), "unterminated `units = \"mm");
 }
 
+// A front end's user never called the C++ function that RIGID_REQUIRE names: the front ends'
+// wording leaves it out, at the start and after the context a front end put before it.
+TEST(Wording, FrontEndsDropCppFunctionNames) {
+  EXPECT_EQ(word_for(Surface::kCli, "uniform(): 1 s of output"), "1 s of output");
+  EXPECT_EQ(word_for(Surface::kScene, "s.toml:3:1: body 'b': make_primitive(): radius must be positive"),
+            "s.toml:3:1: body 'b': radius must be positive");
+  EXPECT_EQ(word_for(Surface::kPython, "rigid::io::write_run(): cannot write"), "cannot write");
+  // the library keeps them (a C++ caller knows the entry point); calls in a text stay
+  EXPECT_EQ(word_for(Surface::kLibrary, "uniform(): x"), "uniform(): x");
+  EXPECT_EQ(word_for(Surface::kCli, "the value of sqrt(): 2"), "the value of sqrt(): 2");
+  EXPECT_EQ(strip_function_names("a: b(): c: d(): e"), "a: c: e");
+}
+
 }  // namespace
 }  // namespace rigid

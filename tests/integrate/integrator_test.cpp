@@ -122,5 +122,44 @@ TEST(Integrator, StopsOnNonFiniteStateNamingTheComponent) {
   EXPECT_RIGID_ERROR((void)integrate(p, Options{.method = Method::kRk4, .dt = 0.1}), "x = ");
 }
 
+// rtol = 1e-300 never advanced (dopri5's error estimate is round-off, the step shrank to
+// nothing) and, sampling every step, grew by 65 MB/s: tolerances below 10 ε are refused.
+TEST(Integrator, Dopri5RefusesToleranceBelowDoublePrecision) {
+  EXPECT_RIGID_ERROR((void)integrate(oscillator(1.0), Options{.rtol = 1e-300}),
+                     "dopri5 relative tolerance rtol = 1e-300 is below what double precision can deliver; "
+                     "expected rtol ≥ 2.22e-15 (10 ε)");
+  EXPECT_RIGID_ERROR((void)integrate(oscillator(1.0), Options{.rtol = 1e-16}), "below what double precision");
+  // the floor itself is accepted and meets the cosine to 1e-12 (the tolerance of a 1 s run)
+  const Solution s = integrate(oscillator(1.0), Options{.rtol = kMinRelativeTolerance, .atol = 1e-14});
+  EXPECT_NEAR(s.y.back()[0], std::cos(1.0), 1e-12);
+  // fixed-step methods do not use it
+  EXPECT_NO_THROW((void)integrate(oscillator(1.0), Options{.method = Method::kRk4, .rtol = 1e-300}));
+}
+
+// y' = −sign(y) chatters about y = 0 after t = 1; with a vanishing absolute tolerance no step
+// meets the error test there, and the accepted step falls to the round-off of t. That is an
+// error naming t, not a run that stands still (it used to sample the same t forever).
+TEST(Integrator, Dopri5StepUnderflowIsAnError) {
+  Problem p;
+  p.rhs = [](double, const Eigen::VectorXd& y, Eigen::VectorXd& d) { d[0] = y[0] > 0 ? -1.0 : y[0] < 0 ? 1.0 : 0.0; };
+  p.y0 = Eigen::VectorXd::Constant(1, 1.0);
+  p.t_end = 2.0;
+  const auto run = [&] { (void)integrate(p, Options{.rtol = 1e-10, .atol = 1e-300}); };
+  EXPECT_THAT(run, ::testing::ThrowsMessage<Error>(::testing::AnyOf(
+                       ::testing::HasSubstr("dopri5 step size underflow at t = "),
+                       ::testing::HasSubstr("dopri5 found no step size that meets the tolerance"))));
+}
+
+// dopri5 without an output spacing records every step; their number is known only while it
+// runs, so the cap (set by a front end from its memory limit) is applied as they come.
+TEST(Integrator, Dopri5EveryStepRowsAreCapped) {
+  Options o{.rtol = 1e-12, .atol = 1e-12};
+  o.control.max_outputs = 10;
+  EXPECT_RIGID_ERROR((void)integrate(oscillator(10.0), o),
+                     "dopri5 without an output spacing records every step: more than 10 rows");
+  o.output_dt = 1.0;  // 11 rows on a grid: the cap is the front end's to check before the run
+  EXPECT_EQ(integrate(oscillator(10.0), o).t.size(), 11u);
+}
+
 }  // namespace
 }  // namespace rigid::integrate

@@ -93,7 +93,7 @@ TEST(March, ProgressAndCancellation) {
     if (++steps == 5) cancel = true;
   };
   EXPECT_THAT([&] { (void)march(g, 0.5, step, kNoNonFinite, [](std::size_t, double) {}, stop); },
-              ::testing::ThrowsMessage<Cancelled>(::testing::HasSubstr("cancelled at t = 3 s")));
+              ::testing::ThrowsMessage<Cancelled>(::testing::HasSubstr("cancelled at t = 2.5 s")));  // the step that saw it
 }
 
 TEST(March, RefusesABadStep) {
@@ -106,6 +106,22 @@ TEST(March, RefusesABadStep) {
   EXPECT_RIGID_ERROR(
       (void)march(g, 0.01, [](double, double) {}, kNoNonFinite, [](std::size_t, double) {}, few),
       "50 steps, more than the 10 allowed");
+}
+
+// Ctrl-C inside one long output interval: the flag is read after every step, not only at the
+// progress polls (every kPollSteps steps), so the run stops at the step that saw it.
+TEST(March, CancelFlagIsReadEveryStep) {
+  const TimeGrid g = TimeGrid::uniform(0.0, 1.0, 1.0);  // one interval of 1000 steps
+  std::atomic<bool> cancel{false};
+  MarchControl stop;
+  stop.cancel = &cancel;
+  int steps = 0;
+  auto step = [&](double, double) {
+    if (++steps == 7) cancel = true;
+  };
+  EXPECT_THAT([&] { (void)march(g, 1e-3, step, kNoNonFinite, [](std::size_t, double) {}, stop); },
+              ::testing::ThrowsMessage<Cancelled>(::testing::HasSubstr("cancelled at t = 0.007")));
+  EXPECT_EQ(steps, 7);
 }
 
 }  // namespace

@@ -1,8 +1,15 @@
 #include "rigid/io/run_output.hpp"
 
+#include <algorithm>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <string>
+#include <vector>
+
+#include <sys/resource.h>
+#include <unistd.h>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -67,8 +74,107 @@ TEST(RunOutput, FormatNamesAndErrors) {
   const auto file = std::filesystem::temp_directory_path() / "rigid_run_output_file";
   std::ofstream(file) << "x";
   const OutputFormat csv[] = {OutputFormat::kCsv};
-  EXPECT_RIGID_ERROR((void)write_run(file, sample_run(), csv), "cannot create the output directory");
+  EXPECT_RIGID_ERROR((void)write_run(file, sample_run(), csv), "is a file; expected a directory");
+  EXPECT_RIGID_ERROR(check_output_directory(file), "is a file; expected a directory");
+  EXPECT_RIGID_ERROR(check_output_directory(file / "below"), "is a file, not a directory");
+  // the working directory would be replaced as a whole
+  EXPECT_RIGID_ERROR(check_output_directory("."), "is the working directory or holds it");
   std::filesystem::remove(file);
+}
+
+namespace fs = std::filesystem;
+
+std::string read(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::vector<std::string> entries(const fs::path& dir) {
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+RunResult other_run() {
+  RunResult r = sample_run();
+  r.summary.steps = 99;
+  r.trajectory = Table({"t", "y"});
+  const double row[] = {0.0, 7.0};
+  r.trajectory.add_row(row);
+  return r;
+}
+
+// A new set replaces the old one as a whole: a file of the old run that the new one does not
+// write is gone with it (no new trajectory.csv beside an old summary.json); a user's own file
+// stays; nothing temporary is left beside the directory.
+TEST(RunOutput, ANewSetReplacesTheOldOneWhole) {
+  const fs::path root = fs::temp_directory_path() / "rigid_run_set_test";
+  fs::remove_all(root);
+  const fs::path dir = root / "run";
+  const OutputFormat all[] = {OutputFormat::kCsv, OutputFormat::kJson};
+  (void)write_run(dir, sample_run(), all);
+  std::ofstream(dir / "notes.txt") << "mine";
+  const OutputFormat csv[] = {OutputFormat::kCsv};
+  (void)write_run(dir, other_run(), csv);
+  EXPECT_EQ(entries(dir), (std::vector<std::string>{"notes.txt", "trajectory.csv"}));
+  EXPECT_EQ(read(dir / "trajectory.csv"), to_csv(other_run().trajectory));
+  EXPECT_EQ(read(dir / "notes.txt"), "mine");
+  EXPECT_EQ(entries(root), std::vector<std::string>{"run"});
+  fs::remove_all(root);
+}
+
+// trajectory.npy has no column names: summary.json (which lists them) comes with it.
+TEST(RunOutput, NpyComesWithItsColumnNames) {
+  const fs::path dir = fs::temp_directory_path() / "rigid_run_npy_test";
+  fs::remove_all(dir);
+  const OutputFormat npy[] = {OutputFormat::kNpy};
+  const auto written = write_run(dir, sample_run(), npy);
+  ASSERT_EQ(written.size(), 2u);
+  EXPECT_EQ(written[1], dir / "summary.json");
+  const auto j = nlohmann::json::parse(read(dir / "summary.json"));
+  EXPECT_EQ(j["columns"], nlohmann::json::array({"t", "x"}));
+  fs::remove_all(dir);
+}
+
+// A write that fails half way (the disk full: here the file size limit, EFBIG) leaves the old
+// set exactly as it was and no temporary behind; a temporary of a killed run (a process that no
+// longer exists) is removed by the next write, one of a live process is left alone.
+TEST(RunOutput, AFailedWriteLeavesTheOldSetAndStaleTemporariesAreRemoved) {
+  const fs::path root = fs::temp_directory_path() / "rigid_run_fail_test";
+  fs::remove_all(root);
+  const fs::path dir = root / "run";
+  const OutputFormat all[] = {OutputFormat::kCsv, OutputFormat::kJson};
+  (void)write_run(dir, sample_run(), all);
+  const std::string csv_before = read(dir / "trajectory.csv");
+  const std::string json_before = read(dir / "summary.json");
+
+  RunResult big = other_run();
+  const double row[] = {1.0, 2.0};
+  for (int k = 0; k < 20000; ++k) big.trajectory.add_row(row);
+  rlimit old{};
+  ASSERT_EQ(::getrlimit(RLIMIT_FSIZE, &old), 0);
+  const auto previous = std::signal(SIGXFSZ, SIG_IGN);
+  rlimit small = old;
+  small.rlim_cur = 64 * 1024;  // the CSV of `big` is larger; summary.json is smaller
+  ASSERT_EQ(::setrlimit(RLIMIT_FSIZE, &small), 0);
+  EXPECT_RIGID_ERROR((void)write_run(dir, big, all), "cannot write");
+  ::setrlimit(RLIMIT_FSIZE, &old);
+  std::signal(SIGXFSZ, previous);
+  EXPECT_EQ(read(dir / "trajectory.csv"), csv_before);
+  EXPECT_EQ(read(dir / "summary.json"), json_before);
+  EXPECT_EQ(entries(root), std::vector<std::string>{"run"});
+
+  // pid 2^22 + 1 is above the kernel's pid_max (4194304): no such process
+  fs::create_directories(root / ".run.rigid-tmp-4194305-0000abcd");
+  std::ofstream(root / ".run.rigid-tmp-4194305-0000abcd" / "trajectory.csv") << "partial";
+  const std::string live = ".run.rigid-tmp-" + std::to_string(::getppid()) + "-00001234";
+  fs::create_directories(root / live);
+  (void)write_run(dir, other_run(), all);
+  EXPECT_EQ(entries(root), (std::vector<std::string>{live, "run"}));
+  fs::remove_all(root);
 }
 
 }  // namespace

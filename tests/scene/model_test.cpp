@@ -114,7 +114,8 @@ TEST(Model, InvalidBodiesAreRefusedWithTheirLocation) {
   EXPECT_RIGID_ERROR(model_of(head + "point_masses = [{mass = -1, position = [0, 0, 0]}]\n" + tail),
                      "scene.toml:3:1: body 'b'");
   EXPECT_RIGID_ERROR(model_of(head + "inertia = {mass = \"sqrt(-1)\", ixx = 1, iyy = 1, izz = 1}\n" + tail),
-                     "expected a finite real number");
+                     "scene.toml:5:20: body 'b' inertia mass: 'sqrt(-1)' holds the complex number I; expected a "
+                     "real expression");
 }
 
 TEST(Model, SimulationSettingsAreChecked) {
@@ -134,6 +135,44 @@ TEST(Model, SimulationSettingsAreChecked) {
                                   "dt = 0.003\noutput_dt = 0.01\n");
   m.check();
   EXPECT_EQ(m.run().summary.steps, 400u);
+}
+
+// What a run would refuse, `check` refuses without integrating: a step far too small for the
+// span (a free body with dt = 1e-300 took 0 steps in the past; TimeGrid::steps_in refuses it,
+// now also in check and at the dt key), a trajectory larger than the memory limit, a dopri5
+// tolerance below double precision (at its key).
+TEST(Model, CheckFindsWhatARunWouldRefuseWithoutIntegrating) {
+  const std::string free_body =
+      "[[bodies]]\nfree = true\nprimitive = \"box\"\nsize = [1, 2, 3]\nmass = 1\n"
+      "angular_velocity = [0, 1, 0.1]\n";
+  const Model tiny = model_of(free_body + "[simulation]\nt_end = 1\ndt = 1e-300\noutput_dt = 0.5\n");
+  EXPECT_RIGID_ERROR(tiny.check(), "scene.toml:9:6: [simulation] dt: 0.5 s in steps of at most 1e-300 s is 5e+299 steps");
+  EXPECT_RIGID_ERROR((void)tiny.run(), "scene.toml:9:6: [simulation] dt: 0.5 s in steps of at most 1e-300 s");
+  // 1e6 outputs × 18 columns (t, 7 of the pose, v, ω, L, energy) × 8 bytes = 144 MB: above a
+  // 100 MB limit, below the 2 GiB default
+  const Model big = model_of(free_body + "[simulation]\nt_end = 1000\ndt = 1e-3\n");
+  RunOptions limited;
+  limited.max_memory = 100'000'000;
+  EXPECT_RIGID_ERROR(big.check(limited), "the trajectory would take 1000001 rows × 18 columns × 8 bytes = 144000144");
+  EXPECT_RIGID_ERROR((void)big.run(limited), "more than the memory limit of 95.4 MiB");
+  EXPECT_NO_THROW(big.check());
+  // the scene's own limit
+  EXPECT_RIGID_ERROR(model_of(free_body + "[simulation]\nt_end = 1000\ndt = 1e-3\n[output]\nmax_memory = \"1MiB\"\n").check(),
+                     "more than the memory limit of 1 MiB");
+  const std::string coords =
+      "[[coordinates]]\nname = \"x\"\n[[bodies]]\npoint_masses = [{mass = 1, position = [0, 0, 0]}]\n"
+      "position = [\"x\", 0, 0]\n";
+  EXPECT_RIGID_ERROR(model_of(coords + "[simulation]\nt_end = 1\ntolerance = 1e-300\n"),
+                     "scene.toml:8:13: [simulation] tolerance = 1e-300 is below what double precision can deliver");
+}
+
+// Runs of different scenes never share a default output directory.
+TEST(Model, DefaultOutputDirectoryIsPerScene) {
+  const std::string s =
+      "[[coordinates]]\nname = \"x\"\n[[bodies]]\npoint_masses = [{mass = 1, position = [0, 0, 0]}]\n"
+      "position = [\"x\", 0, 0]\n[simulation]\nt_end = 1\n";
+  EXPECT_EQ(model_of(s, "dir/pendulum.toml").output_directory(), std::filesystem::path("out/pendulum"));
+  EXPECT_EQ(model_of(s, "atwood.toml").output_directory("mine"), std::filesystem::path("mine"));
 }
 
 // A free body whose inertia is given in a frame B that is not principal moves exactly like

@@ -1,5 +1,8 @@
 #include "rigid/scene/scene.hpp"
 
+#include <filesystem>
+#include <fstream>
+
 #include <gtest/gtest.h>
 
 #include "support/expect_error.hpp"
@@ -186,6 +189,34 @@ TEST(Scene, OverridesReplaceParameters) {
 TEST(Scene, DidYouMeanOnlyForCloseWords) {
   EXPECT_EQ(did_you_mean("integrater", {"integrator", "t_end"}), "integrator");
   EXPECT_EQ(did_you_mean("zzz", {"integrator", "t_end"}), std::nullopt);
+}
+
+// `rigid check /dev/zero` read 4.2 GB: only regular files are read, up to kMaxSceneFileBytes.
+TEST(Scene, LoadReadsOnlyRegularFilesOfBoundedSize) {
+  EXPECT_RIGID_ERROR((void)load_scene("/dev/zero"), "scene file '/dev/zero' is not a regular file");
+  const auto dir = std::filesystem::temp_directory_path() / "rigid_scene_load_test";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  EXPECT_RIGID_ERROR((void)load_scene(dir), "is a directory; expected a TOML file");
+  EXPECT_RIGID_ERROR((void)load_scene(dir / "missing.toml"), "cannot open scene file");
+  // a sparse file one byte over the cap (nothing is allocated on disk)
+  const auto big = dir / "big.toml";
+  std::ofstream(big) << "";
+  std::filesystem::resize_file(big, kMaxSceneFileBytes + 1);
+  EXPECT_RIGID_ERROR((void)load_scene(big), "has 16777217 bytes, more than the 16777216 (16 MiB)");
+  std::filesystem::remove_all(dir);
+}
+
+// An integer above 2^53 has no exact double: toml++ gave none and std::optional threw
+// "bad optional access".
+TEST(Scene, IntegersBeyondDoublePrecisionAreRefused) {
+  std::string text(kRolling);
+  text.replace(text.find("m = 2.0"), 7, "m = 9007199254740993");
+  EXPECT_RIGID_ERROR((void)parse_scene(text, "roll.toml"),
+                     "roll.toml:5:5: parameter m is the integer 9007199254740993, beyond the integers a double "
+                     "holds exactly");
+  text.replace(text.find("m = 9007199254740993"), 20, "m = 9007199254740992");  // 2^53 is exact
+  EXPECT_EQ(*parse_scene(text, "roll.toml").parameters[0].value.number, 9007199254740992.0);
 }
 
 }  // namespace

@@ -28,6 +28,14 @@ enum class Surface { kLibrary, kCli, kScene, kPython };
 ///  - kScene: 'key = true', 'key = "value"' (quoted as the scene's key, no longer a reference,
 ///    so a scene's error keeps the file's spelling whichever front end shows it);
 ///  - kLibrary: unchanged.
+/// For every surface but kLibrary, the C++ function names that RIGID_REQUIRE puts before a
+/// message (`integrate(): `) are left out as well (strip_function_names): they name the C++
+/// entry point, which a user of the command line, a scene or Python never called.
 [[nodiscard]] std::string word_for(Surface surface, std::string_view message);
+
+/// `message` without the `name(): ` of a C++ function at its start and after each `: ` (where
+/// a front end put its context before the library's message): "file:3:1: body 'b':
+/// make_primitive(): radius …" becomes "file:3:1: body 'b': radius …".
+[[nodiscard]] std::string strip_function_names(std::string_view message);
 
 }  // namespace rigid

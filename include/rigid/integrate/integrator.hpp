@@ -45,6 +45,14 @@ struct Problem {
   std::string owner;
 };
 
+/// The smallest relative tolerance dopri5 accepts: 10 ε ≈ 2.2e-15. Below it the error
+/// estimate is made of round-off, and no step size satisfies it (the step would shrink to
+/// nothing).
+inline constexpr double kMinRelativeTolerance = 10 * 2.220446049250313e-16;
+/// A dopri5 step shorter than this many ulps of the time (kStepFloor · ε · max(|t|, t_end − t0))
+/// ends the run with an error: the time no longer advances in double precision.
+inline constexpr double kStepFloor = 16;
+
 /// Integration settings. Units: seconds.
 ///
 /// Fixed-step methods follow the one step rule of rigid::integrate::march: between two output
@@ -53,8 +61,8 @@ struct Problem {
 struct Options {
   Method method = Method::kDopri5;
   double dt = 1e-3;          ///< largest fixed step; initial step of dopri5
-  double rtol = 1e-10;       ///< dopri5 relative tolerance
-  double atol = 1e-10;       ///< dopri5 absolute tolerance
+  double rtol = 1e-10;       ///< dopri5 relative tolerance, ≥ kMinRelativeTolerance
+  double atol = 1e-10;       ///< dopri5 absolute tolerance, > 0
   double output_dt = 0.0;    ///< spacing of output samples; 0: every step (and t_end)
   int max_newton = 30;       ///< implicit midpoint: Newton iterations per step
   double newton_tol = 1e-14; ///< implicit midpoint: relative correction at convergence
@@ -73,7 +81,9 @@ struct Solution {
 };
 
 /// Integrates `problem` with `options`. Every step is checked for a non-finite state.
-/// @throws rigid::Error for bad options (non-positive dt, t_end ≤ t0, ...), a non-finite
+/// @throws rigid::Error for bad options (non-positive dt, t_end ≤ t0, a dopri5 rtol below
+///         kMinRelativeTolerance, ...), a dopri5 step that underflows (kStepFloor) or fails
+///         to be accepted, more than control.max_outputs rows of dopri5 every-step output, a non-finite
 ///         state (naming the step, t and the component), a diverging Newton iteration, or
 ///         whatever the right-hand side throws; rigid::Cancelled from options.control.
 [[nodiscard]] Solution integrate(const Problem& problem, const Options& options);

@@ -75,10 +75,14 @@ struct MarchControl {
   /// Called with the simulated time reached (s) after every output time and at least every
   /// kPollSteps steps in between. It may throw (rigid::Cancelled) to stop the run.
   std::function<void(double t)> progress{};
-  /// When set, polled as often as `progress`: true stops the run with rigid::Cancelled.
+  /// When set, read after every step (one relaxed atomic load): true stops the run with
+  /// rigid::Cancelled.
   const std::atomic<bool>* cancel = nullptr;
   /// Most steps a whole run may take (a guard against a step far too small for the span).
   std::size_t max_steps = 10'000'000'000;
+  /// Most output rows a run may record when their number is not known before it runs (dopri5
+  /// sampling every step): a memory guard, set by the front end from its memory limit.
+  std::size_t max_outputs = TimeGrid::kMaxOutputs;
   /// Steps between two polls inside a long output interval.
   static constexpr std::size_t kPollSteps = 1024;
 };
@@ -144,6 +148,8 @@ MarchStats march(const TimeGrid& grid, double h_max, Step&& step, FindNonFinite&
       if (++since_poll == MarchControl::kPollSteps) [[unlikely]] {
         since_poll = 0;
         poll(control, t + h);
+      } else if (control.cancel != nullptr && control.cancel->load(std::memory_order_relaxed)) [[unlikely]] {
+        poll(control, t + h);  // throws rigid::Cancelled
       }
     }
     observe(k, t1);

@@ -2,9 +2,10 @@
 
 /// The outputs of a simulation run, written by the library so that every front end (the
 /// command line's `rigid run`, Python's Scene.run) writes the same files: trajectory.csv,
-/// trajectory.npy and summary.json.
+/// trajectory.npy and summary.json, as one set (a reader sees the old set or the new one).
 
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <span>
 #include <string>
@@ -55,11 +56,40 @@ enum class OutputFormat { kCsv, kNpy, kJson };
 /// Doubles in their shortest round-trip form.
 [[nodiscard]] std::string summary_json(const RunResult& result);
 
-/// Writes the files of `formats` into `directory` (created with its parents if missing), each
-/// atomically (rigid::io::write_file_atomically): a reader sees a whole old or a whole new
-/// file. The set is not atomic: a failure on the second file leaves the first. Returns the
-/// paths written, in the order of `formats`.
-/// @throws rigid::Error if the directory cannot be created or a file cannot be written.
+/// The default cap on the memory of a run's trajectory (rows × columns × 8 bytes): 2 GiB.
+inline constexpr std::uint64_t kDefaultMaxMemory = std::uint64_t{2} << 30;
+
+/// A byte count for people: "512 B", "1.5 KiB", "2 GiB" (binary units, 3 significant digits).
+[[nodiscard]] std::string format_bytes(std::uint64_t bytes);
+
+/// A memory size: a whole number of bytes ("2147483648"), or a number with a unit: KiB MiB
+/// GiB TiB (and K M G T, the same binary units) or kB MB GB TB (powers of 1000), with or
+/// without a space ("2GiB", "1.5 G", "512MB").
+/// @throws rigid::Error for anything else, zero, or a size beyond 2^63 bytes.
+[[nodiscard]] std::uint64_t parse_memory_size(std::string_view text);
+
+/// Checks, before a run, that a trajectory of `rows` × `columns` doubles fits in `max_memory`
+/// bytes. @throws rigid::Error naming the rows, columns, bytes and the limit, with the
+/// remedies (a larger output spacing, a shorter run, or `max_memory` raised).
+void check_trajectory_memory(std::size_t rows, std::size_t columns, std::uint64_t max_memory);
+
+/// Checks, before a run, that write_run can write into `directory`: it is an existing
+/// directory (a symbolic link to one counts) or it can be created (its nearest existing
+/// ancestor is a directory), and the directory that holds it is writable.
+/// @throws rigid::Error naming the path and the problem (a file of that name, no permission).
+void check_output_directory(const std::filesystem::path& directory);
+
+/// Writes the files of `formats` into `directory` as one set: the files are written (and
+/// flushed) into a new temporary directory beside it, `.NAME.rigid-tmp-PID-XXXXXXXX`, which then
+/// takes the place of `directory` in one rename (an exchange when it exists). A reader sees the
+/// whole old set or the whole new set, never a mix; an interruption leaves the old set. Other
+/// files a user kept in `directory` stay (they are linked into the new set); files of an older
+/// run that are not in this set are gone with it. Temporaries left by runs that were killed are
+/// removed. trajectory.npy holds no column names, so summary.json (which lists them) is always
+/// written with it. Returns the paths written.
+/// @throws rigid::Error if `directory` cannot be written (check_output_directory), holds a
+///   subdirectory of its own (a run's directory holds files only), or a file cannot be written
+///   (the disk is full): then the old set is left as it was.
 std::vector<std::filesystem::path> write_run(const std::filesystem::path& directory,
                                              const RunResult& result,
                                              std::span<const OutputFormat> formats);

@@ -31,6 +31,21 @@ struct Expression {
       : text(std::move(text_)), where(std::move(where_)) {}
 };
 
+/// Limits of one expression, checked while it is parsed (before GiNaC builds or evaluates
+/// anything), so that no input crashes the parser or runs for minutes; each is refused with
+/// its position.
+/// Most characters of an expression's text.
+inline constexpr std::size_t kMaxExpressionLength = 1'000'000;
+/// Most nested levels: parentheses, function arguments, signs and exponents (`((1))` is 2).
+inline constexpr std::size_t kMaxExpressionDepth = 200;
+/// A power of two numbers may reach 10^±kMaxPowerDigits (a double ends at 10^308; the margin
+/// lets exact intermediate values such as 10^400/10^399 through).
+inline constexpr double kMaxPowerDigits = 10'000;
+/// A power of two rationals is exact while its result has at most this many bits (about
+/// 1.26 million decimal digits); beyond, it is computed in floating point (at least 17
+/// significant digits).
+inline constexpr double kMaxExactPowerBits = 4'194'304;
+
 /// Three expressions: a vector of the world or a body frame (gravity, a COM). Implicit from a
 /// numeric vector (each entry becomes its shortest round-trip decimal).
 struct Vector3Expression {

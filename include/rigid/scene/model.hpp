@@ -12,8 +12,10 @@
 /// Run outputs are rigid::io::RunResult and are written by rigid::io::write_run, so every front
 /// end writes the same files.
 
+#include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -37,6 +39,10 @@ struct RunOptions {
   /// Progress reports and cancellation (the command line's progress bar and Ctrl-C, Python's
   /// KeyboardInterrupt).
   integrate::MarchControl control{};
+  /// Most bytes the trajectory may take (rows × columns × 8); unset: [output] max_memory, else
+  /// rigid::io::kDefaultMaxMemory (2 GiB). Checked before the run (check() and run()); when
+  /// dopri5 records every step, the rows are counted as they come.
+  std::optional<std::uint64_t> max_memory{};
 };
 
 /// A body of the model with its mass properties in its own frame B (the numbers of the scene's
@@ -89,7 +95,8 @@ class Model {
   [[nodiscard]] const lagrange::System& system() const;
 
   /// Checks what a run would check before stepping (consistent initial conditions,
-  /// a positive-definite mass matrix, valid step sizes) without integrating.
+  /// a positive-definite mass matrix, valid step sizes, the step count of fixed-step methods,
+  /// the memory of the trajectory against options.max_memory) without integrating.
   /// @throws rigid::Error naming the problem.
   void check(const RunOptions& options = {}) const;
 
@@ -107,7 +114,7 @@ class Model {
   [[nodiscard]] RunResult run(const RunOptions& options = {}) const;
 
   /// The directory a run writes to: `requested` if not empty, else [output] directory, else
-  /// "out".
+  /// "out/<stem of the scene file>" (one directory per scene).
   [[nodiscard]] std::filesystem::path output_directory(const std::string& requested = {}) const;
   /// The files a run writes: `requested` if not empty, else [output] formats.
   /// @throws rigid::Error for an unknown format name.

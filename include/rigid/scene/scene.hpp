@@ -1,6 +1,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -133,12 +134,17 @@ struct Simulation {
 
 /// `[output]`.
 struct Output {
-  std::filesystem::path directory;    ///< relative to the working directory; empty: "out"
+  /// relative to the working directory; empty: "out/<scene file stem>"
+  std::filesystem::path directory;
   std::vector<std::string> formats = {"csv", "json"};  ///< csv, npy, json
   /// Columns of the trajectory to keep (names or shell patterns such as "racket.w*");
   /// empty: all. `t` is always kept.
   std::vector<std::string> quantities;
   SourceLocation quantities_where;
+  /// Most bytes the trajectory may take (rows × columns × 8), checked before a run; unset:
+  /// the front end's value or rigid::io::kDefaultMaxMemory.
+  std::optional<std::uint64_t> max_memory;
+  SourceLocation max_memory_where;
 };
 
 /// A whole scene as written, checked for structure, types and names but not yet turned
@@ -166,7 +172,12 @@ struct Scene {
 ///         keys (with a "did you mean" suggestion), wrong types and missing fields.
 [[nodiscard]] Scene parse_scene(std::string_view toml_text, const std::filesystem::path& file);
 
-/// Reads and parses a scene file. @throws rigid::Error if it cannot be read or parsed.
+/// Largest scene file that is read (16 MiB).
+inline constexpr std::uintmax_t kMaxSceneFileBytes = std::uintmax_t{16} << 20;
+
+/// Reads and parses a scene file: a regular file of at most kMaxSceneFileBytes.
+/// @throws rigid::Error if it is missing, a directory, not a regular file (a device such as
+///   /dev/zero, a pipe), larger than the cap, cannot be read, or cannot be parsed.
 [[nodiscard]] Scene load_scene(const std::filesystem::path& file);
 
 /// Replaces the values of parameters by `name=value` assignments (the command line's --set,

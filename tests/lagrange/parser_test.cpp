@@ -1,0 +1,121 @@
+// The expression parser at its limits: nesting, length, powers of numbers, and the failures of
+// GiNaC/CLN, each refused with its position and without the library's own text.
+#include <chrono>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "rigid/lagrange/system.hpp"
+#include "support/expect_error.hpp"
+
+namespace rigid::lagrange {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double eval(const std::string& text, const std::vector<Parameter>& params = {}) {
+  return evaluate_constant(Expression(text, {"e.toml", 3, 10}), params, "value");
+}
+
+std::string error_of(const std::string& text, const std::vector<Parameter>& params = {}) {
+  try {
+    (void)eval(text, params);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+// Library texts that must never reach a user.
+void expect_no_raw_text(const std::string& message) {
+  for (const char* raw : {"log_eval", "floating point", "bad_alloc", "bad optional", "power::eval",
+                          "domain_error", "(): "}) {
+    EXPECT_EQ(message.find(raw), std::string::npos) << raw << " in: " << message;
+  }
+}
+
+// 20,000 nested parentheses crashed the recursive descent (stack overflow, also in Python);
+// they are refused at the parenthesis that goes one level too deep.
+TEST(Parser, DeepNestingIsRefusedAtItsPosition) {
+  const std::size_t n = 20'000;
+  const std::string deep = std::string(n, '(') + "1" + std::string(n, ')');
+  const std::string msg = error_of(deep);
+  // file:line:col with col = 10 + 200 (the 201st '(' is at offset 200)
+  EXPECT_NE(msg.find("e.toml:3:210: value: the expression nests deeper than 200 levels"), std::string::npos) << msg;
+  // signs, function arguments and exponents count as well
+  EXPECT_NE(error_of(std::string(n, '-') + "1").find("nests deeper than 200"), std::string::npos);
+  std::string calls;
+  for (std::size_t i = 0; i < n; ++i) calls += "sin(";
+  EXPECT_NE(error_of(calls + "1" + std::string(n, ')')).find("nests deeper than 200"), std::string::npos);
+  std::string tower = "1";
+  for (std::size_t i = 0; i < n; ++i) tower += "^1";
+  EXPECT_NE(error_of(tower).find("nests deeper than 200"), std::string::npos);
+  // 200 levels are fine: ((…(2)…)) is 2
+  EXPECT_EQ(eval(std::string(199, '(') + "2" + std::string(199, ')')), 2.0);
+}
+
+TEST(Parser, OverlongExpressionsAreRefused) {
+  std::string text = "1";
+  while (text.size() <= kMaxExpressionLength) text += "+1";
+  EXPECT_NE(error_of(text).find("characters long, more than the 1000000"), std::string::npos);
+}
+
+// A long flat sum is built in one go (GiNaC's += copied the growing sum: quadratic time).
+// Σ_{k=1..n} 0.5^k is summed exactly in rationals; its closed form is 1 − 2^−n; tolerance:
+// the one final conversion to double, 1 ulp.
+TEST(Parser, LongSumsAreLinear) {
+  std::string text;
+  const int n = 2000;  // distinct rational terms: exact, and 2000 of them stay cheap
+  for (int k = 1; k <= n; ++k) {
+    if (k > 1) text += '+';
+    text += "0.5^";
+    text += std::to_string(k);
+  }
+  EXPECT_NEAR(eval(text), 1.0 - std::pow(2.0, -n), 1.2e-16);
+  // 200,000 terms of a parameter: seconds when quadratic, milliseconds now (generous bound 2 s)
+  std::string many = "a";
+  for (int k = 0; k < 200'000; ++k) many += "+a";
+  const auto start = Clock::now();
+  EXPECT_EQ(eval(many, {{"a", 0.5}}), 100'000.5);
+  EXPECT_LT(std::chrono::duration<double>(Clock::now() - start).count(), 2.0);
+}
+
+// 9^9^9 = 9^387420489 was computed exactly (13 s, 791 MB) before being found not finite. The
+// size of a power of two numbers is estimated first.
+TEST(Parser, HugePowersAreRefusedBeforeTheyAreComputed) {
+  const auto start = Clock::now();
+  const std::string msg = error_of("9^9^9");
+  EXPECT_LT(std::chrono::duration<double>(Clock::now() - start).count(), 1.0);
+  // at the second '^' (offset 1 + 10 = col 11): 9^(9^9) is refused as a whole
+  EXPECT_NE(msg.find("e.toml:3:11: value: the power is about 10^3.697e+08"), std::string::npos) << msg;
+  EXPECT_NE(error_of("0.5^(10^6)").find("the power is about 10^-3.01e+05"), std::string::npos);
+  EXPECT_NE(error_of("a^(10^6)", {{"a", 9.0}}).find("the power is about 10^9.542e+05"), std::string::npos);
+  // powers within the margin stay exact: 10^400/10^399 = 10
+  EXPECT_EQ(eval("10^400/10^399"), 10.0);
+  // an exact result too long to compute (1.0001^10^5 has 1.4 million-bit numerator and
+  // denominator) is computed in floating point: (1 + 1e-4)^1e5 = exp(1e5·log1p(1e-4));
+  // tolerance 1e-12 relative: GiNaC's 17+ digit floats and the reference's libm rounding
+  const double reference = std::exp(1e5 * std::log1p(1e-4));
+  EXPECT_NEAR(eval("1.0001^(10^5)"), reference, 1e-12 * reference);
+  EXPECT_NEAR(eval("1.0001^(10^6)") / std::exp(1e6 * std::log1p(1e-4)), 1.0, 1e-11);
+}
+
+TEST(Parser, LibraryFailuresAreWordedWithTheirPosition) {
+  // GiNaC threw "log_eval(): log(0)", "power::eval(): division by zero"; CLN "floating point
+  // underflow."; 0^0 escaped as std::domain_error
+  const std::string log0 = error_of("1 + log(0)");
+  EXPECT_NE(log0.find("e.toml:3:14: value: the expression has a pole here"), std::string::npos) << log0;
+  EXPECT_NE(error_of("tan(pi/2)").find("has a pole"), std::string::npos);
+  EXPECT_NE(error_of("2*0^0").find("e.toml:3:13: value: 0^0 is undefined"), std::string::npos);
+  EXPECT_NE(error_of("0^(-1)").find("0 to a negative power is a division by zero"), std::string::npos);
+  const std::string under = error_of("exp(-a*1e300)", {{"a", 1e-200}});
+  EXPECT_NE(under.find("underflows"), std::string::npos) << under;
+  for (const std::string& m : {log0, under, error_of("0^0"), error_of("9^9^9"), error_of("asin(2)")}) {
+    expect_no_raw_text(m);
+  }
+}
+
+}  // namespace
+}  // namespace rigid::lagrange
