@@ -4,7 +4,7 @@ PRESET ?= ci
 BUILD  := build/$(PRESET)
 PYTHON := /usr/bin/python3
 
-.PHONY: all deps configure build test test-cpp test-python test-asan test-tsan demo bench asan clean
+.PHONY: all deps configure build test test-cpp test-python test-asan test-tsan demo bench asan fuzz clean
 
 all: build
 
@@ -33,7 +33,17 @@ bench:
 
 # The mesh readers' tests under AddressSanitizer + UBSan (malformed files must not read out
 # of bounds); builds only that test binary.
-test-asan: deps
+test-# Every fuzz target (fuzz/: mesh readers, scenes, URDF/MJCF/SDF inertials, expressions) for
+# SECONDS seconds each, built with clang, libFuzzer, ASan and UBSan in build/fuzz. Findings go
+# to build/fuzz/fuzz-findings/<target>/; the exit status is 1 when there are any.
+SECONDS ?= 60
+fuzz:
+	@scripts/install-deps.sh fuzz
+	cmake --preset fuzz >/dev/null
+	cmake --build --preset fuzz
+	scripts/run-fuzz.sh build/fuzz $(SECONDS)
+
+asan: deps
 	cmake --preset asan >/dev/null
 	cmake --build --preset asan --target rigid_mesh_tests
 	build/asan/bin/rigid_mesh_tests --gtest_brief=1
@@ -45,6 +55,16 @@ test-tsan: deps
 	cmake --build --preset tsan --target rigid_lagrange_tests rigid_scene_tests
 	TSAN_OPTIONS=halt_on_error=1 build/tsan/bin/rigid_lagrange_tests --gtest_brief=1 --gtest_filter='Workspace.*'
 	TSAN_OPTIONS=halt_on_error=1 build/tsan/bin/rigid_scene_tests --gtest_brief=1 --gtest_filter='ModelThreads.*'
+
+# Every fuzz target (fuzz/: mesh readers, scenes, URDF/MJCF/SDF inertials, expressions) for
+# SECONDS seconds each, built with clang, libFuzzer, ASan and UBSan in build/fuzz. Findings go
+# to build/fuzz/fuzz-findings/<target>/; the exit status is 1 when there are any.
+SECONDS ?= 60
+fuzz:
+	@scripts/install-deps.sh fuzz
+	cmake --preset fuzz >/dev/null
+	cmake --build --preset fuzz
+	scripts/run-fuzz.sh build/fuzz $(SECONDS)
 
 asan: deps
 	cmake --preset asan >/dev/null
