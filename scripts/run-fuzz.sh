@@ -25,7 +25,7 @@ for t in "${targets[@]}"; do
   [[ -x $exe ]] || { echo "run-fuzz: $exe is not built" >&2; exit 2; }
   mkdir -p "$build/fuzz-corpus/$t" "$build/fuzz-findings/$t" "$TMPDIR"
   dirs=("$build/fuzz-corpus/$t" "$build/fuzz-seeds/$t")
-  for d in "$root/fuzz/regressions/$t" "$root/fuzz/pending/$t"; do [[ -d $d ]] && dirs+=("$d"); done
+  [[ -d $root/fuzz/regressions/$t ]] && dirs+=("$root/fuzz/regressions/$t")
   echo "== $t: ${seconds} s"
   # -fork=1 with -ignore_*: keep fuzzing after a finding, so one run reports every kind
   ASAN_OPTIONS=detect_leaks=1:allocator_may_return_null=1 UBSAN_OPTIONS=print_stacktrace=1 \
