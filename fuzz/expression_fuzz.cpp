@@ -31,8 +31,9 @@ void derive_and_evaluate(const lg::SystemSpec& spec) {
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size == 0) return 0;
   const int use = data[0] % 3;
-  const std::string text(reinterpret_cast<const char*>(data) + 1, size - 1);
-  rigid::fuzz::refuse_or_return([&] {
+  const std::string_view input = rigid::fuzz::as_text(data, size);
+  const std::string text(input.substr(1));
+  rigid::fuzz::refuse_or_return(input, [&] {
     if (use == 0) {
       (void)lg::evaluate_constant(lg::Expression(text), kParameters, "fuzz");
       return;

@@ -32,12 +32,13 @@ void check_round_trip(const rigid::MassProperties& mp, rigid::io::InertialFormat
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  const std::string xml(reinterpret_cast<const char*>(data), size);
-  rigid::fuzz::refuse_or_return([&] {
+  const std::string_view input = rigid::fuzz::as_text(data, size);
+  const std::string xml(input);
+  rigid::fuzz::refuse_or_return(input, [&] {
     const auto format = rigid::io::detect_inertial_format(xml, "fuzz.xml");
     for (const auto& entry : rigid::io::read_inertials(xml, "fuzz.xml")) {
       if (entry.problem) {
-        rigid::fuzz::refuse_or_return([&] { (void)entry.mass_properties(); });
+        rigid::fuzz::refuse_or_return(input, [&] { (void)entry.mass_properties(); });
         continue;
       }
       const rigid::MassProperties mp = entry.mass_properties();

@@ -2,17 +2,22 @@
 // the `ci` preset): `rigid_fuzz_replay <target> <file or folder>...`. Each target's source is
 // compiled here with LLVMFuzzerTestOneInput renamed to rigid_fuzz_<target>, so that one
 // executable holds them all. The outcome rule is the targets' own (fuzz_support.hpp): a
-// rigid::Error is a normal outcome, anything else ends the process with a failure. Each input
-// is named on stderr before it runs, so a failure says which file it was.
+// rigid::Error is a normal outcome, anything else ends the process with a failure, and so does
+// an input that runs longer than the limit of the fuzz runs (10 s, or RIGID_FUZZ_TIMEOUT
+// seconds): a hang. Each input is named on stderr before it runs, so a failure says which
+// file it was.
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <map>
 #include <string>
 #include <vector>
+
+#include <csignal>
+#include <unistd.h>
 
 #define RIGID_FUZZ_TARGET(name) \
   extern "C" int rigid_fuzz_##name(const std::uint8_t* data, std::size_t size);
@@ -30,6 +35,12 @@ const std::map<std::string, Target>& targets() {
 #undef RIGID_FUZZ_TARGET
   };
   return table;
+}
+
+extern "C" void on_timeout(int) {
+  static const char kMessage[] = "rigid_fuzz_replay: the input above ran past the time limit (a hang)\n";
+  (void)!::write(2, kMessage, sizeof kMessage - 1);
+  ::_exit(3);
 }
 
 std::vector<std::filesystem::path> inputs(const std::filesystem::path& arg) {
@@ -55,6 +66,9 @@ int main(int argc, char** argv) {
     return 2;
   }
   const Target target = targets().at(argv[1]);
+  const char* limit_env = std::getenv("RIGID_FUZZ_TIMEOUT");
+  const unsigned limit = limit_env != nullptr ? static_cast<unsigned>(std::atoi(limit_env)) : 10u;
+  std::signal(SIGALRM, on_timeout);
   std::size_t count = 0;
   for (int i = 2; i < argc; ++i) {
     if (!std::filesystem::exists(argv[i])) {
@@ -62,10 +76,16 @@ int main(int argc, char** argv) {
       return 2;
     }
     for (const auto& file : inputs(argv[i])) {
+      std::string data(std::filesystem::file_size(file), '\0');
       std::ifstream in(file, std::ios::binary);
-      const std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+      if (!in.read(data.data(), static_cast<std::streamsize>(data.size()))) {
+        std::fprintf(stderr, "%s: cannot read\n", file.c_str());
+        return 2;
+      }
       std::fprintf(stderr, "%s: %s (%zu bytes)\n", argv[1], file.c_str(), data.size());
+      ::alarm(limit);
       target(reinterpret_cast<const std::uint8_t*>(data.data()), data.size());
+      ::alarm(0);
       ++count;
     }
   }

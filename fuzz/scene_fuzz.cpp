@@ -34,10 +34,10 @@ void bound_run(rigid::scene::Simulation& s) {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  const std::string_view text(reinterpret_cast<const char*>(data), size);
+  const std::string_view input = rigid::fuzz::as_text(data, size);
   const auto file = rigid::fuzz::scratch_dir() / "scene.toml";
-  rigid::fuzz::refuse_or_return([&] {
-    rigid::scene::Scene scene = rigid::scene::parse_scene(text, file);
+  rigid::fuzz::refuse_or_return(input, [&] {
+    rigid::scene::Scene scene = rigid::scene::parse_scene(input, file);
     bound_run(scene.simulation);
     const rigid::scene::Model model(scene);
     (void)model.equations(false);

@@ -29,6 +29,7 @@ for t in "${targets[@]}"; do
   echo "== $t: ${seconds} s"
   # -fork=1 with -ignore_*: keep fuzzing after a finding, so one run reports every kind
   ASAN_OPTIONS=detect_leaks=1:allocator_may_return_null=1 UBSAN_OPTIONS=print_stacktrace=1 \
+  LSAN_OPTIONS=suppressions="$root/fuzz/lsan.supp":print_suppressions=0 \
     "$exe" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -malloc_limit_mb=2048 \
     -max_len=8192 -fork=1 -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1 \
     -artifact_prefix="$build/fuzz-findings/$t/" "${dirs[@]}" >"$build/fuzz-findings/$t.log" 2>&1
