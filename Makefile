@@ -4,7 +4,7 @@ PRESET ?= ci
 BUILD  := build/$(PRESET)
 PYTHON := /usr/bin/python3
 
-.PHONY: all deps configure build test test-cpp test-python test-asan test-tsan demo bench asan clean
+.PHONY: all deps configure build test test-cpp test-python test-asan test-tsan demo bench asan fuzz clean
 
 all: build
 
@@ -31,12 +31,13 @@ bench:
 	cmake --build --preset bench
 	scripts/run-benchmarks.sh build/bench
 
-# The mesh readers' tests under AddressSanitizer + UBSan (malformed files must not read out
-# of bounds); builds only that test binary.
+# The whole C++ suite (every module's tests and the fuzz regression replays) under
+# AddressSanitizer + UBSan, float-cast-overflow included (docs/reliability.md has the cost);
+# the install test is left out (its consumer links without the sanitizer runtime).
 test-asan: deps
 	cmake --preset asan >/dev/null
-	cmake --build --preset asan --target rigid_mesh_tests
-	build/asan/bin/rigid_mesh_tests --gtest_brief=1
+	cmake --build --preset asan
+	ctest --preset asan
 
 # One model run from several threads at once, under ThreadSanitizer: a Lagrangian system
 # (per-run workspaces) and scenes (immutable models); builds only those two test binaries.
@@ -46,10 +47,17 @@ test-tsan: deps
 	TSAN_OPTIONS=halt_on_error=1 build/tsan/bin/rigid_lagrange_tests --gtest_brief=1 --gtest_filter='Workspace.*'
 	TSAN_OPTIONS=halt_on_error=1 build/tsan/bin/rigid_scene_tests --gtest_brief=1 --gtest_filter='ModelThreads.*'
 
-asan: deps
-	cmake --preset asan >/dev/null
-	cmake --build --preset asan
-	ctest --preset asan
+asan: test-asan
+
+# Every fuzz target (fuzz/: mesh readers, scenes, URDF/MJCF/SDF inertials, expressions) for
+# SECONDS seconds each, built with clang, libFuzzer, ASan and UBSan in build/fuzz. Findings go
+# to build/fuzz/fuzz-findings/<target>/; the exit status is 1 when there are any.
+SECONDS ?= 60
+fuzz:
+	@scripts/install-deps.sh fuzz
+	cmake --preset fuzz >/dev/null
+	cmake --build --preset fuzz
+	scripts/run-fuzz.sh build/fuzz $(SECONDS)
 
 clean:
 	rm -rf build

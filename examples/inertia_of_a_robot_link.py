@@ -14,6 +14,10 @@ import rigid  # noqa: E402
 
 ALUMINIUM = 2700.0  # kg/m³
 STEEL = 7850.0
+# Mass: tube rho_Al pi (r2^2 - r1^2) L, plus box rho_St a b c, minus hole rho_St pi r^2 c; the
+# COM is the mass-weighted mean of x = 0.2 m (tube) and x = 0.43 m (drilled box).
+# check: mass = 2.14558 kg (rel 1e-5; run rel 1e-5)
+# check: com x = 0.348165 m (rel 1e-5; run rel 1e-5)
 
 # the arm: tube along x (the primitive's axis is z, so rotate z onto x), centred at x = 0.2
 R_zx = np.array([[0.0, 0.0, 1.0], [0.0, 1.0, 0.0], [-1.0, 0.0, 0.0]])

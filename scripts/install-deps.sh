@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages rigid needs, and only those that are missing.
 # Idempotent and quick when everything is present: one `dpkg -s` per package.
-# Usage: scripts/install-deps.sh [build|bench]   (default: build)
+# Usage: scripts/install-deps.sh [build|bench|fuzz]   (default: build)
+# fuzz adds clang (libFuzzer and its sanitizer runtimes), needed by `make fuzz` only.
 set -euo pipefail
 
 build_packages=(
@@ -14,9 +15,11 @@ build_packages=(
   pybind11-dev python3-dev python3-numpy python3-pytest python3-scipy python3-sympy
 )
 bench_packages=(libmujoco-dev libbullet-dev libode-dev)
+fuzz_packages=(clang)
 
 wanted=("${build_packages[@]}")
 if [[ "${1:-build}" == "bench" ]]; then wanted+=("${bench_packages[@]}"); fi
+if [[ "${1:-build}" == "fuzz" ]]; then wanted+=("${fuzz_packages[@]}"); fi
 
 missing=()
 for p in "${wanted[@]}"; do

@@ -56,11 +56,17 @@ Eigen::Vector3d in_plane_axis(const Eigen::Vector3d& n) {
   return (e - n.dot(e) * n).normalized();
 }
 
+// ½ (I + Iᵀ) as ½ I + ½ Iᵀ: the same value (halving is exact), without the overflow of I + Iᵀ
+// for entries above half the largest double.
+Eigen::Matrix3d symmetric_part(const Eigen::Matrix3d& I) {
+  return 0.5 * I + 0.5 * I.transpose();
+}
+
 }  // namespace
 
 MassProperties::MassProperties(double mass, const Eigen::Vector3d& p_OC_B,
                                const Eigen::Matrix3d& I_C_B)
-    : mass_(mass), p_OC_B_(p_OC_B), I_C_B_(0.5 * (I_C_B + I_C_B.transpose())) {
+    : mass_(mass), p_OC_B_(p_OC_B), I_C_B_(symmetric_part(I_C_B)) {
   if (auto report = check(mass, p_OC_B, I_C_B)) {
     detail::throw_error("MassProperties", *report);
   }
@@ -77,6 +83,12 @@ std::optional<std::string> MassProperties::check(double mass, const Eigen::Vecto
   if (!I_C_B.allFinite()) {
     return fmt::format("inertia tensor must be finite, got {} kg·m²", to_string(I_C_B));
   }
+  // every tolerance is relative to the trace: one that overflows would accept anything
+  if (!std::isfinite(I_C_B.trace())) {
+    return fmt::format("inertia tensor is too large: the sum of its diagonal elements overflows "
+                       "a double; tensor {} kg·m²",
+                       to_string(I_C_B));
+  }
   const double tol = validity_tolerance(I_C_B);
   // symmetry: the largest |I_ij − I_ji|
   const Eigen::Matrix3d asym = (I_C_B - I_C_B.transpose()).cwiseAbs();
@@ -90,7 +102,7 @@ std::optional<std::string> MassProperties::check(double mass, const Eigen::Vecto
         "tolerance {:.3g} kg·m² (1e-10·tr I); tensor {} kg·m²",
         i, j, j, i, worst, tol, to_string(I_C_B));
   }
-  const Eigen::Matrix3d sym = 0.5 * (I_C_B + I_C_B.transpose());
+  const Eigen::Matrix3d sym = symmetric_part(I_C_B);
   // fast path: I₁ + I₂ ≥ I₃ for every ordering ⇔ J = ½ tr(I) 1 − I is positive semidefinite
   // (its eigenvalues are (I₁ + I₂ − I₃)/2 and permutations). So both conditions hold with the
   // margin tol exactly when I + tol·1 and J + tol·1 have Cholesky factors; the eigenvalues
@@ -105,6 +117,10 @@ std::optional<std::string> MassProperties::check(double mass, const Eigen::Vecto
   }
   const Eigen::Vector3d moments =
       Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(sym, Eigen::EigenvaluesOnly).eigenvalues();
+  if (!moments.allFinite()) {  // a NaN would pass both comparisons below
+    return fmt::format("inertia tensor has no finite principal moments; tensor {} kg·m²",
+                       to_string(I_C_B));
+  }
   if (moments(0) < -tol) {
     return fmt::format(
         "inertia tensor is not positive semidefinite: principal moments ({:.6g}, {:.6g}, {:.6g}) "

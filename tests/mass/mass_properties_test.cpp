@@ -54,6 +54,31 @@ TEST(MassProperties, RejectsNonFiniteComAndInertia) {
   EXPECT_RIGID_ERROR(MassProperties(1.0, Eigen::Vector3d::Zero(), I), "inertia tensor must be finite");
 }
 
+TEST(MassProperties, RejectsATensorWhoseTraceOverflows) {
+  // every entry is finite, but tr I = 3.5e308 is not: the tolerance 1e-10·tr I would be inf and
+  // accept anything (a URDF inertial of 1e308 kg·m² rotated by rpy came out with ixx = inf)
+  const Eigen::Matrix3d I = Eigen::Vector3d(1e308, 1e308, 1.5e308).asDiagonal();
+  EXPECT_RIGID_ERROR(MassProperties(1.0, Eigen::Vector3d::Zero(), I),
+                     "inertia tensor is too large: the sum of its diagonal elements overflows");
+}
+
+TEST(MassProperties, HugeProductsOfInertiaAreRefusedNotOverflowed) {
+  // tr I = 3 is fine, but I₁₂ = 1e308 makes the tensor indefinite (eigenvalues 1 ± 1e308);
+  // ½ (I + Iᵀ) computed as a sum overflowed to inf, the eigenvalues became NaN and the
+  // NaN comparisons let the tensor through
+  Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+  I(0, 1) = I(1, 0) = 1e308;
+  EXPECT_RIGID_ERROR(MassProperties(1.0, Eigen::Vector3d::Zero(), I),
+                     "not positive semidefinite: principal moments (-1e+308");
+}
+
+TEST(MassProperties, LargeValidTensorIsKeptExactly) {
+  // a valid tensor near the top of the double range (tr I = 1.795e308, I₃ ≤ I₁ + I₂) is stored
+  // as given: ½ I + ½ Iᵀ is exact
+  const Eigen::Matrix3d I = Eigen::Vector3d(4.5e307, 4.5e307, 8.95e307).asDiagonal();
+  EXPECT_EQ(MassProperties(1.0, Eigen::Vector3d::Zero(), I).inertia_com(), I);
+}
+
 TEST(MassProperties, RejectsAsymmetric) {
   Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
   I(0, 1) = 0.1;

@@ -1,0 +1,163 @@
+#!/usr/bin/env python3
+"""Writes the seed corpus of every fuzz target into OUT/<target>/: small well-formed inputs
+generated here (a tetrahedron and a cube in every mesh format and encoding, inertials in the
+three XML formats, expressions), the example scenes, and the smallest meshes of the CGAL demo
+data set when it is installed (libcgal-demo). Nothing large is committed: the seeds are made
+when `make fuzz` runs.  Usage: fuzz/make_seeds.py OUT"""
+import os
+import shutil
+import struct
+import sys
+import tarfile
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+CGAL = "/usr/share/doc/libcgal-demo/data.tar.gz"
+
+TET_V = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)]
+TET_F = [(0, 2, 1), (0, 1, 3), (0, 3, 2), (1, 2, 3)]
+CUBE_V = [(x, y, z) for x in (0, 1) for y in (0, 1) for z in (0, 1)]
+CUBE_Q = [(0, 1, 3, 2), (4, 6, 7, 5), (0, 4, 5, 1), (2, 3, 7, 6), (0, 2, 6, 4), (1, 5, 7, 3)]
+
+
+def tris(faces):
+    return [t for f in faces for t in ([(f[0], f[k], f[k + 1]) for k in range(1, len(f) - 1)])]
+
+
+def write(out, target, name, data):
+    d = os.path.join(out, target)
+    os.makedirs(d, exist_ok=True)
+    with open(os.path.join(d, name), "wb") as f:
+        f.write(data.encode() if isinstance(data, str) else data)
+
+
+def stl_ascii(v, f, name="s"):
+    s = f"solid {name}\n"
+    for t in f:
+        s += " facet normal 0 0 0\n  outer loop\n"
+        s += "".join(f"   vertex {v[i][0]} {v[i][1]} {v[i][2]}\n" for i in t)
+        s += "  endloop\n endfacet\n"
+    return s + f"endsolid {name}\n"
+
+
+def stl_binary(v, f, header=b"binary"):
+    b = header.ljust(80, b" ")[:80] + struct.pack("<I", len(f))
+    for t in f:
+        b += struct.pack("<3f", 0, 0, 0)
+        for i in t:
+            b += struct.pack("<3f", *v[i])
+        b += struct.pack("<H", 0)
+    return b
+
+
+def obj(v, f, extras=False):
+    s = "# seed\no body\n" + "".join(f"v {x} {y} {z}\n" for x, y, z in v)
+    if extras:
+        s += "vt 0 0\nvn 0 0 1\n"
+        return s + "".join("f " + " ".join(f"{i + 1}/1/1" for i in face) + "\n" for face in f)
+    return s + "".join("f " + " ".join(str(i - len(v)) for i in face) + "\n" for face in f)
+
+
+def ply_ascii(v, f):
+    s = ("ply\nformat ascii 1.0\ncomment seed\n"
+         f"element vertex {len(v)}\nproperty float x\nproperty float y\nproperty float z\n"
+         f"element face {len(f)}\nproperty list uchar int vertex_indices\nend_header\n")
+    s += "".join(f"{x} {y} {z}\n" for x, y, z in v)
+    return s + "".join(f"{len(face)} " + " ".join(map(str, face)) + "\n" for face in f)
+
+
+def ply_binary(v, f, big):
+    e = ">" if big else "<"
+    s = (f"ply\nformat binary_{'big' if big else 'little'}_endian 1.0\n"
+         f"element vertex {len(v)}\nproperty double x\nproperty double y\nproperty double z\n"
+         "property uchar red\n"
+         f"element face {len(f)}\nproperty list uchar uint vertex_indices\nend_header\n").encode()
+    for p in v:
+        s += struct.pack(e + "3dB", *p, 7)
+    for face in f:
+        s += struct.pack(e + "B" + "I" * len(face), len(face), *face)
+    return s
+
+
+def off(v, f):
+    s = "OFF\n# seed\n" + f"{len(v)} {len(f)} 0\n" + "".join(f"{x} {y} {z}\n" for x, y, z in v)
+    return s + "".join(f"{len(face)} " + " ".join(map(str, face)) + "\n" for face in f)
+
+
+def meshes(out):
+    write(out, "stl_ascii", "tet.stl", stl_ascii(TET_V, TET_F))
+    write(out, "stl_ascii", "cube.stl", stl_ascii(CUBE_V, tris(CUBE_Q), "cube"))
+    write(out, "stl_ascii", "two_solids.stl", stl_ascii(TET_V, TET_F, "a") + stl_ascii(TET_V, TET_F, "b"))
+    write(out, "stl_binary", "tet.stl", stl_binary(TET_V, TET_F))
+    write(out, "stl_binary", "cube.stl", stl_binary(CUBE_V, tris(CUBE_Q)))
+    write(out, "stl_binary", "solid_header.stl", stl_binary(TET_V, TET_F, b"solid exported by a CAD tool"))
+    write(out, "obj", "tet.obj", obj(TET_V, TET_F))
+    write(out, "obj", "cube_quads.obj", obj(CUBE_V, CUBE_Q, extras=True))
+    write(out, "ply", "tet_ascii.ply", ply_ascii(TET_V, TET_F))
+    write(out, "ply", "cube_ascii.ply", ply_ascii(CUBE_V, CUBE_Q))
+    write(out, "ply", "tet_le.ply", ply_binary(TET_V, TET_F, False))
+    write(out, "ply", "cube_be.ply", ply_binary(CUBE_V, CUBE_Q, True))
+    write(out, "off", "tet.off", off(TET_V, TET_F))
+    write(out, "off", "cube.off", off(CUBE_V, CUBE_Q))
+    if os.path.exists(CGAL):  # real files, the small ones only
+        with tarfile.open(CGAL) as tar:
+            for m in tar.getmembers():
+                ext = os.path.splitext(m.name)[1].lower().lstrip(".")
+                if m.isfile() and m.size <= 4096 and ext in ("off", "stl", "ply", "obj"):
+                    data = tar.extractfile(m).read()
+                    target = {"off": "off", "ply": "ply", "obj": "obj"}.get(ext)
+                    if ext == "stl":
+                        target = "stl_ascii" if data.lstrip().startswith(b"solid") else "stl_binary"
+                    write(out, target, "cgal_" + os.path.basename(m.name), data)
+
+
+def inertials(out):
+    inertia = 'ixx="0.4" ixy="-0.01" ixz="0" iyy="0.5" iyz="0.02" izz="0.6"'
+    write(out, "inertial_xml", "link.urdf",
+          '<robot name="r"><link name="a"><inertial><origin xyz="0.1 0 0.2" rpy="0 0.3 0"/>'
+          f'<mass value="2"/><inertia {inertia}/></inertial></link>'
+          '<link name="b"/></robot>\n')
+    write(out, "inertial_xml", "full.xml",
+          '<mujoco><worldbody><body name="b"><inertial pos="0 0 0.1" mass="1"'
+          ' fullinertia="0.4 0.5 0.6 -0.01 0 0.02"/><body name="c"><inertial pos="0 0 0" mass="1"'
+          ' quat="0.7071067811865476 0 0 0.7071067811865476" diaginertia="1 2 3"/></body>'
+          '</body></worldbody></mujoco>\n')
+    write(out, "inertial_xml", "link.sdf",
+          '<sdf version="1.7"><model name="m"><link name="c"><inertial>'
+          '<pose>0 0 0 1.5707963267948966 0 0</pose><mass>1</mass><inertia><ixx>1</ixx>'
+          '<iyy>2</iyy><izz>3</izz><ixy>0.1</ixy></inertia></inertial></link></model></sdf>\n')
+
+
+def expressions(out):
+    seeds = {
+        "const": "0a*b + sin(pi/3)^2 - sqrt(abs(b)) / exp(1e-3)",
+        "power": "0(a + 2)**3 - 2^-1 * log(a) + atan(b) + tanh(1.5e2)",
+        "potential": "1a*9.81*(1 - cos(q)) + b*q^2/2 + 0.1*sin(t)",
+        "lagrangian": "2a*q_dot^2/2 + a*(q_dot*cos(q))^2 - b*q^4 + q*q_dot*t",
+        "functions": "2(1 + sinh(q)^2)*q_dot^2 - acos(q/10) + asin(q/10) + cosh(q) - tan(q)",
+    }
+    for name, text in seeds.items():
+        write(out, "expression", name + ".txt", text)
+
+
+def scenes(out):
+    ex = os.path.join(ROOT, "examples")
+    for name in sorted(os.listdir(ex)):
+        if name.endswith(".toml"):
+            os.makedirs(os.path.join(out, "scene"), exist_ok=True)
+            shutil.copy(os.path.join(ex, name), os.path.join(out, "scene", name))
+
+
+def main():
+    if len(sys.argv) != 2:
+        sys.exit(__doc__)
+    out = sys.argv[1]
+    meshes(out)
+    inertials(out)
+    expressions(out)
+    scenes(out)
+    for target in sorted(os.listdir(out)):
+        print(f"seeds: {target}: {len(os.listdir(os.path.join(out, target)))} files")
+
+
+if __name__ == "__main__":
+    main()
