@@ -190,8 +190,10 @@ void write_file(const fs::path& path, std::string_view contents) {
     data += n;
     left -= static_cast<std::size_t>(n);
   }
-  if (::fsync(fd) != 0 || ::close(fd) != 0) {
-    throw Error(fmt::format("cannot write '{}': {}", path.string(), system_reason()));
+  const bool synced = ::fsync(fd) == 0;
+  const std::string why = synced ? std::string() : system_reason();
+  if (::close(fd) != 0 || !synced) {
+    throw Error(fmt::format("cannot write '{}': {}", path.string(), synced ? system_reason() : why));
   }
 }
 
@@ -345,8 +347,13 @@ std::vector<fs::path> write_run(const fs::path& directory, const RunResult& resu
     // a file system without the exchange: the old set steps aside, the new one takes its
     // place (a reader in between finds no set, never a mix)
     const fs::path old = parent / detail::temporary_name(name);
-    if (::rename(target.c_str(), old.c_str()) != 0 || ::rename(temporary.c_str(), target.c_str()) != 0) {
+    if (::rename(target.c_str(), old.c_str()) != 0) {
       throw Error(fmt::format("cannot write the output directory '{}': {}", directory.string(), system_reason()));
+    }
+    if (::rename(temporary.c_str(), target.c_str()) != 0) {
+      const std::string why = system_reason();
+      (void)::rename(old.c_str(), target.c_str());  // the old set back in its place
+      throw Error(fmt::format("cannot write the output directory '{}': {}", directory.string(), why));
     }
     cleanup.release();
     RemoveOnExit remove_old(old);
