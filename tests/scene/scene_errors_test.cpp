@@ -6,7 +6,6 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -89,12 +88,23 @@ dt = 1e-3
 output_dt = 0.01
 )toml";
 
+// "((…(1)…))" as a TOML string, `depth` levels deep (appended in place: GCC 12 warns wrongly
+// about the overlap of a chain of + on temporaries, -Wrestrict)
+std::string nested_ones(std::size_t depth) {
+  std::string s = "\"";
+  s.append(depth, '(');
+  s += '1';
+  s.append(depth, ')');
+  s += '"';
+  return s;
+}
+
 // Values that each key should refuse (or accept) without a crash, with a location.
 const std::vector<std::string> kBadValues = {
     "\"abc\"", "[1, 2]", "{a = 1}", "true", "nan", "inf", "-inf", "-1.0", "0", "-1",
     "9007199254740993", "-9223372036854775808", "1e308", "\"1/0\"", "\"log(0)\"", "\"9^9^9\"",
     "\"0^0\"", "\"\"", "\"((((\"", "\"sqrt(-1)\"", "\"exp(-1e300*1e-10)\"", "1979-05-27",
-    "[]", "{}", "\"x\"", "\"t\"", "[[1]]", "\"" + std::string(300, '(') + "1" + std::string(300, ')') + "\""};
+    "[]", "{}", "\"x\"", "\"t\"", "[[1]]", nested_ones(300)};
 
 std::vector<std::string> lines_of(std::string_view text) {
   std::vector<std::string> lines;
@@ -164,13 +174,25 @@ std::optional<std::string> refusal_of(const std::filesystem::path& file) {
   return std::nullopt;
 }
 
+// "FILE:LINE:COL: text": the file, two runs of digits and a non-blank message (checked by hand:
+// std::regex trips GCC 12's -Wmaybe-uninitialized under the sanitizers)
+bool is_located(std::string_view msg, std::string_view file) {
+  if (!msg.starts_with(file)) return false;
+  std::size_t i = file.size();
+  for (int field = 0; field < 2; ++field) {
+    if (i >= msg.size() || msg[i] != ':') return false;
+    const std::size_t start = ++i;
+    while (i < msg.size() && msg[i] >= '0' && msg[i] <= '9') ++i;
+    if (i == start) return false;
+  }
+  return msg.substr(i).starts_with(": ") && msg.size() > i + 2 && msg[i + 2] != ' ';
+}
+
 void check_all(std::string_view base, const std::string& name, std::size_t& refused) {
   const auto dir = std::filesystem::temp_directory_path() / ("rigid_scene_errors_" + name);
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   const auto file = dir / "m.toml";
-  const std::regex located("^" + std::regex_replace(file.string(), std::regex(R"([.^$|()\[\]{}*+?\\])"), R"(\$&)") +
-                           R"(:\d+:\d+: \S)");
   const std::vector<std::string> raw = {"bad optional", "bad_alloc", "std::", "log_eval", "floating point",
                                         "power::eval", "(): ", "toml::", "Error while parsing", "nan kg", "terminate"};
   std::vector<Refusal> bad;
@@ -179,7 +201,7 @@ void check_all(std::string_view base, const std::string& name, std::size_t& refu
     const auto msg = refusal_of(file);
     if (!msg) continue;
     ++refused;
-    bool ok = std::regex_search(*msg, located);
+    bool ok = is_located(*msg, file.string());
     for (const auto& r : raw) ok = ok && msg->find(r) == std::string::npos;
     if (!ok || std::getenv("RIGID_PRINT_REFUSALS") != nullptr) bad.push_back({text, *msg});
   }
@@ -194,6 +216,17 @@ TEST(SceneErrors, EveryRefusalOfAMalformedSceneIsLocatedAndWorded) {
   // the mutations are refusals in their great majority (a count, so that a broken generator
   // that makes only valid scenes cannot pass)
   EXPECT_GT(refused, 1000u);
+}
+
+// The check of the test itself: a place needs the file, a line, a column and a message.
+TEST(SceneErrors, TheLocationCheckNeedsLineColumnAndMessage) {
+  EXPECT_TRUE(is_located("/t/m.toml:3:14: mass is negative", "/t/m.toml"));
+  EXPECT_FALSE(is_located("/t/m.toml: mass is negative", "/t/m.toml"));
+  EXPECT_FALSE(is_located("/t/m.toml:3: mass is negative", "/t/m.toml"));
+  EXPECT_FALSE(is_located("/t/m.toml:3:x: mass is negative", "/t/m.toml"));
+  EXPECT_FALSE(is_located("/t/m.toml:3:14:", "/t/m.toml"));
+  EXPECT_FALSE(is_located("/t/other.toml:3:14: mass is negative", "/t/m.toml"));
+  EXPECT_FALSE(is_located("mass is negative", "/t/m.toml"));
 }
 
 // The two bases are valid: the refusals above come from the mutations.
