@@ -17,6 +17,7 @@
 
 #include "rigid/common/did_you_mean.hpp"
 #include "rigid/common/error.hpp"
+#include "rigid/common/wording.hpp"
 #include "detail/symbolic.hpp"
 #include "detail/system_impl.hpp"
 #include "detail/tape.hpp"
@@ -353,9 +354,10 @@ NormalModes normal_modes(const System& system, const LinearizeOptions& options) 
     if (!ok) {
       rigid::detail::throw_error(kWho, fmt::format(
           "no equilibrium found from ({}): the search ended at ({}) after {} iterations with "
-          "generalized forces of up to {}; give the equilibrium's coordinates (at name=value)",
+          "generalized forces of up to {}; give the equilibrium's coordinates with {}",
           point_text(s, q), point_text(s, found), search.iterations,
-          entries([&] { lin.evaluate(found, qd, params); return lin.f; }(), free).lpNorm<Eigen::Infinity>()));
+          entries([&] { lin.evaluate(found, qd, params); return lin.f; }(), free).lpNorm<Eigen::Infinity>(),
+          setting("at", "name=value")));
     }
     q = found;
   }
