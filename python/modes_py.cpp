@@ -142,6 +142,10 @@ void bind_modes(py::module_& root) {
       "coordinates are found from the initial values. Returns rigid.lagrange.NormalModes.");
 
   auto scene = py::reinterpret_borrow<py::object>(py::type::of<rigid::scene::Model>());
+  scene.attr("system") = py::module_::import("builtins").attr("property")(py::cpp_function(
+      [](const rigid::scene::Model& model) -> const System& { return model.system(); },
+      py::is_method(scene), py::return_value_policy::reference_internal,
+      "The rigid.lagrange.System of a scene of coordinates (its equations, M, f, accelerations)."));
   scene.attr("modes") = py::cpp_function(
       [](const rigid::scene::Model& model, const py::object& at) {
         return PyModes{rigid::scene::normal_modes(model, assignments(at)), model.scene().file.string()};
