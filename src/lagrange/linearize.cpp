@@ -12,6 +12,7 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 #include <Eigen/QR>
+#include <Eigen/SVD>
 #include <fmt/format.h>
 #include <ginac/ginac.h>
 
@@ -31,10 +32,11 @@ using GiNaC::ex;
 // The public entry point that every refusal names.
 constexpr const char* kWho = "normal_modes";
 
-// M, f, K = −∂f/∂q and C = −∂f/∂q̇ compiled once per call: inputs (q, q̇, t, parameters).
+// M, f, K = −∂f/∂q, C = −∂f/∂q̇, and the constraints g, G = ∂g/∂q and their Hessians
+// H_k = ∂²g_k/∂q², compiled once per call: inputs (q, q̇, t, parameters).
 class Linearization {
  public:
-  explicit Linearization(const Impl& s) : n_(s.n) {
+  explicit Linearization(const Impl& s) : n_(s.n), m_(s.m) {
     std::vector<GiNaC::symbol> inputs;
     inputs.insert(inputs.end(), s.q.begin(), s.q.end());
     inputs.insert(inputs.end(), s.qd.begin(), s.qd.end());
@@ -42,6 +44,7 @@ class Linearization {
     inputs.insert(inputs.end(), s.params.begin(), s.params.end());
     detail::TapeBuilder b(inputs);
     const auto n = static_cast<std::size_t>(s.n);
+    const auto m = static_cast<std::size_t>(s.m);
     for (std::size_t i = 0; i < n; ++i)
       for (std::size_t j = i; j < n; ++j) b.add_output(s.M[i * n + j]);
     for (const ex& fi : s.f) b.add_output(fi);
@@ -49,6 +52,12 @@ class Linearization {
       for (std::size_t j = 0; j < n; ++j) b.add_output(-detail::d(s.f[i], s.q[j]));
     for (std::size_t i = 0; i < n; ++i)
       for (std::size_t j = 0; j < n; ++j) b.add_output(-detail::d(s.f[i], s.qd[j]));
+    for (const ex& gk : s.g) b.add_output(gk);
+    for (std::size_t k = 0; k < m; ++k)
+      for (std::size_t i = 0; i < n; ++i) b.add_output(s.G[k * n + i]);
+    for (std::size_t k = 0; k < m; ++k)
+      for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t j = 0; j < n; ++j) b.add_output(detail::d(s.G[k * n + i], s.q[j]));
     tape_ = b.build();
     in_.assign(tape_.num_inputs(), 0.0);
     out_.assign(tape_.num_outputs(), 0.0);
@@ -57,7 +66,7 @@ class Linearization {
 
   void evaluate(const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
                 const std::vector<double>& params) {
-    const int n = n_;
+    const int n = n_, m = m_;
     for (int i = 0; i < n; ++i) {
       in_[static_cast<std::size_t>(i)] = q[i];
       in_[static_cast<std::size_t>(n + i)] = qd[i];
@@ -69,6 +78,9 @@ class Linearization {
     f.resize(n);
     K.resize(n, n);
     C.resize(n, n);
+    g.resize(m);
+    G.resize(m, n);
+    H.assign(static_cast<std::size_t>(m), Eigen::MatrixXd(n, n));
     std::size_t k = 0;
     for (int i = 0; i < n; ++i)
       for (int j = i; j < n; ++j) M(i, j) = M(j, i) = out_[k++];
@@ -77,13 +89,20 @@ class Linearization {
       for (int j = 0; j < n; ++j) K(i, j) = out_[k++];
     for (int i = 0; i < n; ++i)
       for (int j = 0; j < n; ++j) C(i, j) = out_[k++];
+    for (int a = 0; a < m; ++a) g[a] = out_[k++];
+    for (int a = 0; a < m; ++a)
+      for (int i = 0; i < n; ++i) G(a, i) = out_[k++];
+    for (int a = 0; a < m; ++a)
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) H[static_cast<std::size_t>(a)](i, j) = out_[k++];
   }
 
-  Eigen::MatrixXd M, K, C;
-  Eigen::VectorXd f;
+  Eigen::MatrixXd M, K, C, G;
+  Eigen::VectorXd f, g;
+  std::vector<Eigen::MatrixXd> H;
 
  private:
-  int n_;
+  int n_, m_;
   detail::Tape tape_;
   std::vector<double> in_, out_, scratch_;
 };
@@ -93,6 +112,12 @@ Eigen::MatrixXd rows_cols(const Eigen::MatrixXd& A, const std::vector<int>& rows
   Eigen::MatrixXd B(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(cols.size()));
   for (std::size_t i = 0; i < rows.size(); ++i)
     for (std::size_t j = 0; j < cols.size(); ++j) B(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = A(rows[i], cols[j]);
+  return B;
+}
+
+Eigen::MatrixXd columns(const Eigen::MatrixXd& A, const std::vector<int>& cols) {
+  Eigen::MatrixXd B(A.rows(), static_cast<Eigen::Index>(cols.size()));
+  for (std::size_t j = 0; j < cols.size(); ++j) B.col(static_cast<Eigen::Index>(j)) = A.col(cols[j]);
   return B;
 }
 
@@ -110,91 +135,115 @@ std::string point_text(const Impl& s, const Eigen::VectorXd& q) {
   return out;
 }
 
-// The search for q_F (the free coordinates) with f_F(q) = 0, the others held.
+// The search for the free coordinates q_F and the multipliers λ with
+//   R(q_F, λ) = (f_F + (Gᵀλ)_F, g) = 0,
+// the other coordinates held. Its Jacobian, with ∂f/∂q = −K:
+//   J = [−K_FF + Σ λ_k (H_k)_FF   (G_F)ᵀ]
+//       [G_F                       0    ].
 struct Search {
   Linearization& lin;
   const std::vector<double>& params;
   const std::vector<int>& free;
   Eigen::VectorXd qd;
   int max_iterations;
+  double force_scale = 0.0, length_scale = 1.0;  // what "0" is measured against
   int iterations = 0;
+  Eigen::VectorXd lambda;
 
-  double force_norm(const Eigen::VectorXd& q) {
+  [[nodiscard]] int num_free() const { return static_cast<int>(free.size()); }
+
+  // R at (q, λ) and, with `jacobian`, J; lin holds the evaluation at q afterwards
+  Eigen::VectorXd residual(const Eigen::VectorXd& q, const Eigen::VectorXd& lam, Eigen::MatrixXd* jacobian) {
     lin.evaluate(q, qd, params);
-    return entries(lin.f, free).lpNorm<Eigen::Infinity>();
+    const int nf = num_free(), m = static_cast<int>(lin.g.size());
+    const Eigen::MatrixXd GF = columns(lin.G, free);
+    Eigen::VectorXd R(nf + m);
+    R.head(nf) = entries(lin.f, free) + GF.transpose() * lam;
+    R.tail(m) = lin.g;
+    if (jacobian != nullptr) {
+      Eigen::MatrixXd& J = *jacobian;
+      J.setZero(nf + m, nf + m);
+      J.topLeftCorner(nf, nf) = -rows_cols(lin.K, free, free);
+      for (int k = 0; k < m; ++k) J.topLeftCorner(nf, nf) += lam[k] * rows_cols(lin.H[static_cast<std::size_t>(k)], free, free);
+      J.topRightCorner(nf, m) = GF.transpose();
+      J.bottomLeftCorner(m, nf) = GF;
+    }
+    return R;
   }
 
-  // The scale against which a force is called 0: what the terms of f are made of near q
-  // (the stiffness times the coordinates' size, and the force at the start).
-  double scale(const Eigen::VectorXd& q, double f_start) {
-    lin.evaluate(q, qd, params);
-    const double k = lin.K.cwiseAbs().rowwise().sum().maxCoeff();
-    return f_start + k * std::max(1.0, q.lpNorm<Eigen::Infinity>());
+  // max of |force rows| / force scale and |constraint rows| / length scale: 0 at the point
+  [[nodiscard]] double merit(const Eigen::VectorXd& R) const {
+    const int nf = num_free();
+    const double forces = nf ? R.head(nf).lpNorm<Eigen::Infinity>() / force_scale : 0.0;
+    const double lengths = R.size() > nf ? R.tail(R.size() - nf).lpNorm<Eigen::Infinity>() / length_scale : 0.0;
+    return std::max(forces, lengths);
   }
 
-  // Newton's method with steps of at most 0.5 per coordinate and a step accepted only if
-  // it lowers max |f_F|. Returns whether it converged.
-  bool newton(Eigen::VectorXd& q, double f_start) {
+  void apply(Eigen::VectorXd& q, Eigen::VectorXd& lam, const Eigen::VectorXd& step) const {
+    for (std::size_t i = 0; i < free.size(); ++i) q[free[i]] += step[static_cast<Eigen::Index>(i)];
+    lam += step.tail(lam.size());
+  }
+
+  // Newton's method with steps of at most 0.5 per coordinate and a step accepted only if it
+  // lowers the merit. Returns whether it converged.
+  bool newton(Eigen::VectorXd& q, Eigen::VectorXd& lam) {
     constexpr double kMaxStep = 0.5;
+    Eigen::MatrixXd J;
     for (int it = 0; it < max_iterations; ++it, ++iterations) {
-      lin.evaluate(q, qd, params);
-      const Eigen::VectorXd fF = entries(lin.f, free);
-      const double tol = 1e-13 * scale(q, f_start);
-      lin.evaluate(q, qd, params);
-      if (fF.lpNorm<Eigen::Infinity>() <= tol) return true;
-      // f(q + Δ) ≈ f − K Δ = 0
-      const Eigen::MatrixXd KF = rows_cols(lin.K, free, free);
-      Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(KF);
+      const Eigen::VectorXd R = residual(q, lam, &J);
+      const double before = merit(R);
+      if (before <= 1e-13) return true;
+      Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(J);
       qr.setThreshold(1e-10);
-      if (qr.rank() < KF.rows()) return false;  // a neutral or turning direction: stalled
-      Eigen::VectorXd step = qr.solve(fF);
-      const double longest = step.lpNorm<Eigen::Infinity>();
-      if (!std::isfinite(longest)) return false;
+      if (qr.rank() < J.rows()) return false;  // a neutral or turning direction: stalled
+      Eigen::VectorXd step = -qr.solve(R);
+      const double longest = step.head(num_free()).lpNorm<Eigen::Infinity>();
+      if (!step.allFinite()) return false;
       if (longest > kMaxStep) step *= kMaxStep / longest;
-      // halve until max |f_F| decreases
-      const double before = fF.lpNorm<Eigen::Infinity>();
       bool accepted = false;
       for (int h = 0; h < 30 && !accepted; ++h, step /= 2) {
-        Eigen::VectorXd trial = q;
-        for (std::size_t i = 0; i < free.size(); ++i) trial[free[i]] += step[static_cast<Eigen::Index>(i)];
-        if (force_norm(trial) < before) {
-          const bool tiny = step.lpNorm<Eigen::Infinity>() <= 4e-16 * std::max(1.0, q.lpNorm<Eigen::Infinity>());
+        Eigen::VectorXd trial = q, trial_lam = lam;
+        apply(trial, trial_lam, step);
+        const double after = merit(residual(trial, trial_lam, nullptr));
+        if (after < before) {
+          const bool tiny = step.head(num_free()).lpNorm<Eigen::Infinity>() <=
+                            4e-16 * std::max(1.0, q.lpNorm<Eigen::Infinity>());
           q = trial;
+          lam = trial_lam;
           accepted = true;
-          if (tiny) return force_norm(q) <= 1e-9 * scale(q, f_start);
+          if (tiny) return after <= 1e-9;
         }
       }
-      if (!accepted) return force_norm(q) <= 1e-9 * scale(q, f_start);
+      if (!accepted) return before <= 1e-9;
     }
     return false;
   }
 
-  // Pseudo-transient continuation [Kelley1998]: (M/τ + K) Δ = f follows the motion with
-  // strong damping towards rest where Newton stalls (K singular: a pendulum held
-  // horizontally), and becomes Newton's method as τ grows with the force's decrease
-  // (τ_{k+1} = τ_k |f_k| / |f_{k+1}|).
-  bool continuation(Eigen::VectorXd& q, double f_start) {
-    lin.evaluate(q, qd, params);
-    Eigen::VectorXd fF = entries(lin.f, free);
-    const Eigen::MatrixXd MF0 = rows_cols(lin.M, free, free);
-    const Eigen::VectorXd a = MF0.ldlt().solve(fF);
+  // Pseudo-transient continuation [Kelley1998]: (D/τ − J) Δ = R with D = diag(M_FF, 0)
+  // follows the motion with strong damping towards rest where Newton stalls (J singular: a
+  // pendulum held horizontally), and becomes Newton's method as τ grows with the merit's
+  // decrease (τ_{k+1} = τ_k φ_k / φ_{k+1}).
+  bool continuation(Eigen::VectorXd& q, Eigen::VectorXd& lam) {
+    const int nf = num_free();
+    Eigen::MatrixXd J;
+    Eigen::VectorXd R = residual(q, lam, &J);
     // the first step moves the coordinates by about 0.1 (rad or m)
+    const Eigen::VectorXd a = rows_cols(lin.M, free, free).ldlt().solve(R.head(nf));
     double tau = 0.1 / std::max(a.lpNorm<Eigen::Infinity>(), 1e-300);
     for (int it = 0; it < 4 * max_iterations; ++it, ++iterations) {
-      lin.evaluate(q, qd, params);
-      fF = entries(lin.f, free);
-      const double norm = fF.lpNorm<Eigen::Infinity>();
-      if (norm <= 1e-13 * scale(q, f_start)) return true;
-      lin.evaluate(q, qd, params);
-      const Eigen::MatrixXd A = rows_cols(lin.M, free, free) / tau + rows_cols(lin.K, free, free);
-      const Eigen::VectorXd step = A.partialPivLu().solve(fF);
+      R = residual(q, lam, &J);
+      const double before = merit(R);
+      if (before <= 1e-13) return true;
+      Eigen::MatrixXd A = -J;
+      A.topLeftCorner(nf, nf) += rows_cols(lin.M, free, free) / tau;
+      const Eigen::VectorXd step = A.partialPivLu().solve(R);
       if (!step.allFinite()) return false;
-      for (std::size_t i = 0; i < free.size(); ++i) q[free[i]] += step[static_cast<Eigen::Index>(i)];
-      const double after = force_norm(q);
+      apply(q, lam, step);
+      const double after = merit(residual(q, lam, nullptr));
       if (!std::isfinite(after)) return false;
-      tau = std::min(tau * norm / std::max(after, 1e-300), 1e300);
-      if (step.lpNorm<Eigen::Infinity>() <= 4e-16 * std::max(1.0, q.lpNorm<Eigen::Infinity>())) {
-        return after <= 1e-9 * scale(q, f_start);
+      tau = std::min(tau * before / std::max(after, 1e-300), 1e300);
+      if (step.head(nf).lpNorm<Eigen::Infinity>() <= 4e-16 * std::max(1.0, q.lpNorm<Eigen::Infinity>())) {
+        return after <= 1e-9;
       }
     }
     return false;
@@ -240,13 +289,6 @@ NormalModes normal_modes(const System& system, const LinearizeOptions& options) 
   const int n = s.n;
   const auto nu = static_cast<std::size_t>(n);
 
-  if (s.m > 0) {
-    rigid::detail::throw_error(kWho, fmt::format(
-        "the system has {} constraint{} ({}); linearisation is of unconstrained systems: choose "
-        "coordinates in which the constraints hold identically (one angle for a pendulum rather "
-        "than x, y and a rod)",
-        s.m, s.m > 1 ? "s" : "", fmt::join(s.constraint_names, ", ")));
-  }
   for (std::size_t i = 0; i < nu; ++i) {
     bool timed = s.f[i].has(s.t);
     for (std::size_t j = 0; j < nu; ++j) timed = timed || s.M[i * nu + j].has(s.t);
@@ -336,54 +378,89 @@ NormalModes normal_modes(const System& system, const LinearizeOptions& options) 
 
   // the search: Newton from the start, else continuation from the start
   lin.evaluate(q, qd, params);
-  RIGID_REQUIRE_AS(kWho, lin.f.allFinite() && lin.M.allFinite(),
+  RIGID_REQUIRE_AS(kWho, lin.f.allFinite() && lin.M.allFinite() && lin.g.allFinite() && lin.G.allFinite(),
                    "the equations are not finite at the start ({}); give the point with its "
                    "coordinates' values",
                    point_text(s, q));
-  const double f_start = lin.f.lpNorm<Eigen::Infinity>();
+  // multipliers that balance the forces best (least squares): λ = −(G Gᵀ)⁻¹ G f
+  auto best_multipliers = [&] {
+    return Eigen::VectorXd((lin.G * lin.G.transpose()).completeOrthogonalDecomposition().solve(-lin.G * lin.f));
+  };
+  Eigen::VectorXd lambda = best_multipliers();
+  // what 0 is measured against: the forces at the start and the stiffness times the size of q
+  const double force_scale = std::max(
+      {lin.f.lpNorm<Eigen::Infinity>(),
+       lin.K.cwiseAbs().rowwise().sum().maxCoeff() * std::max(1.0, q.lpNorm<Eigen::Infinity>()),
+       (s.m ? (lin.G.transpose() * lambda).lpNorm<Eigen::Infinity>() : 0.0), 1e-300});
+  const double length_scale = std::max(1.0, q.lpNorm<Eigen::Infinity>());
   if (!free.empty()) {
     out.searched = true;
     Search search{lin, params, free, qd, options.max_iterations};
-    Eigen::VectorXd found = q;
-    bool ok = search.newton(found, f_start);
+    search.force_scale = force_scale;
+    search.length_scale = length_scale;
+    Eigen::VectorXd found = q, found_lambda = lambda;
+    bool ok = search.newton(found, found_lambda);
     if (!ok) {
       found = q;
-      ok = search.continuation(found, f_start);
+      found_lambda = lambda;
+      ok = search.continuation(found, found_lambda);
     }
     out.iterations = search.iterations;
     if (!ok) {
+      lin.evaluate(found, qd, params);
       rigid::detail::throw_error(kWho, fmt::format(
           "no equilibrium found from ({}): the search ended at ({}) after {} iterations with "
-          "generalized forces of up to {}; give the equilibrium's coordinates with {}",
+          "generalized forces of up to {}{}; give the equilibrium's coordinates with {}",
           point_text(s, q), point_text(s, found), search.iterations,
-          entries([&] { lin.evaluate(found, qd, params); return lin.f; }(), free).lpNorm<Eigen::Infinity>(),
+          (entries(lin.f, free) + columns(lin.G, free).transpose() * found_lambda).lpNorm<Eigen::Infinity>(),
+          s.m ? fmt::format(" and constraints violated by up to {}", lin.g.lpNorm<Eigen::Infinity>()) : "",
           setting("at", "name=value")));
     }
     q = found;
   }
 
-  // the point must be an equilibrium (or steady motion) in every equation
+  // the point must be an equilibrium (or steady motion) in every equation, on the constraints
   lin.evaluate(q, qd, params);
   Eigen::LLT<Eigen::MatrixXd> llt(lin.M);
   if (llt.info() != Eigen::Success) {
     rigid::detail::throw_error(kWho, fmt::format("the mass matrix is not positive definite at ({}); M = {}",
                                           point_text(s, q), fmt::join(lin.M.reshaped(), ", ")));
   }
-  const Eigen::VectorXd acc = llt.solve(lin.f);
+  if (s.m > 0) {
+    Eigen::Index worst = 0;
+    const double gmax = lin.g.cwiseAbs().maxCoeff(&worst);
+    if (!(gmax <= 1e-9 * length_scale)) {
+      rigid::detail::throw_error(kWho, fmt::format(
+          "({}) violates the constraint '{}' by {}; give coordinates on the constraints or leave "
+          "them to the search",
+          point_text(s, q), s.constraint_names[static_cast<std::size_t>(worst)], lin.g[worst]));
+    }
+    Eigen::JacobiSVD<Eigen::MatrixXd> svd(lin.G);
+    const Eigen::VectorXd sv = svd.singularValues();
+    if (!(sv[sv.size() - 1] > 1e-10 * sv[0])) {
+      rigid::detail::throw_error(kWho, fmt::format(
+          "the constraints' gradients ∂g/∂q are dependent at ({}); the constraint manifold has no "
+          "tangent space of dimension n − m there (G = {})",
+          point_text(s, q), fmt::join(lin.G.reshaped<Eigen::RowMajor>(), ", ")));
+    }
+    lambda = best_multipliers();
+  }
+  const Eigen::VectorXd f_total = lin.f + lin.G.transpose() * lambda;
+  const Eigen::VectorXd acc = llt.solve(f_total);
   out.residual = acc.lpNorm<Eigen::Infinity>();
   {
     const double k = lin.K.cwiseAbs().rowwise().sum().maxCoeff() +
                      lin.C.cwiseAbs().rowwise().sum().maxCoeff() * std::max(1.0, qd.lpNorm<Eigen::Infinity>());
-    const double tol = 1e-9 * (k * std::max(1.0, q.lpNorm<Eigen::Infinity>()));
+    const double tol = 1e-9 * std::max(k * length_scale, s.m ? force_scale : 0.0);
     Eigen::Index worst = 0;
-    const double fmax = lin.f.cwiseAbs().maxCoeff(&worst);
+    const double fmax = f_total.cwiseAbs().maxCoeff(&worst);
     if (!(fmax <= tol)) {
       const auto w = static_cast<std::size_t>(worst);
       rigid::detail::throw_error(kWho, fmt::format(
-          "({}) is not an equilibrium{}: the generalized force on '{}' is {} (its acceleration "
+          "({}) is not an equilibrium{}: the generalized force on '{}' is {}{} (its acceleration "
           "{}); {}",
-          point_text(s, q), cyc.empty() ? "" : " or steady motion", s.coord_names[w], lin.f[worst],
-          acc[worst],
+          point_text(s, q), cyc.empty() ? "" : " or steady motion", s.coord_names[w], f_total[worst],
+          s.m ? " with the constraint forces" : "", acc[worst],
           held[w] ? fmt::format("'{}' is held at the given value: give another or leave it to "
                                 "the search", s.coord_names[w])
                   : "give values that balance the forces"));
@@ -391,20 +468,24 @@ NormalModes normal_modes(const System& system, const LinearizeOptions& options) 
   }
   out.q = q;
   out.q_dot = qd;
+  out.constraint_names = s.constraint_names;
+  out.lambda = lambda;
   out.M = lin.M;
   out.C = lin.C;
+  // the constraint forces Gᵀλ change with q too: K − Σ λ_k ∂²g_k/∂q²
   out.K = lin.K;
+  for (int k = 0; k < s.m; ++k) out.K -= lambda[k] * lin.H[static_cast<std::size_t>(k)];
 
-  // Routh reduction of the ignorable coordinates
+  // Routh reduction of the ignorable coordinates (constraints do not involve them)
   const auto nr = static_cast<Eigen::Index>(reduced.size());
-  Eigen::MatrixXd Mt = rows_cols(lin.M, reduced, reduced), Ct = rows_cols(lin.C, reduced, reduced),
-                  Kt = rows_cols(lin.K, reduced, reduced);
+  Eigen::MatrixXd Mt = rows_cols(out.M, reduced, reduced), Ct = rows_cols(out.C, reduced, reduced),
+                  Kt = rows_cols(out.K, reduced, reduced);
   Eigen::MatrixXd Mcc_inv_Mcr, Mcc_inv_Ccr;
   if (!cyc.empty()) {
-    const Eigen::LDLT<Eigen::MatrixXd> Mcc(rows_cols(lin.M, cyc, cyc));
-    Mcc_inv_Mcr = Mcc.solve(rows_cols(lin.M, cyc, reduced));
-    Mcc_inv_Ccr = Mcc.solve(rows_cols(lin.C, cyc, reduced));
-    const Eigen::MatrixXd Mrc = rows_cols(lin.M, reduced, cyc), Crc = rows_cols(lin.C, reduced, cyc);
+    const Eigen::LDLT<Eigen::MatrixXd> Mcc(rows_cols(out.M, cyc, cyc));
+    Mcc_inv_Mcr = Mcc.solve(rows_cols(out.M, cyc, reduced));
+    Mcc_inv_Ccr = Mcc.solve(rows_cols(out.C, cyc, reduced));
+    const Eigen::MatrixXd Mrc = rows_cols(out.M, reduced, cyc), Crc = rows_cols(out.C, reduced, cyc);
     Mt -= Mrc * Mcc_inv_Mcr;
     Ct -= Mrc * Mcc_inv_Ccr + Crc * Mcc_inv_Mcr;
     Kt -= Crc * Mcc_inv_Ccr;
@@ -413,37 +494,56 @@ NormalModes normal_modes(const System& system, const LinearizeOptions& options) 
   out.C_reduced = Ct;
   out.K_reduced = Kt;
 
-  // the full shape of a reduced one: δq̇_c = −M_cc⁻¹ (M_cr δq̇_r + C_cr δq_r), δq ∝ e^{λt}
-  auto full_shape = [&](const Eigen::VectorXcd& phi, std::complex<double> lambda) {
+  // the constraint manifold's tangent space: δq_r = N δy with G_r N = 0 (N orthonormal, from
+  // the SVD of G_r); the eigenproblem is Nᵀ M̃ N, Nᵀ C̃ N, Nᵀ K̃ N
+  Eigen::MatrixXd N = Eigen::MatrixXd::Identity(nr, nr);
+  if (s.m > 0) {
+    Eigen::JacobiSVD<Eigen::MatrixXd> svd(columns(lin.G, reduced), Eigen::ComputeFullV);
+    N = svd.matrixV().rightCols(nr - s.m);
+  }
+  out.tangent_basis = N;
+  const Eigen::MatrixXd Mh = N.transpose() * Mt * N, Ch = N.transpose() * Ct * N,
+                        Kh = N.transpose() * Kt * N;
+  const Eigen::Index nt = N.cols();
+
+  // the full shape of a reduced one: δq_r = N ψ, δq̇_c = −M_cc⁻¹ (M_cr δq̇_r + C_cr δq_r),
+  // δq ∝ e^{λt}
+  auto full_shape = [&](const Eigen::VectorXcd& psi, std::complex<double> lambda_k) {
+    Eigen::VectorXcd phi = N.cast<std::complex<double>>() * psi;
+    // the sign (phase) of the shape in the coordinates: its largest component real and positive
+    Eigen::Index largest = 0;
+    phi.cwiseAbs().maxCoeff(&largest);
+    if (std::abs(phi[largest]) > 0) phi *= std::abs(phi[largest]) / phi[largest];
+    phi[largest] = std::abs(phi[largest]);
     Eigen::VectorXcd shape = Eigen::VectorXcd::Zero(n);
     for (Eigen::Index i = 0; i < nr; ++i) shape[reduced[static_cast<std::size_t>(i)]] = phi[i];
-    if (!cyc.empty() && std::abs(lambda) > 0) {
-      const Eigen::VectorXcd rate = -(Mcc_inv_Mcr.cast<std::complex<double>>() * lambda +
+    if (!cyc.empty() && std::abs(lambda_k) > 0) {
+      const Eigen::VectorXcd rate = -(Mcc_inv_Mcr.cast<std::complex<double>>() * lambda_k +
                                       Mcc_inv_Ccr.cast<std::complex<double>>()) * phi;
-      for (std::size_t c = 0; c < cyc.size(); ++c) shape[cyc[c]] = rate[static_cast<Eigen::Index>(c)] / lambda;
+      for (std::size_t c = 0; c < cyc.size(); ++c) shape[cyc[c]] = rate[static_cast<Eigen::Index>(c)] / lambda_k;
     }
     return shape;
   };
 
-  if (nr == 0) {
+  if (nt == 0) {
     out.eigenvalues.resize(0);
     out.stability = Stability::kMarginal;
     return out;
   }
-  const double k_norm = Kt.cwiseAbs().maxCoeff();
-  const bool symmetric = (Kt - Kt.transpose()).cwiseAbs().maxCoeff() <= 1e-12 * k_norm;
-  out.gyroscopic = !(Ct.cwiseAbs().maxCoeff() == 0.0 && symmetric);
+  const double k_norm = Kh.cwiseAbs().maxCoeff();
+  const bool symmetric = (Kh - Kh.transpose()).cwiseAbs().maxCoeff() <= 1e-12 * k_norm;
+  out.gyroscopic = !(Ch.cwiseAbs().maxCoeff() == 0.0 && symmetric);
   using cd = std::complex<double>;
   if (!out.gyroscopic) {
-    // K̃ φ = ω² M̃ φ with φᵀ M̃ φ = 1 (Cholesky of M̃, then a symmetric eigenproblem)
-    const Eigen::MatrixXd Ks = (Kt + Kt.transpose()) / 2;
-    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(Ks, Mt);
+    // K φ = ω² M φ with φᵀ M φ = 1 (Cholesky of M, then a symmetric eigenproblem)
+    const Eigen::MatrixXd Ks = (Kh + Kh.transpose()) / 2;
+    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(Ks, Mh);
     RIGID_REQUIRE_AS(kWho, es.info() == Eigen::Success, "the eigenproblem K φ = ω² M φ did not converge at ({})",
                      point_text(s, q));
     const Eigen::VectorXd mu = es.eigenvalues();  // ascending
     const double zero = 1e-9 * mu.cwiseAbs().maxCoeff();
-    out.eigenvalues.resize(2 * nr);
-    for (Eigen::Index k = 0; k < nr; ++k) {
+    out.eigenvalues.resize(2 * nt);
+    for (Eigen::Index k = 0; k < nt; ++k) {
       Mode md;
       md.omega_squared = mu[k];
       if (mu[k] > zero) {
@@ -459,39 +559,39 @@ NormalModes normal_modes(const System& system, const LinearizeOptions& options) 
       md.omega = md.eigenvalue.imag();
       md.hz = md.omega / (2 * std::numbers::pi);
       md.growth_rate = md.eigenvalue.real();
-      const Eigen::VectorXcd phi = normalised(es.eigenvectors().col(k).cast<cd>(), Mt);
-      md.shape = full_shape(phi, md.eigenvalue);
+      const Eigen::VectorXcd psi = normalised(es.eigenvectors().col(k).cast<cd>(), Mh);
+      md.shape = full_shape(psi, md.eigenvalue);
       out.eigenvalues[2 * k] = md.eigenvalue;
       out.eigenvalues[2 * k + 1] = md.stability == Stability::kUnstable ? -md.eigenvalue : std::conj(md.eigenvalue);
       out.modes.push_back(std::move(md));
     }
   } else {
-    // λ x = A x with x = (δq, δq̇), A = [0 1; −M̃⁻¹K̃ −M̃⁻¹C̃]
-    const Eigen::LLT<Eigen::MatrixXd> Mr(Mt);
-    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(2 * nr, 2 * nr);
-    A.topRightCorner(nr, nr).setIdentity();
-    A.bottomLeftCorner(nr, nr) = -Mr.solve(Kt);
-    A.bottomRightCorner(nr, nr) = -Mr.solve(Ct);
+    // λ x = A x with x = (δy, δẏ), A = [0 1; −M⁻¹K −M⁻¹C] (tangent coordinates)
+    const Eigen::LLT<Eigen::MatrixXd> Mr(Mh);
+    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(2 * nt, 2 * nt);
+    A.topRightCorner(nt, nt).setIdentity();
+    A.bottomLeftCorner(nt, nt) = -Mr.solve(Kh);
+    A.bottomRightCorner(nt, nt) = -Mr.solve(Ch);
     Eigen::EigenSolver<Eigen::MatrixXd> es(A);
     RIGID_REQUIRE_AS(kWho, es.info() == Eigen::Success, "the state-space eigenproblem did not converge at ({})",
                      point_text(s, q));
     out.eigenvalues = es.eigenvalues();
     const double zero = 1e-6 * out.eigenvalues.cwiseAbs().maxCoeff();
-    for (Eigen::Index k = 0; k < 2 * nr; ++k) {
-      const cd lambda = out.eigenvalues[k];
-      const bool real = std::abs(lambda.imag()) <= zero;
-      if (!real && lambda.imag() < 0) continue;  // its conjugate is the mode
+    for (Eigen::Index k = 0; k < 2 * nt; ++k) {
+      const cd ev_k = out.eigenvalues[k];
+      const bool real = std::abs(ev_k.imag()) <= zero;
+      if (!real && ev_k.imag() < 0) continue;  // its conjugate is the mode
       Mode md;
-      md.eigenvalue = real ? cd(lambda.real(), 0.0) : lambda;
-      md.omega = real ? 0.0 : lambda.imag();
+      md.eigenvalue = real ? cd(ev_k.real(), 0.0) : ev_k;
+      md.omega = real ? 0.0 : ev_k.imag();
       md.hz = md.omega / (2 * std::numbers::pi);
-      md.growth_rate = lambda.real();
+      md.growth_rate = ev_k.real();
       md.omega_squared = std::numeric_limits<double>::quiet_NaN();
-      md.stability = lambda.real() > zero       ? Stability::kUnstable
-                     : std::abs(lambda) <= zero ? Stability::kMarginal
-                                                : Stability::kStable;
-      const Eigen::VectorXcd phi = normalised(es.eigenvectors().col(k).head(nr), Mt);
-      md.shape = full_shape(phi, md.eigenvalue);
+      md.stability = ev_k.real() > zero       ? Stability::kUnstable
+                     : std::abs(ev_k) <= zero ? Stability::kMarginal
+                                              : Stability::kStable;
+      const Eigen::VectorXcd psi = normalised(es.eigenvectors().col(k).head(nt), Mh);
+      md.shape = full_shape(psi, md.eigenvalue);
       out.modes.push_back(std::move(md));
     }
     std::stable_sort(out.modes.begin(), out.modes.end(), [](const Mode& a, const Mode& b) {
@@ -501,7 +601,7 @@ NormalModes normal_modes(const System& system, const LinearizeOptions& options) 
     std::stable_sort(ev.begin(), ev.end(), [](cd a, cd b) {
       return a.real() != b.real() ? a.real() > b.real() : a.imag() > b.imag();
     });
-    for (Eigen::Index k = 0; k < 2 * nr; ++k) out.eigenvalues[k] = ev[static_cast<std::size_t>(k)];
+    for (Eigen::Index k = 0; k < 2 * nt; ++k) out.eigenvalues[k] = ev[static_cast<std::size_t>(k)];
   }
   out.stability = Stability::kStable;
   for (const Mode& md : out.modes) {

@@ -71,11 +71,18 @@ std::string modes_json(const lagrange::NormalModes& r, const std::string& scene_
   j["residual"] = r.residual;
   j["stability"] = lagrange::to_string(r.stability);
   j["gyroscopic"] = r.gyroscopic;
+  j["constraints"] = r.constraint_names;
+  Json multipliers = Json::object();
+  for (std::size_t k = 0; k < r.constraint_names.size(); ++k) {
+    multipliers[r.constraint_names[k]] = r.lambda[static_cast<Eigen::Index>(k)];
+  }
+  j["multipliers"] = multipliers;
   j["M"] = matrix(r.M);
   j["C"] = matrix(r.C);
   j["K"] = matrix(r.K);
   j["reduced"] = Json{{"coordinates", r.reduced_names}, {"M", matrix(r.M_reduced)},
-                      {"C", matrix(r.C_reduced)}, {"K", matrix(r.K_reduced)}};
+                      {"C", matrix(r.C_reduced)}, {"K", matrix(r.K_reduced)},
+                      {"tangent_basis", matrix(r.tangent_basis)}};
   Json ev = Json::array();
   for (Eigen::Index k = 0; k < r.eigenvalues.size(); ++k) ev.push_back(complex(r.eigenvalues[k]));
   j["eigenvalues"] = ev;

@@ -208,12 +208,41 @@ TEST(NormalModes, RefusesWithAReason) {
   SystemSpec driven = falling;
   driven.lagrangian = "z_dot^2/2 - z^2/2 + z*sin(t)";
   EXPECT_RIGID_ERROR((void)normal_modes(System(driven)), "depends on the time t");
+}
 
-  SystemSpec rod;
-  rod.coordinates = {{"x", 1.0, 0.0}, {"y", 0.0, 0.0}};
-  rod.lagrangian = "(x_dot^2 + y_dot^2)/2 - 9.81*y";
-  rod.constraints = {{"rod", "x^2 + y^2 - 1"}};
-  EXPECT_RIGID_ERROR((void)normal_modes(System(rod)), "the system has 1 constraint (rod)");
+// A point mass m on a rod of length l in Cartesian coordinates: g = x² + y² − l² = 0.
+SystemSpec cartesian_pendulum() {
+  SystemSpec spec;
+  spec.parameters = {{"m", 0.3}, {"l", 0.9}, {"g", 9.81}};
+  spec.coordinates = {{"x", 0.9, 0.0}, {"y", 0.0, 0.0}};  // the rod horizontal
+  spec.lagrangian = "m/2*(x_dot^2 + y_dot^2) - m*g*y";
+  spec.constraints = {{"rod", "x^2 + y^2 - l^2"}};
+  return spec;
+}
+
+TEST(NormalModes, ConstrainedPendulumOnTheCircle) {
+  // the search slides along the circle to the bottom (0, −l); there f + Gᵀλ = 0 gives
+  // λ = −m g / (2 l) (the rod's tension m g, per unit of ∂g/∂y = −2 l), the constraint force's
+  // change adds −λ ∂²g/∂q² = (m g / l) 1 to K, and on the tangent (x) ω² = g / l
+  const NormalModes r = normal_modes(System(cartesian_pendulum()));
+  const double m = 0.3, l = 0.9, g = 9.81;
+  EXPECT_NEAR(r.q[0], 0.0, 1e-12);
+  EXPECT_NEAR(r.q[1], -l, 1e-12);
+  ASSERT_EQ(r.lambda.size(), 1);
+  EXPECT_NEAR(r.lambda[0], -m * g / (2 * l), test::ulps(16, m * g / l));
+  ASSERT_EQ(r.modes.size(), 1u);
+  EXPECT_NEAR(r.modes[0].omega_squared, g / l, kRel * g / l);
+  EXPECT_EQ(r.stability, Stability::kStable);
+  // the shape is tangent to the circle: along x, M-normalised (m φ² = 1)
+  EXPECT_NEAR(r.modes[0].shape[0].real(), 1 / std::sqrt(m), 1e-14);
+  EXPECT_NEAR(std::abs(r.modes[0].shape[1]), 0.0, 1e-14);
+  // the top of the circle, given: unstable with ω² = −g / l
+  const NormalModes top = normal_modes(System(cartesian_pendulum()), {.at = {{"x", 0.0}, {"y", 0.9}}});
+  EXPECT_EQ(top.stability, Stability::kUnstable);
+  EXPECT_NEAR(top.modes[0].omega_squared, -g / l, kRel * g / l);
+  // a point off the circle is refused, naming the constraint
+  EXPECT_RIGID_ERROR((void)normal_modes(System(cartesian_pendulum()), {.at = {{"x", 0.0}, {"y", -0.5}}}),
+                     "violates the constraint 'rod' by");
 }
 
 TEST(NormalModes, ToTextNamesTheModes) {

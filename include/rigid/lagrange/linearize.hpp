@@ -14,9 +14,12 @@
 ///   M̃ = M_rr − M_rc M_cc⁻¹ M_cr,
 ///   C̃ = C_rr − M_rc M_cc⁻¹ C_cr − C_rc M_cc⁻¹ M_cr,
 ///   K̃ = K_rr − C_rc M_cc⁻¹ C_cr     (r: the other coordinates, c: the ignorable ones).
-/// Without gyroscopic or damping terms (C̃ = 0) and with a symmetric K̃, the modes solve the
-/// symmetric problem K̃ φ = ω² M̃ φ; otherwise the state-space problem
-///   λ x = A x,  A = [0 1; −M̃⁻¹K̃ −M̃⁻¹C̃],  x = (δq, δq̇).
+/// With holonomic constraints g(q) = 0 the point also satisfies g = 0 and f + Gᵀλ = 0; the
+/// constraint forces' change adds −Σ λ_k ∂²g_k/∂q² to K, and the motion stays on the
+/// constraints' tangent space δq = N δy (G N = 0), so the matrices become Nᵀ M̃ N, Nᵀ C̃ N,
+/// Nᵀ K̃ N. Without gyroscopic or damping terms (C = 0) and with a symmetric K, the modes solve
+/// the symmetric problem K φ = ω² M φ; otherwise the state-space problem
+///   λ x = A x,  A = [0 1; −M⁻¹K −M⁻¹C],  x = (δy, δẏ).
 
 #include <complex>
 #include <string>
@@ -83,8 +86,15 @@ struct NormalModes {
   bool searched = false;  ///< true when some coordinate was found by the search
   int iterations = 0;     ///< iterations of the search
   double residual = 0.0;  ///< max |q̈ᵢ| at the point (the equilibrium's own error)
-  Eigen::MatrixXd M, C, K;                          ///< n × n, all coordinates
-  Eigen::MatrixXd M_reduced, C_reduced, K_reduced;  ///< over reduced_names
+  std::vector<std::string> constraint_names;
+  Eigen::VectorXd lambda;  ///< the multipliers at the point (constraint forces, N or N·m)
+  /// n × n, all coordinates; K includes the change of the constraint forces, −Σ λ_k ∂²g_k/∂q²
+  Eigen::MatrixXd M, C, K;
+  Eigen::MatrixXd M_reduced, C_reduced, K_reduced;  ///< over reduced_names (before projection)
+  /// N (n_r × (n_r − m), orthonormal): δq_r = N δy spans the constraints' tangent space
+  /// (G N = 0); the eigenproblem is of Nᵀ M̃ N, Nᵀ C̃ N, Nᵀ K̃ N. The identity without
+  /// constraints.
+  Eigen::MatrixXd tangent_basis;
   bool gyroscopic = false;       ///< solved as the state-space problem
   Eigen::VectorXcd eigenvalues;  ///< all 2 n_r eigenvalues (1/s), by growth, then frequency
   std::vector<Mode> modes;       ///< by frequency, then growth rate
@@ -94,7 +104,8 @@ struct NormalModes {
 /// Finds (or takes) the point, linearises and solves for the modes. Derives C and K
 /// symbolically on each call (GiNaC: call from one thread at a time).
 /// @throws rigid::Error for an unknown name in `at` (with a suggestion), a rate given for a
-///   coordinate that is not cyclic, a System with constraints or explicit time dependence, a
+///   coordinate that is not cyclic, a System with explicit time dependence, a point off the
+///   constraints or where their gradients are dependent, a
 ///   search that does not converge (saying where it ended and how to give the point), a
 ///   given point that is not an equilibrium (naming the coordinate whose acceleration is not
 ///   0), and a mass matrix that is not positive definite there.

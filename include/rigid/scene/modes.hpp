@@ -27,7 +27,8 @@ namespace rigid::scene {
 
 /// The JSON document of the modes (keys in a fixed order, numbers in shortest round-trip form):
 /// scene, coordinates, ignorable, point {q, q_dot}, searched, iterations, residual,
-/// stability, gyroscopic, M, C, K (n × n, row-major arrays), reduced {coordinates, M, C, K},
+/// stability, gyroscopic, constraints, multipliers {name: λ}, M, C, K (n × n, row-major
+/// arrays), reduced {coordinates, M, C, K, tangent_basis},
 /// eigenvalues [{re, im}], modes [{omega, hz, omega_squared (null for the state-space problem),
 /// growth_rate, stability, shape {coordinate: {re, im}}}].
 [[nodiscard]] std::string modes_json(const lagrange::NormalModes& modes, const std::string& scene_file);
