@@ -384,6 +384,7 @@ NormalModes normal_modes(const System& system, const LinearizeOptions& options) 
                    point_text(s, q));
   // multipliers that balance the forces best (least squares): λ = −(G Gᵀ)⁻¹ G f
   auto best_multipliers = [&] {
+    if (s.m == 0) return Eigen::VectorXd(0);
     return Eigen::VectorXd((lin.G * lin.G.transpose()).completeOrthogonalDecomposition().solve(-lin.G * lin.f));
   };
   Eigen::VectorXd lambda = best_multipliers();
