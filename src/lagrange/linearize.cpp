@@ -143,28 +143,27 @@ std::string point_text(const Impl& s, const Eigen::VectorXd& q) {
 struct Search {
   Linearization& lin;
   const std::vector<double>& params;
-  const std::vector<int>& free;
+  const std::vector<int>& unknowns;
   Eigen::VectorXd qd;
   int max_iterations;
   double force_scale = 0.0, length_scale = 1.0;  // what "0" is measured against
   int iterations = 0;
-  Eigen::VectorXd lambda;
 
-  [[nodiscard]] int num_free() const { return static_cast<int>(free.size()); }
+  [[nodiscard]] int num_unknowns() const { return static_cast<int>(unknowns.size()); }
 
   // R at (q, λ) and, with `jacobian`, J; lin holds the evaluation at q afterwards
   Eigen::VectorXd residual(const Eigen::VectorXd& q, const Eigen::VectorXd& lam, Eigen::MatrixXd* jacobian) {
     lin.evaluate(q, qd, params);
-    const int nf = num_free(), m = static_cast<int>(lin.g.size());
-    const Eigen::MatrixXd GF = columns(lin.G, free);
+    const int nf = num_unknowns(), m = static_cast<int>(lin.g.size());
+    const Eigen::MatrixXd GF = columns(lin.G, unknowns);
     Eigen::VectorXd R(nf + m);
-    R.head(nf) = entries(lin.f, free) + GF.transpose() * lam;
+    R.head(nf) = entries(lin.f, unknowns) + GF.transpose() * lam;
     R.tail(m) = lin.g;
     if (jacobian != nullptr) {
       Eigen::MatrixXd& J = *jacobian;
       J.setZero(nf + m, nf + m);
-      J.topLeftCorner(nf, nf) = -rows_cols(lin.K, free, free);
-      for (int k = 0; k < m; ++k) J.topLeftCorner(nf, nf) += lam[k] * rows_cols(lin.H[static_cast<std::size_t>(k)], free, free);
+      J.topLeftCorner(nf, nf) = -rows_cols(lin.K, unknowns, unknowns);
+      for (int k = 0; k < m; ++k) J.topLeftCorner(nf, nf) += lam[k] * rows_cols(lin.H[static_cast<std::size_t>(k)], unknowns, unknowns);
       J.topRightCorner(nf, m) = GF.transpose();
       J.bottomLeftCorner(m, nf) = GF;
     }
@@ -173,14 +172,14 @@ struct Search {
 
   // max of |force rows| / force scale and |constraint rows| / length scale: 0 at the point
   [[nodiscard]] double merit(const Eigen::VectorXd& R) const {
-    const int nf = num_free();
+    const int nf = num_unknowns();
     const double forces = nf ? R.head(nf).lpNorm<Eigen::Infinity>() / force_scale : 0.0;
     const double lengths = R.size() > nf ? R.tail(R.size() - nf).lpNorm<Eigen::Infinity>() / length_scale : 0.0;
     return std::max(forces, lengths);
   }
 
   void apply(Eigen::VectorXd& q, Eigen::VectorXd& lam, const Eigen::VectorXd& step) const {
-    for (std::size_t i = 0; i < free.size(); ++i) q[free[i]] += step[static_cast<Eigen::Index>(i)];
+    for (std::size_t i = 0; i < unknowns.size(); ++i) q[unknowns[i]] += step[static_cast<Eigen::Index>(i)];
     lam += step.tail(lam.size());
   }
 
@@ -197,7 +196,7 @@ struct Search {
       qr.setThreshold(1e-10);
       if (qr.rank() < J.rows()) return false;  // a neutral or turning direction: stalled
       Eigen::VectorXd step = -qr.solve(R);
-      const double longest = step.head(num_free()).lpNorm<Eigen::Infinity>();
+      const double longest = step.head(num_unknowns()).lpNorm<Eigen::Infinity>();
       if (!step.allFinite()) return false;
       if (longest > kMaxStep) step *= kMaxStep / longest;
       bool accepted = false;
@@ -206,7 +205,7 @@ struct Search {
         apply(trial, trial_lam, step);
         const double after = merit(residual(trial, trial_lam, nullptr));
         if (after < before) {
-          const bool tiny = step.head(num_free()).lpNorm<Eigen::Infinity>() <=
+          const bool tiny = step.head(num_unknowns()).lpNorm<Eigen::Infinity>() <=
                             4e-16 * std::max(1.0, q.lpNorm<Eigen::Infinity>());
           q = trial;
           lam = trial_lam;
@@ -224,18 +223,18 @@ struct Search {
   // pendulum held horizontally), and becomes Newton's method as τ grows with the merit's
   // decrease (τ_{k+1} = τ_k φ_k / φ_{k+1}).
   bool continuation(Eigen::VectorXd& q, Eigen::VectorXd& lam) {
-    const int nf = num_free();
+    const int nf = num_unknowns();
     Eigen::MatrixXd J;
     Eigen::VectorXd R = residual(q, lam, &J);
     // the first step moves the coordinates by about 0.1 (rad or m)
-    const Eigen::VectorXd a = rows_cols(lin.M, free, free).ldlt().solve(R.head(nf));
+    const Eigen::VectorXd a = rows_cols(lin.M, unknowns, unknowns).ldlt().solve(R.head(nf));
     double tau = 0.1 / std::max(a.lpNorm<Eigen::Infinity>(), 1e-300);
     for (int it = 0; it < 4 * max_iterations; ++it, ++iterations) {
       R = residual(q, lam, &J);
       const double before = merit(R);
       if (before <= 1e-13) return true;
       Eigen::MatrixXd A = -J;
-      A.topLeftCorner(nf, nf) += rows_cols(lin.M, free, free) / tau;
+      A.topLeftCorner(nf, nf) += rows_cols(lin.M, unknowns, unknowns) / tau;
       const Eigen::VectorXd step = A.partialPivLu().solve(R);
       if (!step.allFinite()) return false;
       apply(q, lam, step);
@@ -367,13 +366,13 @@ NormalModes normal_modes(const System& system, const LinearizeOptions& options) 
   Linearization lin(s);
   NormalModes out;
   out.coordinate_names = s.coord_names;
-  std::vector<int> reduced, cyc, free;
+  std::vector<int> reduced, cyc, unknowns;
   for (int i = 0; i < n; ++i) {
     const auto iu = static_cast<std::size_t>(i);
     (ignorable[iu] ? cyc : reduced).push_back(i);
     if (ignorable[iu]) out.ignorable_names.push_back(s.coord_names[iu]);
     else out.reduced_names.push_back(s.coord_names[iu]);
-    if (!ignorable[iu] && !held[iu]) free.push_back(i);
+    if (!ignorable[iu] && !held[iu]) unknowns.push_back(i);
   }
 
   // the search: Newton from the start, else continuation from the start
@@ -394,9 +393,9 @@ NormalModes normal_modes(const System& system, const LinearizeOptions& options) 
        lin.K.cwiseAbs().rowwise().sum().maxCoeff() * std::max(1.0, q.lpNorm<Eigen::Infinity>()),
        (s.m ? (lin.G.transpose() * lambda).lpNorm<Eigen::Infinity>() : 0.0), 1e-300});
   const double length_scale = std::max(1.0, q.lpNorm<Eigen::Infinity>());
-  if (!free.empty()) {
+  if (!unknowns.empty()) {
     out.searched = true;
-    Search search{lin, params, free, qd, options.max_iterations};
+    Search search{lin, params, unknowns, qd, options.max_iterations};
     search.force_scale = force_scale;
     search.length_scale = length_scale;
     Eigen::VectorXd found = q, found_lambda = lambda;
@@ -413,7 +412,7 @@ NormalModes normal_modes(const System& system, const LinearizeOptions& options) 
           "no equilibrium found from ({}): the search ended at ({}) after {} iterations with "
           "generalized forces of up to {}{}; give the equilibrium's coordinates with {}",
           point_text(s, q), point_text(s, found), search.iterations,
-          (entries(lin.f, free) + columns(lin.G, free).transpose() * found_lambda).lpNorm<Eigen::Infinity>(),
+          (entries(lin.f, unknowns) + columns(lin.G, unknowns).transpose() * found_lambda).lpNorm<Eigen::Infinity>(),
           s.m ? fmt::format(" and constraints violated by up to {}", lin.g.lpNorm<Eigen::Infinity>()) : "",
           setting("at", "name=value")));
     }
