@@ -56,7 +56,7 @@ std::vector<std::string> assignments(const py::object& at) {
         out.push_back(name + "=" + item.second.cast<std::string>());
       } else {
         // repr of a float is its shortest round-trip decimal, which the parser reads exactly
-        out.push_back(name + "=" + py::repr(py::float_(item.second)).cast<std::string>());
+        out.push_back(name + "=" + py::repr(py::float_(py::reinterpret_borrow<py::object>(item.second))).cast<std::string>());
       }
     }
     return out;
