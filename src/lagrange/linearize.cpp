@@ -249,9 +249,9 @@ struct Search {
   }
 };
 
-const char* mode_word(Stability s) {
-  switch (s) {
-    case Stability::kStable: return "oscillating";
+const char* mode_word(const Mode& m) {
+  switch (m.stability) {
+    case Stability::kStable: return m.growth_rate < 0 ? (m.omega > 0 ? "decaying oscillation" : "decaying") : "oscillating";
     case Stability::kUnstable: return "growing";
     case Stability::kMarginal: return "neutral";
   }
@@ -627,13 +627,17 @@ std::string to_text(const NormalModes& r) {
                      r.gyroscopic ? " (state-space eigenproblem: gyroscopic, damping or circulatory terms)" : "");
   for (std::size_t k = 0; k < r.modes.size(); ++k) {
     const Mode& m = r.modes[k];
-    out += fmt::format("mode {}: {}", k + 1, mode_word(m.stability));
+    out += fmt::format("mode {}: {}", k + 1, mode_word(m));
     if (m.omega > 0) out += fmt::format(", omega = {:.10g} rad/s, f = {:.10g} Hz", m.omega, m.hz);
     if (m.growth_rate != 0) out += fmt::format(", growth rate = {:.10g} 1/s", m.growth_rate);
     if (!std::isnan(m.omega_squared)) out += fmt::format(", omega^2 = {:.10g} 1/s^2", m.omega_squared);
     out += "\n  shape:";
+    // parts below 1e-12 of the shape's largest component are round-off: printed as 0
+    const double tiny = 1e-12 * (m.shape.size() ? m.shape.cwiseAbs().maxCoeff() : 0.0);
     for (std::size_t i = 0; i < r.coordinate_names.size(); ++i) {
-      const std::complex<double> c = m.shape[static_cast<Eigen::Index>(i)];
+      std::complex<double> c = m.shape[static_cast<Eigen::Index>(i)];
+      if (std::abs(c.real()) <= tiny) c.real(0.0);
+      if (std::abs(c.imag()) <= tiny) c.imag(0.0);
       if (c.imag() == 0.0) {
         out += fmt::format(" {} {:.6g}", r.coordinate_names[i], c.real());
       } else {
