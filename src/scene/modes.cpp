@@ -46,8 +46,8 @@ std::vector<lagrange::PointValue> point_values(const Model& model, const std::ve
 lagrange::NormalModes normal_modes(const Model& model, const std::vector<std::string>& at) {
   if (model.kind() != SceneKind::kCoordinates) {
     throw Error(fmt::format("{}: normal modes are of a scene of [[coordinates]]; this scene is "
-                            "made of free bodies (a free body's steady rotations are in "
-                            "docs/body.md)",
+                            "made of free bodies, whose state is a pose and a twist rather than "
+                            "coordinates (pose the bodies by [[coordinates]] to linearise them)",
                             model.scene().file.string()));
   }
   lagrange::LinearizeOptions options;
