@@ -14,6 +14,7 @@ void bind_lagrange(py::module_& m);
 void bind_body(py::module_& m);
 void bind_mesh(py::module_& m);
 void bind_scene(py::module_& m);
+void bind_modes(py::module_& m);
 
 PYBIND11_MODULE(rigid, m) {
   m.doc() = "rigid: rigid-body mechanics from isometries and inertia tensors to Euler's equations";
@@ -36,4 +37,5 @@ PYBIND11_MODULE(rigid, m) {
   bind_body(m);
   bind_mesh(m);
   bind_scene(m);
+  bind_modes(m);
 }

@@ -14,6 +14,7 @@
 #include "cli_inertia.hpp"
 #include "cli_rotation.hpp"
 #include "cli_mesh.hpp"
+#include "cli_modes.hpp"
 #include "cli_run.hpp"
 
 namespace {
@@ -41,6 +42,7 @@ int main(int argc, char** argv) {
   add_rotation_command(app);
   add_mesh_command(app);
   add_run_command(app);
+  add_modes_command(app);
 
   try {
     app.parse(argc, argv);

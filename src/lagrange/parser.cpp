@@ -1,10 +1,12 @@
 #include "detail/parser.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <new>
 #include <sstream>
 #include <stdexcept>
+#include <string_view>
 #include <vector>
 
 #include <cln/exception.h>
@@ -17,7 +19,17 @@ void throw_at(const Expression& expression, std::size_t offset, std::string_view
               const std::string& reason) {
   if (!expression.where.file.empty() || expression.where.line > 0) {
     SourceLocation at = expression.where;
-    if (at.column > 0) at.column += static_cast<int>(offset);
+    if (at.column > 0) {
+      // a text of several lines (a scene's multi-line string): lines counted from `where`
+      const std::string_view before = std::string_view(expression.text).substr(0, offset);
+      const std::size_t newline = before.rfind('\n');
+      if (newline == std::string_view::npos) {
+        at.column += static_cast<int>(offset);
+      } else {
+        at.line += static_cast<int>(std::count(before.begin(), before.end(), '\n'));
+        at.column = static_cast<int>(offset - newline);
+      }
+    }
     rigid::detail::throw_error_at(at, fmt::format("{}: {}", context, reason));
   }
   throw Error(fmt::format("{}: {} at column {} of \"{}\"", context, reason, offset + 1,

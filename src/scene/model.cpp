@@ -372,6 +372,7 @@ struct Model::Impl {
       spec.bodies.push_back(std::move(lb));
     }
     spec.gravity_W = expressions_of(scene.gravity);
+    if (scene.lagrangian) spec.lagrangian = to_lagrange(*scene.lagrangian);
     for (const auto& p : scene.potentials) spec.potentials.push_back({p.name, to_lagrange(p.expression)});
     for (const auto& f : scene.forces) spec.forces.push_back({f.name, to_lagrange(f.expression)});
     for (const auto& c : scene.constraints) spec.constraints.push_back({c.name, to_lagrange(c.expression)});

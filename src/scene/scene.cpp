@@ -24,13 +24,15 @@ namespace {
 using Keys = std::vector<std::string>;
 
 const Keys kTopKeys = {"parameters", "coordinates", "bodies", "constraints", "potentials",
-                       "forces", "springs", "gravity", "simulation", "output"};
+                       "forces", "springs", "gravity", "simulation", "output",
+                       "lagrangian"};
 
 // The parser keeps the file name and turns every toml++ position into a message that
 // starts with file:line:col.
 class Parser {
  public:
-  explicit Parser(std::filesystem::path file) : file_(std::move(file)) {}
+  explicit Parser(std::filesystem::path file, std::string_view text = {})
+      : file_(std::move(file)), text_(text) {}
 
   [[nodiscard]] SourceLocation where(const toml::source_region& r) const {
     return {file_.string(), static_cast<int>(r.begin.line), static_cast<int>(r.begin.column)};
@@ -193,8 +195,35 @@ class Parser {
 
   const std::filesystem::path& file() const { return file_; }
 
+  // An expression written as a TOML string, with `where` at its first character: a
+  // multi-line string ("""…""" or '''…''', whose first line break is not part of it) starts
+  // after its delimiter, so that positions inside it (line breaks counted) point into the file.
+  [[nodiscard]] Expression multiline_expression(const toml::node& n, std::string_view what) const {
+    Expression e = expression(n, what);
+    if (!e.quoted || text_.empty()) return e;
+    // the offset of the node's line and column in the text (toml++ counts from 1, in bytes)
+    std::size_t offset = 0;
+    for (int line = 1; line < e.where.line && offset != std::string_view::npos; ++line) {
+      offset = text_.find('\n', offset);
+      if (offset != std::string_view::npos) ++offset;
+    }
+    if (offset == std::string_view::npos) return e;
+    offset += static_cast<std::size_t>(e.where.column - 1);
+    const std::string_view rest = offset < text_.size() ? text_.substr(offset) : std::string_view{};
+    if (!(rest.starts_with("\"\"\"") || rest.starts_with("'''"))) return e;  // '…' or "…": one column
+    e.quoted = false;
+    if (rest.substr(3).starts_with("\n") || rest.substr(3).starts_with("\r\n")) {
+      e.where.line += 1;
+      e.where.column = 1;
+    } else {
+      e.where.column += 3;
+    }
+    return e;
+  }
+
  private:
   std::filesystem::path file_;
+  std::string_view text_;
 };
 
 // |v| without overflow or underflow in the squares (components up to 1e308): scaled by the
@@ -558,6 +587,13 @@ Scene parse_document(const toml::table& root, const Parser& p) {
                                                : Expression{"0", sp.where, 0.0, false};
     s.springs.push_back(std::move(sp));
   });
+  if (auto n = root.get("lagrangian")) {
+    if (!n->is_string()) {
+      p.fail(*n, fmt::format("lagrangian must be an expression string such as \"m*l^2/2*theta_dot^2 + "
+                             "m*g*l*cos(theta)\", got {}", Parser::type_name(*n)));
+    }
+    s.lagrangian = p.multiline_expression(*n, "lagrangian");
+  }
   if (auto n = root.get("gravity")) {
     s.gravity = p.expression3(*n, "gravity (m/s², world frame)");
   } else {
@@ -638,6 +674,11 @@ Scene parse_document(const toml::table& root, const Parser& p) {
                              "a scene of free bodies has no [[coordinates]]; their state is the "
                              "pose and twist given in each body");
     }
+    if (s.lagrangian) {
+      detail::throw_error_at(s.lagrangian->where,
+                             "a lagrangian is a function of [[coordinates]]; a scene of free bodies "
+                             "has none (their state is the pose and twist given in each body)");
+    }
   } else if (s.coordinates.empty()) {
     p.fail(root.source(), "the scene has no [[coordinates]] and no free bodies; expected at least "
                           "one coordinate (name, initial, velocity) or a body with free = true");
@@ -683,7 +724,7 @@ bool Scene::is_free_body_scene() const {
 }
 
 Scene parse_scene(std::string_view toml_text, const std::filesystem::path& file) {
-  Parser p(file);
+  Parser p(file, toml_text);
   toml::table root;
   try {
     root = toml::parse(toml_text, file.string());

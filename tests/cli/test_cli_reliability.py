@@ -193,7 +193,7 @@ def test_outputs_are_one_set_per_scene(run, tmp_path):
 
 # Exit status: 0 ok, 1 refused input, 2 usage (any argument-parser error), 130 interrupted,
 # the same for every subcommand; documented in --help.
-@pytest.mark.parametrize("sub", ["run", "check", "eom", "inertia", "rotation", "mesh", "demo"])
+@pytest.mark.parametrize("sub", ["run", "check", "eom", "modes", "inertia", "rotation", "mesh", "demo"])
 def test_usage_errors_exit_2_in_every_subcommand(run, sub):
     proc = run(sub, "--no-such-option")
     assert proc.returncode == 2, (proc.returncode, proc.stderr)

@@ -117,6 +117,16 @@ def physical_pendulum(doc):
     return {"T0": 2 * math.pi * tau, "T": 4 * ellipk(math.sin(theta0 / 2) ** 2) * tau}
 
 
+def sleeping_top(doc):
+    # disk (m, r, h) with its COM at d above the pivot: I3 = m r²/2, I1 = m (3r² + h²)/12 + m d²;
+    # u = a + i b ∝ e^{iωt} with I1 ω² − I3 w3 ω + m g d = 0: real roots iff w3² > 4 m g d I1 / I3²
+    p = parameters(doc)
+    m, r, h, d, g, w3 = (p[k] for k in ("m", "r", "h", "d", "g", "w3"))
+    I1, I3 = m * (3 * r * r + h * h) / 12 + m * d * d, m * r * r / 2
+    return {"omega3_min": 2 * math.sqrt(m * g * d * I1) / I3,
+            "w_slow": (I3 * w3 - math.sqrt((I3 * w3) ** 2 - 4 * I1 * m * g * d)) / (2 * I1)}
+
+
 def stiff_dumbbell(doc):
     # m w² r = k (2r − 2r0)  =>  r = k r0 / (k − m w²/2)
     p = parameters(doc)
@@ -164,6 +174,7 @@ CLOSED_FORMS = {
     "rolling_cylinder": lambda d: rolling(d, lambda p: 0.5),
     "rolling_sphere": lambda d: rolling(d, lambda p: 0.4),
     "rolling_tube": lambda d: rolling(d, lambda p: (p["r1"] ** 2 + p["r2"] ** 2) / (2 * p["r2"] ** 2)),
+    "sleeping_top": sleeping_top,
     "stiff_dumbbell": stiff_dumbbell,
     "tennis_racket": tennis_racket,
     "lagrange_atwood": lagrange_atwood,
@@ -209,6 +220,9 @@ def run_scene(stem, name, stated, c):
         return {"a": 2 * c["s"][-1] / t[-1] ** 2, "s(2 s)": c["s"][-1]}[name]
     if stem in ("cone_pendulum", "physical_pendulum"):
         return period(t, c["theta"])
+    if stem == "sleeping_top":
+        # the tilt a = eps cos(w_slow t) of the slow circular mode
+        return 2 * math.pi / period(t, c["a"])
     if stem == "double_pendulum":
         return farthest(c["energy"], stated)
     if stem == "stiff_dumbbell":

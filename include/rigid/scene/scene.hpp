@@ -159,6 +159,10 @@ struct Scene {
   std::vector<NamedExpression> forces;
   std::vector<Spring> springs;
   std::array<Expression, 3> gravity;  ///< m/s², world frame; default (0, 0, 0)
+  /// `lagrangian`: a Lagrangian L(q, q̇, t) (J) of the coordinates, added to the bodies'
+  /// T − V (rigid::lagrange::SystemSpec::lagrangian). A multi-line string's `where` is the
+  /// position of its first character, and errors inside it count lines from there.
+  std::optional<Expression> lagrangian;
   Simulation simulation;
   Output output;
 
