@@ -305,16 +305,20 @@ Trajectory System::simulate(const SimulationOptions& o, const Eigen::VectorXd& q
 
   const int mr = s.m + s.r;  // holonomic rows, then velocity rows
   if (mr > 0) {
+    // "constraints 'a', 'b'", "velocity constraints 'c'" or both, joined by "and"
     auto names_of = [&](const Eigen::VectorXd& weights) {
-      std::string out;
+      std::string holonomic, velocity;
       for (int k = 0; k < mr; ++k) {
         if (std::abs(weights[k]) > 1e-8) {
-          out += fmt::format("{}{}'{}'", out.empty() ? "" : ", ", k < s.m ? "" : "velocity constraint ",
+          std::string& out = k < s.m ? holonomic : velocity;
+          out += fmt::format("{}'{}'", out.empty() ? "" : ", ",
                              k < s.m ? s.constraint_names[static_cast<std::size_t>(k)]
                                      : s.velocity_constraint_names[static_cast<std::size_t>(k - s.m)]);
         }
       }
-      return out;
+      if (velocity.empty()) return "constraints " + holonomic;
+      if (holonomic.empty()) return "velocity constraints " + velocity;
+      return "constraints " + holonomic + " and velocity constraints " + velocity;
     };
     // dependent constraints: a left null vector u of G (uᵀG = 0) combines them into 0 = uᵀg,
     // which is redundant if uᵀg = 0 and inconsistent otherwise (with velocity rows, also
@@ -330,16 +334,16 @@ Trajectory System::simulate(const SimulationOptions& o, const Eigen::VectorXd& q
         const double combined = u.dot(w.gw);
         const double combined_rate = s.r > 0 ? u.dot(w.cw) : 0.0;
         if (std::abs(combined) > o.consistency_tolerance) {
-          RIGID_THROW("constraints {} are inconsistent: their gradients ∂g/∂q are dependent at "
+          RIGID_THROW("{} are inconsistent: their gradients ∂g/∂q are dependent at "
                       "q(0) and no q satisfies all of them (the combination Σ uₖ gₖ = {} "
                       "cannot vanish)", names_of(u), combined);
         }
         if (std::abs(combined_rate) > o.consistency_tolerance) {
-          RIGID_THROW("constraints {} are inconsistent: their rows are dependent at q(0) and no "
+          RIGID_THROW("{} are inconsistent: their rows are dependent at q(0) and no "
                       "q̇ satisfies all of them (the combination of their residuals is {} for "
                       "every q̇)", names_of(u), combined_rate);
         }
-        RIGID_THROW("constraints {} are redundant: their {} linearly dependent at q(0) (rank "
+        RIGID_THROW("{} are redundant: their {} linearly dependent at q(0) (rank "
                     "{} < {}); remove one", names_of(u),
                     s.r ? "rows (gradients ∂g/∂q and velocity rows A) are" : "gradients ∂g/∂q are",
                     k, mr);
