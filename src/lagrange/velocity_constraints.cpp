@@ -3,7 +3,7 @@
 // With c(q, q̇, t) = A q̇ + a, keeping c = 0 along the motion needs ċ = 0:
 //   ċ = A q̈ + Σⱼ ∂c/∂qⱼ q̇ⱼ + ∂c/∂t,   so   A q̈ = η,   η = −(Σⱼ ∂c/∂qⱼ q̇ⱼ + ∂c/∂t)
 // (the Ȧ q̇ + ȧ of the row). These rows join the holonomic G q̈ = γ below it, and the one solve
-// of evaluate.cpp gives q̈ with M q̈ = f + Gᵀ λ + Aᵀ μ [Bloch2015, §5.2; NeimarkFufaev1972, ch. III].
+// of evaluate.cpp gives q̈ with M q̈ = f + Gᵀ λ + Aᵀ μ [Bloch2015, ch. 5; NeimarkFufaev1972].
 // Drift: a row is a holonomic row with g ≡ 0 and ġ replaced by c, so the Baumgarte right side
 // γ − 2α ġ − α² g becomes η − 2α c: the residual obeys ċ + 2α c = 0.
 #include "detail/velocity_constraints.hpp"

@@ -21,7 +21,7 @@ def read_csv(path):
 
 
 def sleigh_closed_form(t, m=1.0, I=0.1, a=0.3, v0=0.5, w0=2.0):
-    # v̇ = a ω², ω̇ = −(m a/J) v ω, J = I + m a² [Bloch2015, §1.7]: v = V tanh s,
+    # v̇ = a ω², ω̇ = −(m a/J) v ω, J = I + m a² [Bloch2015, ch. 1]: v = V tanh s,
     # ω = ω0 cosh s0 / cosh s, s = (a m V/J) t + atanh(v0/V), V² = v0² + J ω0²/m
     J = I + m * a * a
     V = math.sqrt(v0 ** 2 + J * w0 ** 2 / m)

@@ -21,7 +21,7 @@ using ::testing::HasSubstr;
 // ---- the Chaplygin sleigh --------------------------------------------------------------------
 // Contact point (x, y), heading θ, centre of mass a ahead of the contact on the blade's line:
 // c = (x + a cos θ, y + a sin θ), T = ½ m |ċ|² + ½ I θ̇², blade: −sin θ ẋ + cos θ ẏ = 0.
-// With v = ẋ cos θ + ẏ sin θ and ω = θ̇ [Bloch2015, §1.7]: v̇ = a ω², ω̇ = −(m a/J) v ω, J = I + m a².
+// With v = ẋ cos θ + ẏ sin θ and ω = θ̇ [Bloch2015, ch. 1]: v̇ = a ω², ω̇ = −(m a/J) v ω, J = I + m a².
 struct Sleigh {
   double m = 1.0, I = 0.1, a = 0.3, v0 = 0.5, w0 = 2.0;
   [[nodiscard]] double J() const { return I + m * a * a; }

@@ -72,7 +72,7 @@ TEST(SceneVelocityConstraints, RunReportsMultipliersAndResidual) {
   const std::size_t mu = tr.column("mu_blade"), res = tr.column("velocity_constraint_residual");
   const std::size_t th = tr.column("theta"), xd = tr.column("x_dot"), yd = tr.column("y_dot"),
                     wd = tr.column("theta_dot");
-  // closed form [Bloch2015, §1.7]: v = V tanh s, ω = ω0 cosh s0 / cosh s, s = (a m V/J) t + s0
+  // closed form [Bloch2015, ch. 1]: v = V tanh s, ω = ω0 cosh s0 / cosh s, s = (a m V/J) t + s0
   const double m = 1.0, I = 0.1, a = 0.3, v0 = 0.5, w0 = 2.0, J = I + m * a * a;
   const double V = std::sqrt(v0 * v0 + J * w0 * w0 / m), s0 = std::atanh(v0 / V);
   for (std::size_t k = 0; k < tr.rows(); ++k) {
