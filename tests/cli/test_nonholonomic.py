@@ -46,6 +46,16 @@ def test_cli_and_python_scene_give_the_same_run(name, run, tmp_path):
     e = c["energy"]
     assert np.abs(e - e[0]).max() <= 1e-8 * abs(e[0])
     assert out["written"]
+    if name == "rolling_disk":
+        # the steady motion: the lean stays 0.3 rad and the spin at the relation's value
+        # (docs/lagrange.md: I1 Ω² sin θ cos θ − (I3 + m r²) w3 Ω cos θ = m g r sin θ), to the
+        # 1e-10 of dopri5 amplified over two turns: 1e-7
+        m, r, g, th, Om = 0.5, 0.1, 9.81, 0.3, -2.0
+        w3 = (m * r * r / 4 * Om ** 2 * math.sin(th) * math.cos(th) - m * g * r * math.sin(th)) / (
+            1.5 * m * r * r * Om * math.cos(th))
+        np.testing.assert_allclose(c["theta"], th, atol=1e-7)
+        np.testing.assert_allclose(c["phi_dot"], w3 - Om * math.sin(th), rtol=1e-7)
+        np.testing.assert_allclose(np.hypot(c["mu_roll_x"], c["mu_roll_y"]), m * r * w3 * abs(Om), rtol=1e-7)
 
 
 def test_sleigh_through_the_python_system_matches_its_closed_form():
