@@ -84,15 +84,15 @@ void derive_velocity_constraints(const SystemSpec& spec, System::Impl& s,
       auto it = std::find(s.coord_names.begin(), s.coord_names.end(), coefficient.name);
       const std::string cctx = fmt::format("{} coefficient of '{}'", ctx, coefficient.name);
       if (it == s.coord_names.end()) {
-        throw_at(coefficient.expression, 0, cctx,
-                 fmt::format("no coordinate of that name{}; coordinates: {}",
-                             did_you_mean_hint(coefficient.name, s.coord_names),
-                             fmt::join(s.coord_names, ", ")));
+        fail_at(coefficient.expression.where,
+                fmt::format("{}: no coordinate of that name{} (coordinates: {})", cctx,
+                            did_you_mean_hint(coefficient.name, s.coord_names),
+                            fmt::join(s.coord_names, ", ")));
       }
       const auto i = static_cast<std::size_t>(it - s.coord_names.begin());
       if (given[i]) {
-        throw_at(coefficient.expression, 0, cctx, "the coordinate has a coefficient already; give "
-                                                  "each coordinate's coefficient once");
+        fail_at(coefficient.expression.where, cctx + ": the coordinate has a coefficient already; "
+                                                   "give each coordinate's coefficient once");
       }
       given[i] = true;
       if (coefficient.expression.text.find_first_not_of(" \t") == std::string::npos) {
