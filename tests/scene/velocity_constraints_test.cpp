@@ -99,12 +99,12 @@ TEST(SceneVelocityConstraints, RefusalsAreLocated) {
                      "coordinate; did you mean 'x'?");
   // a velocity in a coefficient, at the velocity inside the string
   EXPECT_RIGID_ERROR((void)Model(parse_scene(replaced(kSleigh, "\"-sin(theta)\"", "\"-theta_dot\""), "s.toml")),
-                     "s.toml:20:24: [[velocity_constraints]] entry 1 coefficient of x: depends on the "
+                     "s.toml:20:24: velocity constraint 'blade' coefficient of 'x': depends on the "
                      "velocity 'theta_dot'");
   // a term not linear in the velocities, at the term
   EXPECT_RIGID_ERROR((void)Model(parse_scene(replaced(kSleigh, "y = \"cos(theta)\" }", "y = \"cos(theta)\" }\nterm = \"x_dot*theta_dot\""),
                                              "s.toml")),
-                     "s.toml:21:9: [[velocity_constraints]] entry 1 term: is not linear in the velocities");
+                     "s.toml:21:9: velocity constraint 'blade' term: is not linear in the velocities");
   // no velocity at all, and two dependent rows, at the entry
   EXPECT_RIGID_ERROR((void)parse_scene(replaced(kSleigh, "coefficients = { x = \"-sin(theta)\", y = \"cos(theta)\" }", ""),
                                        "s.toml"),
