@@ -72,6 +72,28 @@ rigid::lagrange::Spring spring_from_dict(const py::dict& d) {
   return sp;
 }
 
+// {'name', 'coefficients': {coordinate: expression}, 'term': expression} (numbers allowed).
+rigid::lagrange::VelocityConstraint velocity_constraint_from_dict(const py::dict& d, std::size_t index) {
+  rigid::lagrange::VelocityConstraint vc;
+  vc.name = fmt::format("velocity_constraint{}", index + 1);
+  for (auto item : d) {
+    const auto key = item.first.cast<std::string>();
+    if (key == "name") {
+      vc.name = item.second.cast<std::string>();
+    } else if (key == "coefficients") {
+      for (auto c : item.second.cast<py::dict>()) {
+        vc.coefficients.push_back({c.first.cast<std::string>(), py::str(c.second).cast<std::string>()});
+      }
+    } else if (key == "term") {
+      vc.term = py::str(item.second).cast<std::string>();
+    } else {
+      throw rigid::Error(fmt::format("lagrange.System(): unknown velocity constraint key '{}'; "
+                                     "expected name, coefficients, term", key));
+    }
+  }
+  return vc;
+}
+
 }  // namespace
 
 void bind_lagrange(py::module_& root) {
@@ -88,7 +110,8 @@ void bind_lagrange(py::module_& root) {
                        const std::vector<std::pair<std::string, std::string>>& potentials,
                        const std::vector<std::pair<std::string, std::string>>& forces,
                        const std::vector<std::pair<std::string, std::string>>& constraints,
-                       const std::vector<py::dict>& springs) {
+                       const std::vector<py::dict>& springs,
+                       const std::vector<py::dict>& velocity_constraints) {
              SystemSpec spec;
              for (const auto& [name, value] : parameters) spec.parameters.push_back({name, value});
              for (const auto& [name, q0, v0] : coordinates) spec.coordinates.push_back({name, q0, v0});
@@ -101,6 +124,9 @@ void bind_lagrange(py::module_& root) {
              spec.forces = named(forces);
              spec.constraints = named(constraints);
              for (const py::dict& sp : springs) spec.springs.push_back(spring_from_dict(sp));
+             for (std::size_t i = 0; i < velocity_constraints.size(); ++i) {
+               spec.velocity_constraints.push_back(velocity_constraint_from_dict(velocity_constraints[i], i));
+             }
              return System(spec);
            }),
            py::arg("coordinates"), py::arg("parameters") = std::map<std::string, double>{},
@@ -110,14 +136,19 @@ void bind_lagrange(py::module_& root) {
            py::arg("forces") = std::vector<std::pair<std::string, std::string>>{},
            py::arg("constraints") = std::vector<std::pair<std::string, std::string>>{},
            py::arg("springs") = std::vector<py::dict>{},
+           py::arg("velocity_constraints") = std::vector<py::dict>{},
            "coordinates: [(name, q0, q_dot0)]; parameters: {name: value}; bodies: [{'name', "
            "'mass': rigid.MassProperties, 'position': [3 expressions], 'rotations': [(axis, "
            "angle expression)]}]; potentials/forces/constraints: [(name, expression)] (a force's "
            "name is its coordinate); springs: [{'body_a', 'point_a', 'body_b' (omit: world), "
-           "'point_b', 'stiffness', 'rest_length'}].")
+           "'point_b', 'stiffness', 'rest_length'}]; velocity_constraints: [{'name', "
+           "'coefficients': {coordinate: A_i(q, t)}, 'term': a(q, t)}] for Σ A_i q̇_i + a = 0.")
       .def_property_readonly("coordinate_names", &System::coordinate_names)
       .def_property_readonly("constraint_names", &System::constraint_names)
       .def_property_readonly("cyclic_coordinates", &System::cyclic_coordinates)
+      .def_property_readonly("velocity_constraint_names", &System::velocity_constraint_names)
+      .def("velocity_constraint_residual", &System::velocity_constraint_residual, py::arg("t"),
+           py::arg("q"), py::arg("q_dot"), "A(q, t) q̇ + a(q, t), one entry per velocity constraint.")
       .def_property_readonly("tape_size", &System::tape_size)
       .def("set_parameter", &System::set_parameter, py::arg("name"), py::arg("value"))
       .def(
@@ -152,7 +183,9 @@ void bind_lagrange(py::module_& root) {
             s.accelerations(t, q, q_dot, qdd, lambda);
             return py::make_tuple(qdd, lambda);
           },
-          py::arg("t"), py::arg("q"), py::arg("q_dot"), "(q̈, λ) at (t, q, q̇).")
+          py::arg("t"), py::arg("q"), py::arg("q_dot"),
+          "(q̈, λ) at (t, q, q̇); λ holds the holonomic multipliers, then the velocity "
+          "constraints' μ.")
       .def(
           "simulate",
           [](const System& s, double t_end, const std::string& method, double dt,
@@ -186,6 +219,9 @@ void bind_lagrange(py::module_& root) {
             d["constraint_names"] = tr.constraint_names;
             d["cyclic_names"] = tr.cyclic_names;
             d["steps"] = tr.steps;
+            d["mu"] = tr.mu;
+            d["velocity_constraint_residual"] = tr.velocity_constraint_residual;
+            d["velocity_constraint_names"] = tr.velocity_constraint_names;
             return d;
           },
           py::arg("t_end"), py::arg("method") = "dopri5", py::arg("dt") = 1e-3,
@@ -193,5 +229,6 @@ void bind_lagrange(py::module_& root) {
           py::arg("stabilization") = 10.0, py::arg("project_initial") = false,
           py::arg("q0") = py::none(), py::arg("q_dot0") = py::none(),
           "Integrates; returns a dict of numpy arrays (rows are samples): t, q, q_dot, lambda, "
-          "energy, jacobi, cyclic_momenta, residual, velocity_residual.");
+          "energy, jacobi, cyclic_momenta, residual, velocity_residual, mu, "
+          "velocity_constraint_residual.");
 }

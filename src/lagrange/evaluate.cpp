@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 
 #include "detail/system_impl.hpp"
+#include "detail/velocity_constraints.hpp"
 #include "rigid/common/format.hpp"
 
 namespace rigid::lagrange {
@@ -45,6 +46,7 @@ void evaluate_dynamics(const Impl& s, WorkImpl& w, double time, const Eigen::Vec
   for (int a = 0; a < m; ++a) w.gammaw[a] = w.out[k++];
   for (int a = 0; a < m; ++a) w.cw[a] = w.out[k++];
   for (int a = 0; a < m; ++a) w.gw[a] = w.out[k++];
+  if (s.r > 0) detail::evaluate_velocity_constraints(s, w);  // rows m … m + r − 1
 }
 
 void evaluate_diagnostics(const Impl& s, WorkImpl& w, double time, const Eigen::VectorXd& qv,
@@ -55,7 +57,7 @@ void evaluate_diagnostics(const Impl& s, WorkImpl& w, double time, const Eigen::
 
 void solve(const Impl& s, WorkImpl& w, double time, const Eigen::VectorXd& qv,
            Eigen::VectorXd& qdd_out, Eigen::VectorXd& lambda_out, double alpha) {
-  const int n = s.n, m = s.m;
+  const int n = s.n, m = s.m + s.r;  // holonomic rows, then velocity rows
   w.llt_M.compute(w.Mw);
   bool singular = w.llt_M.info() != Eigen::Success;
   if (!singular) {
@@ -88,11 +90,13 @@ void solve(const Impl& s, WorkImpl& w, double time, const Eigen::VectorXd& qv,
   const Eigen::VectorXd dS = w.ldlt_S.vectorD();
   if (w.ldlt_S.info() != Eigen::Success ||
       !(dS.minCoeff() > 1e-12 * std::max(1e-300, dS.cwiseAbs().maxCoeff()))) {
-    throw Error(fmt::format("the constraint Jacobian ∂g/∂q lost rank at {}: the constraints are "
-                            "dependent there (G = {})",
-                            s.state_text(time, qv), rigid::to_string(w.Gw)));
+    throw Error(fmt::format("the constraint Jacobian {} lost rank at {}: the constraints are "
+                            "dependent there ({} = {})",
+                            s.r ? "[∂g/∂q; A] (with the velocity constraints' rows A)" : "∂g/∂q",
+                            s.state_text(time, qv), s.r ? "[G; A]" : "G", rigid::to_string(w.Gw)));
   }
   // λ = (G M⁻¹ Gᵀ)⁻¹ (γ − 2α ġ − α² g − G M⁻¹ f);  q̈ = M⁻¹ f + M⁻¹ Gᵀ λ
+  // (velocity rows: G ← A, γ ← η, ġ ← A q̇ + a, g ← 0; λ ← μ)
   w.rhs_m = w.gammaw - 2.0 * alpha * w.cw - alpha * alpha * w.gw - w.Gw * w.Minv_f;
   lambda_out = w.ldlt_S.solve(w.rhs_m);
   qdd_out = w.Minv_f + w.Yw * lambda_out;
@@ -140,10 +144,12 @@ Workspace System::make_workspace() const {
   w->pose_scratch = s.pose.make_scratch();
   w->Mw.resize(s.n, s.n);
   w->fw.resize(s.n);
-  w->Gw.resize(s.m, s.n);
-  w->gammaw.resize(s.m);
-  w->cw.resize(s.m);
-  w->gw.resize(s.m);
+  w->Gw.resize(s.m + s.r, s.n);
+  w->gammaw.resize(s.m + s.r);
+  w->cw.resize(s.m + s.r);
+  w->gw.resize(s.m + s.r);
+  w->vel_out.assign(s.vel.num_outputs(), 0.0);
+  w->vel_scratch = s.vel.make_scratch();
   return Workspace(std::move(w));
 }
 
@@ -204,7 +210,17 @@ Eigen::VectorXd System::constraint_residual(Workspace& ws, double t, const Eigen
   WorkImpl& w = checked(s, ws);
   RIGID_REQUIRE(q.size() == s.n, "expected q of size {} (one per coordinate), got {}", s.n, q.size());
   evaluate_dynamics(s, w, t, q, Eigen::VectorXd::Zero(s.n));
-  return w.gw;
+  return w.gw.head(s.m);
+}
+
+Eigen::VectorXd System::velocity_constraint_residual(double t, const Eigen::VectorXd& q,
+                                                     const Eigen::VectorXd& q_dot) const {
+  const Impl& s = *impl_;
+  Workspace ws = make_workspace();
+  WorkImpl& w = checked(s, ws);
+  require_sizes(s, q, q_dot);
+  evaluate_dynamics(s, w, t, q, q_dot);
+  return w.cw.tail(s.r);
 }
 
 std::vector<BodyPose> System::body_poses(Workspace& ws, double time, const Eigen::VectorXd& q) const {
@@ -287,65 +303,93 @@ Trajectory System::simulate(const SimulationOptions& o, const Eigen::VectorXd& q
   Eigen::VectorXd q0 = q0_in, qd0 = qd0_in;
   const double t0 = 0.0;
 
-  if (s.m > 0) {
+  const int mr = s.m + s.r;  // holonomic rows, then velocity rows
+  if (mr > 0) {
+    // "constraints 'a', 'b'", "velocity constraints 'c'" or both, joined by "and"
     auto names_of = [&](const Eigen::VectorXd& weights) {
-      std::string out;
-      for (int k = 0; k < s.m; ++k) {
+      std::string holonomic, velocity;
+      for (int k = 0; k < mr; ++k) {
         if (std::abs(weights[k]) > 1e-8) {
-          out += fmt::format("{}'{}'", out.empty() ? "" : ", ", s.constraint_names[static_cast<std::size_t>(k)]);
+          std::string& out = k < s.m ? holonomic : velocity;
+          out += fmt::format("{}'{}'", out.empty() ? "" : ", ",
+                             k < s.m ? s.constraint_names[static_cast<std::size_t>(k)]
+                                     : s.velocity_constraint_names[static_cast<std::size_t>(k - s.m)]);
         }
       }
-      return out;
+      if (velocity.empty()) return "constraints " + holonomic;
+      if (holonomic.empty()) return "velocity constraints " + velocity;
+      return "constraints " + holonomic + " and velocity constraints " + velocity;
     };
     // dependent constraints: a left null vector u of G (uᵀG = 0) combines them into 0 = uᵀg,
-    // which is redundant if uᵀg = 0 and inconsistent otherwise
+    // which is redundant if uᵀg = 0 and inconsistent otherwise (with velocity rows, also
+    // 0 = uᵀ(G q̇ + g_t; A q̇ + a) = uᵀ(g_t; a) for every q̇)
     evaluate_dynamics(s, w, t0, q0, qd0);
     Eigen::JacobiSVD<Eigen::MatrixXd> svd(w.Gw, Eigen::ComputeFullU);
     const Eigen::VectorXd sv = svd.singularValues();
     const double smax = sv.size() ? sv.maxCoeff() : 0.0;
-    for (int k = 0; k < s.m; ++k) {
+    for (int k = 0; k < mr; ++k) {
       const double sk = k < sv.size() ? sv[k] : 0.0;
       if (sk <= 1e-10 * std::max(smax, 1e-300)) {
         const Eigen::VectorXd u = svd.matrixU().col(k);
         const double combined = u.dot(w.gw);
+        const double combined_rate = s.r > 0 ? u.dot(w.cw) : 0.0;
         if (std::abs(combined) > o.consistency_tolerance) {
-          RIGID_THROW("constraints {} are inconsistent: their gradients ∂g/∂q are dependent at "
+          RIGID_THROW("{} are inconsistent: their gradients ∂g/∂q are dependent at "
                       "q(0) and no q satisfies all of them (the combination Σ uₖ gₖ = {} "
                       "cannot vanish)", names_of(u), combined);
         }
-        RIGID_THROW("constraints {} are redundant: their gradients ∂g/∂q are linearly "
-                    "dependent at q(0) (rank {} < {}); remove one", names_of(u), k, s.m);
+        if (std::abs(combined_rate) > o.consistency_tolerance) {
+          RIGID_THROW("{} are inconsistent: their rows are dependent at q(0) and no "
+                      "q̇ satisfies all of them (the combination of their residuals is {} for "
+                      "every q̇)", names_of(u), combined_rate);
+        }
+        RIGID_THROW("{} are redundant: their {} linearly dependent at q(0) (rank "
+                    "{} < {}); remove one", names_of(u),
+                    s.r ? "rows (gradients ∂g/∂q and velocity rows A) are" : "gradients ∂g/∂q are",
+                    k, mr);
       }
     }
-    const double res = w.gw.lpNorm<Eigen::Infinity>();
-    const double vres = w.cw.lpNorm<Eigen::Infinity>();
-    if (res > o.consistency_tolerance || vres > o.consistency_tolerance) {
+    const double res = w.gw.head(s.m).lpNorm<Eigen::Infinity>();
+    const double vres = w.cw.head(s.m).lpNorm<Eigen::Infinity>();
+    const double nres = w.cw.tail(s.r).lpNorm<Eigen::Infinity>();
+    if (res > o.consistency_tolerance || vres > o.consistency_tolerance ||
+        nres > o.consistency_tolerance) {
       if (!o.project_initial) {
         Eigen::Index worst = 0;
-        (res > o.consistency_tolerance ? w.gw : w.cw).cwiseAbs().maxCoeff(&worst);
-        RIGID_THROW("initial conditions violate constraint '{}': |g| = {}, |ġ| = {} (tolerance "
-                    "{}); fix q(0), q̇(0) or set project_initial to project them",
-                    s.constraint_names[static_cast<std::size_t>(worst)], res, vres,
+        if (res > o.consistency_tolerance || vres > o.consistency_tolerance) {
+          (res > o.consistency_tolerance ? w.gw : w.cw).head(s.m).cwiseAbs().maxCoeff(&worst);
+          RIGID_THROW("initial conditions violate constraint '{}': |g| = {}, |ġ| = {} (tolerance "
+                      "{}); fix q(0), q̇(0) or set project_initial to project them",
+                      s.constraint_names[static_cast<std::size_t>(worst)], res, vres,
+                      o.consistency_tolerance);
+        }
+        w.cw.tail(s.r).cwiseAbs().maxCoeff(&worst);
+        RIGID_THROW("initial velocities violate velocity constraint '{}': |A q̇ + a| = {} "
+                    "(tolerance {}); fix q̇(0) or set project_initial to project them",
+                    s.velocity_constraint_names[static_cast<std::size_t>(worst)], nres,
                     o.consistency_tolerance);
       }
-      // minimum-norm Newton: q ← q − Gᵀ (G Gᵀ)⁻¹ g, then q̇ ← q̇ − Gᵀ (G Gᵀ)⁻¹ ġ
-      for (int it = 0; it < 50 && w.gw.lpNorm<Eigen::Infinity>() > 1e-3 * o.consistency_tolerance; ++it) {
-        const Eigen::MatrixXd GGt = w.Gw * w.Gw.transpose();
-        q0 -= w.Gw.transpose() * GGt.ldlt().solve(w.gw);
+      // minimum-norm Newton on the holonomic rows: q ← q − Gᵀ (G Gᵀ)⁻¹ g, then on every row
+      // q̇ ← q̇ − Gᵀ (G Gᵀ)⁻¹ ġ (ġ = G q̇ + g_t and A q̇ + a are affine in q̇)
+      for (int it = 0; s.m > 0 && it < 50 &&
+                       w.gw.head(s.m).lpNorm<Eigen::Infinity>() > 1e-3 * o.consistency_tolerance;
+           ++it) {
+        const Eigen::MatrixXd G = w.Gw.topRows(s.m);
+        const Eigen::MatrixXd GGt = G * G.transpose();
+        q0 -= G.transpose() * GGt.ldlt().solve(w.gw.head(s.m));
         evaluate_dynamics(s, w, t0, q0, qd0);
       }
-      RIGID_REQUIRE(w.gw.lpNorm<Eigen::Infinity>() <= o.consistency_tolerance,
+      RIGID_REQUIRE(w.gw.head(s.m).lpNorm<Eigen::Infinity>() <= o.consistency_tolerance,
                     "projection of q(0) onto the constraints did not converge: |g| = {}",
-                    w.gw.lpNorm<Eigen::Infinity>());
+                    w.gw.head(s.m).lpNorm<Eigen::Infinity>());
       const Eigen::MatrixXd GGt = w.Gw * w.Gw.transpose();
-      // ġ = G q̇ + g_t is affine in q̇
       qd0 -= w.Gw.transpose() * GGt.ldlt().solve(w.cw);
     }
   }
   // the mass matrix at the start (named error if not positive definite) sets the scale
   // against which it is called singular during the run
   const Eigen::Index n = s.n;
-  Eigen::VectorXd qv(n), qdv(n), acc(n), lw(s.m);
+  Eigen::VectorXd qv(n), qdv(n), acc(n), lw(mr);
   w.mass_scale = 0.0;
   evaluate_dynamics(s, w, t0, q0, qd0);
   solve(s, w, t0, q0, acc, lw, o.stabilization);
@@ -397,6 +441,9 @@ Trajectory System::simulate(const SimulationOptions& o, const Eigen::VectorXd& q
   tr.cyclic_momenta.resize(rows, static_cast<Eigen::Index>(s.cyclic_index.size()));
   tr.residual.resize(rows);
   tr.velocity_residual.resize(rows);
+  tr.velocity_constraint_names = s.velocity_constraint_names;
+  tr.mu.resize(rows, s.r);
+  tr.velocity_constraint_residual.resize(rows);
   for (Eigen::Index k = 0; k < rows; ++k) {
     const double t = sol.t[static_cast<std::size_t>(k)];
     const Eigen::VectorXd& y = sol.y[static_cast<std::size_t>(k)];
@@ -406,10 +453,12 @@ Trajectory System::simulate(const SimulationOptions& o, const Eigen::VectorXd& q
     tr.q.row(k) = qv;
     tr.q_dot.row(k) = qdv;
     evaluate_dynamics(s, w, t, qv, qdv);
-    tr.residual[k] = s.m ? w.gw.lpNorm<Eigen::Infinity>() : 0.0;
-    tr.velocity_residual[k] = s.m ? w.cw.lpNorm<Eigen::Infinity>() : 0.0;
+    tr.residual[k] = s.m ? w.gw.head(s.m).lpNorm<Eigen::Infinity>() : 0.0;
+    tr.velocity_residual[k] = s.m ? w.cw.head(s.m).lpNorm<Eigen::Infinity>() : 0.0;
+    tr.velocity_constraint_residual[k] = s.r ? w.cw.tail(s.r).lpNorm<Eigen::Infinity>() : 0.0;
     solve(s, w, t, qv, acc, lw, alpha);
-    if (s.m) tr.lambda.row(k) = lw;
+    if (s.m) tr.lambda.row(k) = lw.head(s.m);
+    if (s.r) tr.mu.row(k) = lw.tail(s.r);
     evaluate_diagnostics(s, w, t, qv, qdv);
     tr.energy[k] = w.diag_out[0];
     tr.jacobi[k] = w.diag_out[1];

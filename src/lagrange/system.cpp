@@ -14,6 +14,7 @@
 #include "detail/symbolic.hpp"
 #include "detail/system_impl.hpp"
 #include "detail/tape.hpp"
+#include "detail/velocity_constraints.hpp"
 
 namespace rigid::lagrange {
 namespace {
@@ -349,6 +350,9 @@ System::System(const SystemSpec& spec) : impl_(std::make_unique<Impl>()) {
     s.lambda.emplace_back("lambda_" + con.name, "\\lambda_{\\mathrm{" + con.name + "}}");
   }
 
+  // velocity (nonholonomic) constraints A q̇ + a = 0 (velocity_constraints.cpp)
+  detail::derive_velocity_constraints(spec, s, names, constrained);
+
   // cyclic coordinates
   for (std::size_t i = 0; i < n; ++i) {
     if (!forced[i] && !constrained[i] && d(s.L, s.q[i]).expand().is_zero()) {
@@ -357,7 +361,7 @@ System::System(const SystemSpec& spec) : impl_(std::make_unique<Impl>()) {
     }
   }
   // Störmer–Verlet applies when M is constant and f does not depend on q̇ (and no constraints)
-  s.verlet_ok = s.m == 0;
+  s.verlet_ok = s.m == 0 && s.r == 0;
   for (std::size_t i = 0; i < n && s.verlet_ok; ++i) {
     for (std::size_t j = 0; j < n; ++j) {
       for (std::size_t k = 0; k < n; ++k) {
@@ -409,6 +413,10 @@ const std::vector<std::string>& System::constraint_names() const {
   return impl_->constraint_names;
 }
 const std::vector<std::string>& System::cyclic_coordinates() const { return impl_->cyclic_names; }
+int System::num_velocity_constraints() const { return impl_->r; }
+const std::vector<std::string>& System::velocity_constraint_names() const {
+  return impl_->velocity_constraint_names;
+}
 Eigen::VectorXd System::initial_q() const { return impl_->q0; }
 Eigen::VectorXd System::initial_q_dot() const { return impl_->qd0; }
 std::size_t System::tape_size() const { return impl_->dyn.size(); }
@@ -444,12 +452,17 @@ Equations System::equations() const {
     for (std::size_t j = 0; j < n; ++j) lhs += s.M[i * n + j] * s.qdd[j];
     ex rhs = s.f[i];
     for (std::size_t k = 0; k < s.lambda.size(); ++k) rhs += s.lambda[k] * s.G[k * n + i];
+    for (std::size_t k = 0; k < s.mu.size(); ++k) rhs += s.mu[k] * s.A[k * n + i];  // velocity rows
     eq.text.push_back(to_text(lhs) + " = " + to_text(rhs));
     eq.latex.push_back(to_latex(lhs) + " = " + to_latex(rhs));
   }
   for (const ex& gk : s.g) {
     eq.constraints_text.push_back(to_text(gk) + " = 0");
     eq.constraints_latex.push_back(to_latex(gk) + " = 0");
+  }
+  for (const ex& ck : s.cv) {  // velocity constraints A q̇ + a = 0
+    eq.constraints_text.push_back(to_text(ck) + " = 0");
+    eq.constraints_latex.push_back(to_latex(ck) + " = 0");
   }
   eq.energy_text = to_text(s.h);
   eq.cyclic = s.cyclic_names;

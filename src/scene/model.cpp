@@ -310,6 +310,8 @@ struct Model::Impl {
       cols.push_back("jacobi");
       for (const auto& c : system->constraint_names()) cols.push_back("lambda_" + c);
       if (!system->constraint_names().empty()) cols.push_back("constraint_residual");
+      for (const auto& c : system->velocity_constraint_names()) cols.push_back("mu_" + c);
+      if (system->num_velocity_constraints() > 0) cols.push_back("velocity_constraint_residual");
       for (const auto& c : system->cyclic_coordinates()) cols.push_back("p_" + c);
     } else {
       for (const FreeBody& f : free) {
@@ -376,6 +378,11 @@ struct Model::Impl {
     for (const auto& p : scene.potentials) spec.potentials.push_back({p.name, to_lagrange(p.expression)});
     for (const auto& f : scene.forces) spec.forces.push_back({f.name, to_lagrange(f.expression)});
     for (const auto& c : scene.constraints) spec.constraints.push_back({c.name, to_lagrange(c.expression)});
+    for (const VelocityConstraint& vc : scene.velocity_constraints) {
+      lagrange::VelocityConstraint lv{vc.name, {}, vc.term ? to_lagrange(*vc.term) : lagrange::Expression(), vc.where};
+      for (const auto& c : vc.coefficients) lv.coefficients.push_back({c.name, to_lagrange(c.expression)});
+      spec.velocity_constraints.push_back(std::move(lv));
+    }
     for (const Spring& sp : scene.springs) {
       lagrange::Spring ls;
       ls.body_a = sp.body_a;
@@ -397,6 +404,12 @@ struct Model::Impl {
       detail::throw_error_at(scene.springs.front().where,
                              "springs between free bodies are not simulated; pose the bodies by "
                              "[[coordinates]] to connect them with springs");
+    }
+    if (!scene.velocity_constraints.empty()) {
+      detail::throw_error_at(scene.velocity_constraints.front().where,
+                             "[[velocity_constraints]] act on coordinates; a scene of free bodies "
+                             "has none (pose the bodies by [[coordinates]] to constrain their "
+                             "velocities)");
     }
     if (!scene.constraints.empty() || !scene.potentials.empty() || !scene.forces.empty()) {
       detail::throw_error_at({scene.file.string(), 0, 0},
@@ -709,6 +722,8 @@ RunResult Model::Impl::run_coordinates(const Method& method, const RunOptions& o
     row.push_back(tr.jacobi[k]);
     for (Eigen::Index c = 0; c < tr.lambda.cols(); ++c) row.push_back(tr.lambda(k, c));
     if (!tr.constraint_names.empty()) row.push_back(tr.residual[k]);
+    for (Eigen::Index c = 0; c < tr.mu.cols(); ++c) row.push_back(tr.mu(k, c));
+    if (!tr.velocity_constraint_names.empty()) row.push_back(tr.velocity_constraint_residual[k]);
     for (Eigen::Index c = 0; c < tr.cyclic_momenta.cols(); ++c) row.push_back(tr.cyclic_momenta(k, c));
     r.trajectory.add_row(row);
   }
@@ -728,6 +743,10 @@ RunResult Model::Impl::run_coordinates(const Method& method, const RunOptions& o
   if (!tr.constraint_names.empty()) {
     s.diagnostics.emplace_back("constraint_residual_max", tr.residual.maxCoeff());
     s.diagnostics.emplace_back("constraint_velocity_residual_max", tr.velocity_residual.maxCoeff());
+  }
+  if (!tr.velocity_constraint_names.empty()) {
+    s.diagnostics.emplace_back("velocity_constraint_residual_max",
+                               tr.velocity_constraint_residual.maxCoeff());
   }
   for (Eigen::Index c = 0; c < tr.cyclic_momenta.cols(); ++c) {
     const Eigen::VectorXd col = tr.cyclic_momenta.col(c);

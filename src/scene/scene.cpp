@@ -25,7 +25,7 @@ using Keys = std::vector<std::string>;
 
 const Keys kTopKeys = {"parameters", "coordinates", "bodies", "constraints", "potentials",
                        "forces", "springs", "gravity", "simulation", "output",
-                       "lagrangian"};
+                       "lagrangian", "velocity_constraints"};
 
 // The parser keeps the file name and turns every toml++ position into a message that
 // starts with file:line:col.
@@ -571,6 +571,36 @@ Scene parse_document(const toml::table& root, const Parser& p) {
   named_list("constraints", "name", s.constraints);
   named_list("potentials", "name", s.potentials);
   named_list("forces", "coordinate", s.forces);
+  p.each_table(root, "velocity_constraints", [&](const toml::table& t, std::size_t i) {
+    const std::string ctx = fmt::format("[[velocity_constraints]] entry {}", i);
+    p.check_keys(t, ctx, {"name", "coefficients", "term"});
+    VelocityConstraint vc;
+    vc.where = p.where(t.source());
+    vc.name = t.contains("name") ? p.identifier(*t.get("name"), "velocity constraint name")
+                                 : fmt::format("velocity_constraint{}", i);
+    if (auto c = t.get("coefficients")) {
+      const toml::table& ct = p.table(*c, ctx + " coefficients");
+      std::vector<std::string> coords;
+      for (const auto& co : s.coordinates) coords.push_back(co.name);
+      for (auto&& [key, value] : ct) {
+        const std::string coord(key.str());
+        if (std::find(coords.begin(), coords.end(), coord) == coords.end()) {
+          p.fail(key.source(), fmt::format("{} coefficients: '{}' is not a coordinate{}; expected "
+                                           "one of: {}",
+                                           ctx, coord, did_you_mean_hint(coord, coords),
+                                           fmt::join(coords, ", ")));
+        }
+        vc.coefficients.push_back({coord, p.expression(value, fmt::format("{} coefficient of {}", ctx, coord))});
+      }
+    }
+    if (auto n = t.get("term")) vc.term = p.expression(*n, ctx + " term");
+    if (vc.coefficients.empty() && !vc.term) {
+      p.fail(t.source(), ctx + " has no velocity in it; expected coefficients = {<coordinate> = "
+                               "\"A(q, t)\", ...} (and optionally term = \"a(q, t)\") for "
+                               "Σ A q̇ + a = 0");
+    }
+    s.velocity_constraints.push_back(std::move(vc));
+  });
   p.each_table(root, "springs", [&](const toml::table& t, std::size_t i) {
     const std::string ctx = fmt::format("[[springs]] entry {}", i);
     p.check_keys(t, ctx, {"body_a", "point_a", "body_b", "point_b", "stiffness", "rest_length"});

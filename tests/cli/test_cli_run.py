@@ -203,7 +203,8 @@ def test_stiff_dumbbell_approaches_the_rigid_body(run, tmp_path, k):
 
 CHECKED = {"rolling_cylinder", "rolling_sphere", "rolling_tube", "atwood", "physical_pendulum",
            "cone_pendulum", "double_pendulum", "heavy_top", "tennis_racket", "stiff_dumbbell",
-           "sleeping_top"}  # sleeping_top: tests/cli/test_cli_modes.py and test_example_comments.py
+           "sleeping_top",  # tests/cli/test_cli_modes.py and test_example_comments.py
+           "rolling_disk", "chaplygin_sleigh"}  # these two: tests/cli/test_nonholonomic.py
 
 
 def test_every_example_scene_has_a_closed_form_check():

@@ -150,6 +150,36 @@ def tennis_racket(doc):
     return {"T": 4 * K / lam, "T/2": 2 * K / lam, "first flip": (2 * K - u0) / lam}
 
 
+def rolling_disk(doc):
+    # steady motion of a thin disk (I1 = m r²/4, I3 = m r²/2) leaning by θ, heading rate Ω:
+    # I1 Ω² sin θ cos θ − (I3 + m r²) w3 Ω cos θ = m g r sin θ  (angular momentum about the
+    # centre against the contact force's torque, docs/lagrange.md); φ̇ = w3 − Ω sin θ
+    p = parameters(doc)
+    m, r, g, th, Om = p["m"], p["r"], p["g"], p["lean"], p["Omega"]
+    s, c = math.sin(th), math.cos(th)
+    I1, I3 = m * r * r / 4, m * r * r / 2
+    w3 = (I1 * Om ** 2 * s * c - m * g * r * s) / ((I3 + m * r * r) * Om * c)
+    phi_dot = w3 - Om * s
+    return {"phi_dot": phi_dot, "rho": abs(r * phi_dot / Om), "|mu|": m * r * w3 * abs(Om),
+            "E": 0.5 * m * (r * w3) ** 2 + 0.5 * (I1 * (Om * c) ** 2 + I3 * w3 ** 2) + m * g * r * c}
+
+
+def chaplygin_sleigh(doc):
+    # v̇ = a ω², ω̇ = −(m a / J) v ω, J = I + m a²: v = V tanh s, ω = ω0 cosh s0 / cosh s,
+    # θ − θ0 = sgn(ω0) √(J/m)/a (gd s − gd s0), s = (a m V / J) t + atanh(v0/V), V² = v0² + J ω0²/m
+    p = parameters(doc)
+    m, I, a, v0, w0 = p["m"], p["I"], p["a"], p["v0"], p["w0"]
+    t = float(doc["simulation"]["t_end"])
+    J = I + m * a * a
+    V = math.sqrt(v0 ** 2 + J * w0 ** 2 / m)
+    s0 = math.atanh(v0 / V)
+    s = a * m * V / J * t + s0
+    gd = lambda x: 2 * math.atan(math.tanh(x / 2))  # noqa: E731
+    return {f"v({t:g} s)": V * math.tanh(s), f"w({t:g} s)": w0 * math.cosh(s0) / math.cosh(s),
+            f"theta({t:g} s)": math.copysign(1, w0) * math.sqrt(J / m) / a * (gd(s) - gd(s0)),
+            "E": 0.5 * (m * v0 ** 2 + J * w0 ** 2)}
+
+
 def lagrange_atwood(_):
     # the script's constants: m1, m2, M, g; a = (m2 − m1) g / (m1 + m2 + M/2), y1 = a t²/2 at t = 1 s
     m1, m2, M, g = 1.0, 1.5, 0.8, 9.81
@@ -177,6 +207,8 @@ CLOSED_FORMS = {
     "sleeping_top": sleeping_top,
     "stiff_dumbbell": stiff_dumbbell,
     "tennis_racket": tennis_racket,
+    "rolling_disk": rolling_disk,
+    "chaplygin_sleigh": chaplygin_sleigh,
     "lagrange_atwood": lagrange_atwood,
     "inertia_of_a_robot_link": robot_link,
 }
@@ -238,6 +270,21 @@ def run_scene(stem, name, stated, c):
     if stem == "tennis_racket":
         flips = crossings(t, c["racket.wy"])
         return {"T/2": float(np.mean(np.diff(flips))), "first flip": float(flips[0])}[name]
+    if stem == "rolling_disk":
+        if name == "rho":
+            # least-squares circle through the contact points: x² + y² = 2 x0 x + 2 y0 y + k
+            x, y = c["x"], c["y"]
+            (x0, y0, k), *_ = np.linalg.lstsq(np.column_stack([2 * x, 2 * y, np.ones_like(x)]),
+                                             x * x + y * y, rcond=None)
+            return farthest(np.hypot(x - x0, y - y0), stated)
+        return farthest({"phi_dot": c["phi_dot"], "E": c["energy"],
+                         "|mu|": np.hypot(c["mu_roll_x"], c["mu_roll_y"])}[name], stated)
+    if stem == "chaplygin_sleigh":
+        if name == "E":
+            return farthest(c["energy"], stated)
+        th = c["theta"][-1]
+        v = c["x_dot"][-1] * math.cos(th) + c["y_dot"][-1] * math.sin(th)
+        return {"v": v, "w": c["theta_dot"][-1], "theta": th}[name.split("(")[0]]
     raise AssertionError(f"{stem}: no run measurement for {name!r}")
 
 

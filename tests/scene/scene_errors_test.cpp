@@ -43,6 +43,10 @@ expression = "0.5*theta^2"
 [[forces]]
 coordinate = "theta"
 expression = "-0.1*theta_dot"
+[[velocity_constraints]]
+name = "hold"
+coefficients = {theta = "1 + theta^2"}
+term = "0*theta"
 [[springs]]
 body_a = "tip"
 point_a = [0, 0, 0]

@@ -128,6 +128,19 @@ struct Spring {
   Expression rest_length = "0";                         ///< m
 };
 
+/// A velocity (nonholonomic) constraint, linear in the velocities:
+///   Σᵢ Aᵢ(q, t) q̇ᵢ + a(q, t) = 0   (m/s or rad/s),
+/// one coefficient Aᵢ per coordinate it involves (by the coordinate's name; the others are 0)
+/// and an optional term a. The term may also hold velocities linearly (the whole left side
+/// may be written there); a coefficient or a term that makes the row nonlinear in q̇ is
+/// refused. Ideal constraint forces Aᵀ μ keep it: M q̈ = f + Gᵀ λ + Aᵀ μ.
+struct VelocityConstraint {
+  std::string name;
+  std::vector<NamedExpression> coefficients;  ///< (coordinate name, Aᵢ(q, t))
+  Expression term;                            ///< a(q, t); empty text: 0
+  SourceLocation where;  ///< the declaration, for errors about the row as a whole
+};
+
 /// Everything that defines a system. L = lagrangian + Σ_bodies (T − V_gravity) − Σ potentials;
 /// − Σ springs; the equations are M(q, t) q̈ = f(q, q̇, t) + Q + Gᵀ λ, G q̈ = γ.
 struct SystemSpec {
@@ -140,6 +153,10 @@ struct SystemSpec {
   std::vector<Spring> springs;
   std::vector<NamedExpression> forces;
   std::vector<NamedExpression> constraints;
+  /// Rows A(q, t) q̇ + a(q, t) = 0 with multipliers μ: M q̈ = f + Q + Gᵀ λ + Aᵀ μ, kept at the
+  /// acceleration level A q̈ = −(Ȧ q̇ + ȧ) (Baumgarte: the residual c = A q̇ + a obeys
+  /// ċ + 2α c = 0, the holonomic rows' equation with g ≡ 0).
+  std::vector<VelocityConstraint> velocity_constraints;
 };
 
 /// The derived equations as text and LaTeX, one line per coordinate / constraint.
@@ -189,6 +206,10 @@ struct Trajectory {
   Eigen::VectorXd residual;        ///< max_k |g_k(q, t)| per sample
   Eigen::VectorXd velocity_residual;  ///< max_k |ġ_k| per sample
   std::size_t steps = 0, rhs_evaluations = 0;
+  // velocity (nonholonomic) constraints
+  std::vector<std::string> velocity_constraint_names;
+  Eigen::MatrixXd mu;                          ///< samples × r: their multipliers (N or N·m)
+  Eigen::VectorXd velocity_constraint_residual;  ///< max_k |A_k q̇ + a_k| per sample
 };
 
 /// Pose of a body frame B in the world W: origin p_WB (m) and orientation R_WB.
@@ -244,7 +265,9 @@ class System {
   /// @throws rigid::Error for a parse error (with its column or file:line:col), an undefined
   ///   symbol, a duplicate or invalid name, a velocity inside a position/constraint/potential,
   ///   a force on an unknown coordinate, or a Lagrangian with a velocity it does not depend
-  ///   on quadratically (∂²L/∂q̇ᵢ² ≡ 0: singular mass matrix).
+  ///   on quadratically (∂²L/∂q̇ᵢ² ≡ 0: singular mass matrix); for a velocity constraint:
+  ///   a coefficient of an unknown or repeated coordinate, a row not linear in q̇, a row with
+  ///   no velocity in it, or rows that are dependent for every q (at a generic point).
   explicit System(const SystemSpec& spec);
   ~System();
   System(System&&) noexcept;
@@ -256,6 +279,12 @@ class System {
   [[nodiscard]] int num_constraints() const;
   [[nodiscard]] const std::vector<std::string>& coordinate_names() const;
   [[nodiscard]] const std::vector<std::string>& constraint_names() const;
+  /// Velocity (nonholonomic) constraints: their number r and names.
+  [[nodiscard]] int num_velocity_constraints() const;
+  [[nodiscard]] const std::vector<std::string>& velocity_constraint_names() const;
+  /// A(q, t) q̇ + a(q, t), one entry per velocity constraint.
+  [[nodiscard]] Eigen::VectorXd velocity_constraint_residual(double t, const Eigen::VectorXd& q,
+                                                             const Eigen::VectorXd& q_dot) const;
   /// Names of coordinates with ∂L/∂qᵢ ≡ 0, no force and no constraint on them: their
   /// momenta pᵢ = ∂L/∂q̇ᵢ are conserved.
   [[nodiscard]] const std::vector<std::string>& cyclic_coordinates() const;
@@ -279,7 +308,8 @@ class System {
   void mass_matrix_and_forces(Workspace& w, double t, const Eigen::VectorXd& q,
                               const Eigen::VectorXd& q_dot, Eigen::MatrixXd& M,
                               Eigen::VectorXd& f) const;
-  /// q̈ and λ at (t, q, q̇), with Baumgarte rate `stabilization` (1/s).
+  /// q̈ and the multipliers at (t, q, q̇), with Baumgarte rate `stabilization` (1/s): λ of
+  /// the holonomic constraints, then μ of the velocity constraints (m + r entries).
   /// @throws rigid::Error naming t and q for a singular mass matrix or dependent constraints.
   void accelerations(Workspace& w, double t, const Eigen::VectorXd& q,
                      const Eigen::VectorXd& q_dot, Eigen::VectorXd& q_ddot,

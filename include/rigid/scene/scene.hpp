@@ -112,6 +112,15 @@ struct NamedExpression {
   Expression expression;
 };
 
+/// A velocity (nonholonomic) constraint from `[[velocity_constraints]]`:
+/// Σᵢ Aᵢ(q, t) q̇ᵢ + a(q, t) = 0, with one coefficient per coordinate it involves.
+struct VelocityConstraint {
+  std::string name;
+  std::vector<NamedExpression> coefficients;  ///< (coordinate name, Aᵢ)
+  std::optional<Expression> term;             ///< a(q, t) (may hold velocities linearly)
+  SourceLocation where;
+};
+
 /// A linear spring between a point of one body and a point of another body or of the
 /// world: V = ½ k (|p_a − p_b| − rest_length)².
 struct Spring {
@@ -158,6 +167,7 @@ struct Scene {
   std::vector<NamedExpression> potentials;
   std::vector<NamedExpression> forces;
   std::vector<Spring> springs;
+  std::vector<VelocityConstraint> velocity_constraints;
   std::array<Expression, 3> gravity;  ///< m/s², world frame; default (0, 0, 0)
   /// `lagrangian`: a Lagrangian L(q, q̇, t) (J) of the coordinates, added to the bodies'
   /// T − V (rigid::lagrange::SystemSpec::lagrangian). A multi-line string's `where` is the

@@ -32,6 +32,13 @@ struct System::Impl {
   // masses (per body: mass, COM (3), inertia xx yy zz xy xz yz)
   detail::Tape dyn, diag, pose, masses;
   int n = 0, m = 0;
+  // velocity (nonholonomic) constraints (velocity_constraints.cpp): r rows A q̇ + a = 0; the
+  // tape `vel` (inputs as dyn) gives A (r × n, row-major), η = −(Ȧ q̇ + ȧ) and c = A q̇ + a
+  int r = 0;
+  std::vector<std::string> velocity_constraint_names;
+  std::vector<GiNaC::symbol> mu;
+  std::vector<GiNaC::ex> A, a, eta, cv;
+  detail::Tape vel;
 
   [[nodiscard]] std::size_t num_inputs() const {
     return static_cast<std::size_t>(2 * n + 1) + param_values.size();
@@ -47,6 +54,7 @@ struct Workspace::Impl {
   std::vector<double> params;
   std::vector<double> in, out, diag_out, pose_out;
   std::vector<double> dyn_scratch, diag_scratch, pose_scratch;
+  std::vector<double> vel_out, vel_scratch;  // velocity constraints; rows m.. of Gw, γ, ċ, g
   Eigen::MatrixXd Mw, Gw, Yw, Sw;
   Eigen::VectorXd fw, gammaw, cw, gw, Minv_f, rhs_m;
   Eigen::LLT<Eigen::MatrixXd> llt_M;
