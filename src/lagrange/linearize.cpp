@@ -14,6 +14,7 @@
 #include <Eigen/QR>
 #include <Eigen/SVD>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <ginac/ginac.h>
 
 #include "rigid/common/did_you_mean.hpp"
@@ -287,6 +288,15 @@ NormalModes normal_modes(const System& system, const LinearizeOptions& options) 
   const Impl& s = *Workspace::Access::impl(workspace)->owner;
   const int n = s.n;
   const auto nu = static_cast<std::size_t>(n);
+
+  // rolling (velocity) constraints restrict the motions, not the configurations: their
+  // linearisation needs the reduced (Chaplygin/Voronets) equations, which this does not form
+  if (system.num_velocity_constraints() > 0) {
+    rigid::detail::throw_error(kWho, fmt::format(
+        "the system has velocity constraints ({}); normal modes are computed for holonomic "
+        "systems only",
+        fmt::join(system.velocity_constraint_names(), ", ")));
+  }
 
   for (std::size_t i = 0; i < nu; ++i) {
     bool timed = s.f[i].has(s.t);

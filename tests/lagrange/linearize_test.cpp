@@ -208,6 +208,16 @@ TEST(NormalModes, RefusesWithAReason) {
   SystemSpec driven = falling;
   driven.lagrangian = "z_dot^2/2 - z^2/2 + z*sin(t)";
   EXPECT_RIGID_ERROR((void)normal_modes(System(driven)), "depends on the time t");
+
+  // a knife edge (x_dot·sin(th) − y_dot·cos(th) = 0) in a bowl: velocity constraints are
+  // refused, not linearised as if they were absent
+  SystemSpec blade;
+  blade.coordinates = {{"x", 0.1, 0.0}, {"y", 0.0, 0.0}, {"th", 0.0, 0.0}};
+  blade.lagrangian = "(x_dot^2 + y_dot^2 + th_dot^2)/2 - (x^2 + y^2)/2";
+  blade.velocity_constraints = {{"blade", {{"x", "sin(th)"}, {"y", "-cos(th)"}}, "", {}}};
+  EXPECT_RIGID_ERROR((void)normal_modes(System(blade)),
+                     "the system has velocity constraints (blade); normal modes are computed for "
+                     "holonomic systems only");
 }
 
 // A point mass m on a rod of length l in Cartesian coordinates: g = x² + y² − l² = 0.
