@@ -38,6 +38,13 @@ bool SymbolOrder::is_dynamic(const symbol& s) const {
 
 namespace {
 
+// GiNaC's constants (Pi, Euler, Catalan) by the name its printer gives them
+std::string constant_name(const ex& e) {
+  std::ostringstream os;
+  os << e;
+  return os.str();
+}
+
 bool has_dynamic(const ex& e, const SymbolOrder& order) {
   if (is_a<symbol>(e)) return order.is_dynamic(GiNaC::ex_to<symbol>(e));
   for (std::size_t i = 0; i < e.nops(); ++i) {
@@ -57,7 +64,7 @@ void collect_codes(const ex& e, const SymbolOrder& order, int repeat, std::vecto
   }
   if (is_a<numeric>(e)) return;
   if (is_a<GiNaC::constant>(e)) {
-    rest.push_back("5" + GiNaC::ex_to<GiNaC::constant>(e).get_name());
+    rest.push_back("5" + constant_name(e));
     return;
   }
   if (is_a<GiNaC::power>(e) && is_a<numeric>(e.op(1))) {
@@ -89,6 +96,7 @@ std::string term_key(const Term& t, const SymbolOrder& order) {
   for (const auto& c : dynamic) key += c + '\x02';
   key += '\x01';
   for (const auto& c : rest) key += c + '\x02';
+  if (rest.empty()) key += '\x7f';  // numbers after parameters
   return key;
 }
 
@@ -211,7 +219,7 @@ std::string print_atom(const ex& e, const SymbolOrder& order, bool latex) {
   }
   if (is_a<numeric>(e)) return number_text(GiNaC::ex_to<numeric>(e), latex);
   if (is_a<GiNaC::constant>(e)) {
-    const std::string n = GiNaC::ex_to<GiNaC::constant>(e).get_name();
+    const std::string n = constant_name(e);
     return latex && n == "Pi" ? "\\pi" : (n == "Pi" ? "pi" : n);
   }
   if (is_a<GiNaC::power>(e)) {
@@ -512,7 +520,7 @@ std::string number_text(const numeric& x, bool latex) {
     if (r.is_equal(1)) {
       const int k = std::max(twos, fives);
       std::ostringstream ds;
-      ds << abs_numeric(p) * GiNaC::pow(numeric(10), k) / q;
+      ds << abs_numeric(p) * numeric(10).power(numeric(k)) / q;
       std::string digits = ds.str();
       if (static_cast<int>(digits.size()) <= k) digits.insert(0, static_cast<std::size_t>(k) + 1 - digits.size(), '0');
       const std::string decimal = digits.substr(0, digits.size() - static_cast<std::size_t>(k)) + "." +
@@ -536,7 +544,8 @@ Sum plain(const ex& e, const SymbolOrder& order) {
 Sum textbook(const ex& e, const SymbolOrder& order) {
   exvector terms = operands(simplify(e));
   sum_to_product(terms, order);
-  ex x = fewer_terms(GiNaC::add(terms).expand(), order);
+  const ex sum = GiNaC::add(terms);
+  ex x = fewer_terms(sum.expand(), order);
   terms = operands(x);
   sort_canonically(terms, order);
   // collect per dynamic part (first appearance in canonical order)

@@ -110,3 +110,13 @@ def test_python_system_equations_are_an_object():
     assert "\\frac{1}{2}" in eq.lagrangian.latex
     assert "theta1_ddot" in repr(eq) and eq["text"] == eq.text
     assert json.loads(eq.format("json"))["mass_matrix"]["text"][1][1] == "m2*l2^2"
+
+
+def test_docs_show_what_the_program_prints(run):
+    # docs/lagrange.md pastes the double pendulum in every format: the pasted blocks cannot drift
+    root = EXAMPLES.parent
+    doc = (root / "docs" / "lagrange.md").read_text()
+    blocks = re.findall(r"<!-- rigid eom (\S+) --format (\w+) -->\n```\w*\n(.*?)```\n", doc, re.S)
+    assert sorted(b[1] for b in blocks) == sorted(FORMATS)
+    for scene, fmt, body in blocks:
+        assert body == run("eom", root / scene, "--format", fmt, check=True).stdout, fmt

@@ -44,9 +44,9 @@ TEST(Equations, DoublePendulumAsATextbookWritesIt) {
             "-(m1 + m2)*g*l1*sin(theta1) - m2*l1*l2*sin(theta1 - theta2)*theta2_dot^2");
   EXPECT_EQ(eq.text[1],
             "m2*l1*l2*cos(theta1 - theta2)*theta1_ddot + m2*l2^2*theta2_ddot = "
-            "m2*l1*l2*sin(theta1 - theta2)*theta1_dot^2 - m2*g*l2*sin(theta2)");
+            "m2*l1*l2*sin(theta1 - theta2)*theta1_dot^2 - g*m2*l2*sin(theta2)");
   // f = inertial + potential; no generalized forces, so h is conserved
-  EXPECT_EQ(eq.forcing_potential[1].text, "-m2*g*l2*sin(theta2)");
+  EXPECT_EQ(eq.forcing_potential[1].text, "-g*m2*l2*sin(theta2)");
   EXPECT_EQ(eq.forcing_inertial[1].text, "m2*l1*l2*sin(theta1 - theta2)*theta1_dot^2");
   EXPECT_EQ(eq.forcing_generalized[1].text, "0");
   EXPECT_TRUE(eq.jacobi_conserved);
@@ -66,9 +66,9 @@ TEST(Equations, GeneralizedForcesAndTimeAreReported) {
   spec.forces = {{"theta", "-c*theta_dot"}};
   const Equations eq = System(spec).equations();
   EXPECT_EQ(eq.forcing_generalized[0].text, "-c*theta_dot");
-  EXPECT_EQ(eq.forcing_potential[0].text, "-m*g*l*sin(theta)");
+  EXPECT_EQ(eq.forcing_potential[0].text, "-m*l*g*sin(theta)");
   EXPECT_EQ(eq.forcing_inertial[0].text, "0");
-  EXPECT_EQ(eq.text[0], "m*l^2*theta_ddot = -m*g*l*sin(theta) - c*theta_dot");
+  EXPECT_EQ(eq.text[0], "m*l^2*theta_ddot = -m*l*g*sin(theta) - c*theta_dot");
   EXPECT_FALSE(eq.jacobi_conserved);
 }
 
