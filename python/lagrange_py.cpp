@@ -152,7 +152,7 @@ void bind_lagrange(py::module_& root) {
                      "A Lagrangian system: L = lagrangian + Σ bodies (T − V_gravity) − Σ "
                      "potentials, with generalized forces and holonomic constraints.")
       .def(py::init([](const std::vector<std::tuple<std::string, double, double>>& coordinates,
-                       const std::map<std::string, double>& parameters,
+                       const py::dict& parameters,
                        const std::string& lagrangian, const std::vector<py::dict>& bodies,
                        const Eigen::Vector3d& gravity,
                        const std::vector<std::pair<std::string, std::string>>& potentials,
@@ -160,7 +160,10 @@ void bind_lagrange(py::module_& root) {
                        const std::vector<std::pair<std::string, std::string>>& constraints,
                        const std::vector<py::dict>& springs) {
              SystemSpec spec;
-             for (const auto& [name, value] : parameters) spec.parameters.push_back({name, value});
+             // in the dict's order: the equations print parameters in declaration order
+             for (const auto& [name, value] : parameters) {
+               spec.parameters.push_back({name.cast<std::string>(), value.cast<double>()});
+             }
              for (const auto& [name, q0, v0] : coordinates) spec.coordinates.push_back({name, q0, v0});
              spec.lagrangian = lagrangian;
              for (std::size_t i = 0; i < bodies.size(); ++i) {
@@ -173,7 +176,7 @@ void bind_lagrange(py::module_& root) {
              for (const py::dict& sp : springs) spec.springs.push_back(spring_from_dict(sp));
              return System(spec);
            }),
-           py::arg("coordinates"), py::arg("parameters") = std::map<std::string, double>{},
+           py::arg("coordinates"), py::arg("parameters") = py::dict(),
            py::arg("lagrangian") = "", py::arg("bodies") = std::vector<py::dict>{},
            py::arg("gravity") = Eigen::Vector3d::Zero(),
            py::arg("potentials") = std::vector<std::pair<std::string, std::string>>{},

@@ -121,7 +121,7 @@ Equations System::equations() const {
   }
   eq.symbols.push_back({"t", "t", "time", "s"});
   for (std::size_t k = 0; k < s.params.size(); ++k) {
-    eq.symbols.push_back({s.param_names[k], tex(s.params[k]), fmt::format("parameter = {}", s.param_values[k]), "SI"});
+    eq.symbols.push_back({s.param_names[k], tex(s.params[k]), "parameter", "SI"});
   }
 
   // the flat fields
