@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <sstream>
+#include <unordered_map>
 #include <utility>
 
 #include <fmt/format.h>
@@ -122,19 +123,40 @@ std::string factor_key(const ex& f, const SymbolOrder& order) {
 
 Term term_of(const ex& e, const SymbolOrder& order);
 
+// sorts by key; only items with equal keys are compared by their printed text (printing is
+// the costly part), so the order never depends on the items' original (GiNaC) order
+template <typename T, typename KeyFn, typename TextFn>
+void canonical_sort(std::vector<T>& items, KeyFn key, TextFn text) {
+  std::vector<std::pair<std::string, std::size_t>> keyed;
+  keyed.reserve(items.size());
+  for (std::size_t i = 0; i < items.size(); ++i) keyed.push_back({key(items[i]), i});
+  std::sort(keyed.begin(), keyed.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  for (std::size_t lo = 0; lo < keyed.size();) {
+    std::size_t hi = lo + 1;
+    while (hi < keyed.size() && keyed[hi].first == keyed[lo].first) ++hi;
+    if (hi - lo > 1) {
+      std::vector<std::pair<std::string, std::size_t>> run;
+      for (std::size_t k = lo; k < hi; ++k) run.push_back({text(items[keyed[k].second]), keyed[k].second});
+      std::sort(run.begin(), run.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+      for (std::size_t k = lo; k < hi; ++k) keyed[k].second = run[k - lo].second;
+    }
+    lo = hi;
+  }
+  std::vector<T> sorted;
+  sorted.reserve(items.size());
+  for (const auto& k : keyed) sorted.push_back(std::move(items[k.second]));
+  items = std::move(sorted);
+}
+
 void sort_sum(Sum& s, const SymbolOrder& order) {
   if (s.keep_order) return;
-  std::vector<std::pair<std::pair<std::string, std::string>, Term>> keyed;
-  keyed.reserve(s.terms.size());
-  for (Term& t : s.terms) {
-    Sum one;
-    one.terms.push_back(t);
-    keyed.push_back({{term_key(t, order), print(one, order, false)}, std::move(t)});
-  }
-  std::sort(keyed.begin(), keyed.end(),
-            [](const auto& a, const auto& b) { return a.first < b.first; });
-  s.terms.clear();
-  for (auto& k : keyed) s.terms.push_back(std::move(k.second));
+  canonical_sort(
+      s.terms, [&](const Term& t) { return term_key(t, order); },
+      [&](const Term& t) {
+        Sum one;
+        one.terms.push_back(t);
+        return print(one, order, false);
+      });
 }
 
 Term term_of(const ex& e, const SymbolOrder& order) {
@@ -322,15 +344,13 @@ exvector factors_of(const ex& e) {
 }
 
 void sort_canonically(exvector& v, const SymbolOrder& order) {
-  std::vector<std::pair<std::pair<std::string, std::string>, ex>> keyed;
-  keyed.reserve(v.size());
-  for (const ex& e : v) {
-    Sum one;
-    one.terms.push_back(term_of(e, order));
-    keyed.push_back({{term_key(one.terms[0], order), print(one, order, false)}, e});
-  }
-  std::sort(keyed.begin(), keyed.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-  for (std::size_t i = 0; i < v.size(); ++i) v[i] = keyed[i].second;
+  canonical_sort(
+      v, [&](const ex& e) { return term_key(term_of(e, order), order); },
+      [&](const ex& e) {
+        Sum one;
+        one.terms.push_back(term_of(e, order));
+        return print(one, order, false);
+      });
 }
 
 bool is_named(const ex& e, const char* name) {
@@ -345,46 +365,72 @@ void sum_to_product(exvector& terms, const SymbolOrder& order) {
   for (bool changed = true; changed;) {
     changed = false;
     sort_canonically(terms, order);
-    for (std::size_t i = 0; i < terms.size() && !changed; ++i) {
+    // terms by hash (for finding a partner only; the visiting order is the canonical one)
+    std::unordered_multimap<unsigned, std::size_t> by_hash;
+    for (std::size_t j = 0; j < terms.size(); ++j) by_hash.emplace(terms[j].gethash(), j);
+    std::vector<bool> used(terms.size(), false);
+    auto find = [&](const ex& e, std::size_t self) -> std::ptrdiff_t {
+      const auto [lo, hi] = by_hash.equal_range(e.gethash());
+      std::ptrdiff_t best = -1;
+      for (auto it = lo; it != hi; ++it) {
+        const std::size_t j = it->second;
+        // the first in canonical order among equal candidates
+        if (j != self && !used[j] && terms[j].is_equal(e) && (best < 0 || j < static_cast<std::size_t>(best))) {
+          best = static_cast<std::ptrdiff_t>(j);
+        }
+      }
+      return best;
+    };
+    exvector out;
+    for (std::size_t i = 0; i < terms.size(); ++i) {
+      if (used[i]) continue;
       exvector trig;
       for (const ex& f : factors_of(terms[i])) {
         if (is_named(f, "sin") || is_named(f, "cos")) trig.push_back(f);
       }
-      for (std::size_t u = 0; u < trig.size() && !changed; ++u) {
-        for (std::size_t v = u + 1; v < trig.size() && !changed; ++v) {
+      bool merged = false;
+      for (std::size_t u = 0; u < trig.size() && !merged; ++u) {
+        for (std::size_t v = u + 1; v < trig.size() && !merged; ++v) {
           ex X = trig[u], Y = trig[v];
           if (X.op(0).is_equal(Y.op(0))) continue;
           // order the pair as (sin, cos) when mixed
           if (is_named(X, "cos") && is_named(Y, "sin")) std::swap(X, Y);
           const ex a = X.op(0), b = Y.op(0);
           const ex rest = terms[i] / (X * Y);
-          ex partner, same, opposite;
+          ex partner;
+          int kind = 0;
           if (is_named(X, "cos") && is_named(Y, "cos")) {
             partner = rest * GiNaC::sin(a) * GiNaC::sin(b);
-            same = rest * signed_cos(a - b, order);       // cos a cos b + sin a sin b
-            opposite = rest * signed_cos(a + b, order);   // cos a cos b − sin a sin b
           } else if (is_named(X, "sin") && is_named(Y, "sin")) {
             partner = rest * GiNaC::cos(a) * GiNaC::cos(b);
-            same = rest * signed_cos(a - b, order);       // sin a sin b + cos a cos b
-            opposite = -rest * signed_cos(a + b, order);  // sin a sin b − cos a cos b
+            kind = 1;
           } else {
             partner = rest * GiNaC::cos(a) * GiNaC::sin(b);
-            same = rest * signed_sin(a + b, order);       // sin a cos b + cos a sin b
-            opposite = rest * signed_sin(a - b, order);   // sin a cos b − cos a sin b
+            kind = 2;
           }
-          const ex minus_partner = -partner;
-          for (std::size_t j = 0; j < terms.size(); ++j) {
-            if (j == i) continue;
-            const bool plus = terms[j].is_equal(partner);
-            if (!plus && !terms[j].is_equal(minus_partner)) continue;
-            terms[i] = (plus ? same : opposite).expand();
-            terms.erase(terms.begin() + static_cast<std::ptrdiff_t>(j));
-            changed = true;
-            break;
+          std::ptrdiff_t j = find(partner, i);
+          const bool plus = j >= 0;
+          if (!plus) j = find(-partner, i);
+          if (j < 0) continue;
+          ex merged_term;
+          if (kind == 0) {         // cos a cos b ± sin a sin b
+            merged_term = rest * (plus ? signed_cos(a - b, order) : signed_cos(a + b, order));
+          } else if (kind == 1) {  // sin a sin b ± cos a cos b
+            merged_term = plus ? rest * signed_cos(a - b, order) : -rest * signed_cos(a + b, order);
+          } else {                 // sin a cos b ± cos a sin b
+            merged_term = rest * (plus ? signed_sin(a + b, order) : signed_sin(a - b, order));
           }
+          used[i] = used[static_cast<std::size_t>(j)] = true;
+          out.push_back(merged_term.expand());
+          merged = changed = true;
         }
       }
+      if (!merged) {
+        used[i] = true;
+        out.push_back(terms[i]);
+      }
     }
+    terms = std::move(out);
   }
 }
 

@@ -2,6 +2,8 @@
 // textbook does (detail/canonical.hpp), and the documents `rigid eom --format` writes.
 #include <string>
 #include <string_view>
+#include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include <fmt/format.h>
@@ -55,7 +57,18 @@ Equations System::equations() const {
   auto both = [&](const detail::Sum& sum) {
     return Printed{detail::print(sum, order, false), detail::print(sum, order, true)};
   };
-  auto simplified = [&](const ex& e) { return both(detail::textbook(e, order)); };
+  // one simplification per distinct expression (M is symmetric; f often equals a part of it)
+  std::unordered_multimap<unsigned, std::pair<ex, detail::Sum>> cache;
+  auto textbook = [&](const ex& e) -> detail::Sum {
+    const auto [lo, hi] = cache.equal_range(e.gethash());
+    for (auto it = lo; it != hi; ++it) {
+      if (it->second.first.is_equal(e)) return it->second.second;
+    }
+    detail::Sum sum = detail::textbook(e, order);
+    cache.emplace(e.gethash(), std::make_pair(e, sum));
+    return sum;
+  };
+  auto simplified = [&](const ex& e) { return both(textbook(e)); };
 
   Equations eq;
   eq.coordinates = s.coord_names;
@@ -67,30 +80,42 @@ Equations System::equations() const {
   eq.kinetic_energy = simplified(s.T);
   eq.potential_energy = simplified(s.V);
 
-  // f = ∂L/∂q − (∂p/∂q) q̇ − ∂p/∂t + Q; Q is what f has beyond the Lagrangian's part, and the
-  // inertial part is what remains after −∂V/∂q
+  // f = ∂L/∂q − (∂p/∂q) q̇ − ∂p/∂t + Q: the potential part is −∂V/∂q, the generalized part Q,
+  // the inertial part (from T) what remains
   bool forced = false;
   eq.mass_matrix.resize(n);
+  std::vector<detail::Sum> M_sums;  // simplified once, printed in M and in the equations
+  for (std::size_t k = 0; k < n * n; ++k) M_sums.push_back(textbook(s.M[k]));
   for (std::size_t i = 0; i < n; ++i) {
-    for (std::size_t j = 0; j < n; ++j) eq.mass_matrix[i].push_back(simplified(s.M[i * n + j]));
-    ex from_L = d(s.L, s.q[i]) - d(s.p[i], s.t);
-    for (std::size_t j = 0; j < n; ++j) from_L -= d(s.p[i], s.q[j]) * s.qd[j];
-    const ex generalized = (s.f[i] - from_L).expand();
+    for (std::size_t j = 0; j < n; ++j) eq.mass_matrix[i].push_back(both(M_sums[i * n + j]));
+    const ex generalized = s.Q[i].expand();
     const ex potential = -d(s.V, s.q[i]);
     forced = forced || !detail::simplify(generalized).is_zero();
-    eq.forcing.push_back(simplified(s.f[i]));
+    const detail::Sum f_sum = textbook(s.f[i]);
+    eq.forcing.push_back(both(f_sum));
     eq.forcing_inertial.push_back(simplified(s.f[i] - potential - generalized));
     eq.forcing_potential.push_back(simplified(potential));
     eq.forcing_generalized.push_back(simplified(generalized));
 
     // Σ_j M_ij q̈_j, collected per acceleration, = f_i + Σ_k λ_k G_ki
-    std::vector<ex> row(s.M.begin() + static_cast<std::ptrdiff_t>(i * n),
-                        s.M.begin() + static_cast<std::ptrdiff_t>((i + 1) * n));
-    std::vector<ex> accelerations(s.qdd.begin(), s.qdd.end());
-    const Printed lhs = both(detail::collected(row, accelerations, order));
+    detail::Sum lhs_sum;
+    lhs_sum.keep_order = true;
+    for (std::size_t j = 0; j < n; ++j) {
+      const detail::Sum& c = M_sums[i * n + j];
+      if (c.terms.empty()) continue;
+      detail::Term t;
+      if (c.terms.size() == 1) {
+        t = c.terms.front();
+      } else {
+        t.sums.push_back(c);
+      }
+      t.factors.push_back(s.qdd[j]);
+      lhs_sum.terms.push_back(std::move(t));
+    }
+    const Printed lhs = both(lhs_sum);
     ex rhs = s.f[i];
     for (std::size_t k = 0; k < m; ++k) rhs += s.lambda[k] * s.G[k * n + i];
-    const Printed r = simplified(rhs);
+    const Printed r = m == 0 ? eq.forcing.back() : simplified(rhs);
     eq.equations.push_back({lhs.text + " = " + r.text, lhs.latex + " = " + r.latex});
   }
   bool time_dependent = s.L.has(s.t);

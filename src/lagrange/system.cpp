@@ -302,6 +302,7 @@ System::System(const SystemSpec& spec) : impl_(std::make_unique<Impl>()) {
     forced[i] = true;
   }
 
+  s.Q = Q;
   // Euler–Lagrange: p = ∂L/∂q̇, M = ∂p/∂q̇, f = ∂L/∂q − (∂p/∂q) q̇ − ∂p/∂t + Q
   const auto n = static_cast<std::size_t>(s.n);
   s.p.resize(n);
