@@ -22,14 +22,14 @@ using GiNaC::numeric;
 using GiNaC::symbol;
 
 void SymbolOrder::add(const symbol& s, Group group, int index, int order) {
-  ranks_[s.get_name()] = Rank{group, index, order};
+  ranks_[s.get_name()] = Rank{group, index, order,
+                              fmt::format("{}{:06d}{}", static_cast<int>(group), index, order)};
 }
 
 std::string SymbolOrder::code(const symbol& s) const {
   const auto it = ranks_.find(s.get_name());
   if (it == ranks_.end()) return "4" + s.get_name();
-  return fmt::format("{}{:06d}{}", static_cast<int>(it->second.group), it->second.index,
-                     it->second.order);
+  return it->second.code;
 }
 
 bool SymbolOrder::is_dynamic(const symbol& s) const {
@@ -273,13 +273,13 @@ std::string print_term(const Term& t, const SymbolOrder& order, bool latex, bool
     num.push_back(latex ? "\\left(" + x + "\\right)" : "(" + x + ")");
   }
   std::sort(num.begin(), num.end());
-  std::vector<std::pair<std::string, ex>> factors;
-  for (const ex& f : t.factors) factors.push_back({factor_key(f, order), f});
-  std::sort(factors.begin(), factors.end(), [&](const auto& x, const auto& y) {
-    if (x.first != y.first) return x.first < y.first;
-    return print_atom(x.second, order, false) < print_atom(y.second, order, false);
-  });
-  for (const auto& [key, f] : factors) {
+  exvector factors = t.factors;
+  if (factors.size() > 1) {
+    canonical_sort(
+        factors, [&](const ex& f) { return factor_key(f, order); },
+        [&](const ex& f) { return print_atom(f, order, false); });
+  }
+  for (const ex& f : factors) {
     if (is_a<GiNaC::power>(f) && is_a<numeric>(f.op(1)) && GiNaC::ex_to<numeric>(f.op(1)).is_negative()) {
       den.push_back(print_power(f.op(0), -f.op(1), order, latex));
     } else {
@@ -546,6 +546,8 @@ Term factor_group(const std::vector<Monomial>& monomials, const ex& dynamic, con
 }  // namespace
 
 std::string number_text(const numeric& x, bool latex) {
+  // small integers without CLN's stream output (the common case, and the costly one)
+  if (x.is_integer() && GiNaC::abs(x) < numeric(1000000000L)) return std::to_string(x.to_long());
   std::ostringstream os;
   if (x.is_integer()) {
     os << x;
@@ -593,8 +595,8 @@ Sum textbook(const ex& e, const SymbolOrder& order) {
   const ex sum = GiNaC::add(terms);
   ex x = fewer_terms(sum.expand(), order);
   terms = operands(x);
-  sort_canonically(terms, order);
-  // collect per dynamic part (first appearance in canonical order)
+  // collect per dynamic part; the groups, their monomials and factors are sorted when printed,
+  // so the order of `terms` (GiNaC's) does not reach the output
   std::vector<std::pair<ex, std::vector<Monomial>>> groups;
   for (const ex& term : terms) {
     Monomial m{numeric(1), {}};

@@ -36,6 +36,7 @@ class SymbolOrder {
   struct Rank {
     Group group;
     int index, order;
+    std::string code;
   };
   std::map<std::string, Rank> ranks_;
 };
