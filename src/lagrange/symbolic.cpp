@@ -122,7 +122,10 @@ ex d(const ex& e, const symbol& x) {
 
 ex simplify(const ex& e) {
   ReduceSines reduce;
-  return reduce(e.expand()).expand();
+  const ex expanded = e.expand();
+  // map() hands back the same object when no sine power was found: no second expansion then
+  const ex reduced = reduce(expanded);
+  return GiNaC::are_ex_trivially_equal(reduced, expanded) ? expanded : reduced.expand();
 }
 
 // the canonical printer (canonical.hpp) with symbols ranked by name: the same bytes on every
