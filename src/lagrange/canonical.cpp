@@ -32,6 +32,18 @@ std::string SymbolOrder::code(const symbol& s) const {
   return it->second.code;
 }
 
+const std::string* SymbolOrder::find_printed(const ex& f, bool latex) const {
+  const auto [lo, hi] = printed_[latex ? 1 : 0].equal_range(f.gethash());
+  for (auto it = lo; it != hi; ++it) {
+    if (it->second.first.is_equal(f)) return &it->second.second;
+  }
+  return nullptr;
+}
+
+void SymbolOrder::remember_printed(const ex& f, bool latex, std::string text) const {
+  printed_[latex ? 1 : 0].emplace(f.gethash(), std::make_pair(f, std::move(text)));
+}
+
 bool SymbolOrder::is_dynamic(const symbol& s) const {
   const auto it = ranks_.find(s.get_name());
   return it != ranks_.end() && it->second.group <= kTime;
@@ -252,13 +264,22 @@ std::string print_atom(const ex& e, const SymbolOrder& order, bool latex) {
     return print_power(e.op(0), p, order, latex);
   }
   if (is_a<GiNaC::function>(e)) {
+    if (const std::string* known = order.find_printed(e, latex)) return *known;
     const std::string name = GiNaC::ex_to<GiNaC::function>(e).get_name();
     std::vector<std::string> args;
     for (std::size_t i = 0; i < e.nops(); ++i) args.push_back(print(plain(e.op(i), order), order, latex));
-    if (!latex) return name + "(" + join(args, ", ") + ")";
-    if (name == "abs") return "\\left|" + join(args, ", ") + "\\right|";
-    if (name == "exp") return "e^{" + join(args, ", ") + "}";
-    return function_latex(name) + "(" + join(args, ", ") + ")";
+    std::string out;
+    if (!latex) {
+      out = name + "(" + join(args, ", ") + ")";
+    } else if (name == "abs") {
+      out = "\\left|" + join(args, ", ") + "\\right|";
+    } else if (name == "exp") {
+      out = "e^{" + join(args, ", ") + "}";
+    } else {
+      out = function_latex(name) + "(" + join(args, ", ") + ")";
+    }
+    order.remember_printed(e, latex, out);
+    return out;
   }
   return print(plain(e, order), order, latex);
 }

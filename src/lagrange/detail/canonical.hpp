@@ -12,6 +12,8 @@
 
 #include <map>
 #include <string>
+#include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include <ginac/ginac.h>
@@ -31,6 +33,10 @@ class SymbolOrder {
   /// True for coordinates, their derivatives, multipliers and t: the "dynamic" atoms that
   /// terms are grouped by; everything else is a constant of the model.
   [[nodiscard]] bool is_dynamic(const GiNaC::symbol& s) const;
+  /// Printed functions (text, LaTeX), remembered while this order is in use: sin(q1 − q2)
+  /// appears in many terms.
+  [[nodiscard]] const std::string* find_printed(const GiNaC::ex& f, bool latex) const;
+  void remember_printed(const GiNaC::ex& f, bool latex, std::string text) const;
 
  private:
   struct Rank {
@@ -39,6 +45,7 @@ class SymbolOrder {
     std::string code;
   };
   std::map<std::string, Rank> ranks_;
+  mutable std::unordered_multimap<unsigned, std::pair<GiNaC::ex, std::string>> printed_[2];
 };
 
 struct Term;
