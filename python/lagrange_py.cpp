@@ -100,11 +100,81 @@ void bind_lagrange(py::module_& root) {
   py::module_ m = root.def_submodule(
       "lagrange", "Euler–Lagrange equations derived symbolically, compiled, and integrated.");
 
+  py::class_<rigid::lagrange::Printed>(m, "Printed", "One quantity as text (SymPy-parsable) and LaTeX.")
+      .def_readonly("text", &rigid::lagrange::Printed::text)
+      .def_readonly("latex", &rigid::lagrange::Printed::latex)
+      .def("__str__", [](const rigid::lagrange::Printed& p) { return p.text; })
+      .def("__repr__", [](const rigid::lagrange::Printed& p) { return "Printed('" + p.text + "')"; });
+  using rigid::lagrange::Equations;
+  py::class_<Equations>(m, "Equations",
+                        "The derived equations: L, T, V, the mass matrix M(q), the forcing f(q, q_dot) "
+                        "(inertial + potential + generalized), the constraints and their Jacobian, the "
+                        "conserved quantities and the symbols, each quantity a Printed (text, latex).")
+      .def_readonly("coordinates", &Equations::coordinates)
+      .def_property_readonly("parameters", [](const Equations& e) {
+        py::dict d;
+        for (const auto& p : e.parameters) d[py::str(p.name)] = p.value;
+        return d;
+      }, "{name: value} in declaration order")
+      .def_readonly("constraint_names", &Equations::constraint_names)
+      .def_readonly("lagrangian", &Equations::lagrangian)
+      .def_readonly("kinetic_energy", &Equations::kinetic_energy)
+      .def_readonly("potential_energy", &Equations::potential_energy)
+      .def_readonly("mass_matrix", &Equations::mass_matrix, "n lists of n Printed")
+      .def_readonly("forcing", &Equations::forcing)
+      .def_readonly("forcing_inertial", &Equations::forcing_inertial)
+      .def_readonly("forcing_potential", &Equations::forcing_potential)
+      .def_readonly("forcing_generalized", &Equations::forcing_generalized)
+      .def_readonly("equations", &Equations::equations, "one Printed 'lhs = rhs' per coordinate")
+      .def_readonly("constraints", &Equations::constraints)
+      .def_readonly("constraint_jacobian", &Equations::constraint_jacobian)
+      .def_readonly("jacobi_integral", &Equations::jacobi_integral)
+      .def_readonly("jacobi_conserved", &Equations::jacobi_conserved)
+      .def_readonly("cyclic", &Equations::cyclic)
+      .def_readonly("cyclic_momenta", &Equations::cyclic_momenta)
+      .def_property_readonly("symbols", [](const Equations& e) {
+        py::list out;
+        for (const auto& s : e.symbols) {
+          py::dict d;
+          d["name"] = s.name;
+          d["latex"] = s.latex;
+          d["role"] = s.role;
+          d["unit"] = s.unit;
+          out.append(d);
+        }
+        return out;
+      })
+      .def_readonly("text", &Equations::text, "the equations, one text line per coordinate")
+      .def_readonly("latex", &Equations::latex, "the equations, one LaTeX line per coordinate")
+      .def("format", [](const Equations& e, const std::string& format) {
+             return rigid::lagrange::format_equations(e, rigid::lagrange::parse_equation_format(format));
+           }, py::arg("format") = "text",
+           "The document `rigid eom --format` prints: 'text', 'latex' or 'json'.")
+      // the keys of the dict this method returned before
+      .def("__getitem__", [](const Equations& e, const std::string& key) -> py::object {
+        if (key == "lagrangian") return py::cast(e.lagrangian_text);
+        if (key == "lagrangian_latex") return py::cast(e.lagrangian_latex);
+        if (key == "text") return py::cast(e.text);
+        if (key == "latex") return py::cast(e.latex);
+        if (key == "constraints") return py::cast(e.constraints_text);
+        if (key == "constraints_latex") return py::cast(e.constraints_latex);
+        if (key == "jacobi_integral") return py::cast(e.energy_text);
+        if (key == "cyclic") return py::cast(e.cyclic);
+        throw py::key_error(fmt::format("'{}'; keys: lagrangian, lagrangian_latex, text, latex, "
+                                        "constraints, constraints_latex, jacobi_integral, cyclic "
+                                        "(or use the attributes)", key));
+      })
+      .def("__repr__", [](const Equations& e) {
+        std::string out = "Equations(\n";
+        for (const auto& line : e.text) out += "  " + line + "\n";
+        return out + ")";
+      });
+
   py::class_<System>(m, "System",
                      "A Lagrangian system: L = lagrangian + Σ bodies (T − V_gravity) − Σ "
                      "potentials, with generalized forces and holonomic constraints.")
       .def(py::init([](const std::vector<std::tuple<std::string, double, double>>& coordinates,
-                       const std::map<std::string, double>& parameters,
+                       const py::dict& parameters,
                        const std::string& lagrangian, const std::vector<py::dict>& bodies,
                        const Eigen::Vector3d& gravity,
                        const std::vector<std::pair<std::string, std::string>>& potentials,
@@ -113,7 +183,10 @@ void bind_lagrange(py::module_& root) {
                        const std::vector<py::dict>& springs,
                        const std::vector<py::dict>& velocity_constraints) {
              SystemSpec spec;
-             for (const auto& [name, value] : parameters) spec.parameters.push_back({name, value});
+             // in the dict's order: the equations print parameters in declaration order
+             for (const auto& [name, value] : parameters) {
+               spec.parameters.push_back({name.cast<std::string>(), value.cast<double>()});
+             }
              for (const auto& [name, q0, v0] : coordinates) spec.coordinates.push_back({name, q0, v0});
              spec.lagrangian = lagrangian;
              for (std::size_t i = 0; i < bodies.size(); ++i) {
@@ -129,7 +202,7 @@ void bind_lagrange(py::module_& root) {
              }
              return System(spec);
            }),
-           py::arg("coordinates"), py::arg("parameters") = std::map<std::string, double>{},
+           py::arg("coordinates"), py::arg("parameters") = py::dict(),
            py::arg("lagrangian") = "", py::arg("bodies") = std::vector<py::dict>{},
            py::arg("gravity") = Eigen::Vector3d::Zero(),
            py::arg("potentials") = std::vector<std::pair<std::string, std::string>>{},
@@ -151,22 +224,9 @@ void bind_lagrange(py::module_& root) {
            py::arg("q"), py::arg("q_dot"), "A(q, t) q̇ + a(q, t), one entry per velocity constraint.")
       .def_property_readonly("tape_size", &System::tape_size)
       .def("set_parameter", &System::set_parameter, py::arg("name"), py::arg("value"))
-      .def(
-          "equations",
-          [](const System& s) {
-            const auto eq = s.equations();
-            py::dict d;
-            d["lagrangian"] = eq.lagrangian_text;
-            d["lagrangian_latex"] = eq.lagrangian_latex;
-            d["text"] = eq.text;
-            d["latex"] = eq.latex;
-            d["constraints"] = eq.constraints_text;
-            d["constraints_latex"] = eq.constraints_latex;
-            d["jacobi_integral"] = eq.energy_text;
-            d["cyclic"] = eq.cyclic;
-            return d;
-          },
-          "The Euler–Lagrange equations as text and LaTeX (dict).")
+      .def("equations", &System::equations,
+           "The equations, printed canonically (the same on every run) and simplified: a "
+           "rigid.lagrange.Equations with each quantity as text and LaTeX.")
       .def(
           "mass_matrix_and_forces",
           [](const System& s, double t, const Eigen::VectorXd& q, const Eigen::VectorXd& q_dot) {

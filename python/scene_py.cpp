@@ -125,7 +125,16 @@ void bind_scene(py::module_& m) {
       .def_property_readonly("t_end", &Model::t_end)
       .def("integrator", &Model::integrator, py::arg("requested") = std::string{},
            "The method a run uses (the requested one, the scene's, or the kind's default).")
-      .def("equations", &Model::equations, py::arg("latex") = false, "The equations of motion.")
+      .def("equations", [](const Model& mo, bool latex, const std::string& format) {
+             if (format.empty()) return mo.equations(latex);
+             const auto f = rigid::lagrange::parse_equation_format(format);
+             if (latex && f != rigid::lagrange::EquationFormat::kLatex) {
+               throw rigid::Error(fmt::format("latex=True and format='{}' ask for two formats; give one", format));
+             }
+             return mo.equations(f);
+           }, py::arg("latex") = false, py::arg("format") = std::string{},
+           "The equations of motion as `rigid eom` prints them: format 'text' (default), 'latex' "
+           "or 'json' (latex=True is format='latex').")
       .def("check", [](const Model& mo, const std::string& integrator, const py::object& max_memory) {
              rigid::scene::RunOptions o;
              o.integrator = integrator;

@@ -46,8 +46,12 @@ inline void add_run_command(CLI::App& app) {
 
   auto eom = std::make_shared<rigid::cli::SceneOptions>();
   auto latex = std::make_shared<bool>(false);
+  auto format = std::make_shared<std::string>();
   auto* e = app.add_subcommand("eom", "Print a scene's equations of motion");
   add_scene_options(e, *eom);
-  e->add_flag("--latex", *latex, "LaTeX instead of plain text");
-  e->callback([eom, latex] { rigid::cli::run_eom(*eom, *latex); });
+  e->add_option("--format", *format, "text (default), latex (align* environments) or json (every "
+                                     "quantity as text and LaTeX, M as a nested array)")
+      ->type_name("FORMAT");
+  e->add_flag("--latex", *latex, "the same as --format latex");
+  e->callback([eom, latex, format] { rigid::cli::run_eom(*eom, *latex, *format); });
 }

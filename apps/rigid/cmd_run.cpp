@@ -146,10 +146,22 @@ void run_check(const SceneOptions& opts) {
   fmt::print("ok: {} is a valid scene\n", opts.scene);
 }
 
-void run_eom(const SceneOptions& opts, bool latex) {
+void run_eom(const SceneOptions& opts, bool latex, const std::string& format) {
+  // the format first: a bad --format is refused before the scene is derived
+  lagrange::EquationFormat f = latex ? lagrange::EquationFormat::kLatex : lagrange::EquationFormat::kText;
+  if (!format.empty()) {
+    try {
+      f = lagrange::parse_equation_format(format);
+    } catch (const Error& e) {
+      throw Error(fmt::format("--format: {}", e.what()));
+    }
+    if (latex && f != lagrange::EquationFormat::kLatex) {
+      throw Error(fmt::format("--latex and --format {} ask for two formats; give one", format));
+    }
+  }
   const scene::Model model = load(opts);
   print_warnings(model.warnings());
-  fmt::print("{}", model.equations(latex));
+  fmt::print("{}", model.equations(f));
 }
 
 }  // namespace rigid::cli

@@ -28,7 +28,8 @@ void run_run(const RunOptions& opts);
 /// `rigid check SCENE`: builds the model and runs the checks of a run without integrating.
 void run_check(const SceneOptions& opts);
 
-/// `rigid eom SCENE [--latex]`: prints the equations of motion.
-void run_eom(const SceneOptions& opts, bool latex);
+/// `rigid eom SCENE [--format text|latex|json] [--latex]`: prints the equations of motion
+/// (`--latex` is `--format latex`; with another --format it is refused).
+void run_eom(const SceneOptions& opts, bool latex, const std::string& format);
 
 }  // namespace rigid::cli

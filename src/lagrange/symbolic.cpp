@@ -1,5 +1,7 @@
 #include "detail/symbolic.hpp"
 
+#include "detail/canonical.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -120,19 +122,16 @@ ex d(const ex& e, const symbol& x) {
 
 ex simplify(const ex& e) {
   ReduceSines reduce;
-  return reduce(e.expand()).expand();
+  const ex expanded = e.expand();
+  // map() hands back the same object when no sine power was found: no second expansion then
+  const ex reduced = reduce(expanded);
+  return GiNaC::are_ex_trivially_equal(reduced, expanded) ? expanded : reduced.expand();
 }
 
-std::string to_text(const ex& e) {
-  std::ostringstream os;
-  os << e;
-  return os.str();
-}
-std::string to_latex(const ex& e) {
-  std::ostringstream os;
-  os << GiNaC::latex << e;
-  return os.str();
-}
+// the canonical printer (canonical.hpp) with symbols ranked by name: the same bytes on every
+// run, which GiNaC's own printer does not give
+std::string to_text(const ex& e) { return print(plain(e, SymbolOrder{}), SymbolOrder{}, false); }
+std::string to_latex(const ex& e) { return print(plain(e, SymbolOrder{}), SymbolOrder{}, true); }
 
 // a double as the exact rational of its shortest round-trip decimal (0.7 → 7/10), so that
 // printed equations show 7/10 rather than 0.6999999999999999556 and products stay exact

@@ -303,6 +303,7 @@ System::System(const SystemSpec& spec) : impl_(std::make_unique<Impl>()) {
     forced[i] = true;
   }
 
+  s.Q = Q;
   // Euler–Lagrange: p = ∂L/∂q̇, M = ∂p/∂q̇, f = ∂L/∂q − (∂p/∂q) q̇ − ∂p/∂t + Q
   const auto n = static_cast<std::size_t>(s.n);
   s.p.resize(n);
@@ -441,33 +442,7 @@ std::vector<Parameter> System::parameters() const {
   return out;
 }
 
-Equations System::equations() const {
-  const Impl& s = *impl_;
-  Equations eq;
-  eq.lagrangian_text = to_text(s.L);
-  eq.lagrangian_latex = to_latex(s.L);
-  const auto n = static_cast<std::size_t>(s.n);
-  for (std::size_t i = 0; i < n; ++i) {
-    ex lhs = 0;
-    for (std::size_t j = 0; j < n; ++j) lhs += s.M[i * n + j] * s.qdd[j];
-    ex rhs = s.f[i];
-    for (std::size_t k = 0; k < s.lambda.size(); ++k) rhs += s.lambda[k] * s.G[k * n + i];
-    for (std::size_t k = 0; k < s.mu.size(); ++k) rhs += s.mu[k] * s.A[k * n + i];  // velocity rows
-    eq.text.push_back(to_text(lhs) + " = " + to_text(rhs));
-    eq.latex.push_back(to_latex(lhs) + " = " + to_latex(rhs));
-  }
-  for (const ex& gk : s.g) {
-    eq.constraints_text.push_back(to_text(gk) + " = 0");
-    eq.constraints_latex.push_back(to_latex(gk) + " = 0");
-  }
-  for (const ex& ck : s.cv) {  // velocity constraints A q̇ + a = 0
-    eq.constraints_text.push_back(to_text(ck) + " = 0");
-    eq.constraints_latex.push_back(to_latex(ck) + " = 0");
-  }
-  eq.energy_text = to_text(s.h);
-  eq.cyclic = s.cyclic_names;
-  return eq;
-}
+// System::equations() is in equations.cpp
 
 }  // namespace rigid::lagrange
 

@@ -9,6 +9,7 @@
 #include <fnmatch.h>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "rigid/body/free_body_exact.hpp"
 #include "rigid/body/free_body_integrators.hpp"
@@ -561,46 +562,62 @@ Method Model::Impl::parse_method(const std::string& requested) const {
 std::string Model::integrator(const std::string& requested) const { return impl_->parse_method(requested).name; }
 
 std::string Model::equations(bool latex) const {
+  return equations(latex ? lagrange::EquationFormat::kLatex : lagrange::EquationFormat::kText);
+}
+
+std::string Model::equations(lagrange::EquationFormat format) const {
   const Impl& m = *impl_;
-  std::string out;
-  if (m.kind == SceneKind::kCoordinates) {
-    const lagrange::Equations eq = m.system->equations();
-    out += latex ? fmt::format("L = {}\n", eq.lagrangian_latex) : fmt::format("L = {}\n", eq.lagrangian_text);
-    for (const auto& line : latex ? eq.latex : eq.text) out += line + "\n";
-    for (const auto& line : latex ? eq.constraints_latex : eq.constraints_text) out += line + "\n";
-    if (!latex) {
-      out += fmt::format("energy (Jacobi integral) h = {}\n", eq.energy_text);
-      if (!eq.cyclic.empty()) out += fmt::format("cyclic coordinates: {}\n", fmt::join(eq.cyclic, ", "));
-    }
-  } else {
-    for (const FreeBody& f : m.free) {
-      lagrange::FreeBodyEquationsSpec spec;
-      spec.name = f.name;
-      spec.mass = f.symbolic;
-      spec.gravity_W = expressions_of(m.scene.gravity);
-      if (f.pivot_expressions) {
-        spec.has_pivot = true;
-        spec.pivot_B = expressions_of(*f.pivot_expressions);
-      }
-      for (const auto& line : lagrange::free_body_equations(m.params, spec, latex)) out += line + "\n";
-      if (!latex) {
-        const Eigen::Vector3d I = f.top ? f.top->principal_moments() : f.rigid->principal_moments();
-        const Eigen::Matrix3d R = f.R_BP.matrix();
-        out += fmt::format("  principal moments about the {} (ascending) I = {} kg·m², axes in B (columns "
-                           "of R_BP): {}, {}, {}\n",
-                           f.top ? "pivot" : "COM", format_vec(I), format_vec(R.col(0)), format_vec(R.col(1)),
-                           format_vec(R.col(2)));
-      }
-    }
-  }
+  const bool latex = format == lagrange::EquationFormat::kLatex;
   // constants the scene did not write (from mesh files, vertices), named in the equations
+  std::string note;
   if (m.params.size() > m.scene_params) {
-    out += latex ? "% where " : "where ";
+    note = "where ";
     for (std::size_t k = m.scene_params; k < m.params.size(); ++k) {
-      out += fmt::format("{}{} = {:.8g}", k > m.scene_params ? ", " : "", m.params[k].name, m.params[k].value);
+      note += fmt::format("{}{} = {:.8g}", k > m.scene_params ? ", " : "", m.params[k].name, m.params[k].value);
     }
-    out += " (SI units; computed from the bodies' files and vertices)\n";
+    note += " (SI units; computed from the bodies' files and vertices)";
   }
+  if (m.kind == SceneKind::kCoordinates) {
+    lagrange::Equations eq = m.system->equations();
+    eq.note = note;
+    return lagrange::format_equations(eq, format);
+  }
+  std::string out;
+  nlohmann::ordered_json bodies = nlohmann::ordered_json::array();
+  for (const FreeBody& f : m.free) {
+    lagrange::FreeBodyEquationsSpec spec;
+    spec.name = f.name;
+    spec.mass = f.symbolic;
+    spec.gravity_W = expressions_of(m.scene.gravity);
+    if (f.pivot_expressions) {
+      spec.has_pivot = true;
+      spec.pivot_B = expressions_of(*f.pivot_expressions);
+    }
+    const Eigen::Vector3d I = f.top ? f.top->principal_moments() : f.rigid->principal_moments();
+    const Eigen::Matrix3d R = f.R_BP.matrix();
+    const std::string moments = fmt::format("  principal moments about the {} (ascending) I = {} kg·m², axes in B (columns "
+                                            "of R_BP): {}, {}, {}",
+                                            f.top ? "pivot" : "COM", format_vec(I), format_vec(R.col(0)),
+                                            format_vec(R.col(1)), format_vec(R.col(2)));
+    if (format == lagrange::EquationFormat::kJson) {
+      bodies.push_back({{"name", f.name},
+                        {"pivot", f.top.has_value()},
+                        {"text", lagrange::free_body_equations(m.params, spec, false)},
+                        {"latex", lagrange::free_body_equations(m.params, spec, true)},
+                        {"principal_moments", {I.x(), I.y(), I.z()}}});
+      continue;
+    }
+    for (const auto& line : lagrange::free_body_equations(m.params, spec, latex)) out += line + "\n";
+    if (!latex) out += moments + "\n";
+  }
+  if (format == lagrange::EquationFormat::kJson) {
+    nlohmann::ordered_json j;
+    j["kind"] = "free_bodies";
+    j["bodies"] = bodies;
+    if (!note.empty()) j["note"] = note;
+    return j.dump(2) + "\n";
+  }
+  if (!note.empty()) out += (latex ? "% " : "") + note + "\n";
   return out;
 }
 

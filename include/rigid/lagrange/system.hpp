@@ -159,7 +159,20 @@ struct SystemSpec {
   std::vector<VelocityConstraint> velocity_constraints;
 };
 
-/// The derived equations as text and LaTeX, one line per coordinate / constraint.
+/// One printed quantity: plain text (parsable by SymPy's sympify, `^` for powers) and LaTeX.
+struct Printed {
+  std::string text, latex;
+};
+
+/// A symbol of the equations: its name, its LaTeX, what it is and its unit.
+struct EquationSymbol {
+  std::string name, latex, role, unit;
+};
+
+/// The derived equations, printed canonically: the same bytes on every run, terms ordered by
+/// coordinate index, then derivative order, then parameters in declaration order, then
+/// numbers; simplified as a textbook does (collected per acceleration, common parameters
+/// factored out, cos a cos b + sin a sin b = cos(a − b) and the like, sin² + cos² = 1).
 struct Equations {
   std::string lagrangian_text, lagrangian_latex;   ///< L
   std::vector<std::string> text;    ///< "Σ_j M_ij q̈_j = f_i + Σ_k λ_k ∂g_k/∂q_i" per coordinate
@@ -168,7 +181,42 @@ struct Equations {
   std::vector<std::string> constraints_latex;
   std::string energy_text;          ///< Jacobi integral h = q̇·∂L/∂q̇ − L
   std::vector<std::string> cyclic;  ///< names of cyclic coordinates
+
+  // the structured form (each quantity as text and LaTeX)
+  std::vector<std::string> coordinates;      ///< q, in order
+  std::vector<Parameter> parameters;         ///< in declaration order, with their values
+  std::vector<std::string> constraint_names; ///< in order
+  Printed lagrangian, kinetic_energy, potential_energy;  ///< L = T − V (J)
+  std::vector<std::vector<Printed>> mass_matrix;  ///< M(q, t) = ∂²L/∂q̇∂q̇, n × n
+  /// f(q, q̇, t) = inertial + potential + generalized, per coordinate: inertial = ∂T/∂q −
+  /// (∂²T/∂q̇∂q) q̇ − ∂²T/∂q̇∂t (Coriolis, centrifugal, driven), potential = −∂V/∂q (gravity,
+  /// springs, potentials), generalized = Q (forces).
+  std::vector<Printed> forcing, forcing_inertial, forcing_potential, forcing_generalized;
+  std::vector<Printed> equations;             ///< the lines of `text` / `latex`
+  std::vector<Printed> constraints;           ///< g_k(q, t) (= 0)
+  std::vector<std::vector<Printed>> constraint_jacobian;  ///< G = ∂g/∂q, m × n
+  std::vector<std::string> velocity_constraint_names;     ///< in order
+  std::vector<Printed> velocity_constraints;               ///< A_k(q, t) q̇ + a_k(q, t) (= 0)
+  std::vector<std::vector<Printed>> velocity_constraint_matrix;  ///< A, r × n
+  Printed jacobi_integral;                    ///< h = q̇·∂L/∂q̇ − L (J)
+  /// h is conserved: L and the constraints do not depend on t, there are no forces, and the
+  /// velocity constraints have no term a (ideal constraint forces then do no work).
+  bool jacobi_conserved = false;
+  std::vector<Printed> cyclic_momenta;        ///< p_i = ∂L/∂q̇_i of the `cyclic` coordinates
+  std::vector<EquationSymbol> symbols;        ///< every symbol that may appear, with units
+  /// Free text appended by a front end (e.g. the values of constants named for a scene).
+  std::string note;
 };
+
+/// How a document of the equations is written: plain text, LaTeX (align* environments) or
+/// JSON (every quantity as text and LaTeX, M as a nested array, the symbol lists).
+enum class EquationFormat { kText, kLatex, kJson };
+/// "text", "latex" or "json". @throws rigid::Error naming the accepted values otherwise.
+[[nodiscard]] EquationFormat parse_equation_format(std::string_view name);
+/// The whole document. Its labels cannot collide with a user's symbols: text headings are
+/// words ("Lagrangian:", "mass matrix:"), LaTeX labels are \mathcal{L}, \mathbf{M}, …, which
+/// no name prints as.
+[[nodiscard]] std::string format_equations(const Equations& eq, EquationFormat format);
 
 /// How to run a simulation (seconds). Fixed-step methods follow the one step rule of
 /// rigid::integrate::march: between two output times the fewest equal steps no longer than dt.

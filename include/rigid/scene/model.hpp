@@ -90,6 +90,9 @@ class Model {
   /// equations of each free body; text or LaTeX. Parameters keep their names; constants
   /// derived from files are named and listed with their values.
   [[nodiscard]] std::string equations(bool latex) const;
+  /// The equations as a document: text, LaTeX (align* environments) or JSON (every quantity
+  /// as text and LaTeX; rigid::lagrange::format_equations). The same bytes on every run.
+  [[nodiscard]] std::string equations(lagrange::EquationFormat format) const;
 
   /// The coordinate system (only for kind() == kCoordinates). @throws rigid::Error otherwise.
   [[nodiscard]] const lagrange::System& system() const;

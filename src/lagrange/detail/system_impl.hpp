@@ -26,6 +26,7 @@ struct System::Impl {
   // derived expressions
   GiNaC::ex L, T, V, h;
   std::vector<GiNaC::ex> M, f, G, gamma, g, c, p;
+  std::vector<GiNaC::ex> Q;  // generalized forces, per coordinate (printed apart from f)
   std::vector<int> cyclic_index;
   bool verlet_ok = false;
   // compiled: inputs (q, q̇, t, parameters) for dyn, diag and pose; the parameters alone for
