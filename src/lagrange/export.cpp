@@ -8,6 +8,7 @@
 #include "rigid/lagrange/export.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <set>
 
@@ -36,7 +37,8 @@ const System::Impl& impl_of(const System& system) {
 // names
 
 const std::set<std::string>& cpp_reserved() {
-  // keywords, alternative tokens, and the macros of <cmath>/<cerrno> a member could meet
+  // keywords, alternative tokens, the macros of <cmath>/<cerrno> a member could meet, and the
+  // struct's own name (a trailing '_' never makes another of these)
   static const std::set<std::string> kWords = {
       "alignas", "alignof", "and", "and_eq", "asm", "auto", "bitand", "bitor", "bool", "break",
       "case", "catch", "char", "char8_t", "char16_t", "char32_t", "class", "compl", "concept",
@@ -51,16 +53,14 @@ const std::set<std::string>& cpp_reserved() {
       "virtual", "void", "volatile", "wchar_t", "while", "xor", "xor_eq", "final", "override",
       "import", "module", "errno", "NAN", "INFINITY", "HUGE_VAL", "HUGE_VALF", "HUGE_VALL",
       "EDOM", "ERANGE", "EILSEQ", "MATH_ERRNO", "MATH_ERREXCEPT", "math_errhandling", "assert",
-      "NULL", "Parameters", "std"};
+      "NULL", "Parameters", "std", "M_E", "M_LOG2E", "M_LOG10E", "M_LN2", "M_LN10", "M_PI",
+      "M_PI_2", "M_PI_4", "M_1_PI", "M_2_PI", "M_2_SQRTPI", "M_SQRT2", "M_SQRT1_2", "FP_NAN",
+      "FP_INFINITE", "FP_ZERO", "FP_SUBNORMAL", "FP_NORMAL", "FP_ILOGB0", "FP_ILOGBNAN",
+      "FP_FAST_FMA", "FP_FAST_FMAF", "FP_FAST_FMAL"};
   return kWords;
 }
 
-bool cpp_needs_mark(const std::string& name) {
-  // reserved identifiers (__x, _X) and macro families of <cmath> (M_PI, FP_NAN)
-  return cpp_reserved().count(name) || name.find("__") != std::string::npos ||
-         (name.size() > 1 && name[0] == '_' && std::isupper(static_cast<unsigned char>(name[1]))) ||
-         name.starts_with("M_") || name.starts_with("FP_");
-}
+bool cpp_needs_mark(const std::string& name) { return cpp_reserved().count(name) > 0; }
 
 const std::set<std::string>& python_reserved() {
   // keywords and the names the generated functions use
@@ -85,7 +85,7 @@ std::vector<std::string> identifiers(const std::vector<std::string>& names, bool
       out.push_back(name);
       continue;
     }
-    std::string id = python && name.starts_with("_") ? "p" + name : name + "_";
+    std::string id = python && name.starts_with("_") ? fmt::format("p{}", name) : fmt::format("{}_", name);
     while (used.count(id) || (python ? python_reserved().count(id) > 0 : cpp_needs_mark(id))) {
       id += "_";
     }
@@ -98,7 +98,7 @@ std::vector<std::string> identifiers(const std::vector<std::string>& names, bool
 std::string namespace_name(const std::string& requested) {
   std::string id;
   for (char c : requested) id += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
-  if (id.empty() || std::isdigit(static_cast<unsigned char>(id[0]))) id = "model_" + id;
+  if (id.empty() || std::isdigit(static_cast<unsigned char>(id[0]))) id = fmt::format("model_{}", id);
   while (cpp_needs_mark(id)) id += "_";
   return id;
 }
@@ -443,7 +443,10 @@ std::string emit_cpp(const System& system, const ExportOptions& options) {
          "  return v;\n"
          "}\n"
          "}  // namespace detail\n";
-  for (const FunctionSpec& fn : kFunctions) out += "\n" + cpp_function(s, fn, params);
+  for (const FunctionSpec& fn : kFunctions) {
+    out += "\n";
+    out += cpp_function(s, fn, params);
+  }
   out += fmt::format("\n}}  // namespace {}\n", ns);
   return out;
 }
@@ -483,7 +486,10 @@ std::string emit_python(const System& system, const ExportOptions& options) {
          "        x *= x\n"
          "        k >>= 1\n"
          "    return v\n";
-  for (const FunctionSpec& fn : kFunctions) out += "\n\n" + python_function(s, fn, params);
+  for (const FunctionSpec& fn : kFunctions) {
+    out += "\n\n";
+    out += python_function(s, fn, params);
+  }
   return out;
 }
 

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "support/tolerance.hpp"
@@ -78,12 +79,12 @@ TEST(Tape, OutputsMayBeInputsOrConstants) {
 }
 
 TEST(Tape, ProductsWithACommonPrefixShareIt) {
-  // x·y·z and x·y·w: the factors are multiplied in one (sorted) order, so x·y is one
+  // a·b·c and a·b·d: the factors are multiplied in one (sorted) order, so a·b is one
   // instruction for both (value numbering): 3 products, not 4
-  const symbol w("w"), x("x"), y("y"), z("z");
-  TapeBuilder b({w, x, y, z});
-  b.add_output(x * y * z);
-  b.add_output(x * y * w);
+  const symbol a("a"), bb("b"), c("c"), d("d");
+  TapeBuilder b({d, a, bb, c});
+  b.add_output(a * bb * c);
+  b.add_output(a * bb * d);
   const Tape tape = b.build();
   EXPECT_EQ(tape.count(Op::kMul), 3u);
   double out[2];
@@ -99,7 +100,7 @@ TEST(Tape, DispatchesOncePerGroupOfIndependentInstructions) {
   // is sin | cos (level 1), the products (level 2) and the balanced sum (levels 3–6): 7
   // groups for 63 instructions (one dispatch per instruction before)
   std::vector<symbol> x;
-  for (int k = 0; k < 16; ++k) x.emplace_back("x" + std::to_string(k));
+  for (int k = 0; k < 16; ++k) x.emplace_back(fmt::format("x{}", k));
   ex sum = 0;
   for (const symbol& s : x) sum += GiNaC::sin(s) * GiNaC::cos(s);
   TapeBuilder b(x);
@@ -132,7 +133,9 @@ TEST(Tape, InstructionsReadOnlyEarlierSlots) {
     EXPECT_LT(static_cast<std::size_t>(in.a), base + k) << k;
     const bool binary = in.op == Op::kAdd || in.op == Op::kSub || in.op == Op::kMul ||
                         in.op == Op::kDiv || in.op == Op::kPow;
-    if (binary) EXPECT_LT(static_cast<std::size_t>(in.b), base + k) << k;
+    if (binary) {
+      EXPECT_LT(static_cast<std::size_t>(in.b), base + k) << k;
+    }
   }
 }
 

@@ -1,6 +1,7 @@
 // The exported C++ of the examples with coordinates (generated at build time by
 // rigid_export_examples_gen into exported/<example>.hpp and compiled here with the project's
 // flags) against the engine: M, f, G and γ at several states.
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
