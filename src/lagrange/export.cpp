@@ -223,7 +223,7 @@ Tape function_tape(const System::Impl& s, const Parts& parts) {
   inputs.insert(inputs.end(), s.qd.begin(), s.qd.end());
   inputs.push_back(s.t);
   inputs.insert(inputs.end(), s.params.begin(), s.params.end());
-  detail::TapeBuilder b(inputs);
+  detail::TapeBuilder b(inputs, inputs.size() - s.params.size());  // as System's
   const auto n = static_cast<std::size_t>(s.n);
   // the order of System's dynamics tape: M's upper triangle, f, G, γ
   if (parts.M) {

@@ -87,7 +87,8 @@ void Tape::evaluate(const double* inputs, double* outputs, std::vector<double>& 
 
 #undef RIGID_TAPE_LOOP
 
-TapeBuilder::TapeBuilder(const std::vector<GiNaC::symbol>& inputs) : num_inputs_(inputs.size()) {
+TapeBuilder::TapeBuilder(const std::vector<GiNaC::symbol>& inputs, std::size_t first_run_constant)
+    : num_inputs_(inputs.size()), first_run_constant_(first_run_constant) {
   for (std::size_t k = 0; k < inputs.size(); ++k) memo_[inputs[k]] = static_cast<std::int32_t>(k);
 }
 
@@ -172,6 +173,22 @@ const std::string& TapeBuilder::key_of(const GiNaC::ex& e) {
   return keys_.emplace(e, std::move(key)).first->second;
 }
 
+bool TapeBuilder::is_run_constant(const GiNaC::ex& e) {
+  using namespace GiNaC;
+  if (is_a<numeric>(e) || is_a<constant>(e)) return true;
+  auto found = run_constant_.find(e);
+  if (found != run_constant_.end()) return found->second;
+  bool constant = true;
+  if (is_a<symbol>(e)) {
+    auto slot = memo_.find(e);
+    constant = slot != memo_.end() && static_cast<std::size_t>(slot->second) >= first_run_constant_;
+  } else {
+    for (std::size_t k = 0; k < e.nops() && constant; ++k) constant = is_run_constant(e.op(k));
+  }
+  run_constant_.emplace(e, constant);
+  return constant;
+}
+
 GiNaC::exvector TapeBuilder::sorted_operands(const GiNaC::ex& e) {
   GiNaC::exvector ops(e.begin(), e.end());
   std::vector<std::pair<std::string, std::size_t>> order;
@@ -224,10 +241,12 @@ std::int32_t TapeBuilder::slot_of(const GiNaC::ex& e) {
       s = emit(Op::kSub, emit_sum(std::move(plus)), emit_sum(std::move(minus)));
     }
   } else if (is_a<mul>(e)) {
-    // a product: factors with negative powers divide
+    // a product: factors with negative powers divide; run-constant factors first
     std::int32_t num = 0, den = 0;
     bool have_num = false, have_den = false;
-    for (const ex& f : sorted_operands(e)) {
+    exvector factors = sorted_operands(e);
+    std::stable_partition(factors.begin(), factors.end(), [&](const ex& f) { return is_run_constant(f); });
+    for (const ex& f : factors) {
       if (is_a<power>(f) && is_a<numeric>(f.op(1)) && ex_to<numeric>(f.op(1)).is_negative()) {
         const std::int32_t d = slot_of(pow(f.op(0), -f.op(1)));
         den = have_den ? emit(Op::kMul, den, d) : d;

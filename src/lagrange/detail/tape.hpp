@@ -80,8 +80,12 @@ class Tape {
 /// not emitted again, which shares the partial products of products with a common prefix).
 class TapeBuilder {
  public:
-  /// `inputs` are the symbols read from the input array, in order.
-  explicit TapeBuilder(const std::vector<GiNaC::symbol>& inputs);
+  /// `inputs` are the symbols read from the input array, in order; those from
+  /// `first_run_constant` on (the parameters) do not change during a run. A product multiplies
+  /// its run-constant factors first, so that the terms of a sum share that prefix (l₁l₂ in
+  /// every term of a chain's M and f) by value numbering.
+  explicit TapeBuilder(const std::vector<GiNaC::symbol>& inputs,
+                       std::size_t first_run_constant = static_cast<std::size_t>(-1));
   /// Adds an output; returns its index.
   std::size_t add_output(const GiNaC::ex& e);
   [[nodiscard]] Tape build() const;
@@ -96,8 +100,11 @@ class TapeBuilder {
   std::int32_t emit_sum(std::vector<std::int32_t> terms);
   const std::string& key_of(const GiNaC::ex& e);
   GiNaC::exvector sorted_operands(const GiNaC::ex& e);
+  bool is_run_constant(const GiNaC::ex& e);
 
   std::size_t num_inputs_;
+  std::size_t first_run_constant_;
+  std::map<GiNaC::ex, bool, GiNaC::ex_is_less> run_constant_;
   std::map<GiNaC::ex, std::int32_t, GiNaC::ex_is_less> memo_;
   std::map<GiNaC::ex, std::string, GiNaC::ex_is_less> keys_;
   std::map<double, std::int32_t> constant_slots_;
