@@ -109,8 +109,8 @@ def test_written_file_and_namespace_from_its_name(run, tmp_path):
 def test_unknown_language_is_refused_with_a_close_match(run):
     proc = run("eom", EXAMPLES / "double_pendulum.toml", "--emit", "pyhton", check=False)
     assert proc.returncode == 2
-    assert "unknown export language 'pyhton'; did you mean 'python'?" in proc.stderr
-    with pytest.raises(rigid.Error, match="unknown export language 'pyhton'; did you mean 'python'"):
+    assert "--emit: unknown export language 'pyhton'; expected c++ or python; did you mean 'python'?" in proc.stderr
+    with pytest.raises(rigid.Error, match="unknown export language 'pyhton'; expected c\\+\\+ or python; did you mean 'python'"):
         rigid.Scene(EXAMPLES / "double_pendulum.toml").emit("pyhton")
     with pytest.raises(rigid.Error, match="did you mean 'c\\+\\+'"):
         rigid.Scene(EXAMPLES / "double_pendulum.toml").system.emit("c+")

@@ -58,6 +58,15 @@ TEST(Export, CppIsSelfContainedWithParametersAsNamedDefaults) {
   EXPECT_EQ(code.find("#include"), code.rfind("#include"));
 }
 
+TEST(Export, TheSourceStaysOnItsCommentLine) {
+  const System sys(slider_spec());
+  ExportOptions o;
+  o.source = "dir\nint x = 1;/scene.toml";
+  const std::string cpp = emit_cpp(sys, o), py = emit_python(sys, o);
+  EXPECT_THAT(cpp, HasSubstr("// Equations of motion of dir?int x = 1;/scene.toml, generated"));
+  EXPECT_THAT(py, HasSubstr("# Equations of motion of dir?int x = 1;/scene.toml, generated"));
+}
+
 TEST(Export, ReservedParameterNamesAreMarked) {
   SystemSpec spec;
   spec.parameters = {{"lambda", 1.0}, {"class", 2.0}, {"q", 3.0}, {"_k", 4.0}, {"M_PI", 5.0}};
