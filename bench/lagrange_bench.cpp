@@ -1,9 +1,14 @@
 // The N-link planar pendulum (point masses m_k = 1 kg on massless rods l_k = 1 m, g = 9.81):
 // (a) deriving the equations (rigid::lagrange::System: parse, assemble T and V from bodies,
 //     Euler–Lagrange derivatives, compile the tape),
-// (b) one right-hand-side evaluation q̈(q, q̇) with the mass-matrix solve, and
-// (c) the same right-hand side written by hand in C++ (closed-form M and f, Eigen LLT).
+// (b) one right-hand-side evaluation q̈(q, q̇) with the mass-matrix solve,
+// (c) the same right-hand side written by hand in C++ (closed-form M and f, Eigen LLT),
+// (d) the same with M and f from the exported C++ (rigid::lagrange::emit_cpp, generated at
+//     build time into generated/chainN.hpp, compiled with the project's flags), Eigen LLT, and
+// (e) (b), (c) and (d) timed alternately in one benchmark, whose counters are the ratios to
+//     the hand-written code: a slowdown of the tape alone shows there even on a busy machine.
 // SymPy's side of the comparison is bench/lagrange_sympy.py.
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -12,28 +17,16 @@
 #include <benchmark/benchmark.h>
 #include <fmt/format.h>
 
+#include "chain2.hpp"
+#include "chain4.hpp"
+#include "chain8.hpp"
+#include "lagrange_chain.hpp"
 #include "rigid/lagrange/system.hpp"
 
 namespace {
 
-constexpr double kG = 9.81;
-
-rigid::lagrange::SystemSpec chain_spec(int n) {
-  rigid::lagrange::SystemSpec spec;
-  std::string x = "0", y = "0";
-  for (int i = 1; i <= n; ++i) {
-    spec.parameters.push_back({fmt::format("l{}", i), 1.0});
-    spec.coordinates.push_back({fmt::format("q{}", i), 0.1 * i, 0.0});
-    x = fmt::format("{} + l{}*sin(q{})", x, i, i);
-    y = fmt::format("{} - l{}*cos(q{})", y, i, i);
-    spec.bodies.push_back(rigid::lagrange::Body{
-        fmt::format("bob{}", i),
-        rigid::MassProperties(1.0, Eigen::Vector3d::Zero(), Eigen::Matrix3d::Zero()),
-        {x, y, "0"}, {}});
-  }
-  spec.gravity_W = Eigen::Vector3d(0, -kG, 0);
-  return spec;
-}
+constexpr double kG = rigid::bench::kChainGravity;
+using rigid::bench::chain_spec;
 
 // hand-written: with μ_k = Σ_{j ≥ k} m_j,
 //   M_ij = μ_max(i,j) l_i l_j cos(q_i − q_j),
@@ -61,6 +54,38 @@ struct HandChain {
         f[i] -= c * std::sin(d) * qd[j] * qd[j];
       }
     }
+    llt.compute(M);
+    qdd = llt.solve(f);
+  }
+};
+
+// M and f from the exported code (rigid::lagrange::emit_cpp), then the same LLT
+struct ExportedChain {
+  using Function = void (*)(const double* q, const double* q_dot, double* M, double* f);
+  int n;
+  Function mass_matrix_and_forces;
+  Eigen::MatrixXd M;  // the exported M is row-major and symmetric: either storage order holds it
+  Eigen::VectorXd f;
+  Eigen::LLT<Eigen::MatrixXd> llt;
+  explicit ExportedChain(int n_) : n(n_), mass_matrix_and_forces(pick(n_)), M(n_, n_), f(n_), llt(n_) {}
+  static Function pick(int n) {
+    switch (n) {
+      case 2: return [](const double* q, const double* qd, double* M, double* f) {
+        chain2::mass_matrix_and_forces(q, qd, 0.0, M, f);
+      };
+      case 4: return [](const double* q, const double* qd, double* M, double* f) {
+        chain4::mass_matrix_and_forces(q, qd, 0.0, M, f);
+      };
+      case 8: return [](const double* q, const double* qd, double* M, double* f) {
+        chain8::mass_matrix_and_forces(q, qd, 0.0, M, f);
+      };
+      default:
+        std::fprintf(stderr, "lagrange_bench: no exported chain with %d links\n", n);
+        std::exit(1);
+    }
+  }
+  void accelerations(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, Eigen::VectorXd& qdd) {
+    mass_matrix_and_forces(q.data(), qd.data(), M.data(), f.data());
     llt.compute(M);
     qdd = llt.solve(f);
   }
@@ -131,9 +156,72 @@ void BM_Handwritten_rhs(benchmark::State& state) {
   }
 }
 
+void BM_Exported_rhs(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  ExportedChain exported(n);
+  Eigen::VectorXd q, qd, qdd(n);
+  sample_state(n, q, qd);
+  HandChain hand(n);
+  Eigen::VectorXd ref(n);
+  hand.accelerations(q, qd, ref);
+  exported.accelerations(q, qd, qdd);
+  if ((qdd - ref).norm() > 1e-10 * (1 + ref.norm())) {
+    std::fprintf(stderr, "lagrange_bench: exported and hand-written accelerations disagree\n");
+    std::exit(1);
+  }
+  for (auto _ : state) {
+    exported.accelerations(q, qd, qdd);
+    benchmark::DoNotOptimize(qdd.data());
+  }
+}
+
+// The tape, the hand-written and the exported right-hand sides in alternating blocks of calls;
+// the counters are the time per call of each (ns) and the ratios to the hand-written one.
+void BM_Lagrange_rhs_ratio(benchmark::State& state) {
+  using Clock = std::chrono::steady_clock;
+  const int n = static_cast<int>(state.range(0));
+  const rigid::lagrange::System sys(chain_spec(n));
+  rigid::lagrange::Workspace w = sys.make_workspace();
+  HandChain hand(n);
+  ExportedChain exported(n);
+  Eigen::VectorXd q, qd, qdd(n), lambda;
+  sample_state(n, q, qd);
+  constexpr int kBlock = 64;
+  double tape_s = 0, hand_s = 0, exported_s = 0;
+  for (auto _ : state) {
+    const auto t0 = Clock::now();
+    for (int k = 0; k < kBlock; ++k) {
+      sys.accelerations(w, 0.0, q, qd, qdd, lambda);
+      benchmark::DoNotOptimize(qdd.data());
+    }
+    const auto t1 = Clock::now();
+    for (int k = 0; k < kBlock; ++k) {
+      hand.accelerations(q, qd, qdd);
+      benchmark::DoNotOptimize(qdd.data());
+    }
+    const auto t2 = Clock::now();
+    for (int k = 0; k < kBlock; ++k) {
+      exported.accelerations(q, qd, qdd);
+      benchmark::DoNotOptimize(qdd.data());
+    }
+    const auto t3 = Clock::now();
+    tape_s += std::chrono::duration<double>(t1 - t0).count();
+    hand_s += std::chrono::duration<double>(t2 - t1).count();
+    exported_s += std::chrono::duration<double>(t3 - t2).count();
+  }
+  const double calls = static_cast<double>(state.iterations()) * kBlock;
+  state.counters["tape_ns"] = 1e9 * tape_s / calls;
+  state.counters["hand_ns"] = 1e9 * hand_s / calls;
+  state.counters["exported_ns"] = 1e9 * exported_s / calls;
+  state.counters["tape/hand"] = tape_s / hand_s;
+  state.counters["exported/hand"] = exported_s / hand_s;
+}
+
 BENCHMARK(BM_Lagrange_derive)->Arg(2)->Arg(4)->Arg(8)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Lagrange_derive_and_print)->Arg(2)->Arg(4)->Arg(8)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Lagrange_rhs)->Arg(2)->Arg(4)->Arg(8)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Handwritten_rhs)->Arg(2)->Arg(4)->Arg(8)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Exported_rhs)->Arg(2)->Arg(4)->Arg(8)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Lagrange_rhs_ratio)->Arg(2)->Arg(4)->Arg(8)->Unit(benchmark::kMicrosecond);
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <pybind11/stl.h>
 
 #include "interrupt.hpp"
+#include "rigid/lagrange/export.hpp"
 #include "rigid/lagrange/system.hpp"
 
 namespace py = pybind11;
@@ -236,6 +237,28 @@ void bind_lagrange(py::module_& root) {
             return py::make_tuple(M, f);
           },
           py::arg("t"), py::arg("q"), py::arg("q_dot"), "(M, f) at (t, q, q̇).")
+      .def(
+          "constraint_terms",
+          [](const System& s, double t, const Eigen::VectorXd& q, const Eigen::VectorXd& q_dot) {
+            Eigen::MatrixXd G;
+            Eigen::VectorXd gamma;
+            rigid::lagrange::Workspace w = s.make_workspace();
+            rigid::lagrange::constraint_terms(s, w, t, q, q_dot, G, gamma);
+            return py::make_tuple(G, gamma);
+          },
+          py::arg("t"), py::arg("q"), py::arg("q_dot"),
+          "(G, γ) at (t, q, q̇): the constraint Jacobian ∂g/∂q (m × n) and γ with G q̈ = γ.")
+      .def(
+          "emit",
+          [](const System& s, const std::string& language, const std::string& name) {
+            rigid::lagrange::ExportOptions o;
+            o.name = name;
+            return rigid::lagrange::emit(s, rigid::lagrange::parse_language(language), o);
+          },
+          py::arg("language"), py::arg("name") = "model",
+          "The equations of motion (M, f, G, γ) as one dependency-free source file: language "
+          "'c++' (a header, <cmath> only, namespace `name`) or 'python' (a module, math only); "
+          "parameters are named arguments with the current values as defaults.")
       .def(
           "accelerations",
           [](const System& s, double t, const Eigen::VectorXd& q, const Eigen::VectorXd& q_dot) {

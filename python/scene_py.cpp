@@ -15,6 +15,7 @@
 
 #include "interrupt.hpp"
 #include "rigid/io/run_output.hpp"
+#include "rigid/scene/export.hpp"
 #include "rigid/scene/model.hpp"
 #include "rigid/scene/scene.hpp"
 
@@ -135,6 +136,14 @@ void bind_scene(py::module_& m) {
            }, py::arg("latex") = false, py::arg("format") = std::string{},
            "The equations of motion as `rigid eom` prints them: format 'text' (default), 'latex' "
            "or 'json' (latex=True is format='latex').")
+      .def("emit", [](const Model& mo, const std::string& language, const std::string& name) {
+             return rigid::scene::emit_code(mo, language, name);
+           }, py::arg("language"), py::arg("name") = std::string{},
+           "The equations of motion (M, f, G, γ) as one dependency-free source file: 'c++' (a "
+           "header, <cmath> only; namespace `name`, default the file's stem) or 'python' (a "
+           "module, math only), with the scene's parameters as defaults.")
+      .def_property_readonly("system", &Model::system, py::return_value_policy::reference_internal,
+                             "The rigid.lagrange.System of a coordinate scene.")
       .def("check", [](const Model& mo, const std::string& integrator, const py::object& max_memory) {
              rigid::scene::RunOptions o;
              o.integrator = integrator;

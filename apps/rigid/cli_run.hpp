@@ -3,6 +3,7 @@
 // `rigid run`, `rigid check` and `rigid eom`: the commands that take a scene file.
 #include <memory>
 
+#include "cmd_emit.hpp"
 #include "cmd_run.hpp"
 
 inline void add_scene_options(CLI::App* cmd, rigid::cli::SceneOptions& o) {
@@ -53,5 +54,23 @@ inline void add_run_command(CLI::App& app) {
                                      "quantity as text and LaTeX, M as a nested array)")
       ->type_name("FORMAT");
   e->add_flag("--latex", *latex, "the same as --format latex");
-  e->callback([eom, latex, format] { rigid::cli::run_eom(*eom, *latex, *format); });
+  auto emit = std::make_shared<rigid::cli::EmitOptions>();
+  auto* emit_opt = e->add_option("--emit", emit->language,
+                                 "write the equations (M, f, G, gamma) as code instead: c++ (one "
+                                 "header, <cmath> only) or python (one module, math only)")
+                       ->type_name("LANG")
+                       ->check(CLI::Validator(rigid::cli::check_emit_language, "c++|python", "language"));
+  e->add_option("-o,--output", emit->output, "with --emit: the file to write (default: standard output)")
+      ->needs(emit_opt)
+      ->type_name("FILE");
+  e->callback([eom, latex, format, emit] {
+    if (!emit->language.empty()) {
+      if (*latex || !format->empty()) {
+        throw rigid::Error("--latex and --format print the equations; --emit writes them as code: use one");
+      }
+      rigid::cli::run_emit(*eom, *emit);
+      return;
+    }
+    rigid::cli::run_eom(*eom, *latex, *format);
+  });
 }

@@ -378,7 +378,7 @@ System::System(const SystemSpec& spec) : impl_(std::make_unique<Impl>()) {
   inputs.insert(inputs.end(), s.qd.begin(), s.qd.end());
   inputs.push_back(s.t);
   inputs.insert(inputs.end(), s.params.begin(), s.params.end());
-  detail::TapeBuilder dyn(inputs);
+  detail::TapeBuilder dyn(inputs, inputs.size() - s.params.size());
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = i; j < n; ++j) dyn.add_output(s.M[i * n + j]);
   for (const ex& e : s.f) dyn.add_output(e);

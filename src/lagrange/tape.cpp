@@ -11,6 +11,22 @@ namespace {
 
 constexpr std::int32_t kResultBase = 1 << 28;
 
+// x^k, k ≥ 1, by binary powering: ⌈log₂ k⌉ squarings and at most as many products (the code
+// export writes the same sequence, so exported code and tape agree bitwise)
+double pow_int(double x, std::int32_t k) {
+  double v = 1.0;
+  while (k > 0) {
+    if (k & 1) v *= x;
+    x *= x;
+    k >>= 1;
+  }
+  return v;
+}
+
+bool is_binary(Op op) {
+  return op == Op::kAdd || op == Op::kSub || op == Op::kMul || op == Op::kDiv || op == Op::kPow;
+}
+
 }  // namespace
 
 std::vector<double> Tape::make_scratch() const {
@@ -24,57 +40,55 @@ void Tape::evaluate(const double* inputs, double* outputs) const {
   evaluate(inputs, outputs, scratch);
 }
 
+// one loop per operation: the body is the instruction's arithmetic on slots a and b
+#define RIGID_TAPE_LOOP(expr)                                   \
+  for (std::uint32_t k = g.begin; k < g.end; ++k) {             \
+    [[maybe_unused]] const double x = s[code[k].a];             \
+    r[k] = (expr);                                              \
+  }                                                             \
+  break
+
 void Tape::evaluate(const double* inputs, double* outputs, std::vector<double>& scratch) const {
   RIGID_ASSERT(scratch.size() == num_inputs_ + constants_.size() + code_.size());
   double* s = scratch.data();
   std::copy(inputs, inputs + num_inputs_, s);
   double* r = s + num_inputs_ + constants_.size();
-  for (const Instruction& in : code_) {
-    const double x = s[in.a];
-    double v;
-    switch (in.op) {
-      case Op::kAdd: v = x + s[in.b]; break;
-      case Op::kSub: v = x - s[in.b]; break;
-      case Op::kMul: v = x * s[in.b]; break;
-      case Op::kDiv: v = x / s[in.b]; break;
-      case Op::kNeg: v = -x; break;
-      case Op::kInv: v = 1.0 / x; break;
-      case Op::kSquare: v = x * x; break;
-      case Op::kPow: v = std::pow(x, s[in.b]); break;
-      case Op::kPowInt: {
-        // binary powering: ⌈log₂ k⌉ multiplications
-        int k = in.b;
-        double base = x;
-        v = 1.0;
-        while (k > 0) {
-          if (k & 1) v *= base;
-          base *= base;
-          k >>= 1;
-        }
-        break;
-      }
-      case Op::kSqrt: v = std::sqrt(x); break;
-      case Op::kInvSqrt: v = 1.0 / std::sqrt(x); break;
-      case Op::kSin: v = std::sin(x); break;
-      case Op::kCos: v = std::cos(x); break;
-      case Op::kTan: v = std::tan(x); break;
-      case Op::kAsin: v = std::asin(x); break;
-      case Op::kAcos: v = std::acos(x); break;
-      case Op::kAtan: v = std::atan(x); break;
-      case Op::kExp: v = std::exp(x); break;
-      case Op::kLog: v = std::log(x); break;
-      case Op::kAbs: v = std::abs(x); break;
-      case Op::kSinh: v = std::sinh(x); break;
-      case Op::kCosh: v = std::cosh(x); break;
-      case Op::kTanh: v = std::tanh(x); break;
-      default: v = 0.0; break;
+  const Instruction* code = code_.data();
+  // one dispatch per group; a group's instructions do not read each other's results
+  for (const Group& g : groups_) {
+    switch (g.op) {
+      case Op::kAdd: RIGID_TAPE_LOOP(x + s[code[k].b]);
+      case Op::kSub: RIGID_TAPE_LOOP(x - s[code[k].b]);
+      case Op::kMul: RIGID_TAPE_LOOP(x * s[code[k].b]);
+      case Op::kDiv: RIGID_TAPE_LOOP(x / s[code[k].b]);
+      case Op::kNeg: RIGID_TAPE_LOOP(-x);
+      case Op::kInv: RIGID_TAPE_LOOP(1.0 / x);
+      case Op::kSquare: RIGID_TAPE_LOOP(x * x);
+      case Op::kPow: RIGID_TAPE_LOOP(std::pow(x, s[code[k].b]));
+      case Op::kPowInt: RIGID_TAPE_LOOP(pow_int(x, code[k].b));
+      case Op::kSqrt: RIGID_TAPE_LOOP(std::sqrt(x));
+      case Op::kInvSqrt: RIGID_TAPE_LOOP(1.0 / std::sqrt(x));
+      case Op::kSin: RIGID_TAPE_LOOP(std::sin(x));
+      case Op::kCos: RIGID_TAPE_LOOP(std::cos(x));
+      case Op::kTan: RIGID_TAPE_LOOP(std::tan(x));
+      case Op::kAsin: RIGID_TAPE_LOOP(std::asin(x));
+      case Op::kAcos: RIGID_TAPE_LOOP(std::acos(x));
+      case Op::kAtan: RIGID_TAPE_LOOP(std::atan(x));
+      case Op::kExp: RIGID_TAPE_LOOP(std::exp(x));
+      case Op::kLog: RIGID_TAPE_LOOP(std::log(x));
+      case Op::kAbs: RIGID_TAPE_LOOP(std::abs(x));
+      case Op::kSinh: RIGID_TAPE_LOOP(std::sinh(x));
+      case Op::kCosh: RIGID_TAPE_LOOP(std::cosh(x));
+      case Op::kTanh: RIGID_TAPE_LOOP(std::tanh(x));
     }
-    *r++ = v;
   }
   for (std::size_t k = 0; k < outputs_.size(); ++k) outputs[k] = s[outputs_[k]];
 }
 
-TapeBuilder::TapeBuilder(const std::vector<GiNaC::symbol>& inputs) : num_inputs_(inputs.size()) {
+#undef RIGID_TAPE_LOOP
+
+TapeBuilder::TapeBuilder(const std::vector<GiNaC::symbol>& inputs, std::size_t first_run_constant)
+    : num_inputs_(inputs.size()), first_run_constant_(first_run_constant) {
   for (std::size_t k = 0; k < inputs.size(); ++k) memo_[inputs[k]] = static_cast<std::int32_t>(k);
 }
 
@@ -93,8 +107,24 @@ std::int32_t TapeBuilder::constant_slot(double value) {
 }
 
 std::int32_t TapeBuilder::emit(Op op, std::int32_t a, std::int32_t b) {
+  // a + b and a·b are exactly commutative in IEEE arithmetic: one order for both
+  if ((op == Op::kAdd || op == Op::kMul) && b < a) std::swap(a, b);
+  const auto [it, fresh] = numbering_.emplace(std::make_tuple(op, a, b), 0);
+  if (!fresh) return it->second;
   code_.push_back({op, a, b});
-  return kResultBase + static_cast<std::int32_t>(code_.size() - 1);
+  it->second = kResultBase + static_cast<std::int32_t>(code_.size() - 1);
+  return it->second;
+}
+
+std::int32_t TapeBuilder::emit_sum(std::vector<std::int32_t> terms) {
+  RIGID_ASSERT(!terms.empty());
+  while (terms.size() > 1) {
+    std::size_t out = 0;
+    for (std::size_t k = 0; k + 1 < terms.size(); k += 2) terms[out++] = emit(Op::kAdd, terms[k], terms[k + 1]);
+    if (terms.size() % 2 == 1) terms[out++] = terms.back();
+    terms.resize(out);
+  }
+  return terms.front();
 }
 
 std::int32_t TapeBuilder::emit_power(std::int32_t base, const GiNaC::ex& exponent) {
@@ -143,6 +173,22 @@ const std::string& TapeBuilder::key_of(const GiNaC::ex& e) {
   return keys_.emplace(e, std::move(key)).first->second;
 }
 
+bool TapeBuilder::is_run_constant(const GiNaC::ex& e) {
+  using namespace GiNaC;
+  if (is_a<numeric>(e) || is_a<constant>(e)) return true;
+  auto found = run_constant_.find(e);
+  if (found != run_constant_.end()) return found->second;
+  bool constant = true;
+  if (is_a<symbol>(e)) {
+    auto slot = memo_.find(e);
+    constant = slot != memo_.end() && static_cast<std::size_t>(slot->second) >= first_run_constant_;
+  } else {
+    for (std::size_t k = 0; k < e.nops() && constant; ++k) constant = is_run_constant(e.op(k));
+  }
+  run_constant_.emplace(e, constant);
+  return constant;
+}
+
 GiNaC::exvector TapeBuilder::sorted_operands(const GiNaC::ex& e) {
   GiNaC::exvector ops(e.begin(), e.end());
   std::vector<std::pair<std::string, std::size_t>> order;
@@ -170,9 +216,8 @@ std::int32_t TapeBuilder::slot_of(const GiNaC::ex& e) {
     RIGID_ASSERT(false && "symbol without an input slot");
     RIGID_THROW("internal: symbol '{}' has no input slot", os.str());
   } else if (is_a<add>(e)) {
-    // a sum: positive terms added, terms with a negative numeric factor subtracted
-    std::int32_t acc = 0;
-    bool have = false;
+    // a sum: Σ positive terms − Σ terms with a negative numeric factor (each a balanced tree)
+    std::vector<std::int32_t> plus, minus;
     for (const ex& operand : sorted_operands(e)) {
       ex term = operand;
       bool negative = false;
@@ -186,20 +231,22 @@ std::int32_t TapeBuilder::slot_of(const GiNaC::ex& e) {
         negative = true;
         term = -term;
       }
-      const std::int32_t t = slot_of(term);
-      if (!have) {
-        acc = negative ? emit(Op::kNeg, t) : t;
-        have = true;
-      } else {
-        acc = emit(negative ? Op::kSub : Op::kAdd, acc, t);
-      }
+      (negative ? minus : plus).push_back(slot_of(term));
     }
-    s = acc;
+    if (plus.empty()) {
+      s = emit(Op::kNeg, emit_sum(std::move(minus)));
+    } else if (minus.empty()) {
+      s = emit_sum(std::move(plus));
+    } else {
+      s = emit(Op::kSub, emit_sum(std::move(plus)), emit_sum(std::move(minus)));
+    }
   } else if (is_a<mul>(e)) {
-    // a product: factors with negative powers divide
+    // a product: factors with negative powers divide; run-constant factors first
     std::int32_t num = 0, den = 0;
     bool have_num = false, have_den = false;
-    for (const ex& f : sorted_operands(e)) {
+    exvector factors = sorted_operands(e);
+    std::stable_partition(factors.begin(), factors.end(), [&](const ex& f) { return is_run_constant(f); });
+    for (const ex& f : factors) {
       if (is_a<power>(f) && is_a<numeric>(f.op(1)) && ex_to<numeric>(f.op(1)).is_negative()) {
         const std::int32_t d = slot_of(pow(f.op(0), -f.op(1)));
         den = have_den ? emit(Op::kMul, den, d) : d;
@@ -243,16 +290,39 @@ Tape TapeBuilder::build() const {
   tape.constants_ = constants_;
   const auto nc = static_cast<std::int32_t>(constants_.size());
   const auto ni = static_cast<std::int32_t>(num_inputs_);
+  // schedule: level of each instruction (operands come earlier in code_, so one pass), then
+  // a stable sort by (level, operation); within a group the emission order is kept
+  std::vector<std::int32_t> level(code_.size(), 0);
+  auto level_of = [&](std::int32_t slot) {
+    return slot >= kResultBase ? level[static_cast<std::size_t>(slot - kResultBase)] : 0;
+  };
+  for (std::size_t k = 0; k < code_.size(); ++k) {
+    const Instruction& in = code_[k];
+    level[k] = 1 + std::max(level_of(in.a), is_binary(in.op) ? level_of(in.b) : 0);
+  }
+  std::vector<std::size_t> order(code_.size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) {
+    return std::make_pair(level[x], code_[x].op) < std::make_pair(level[y], code_[y].op);
+  });
+  std::vector<std::int32_t> position(code_.size());
+  for (std::size_t k = 0; k < order.size(); ++k) position[order[k]] = static_cast<std::int32_t>(k);
   auto resolve = [&](std::int32_t s) {
-    if (s >= kResultBase) return ni + nc + (s - kResultBase);
+    if (s >= kResultBase) return ni + nc + position[static_cast<std::size_t>(s - kResultBase)];
     if (s < 0) return ni + (-1 - s);
     return s;
   };
   tape.code_.reserve(code_.size());
-  for (const Instruction& in : code_) {
-    const bool binary = in.op == Op::kAdd || in.op == Op::kSub || in.op == Op::kMul ||
-                        in.op == Op::kDiv || in.op == Op::kPow;
-    tape.code_.push_back({in.op, resolve(in.a), binary ? resolve(in.b) : in.b});
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const Instruction& in = code_[order[k]];
+    tape.code_.push_back({in.op, resolve(in.a), is_binary(in.op) ? resolve(in.b) : in.b});
+    const auto at = static_cast<std::uint32_t>(k);
+    if (tape.groups_.empty() || tape.groups_.back().op != in.op ||
+        level[order[tape.groups_.back().begin]] != level[order[k]]) {
+      tape.groups_.push_back({in.op, at, at + 1});
+    } else {
+      tape.groups_.back().end = at + 1;
+    }
   }
   for (std::int32_t o : outputs_) tape.outputs_.push_back(resolve(o));
   return tape;

@@ -1,7 +1,10 @@
 #include "lagrange/detail/tape.hpp"
 
 #include <cmath>
+#include <string>
+#include <vector>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "support/tolerance.hpp"
@@ -73,6 +76,67 @@ TEST(Tape, OutputsMayBeInputsOrConstants) {
   tape.evaluate(in, out);
   EXPECT_EQ(out[0], -3.0);
   EXPECT_EQ(out[1], 2.5);
+}
+
+TEST(Tape, ProductsWithACommonPrefixShareIt) {
+  // a·b·c and a·b·d: the factors are multiplied in one (sorted) order, so a·b is one
+  // instruction for both (value numbering): 3 products, not 4
+  const symbol a("a"), bb("b"), c("c"), d("d");
+  TapeBuilder b({d, a, bb, c});
+  b.add_output(a * bb * c);
+  b.add_output(a * bb * d);
+  const Tape tape = b.build();
+  EXPECT_EQ(tape.count(Op::kMul), 3u);
+  double out[2];
+  const double in[] = {0.5, 3.0, 7.0, 11.0};
+  tape.evaluate(in, out);
+  // small integers and halves: every product is exact
+  EXPECT_EQ(out[0], 3.0 * 7.0 * 11.0);
+  EXPECT_EQ(out[1], 3.0 * 7.0 * 0.5);
+}
+
+TEST(Tape, DispatchesOncePerGroupOfIndependentInstructions) {
+  // Σ_k sin(x_k)·cos(x_k) over 16 inputs: 16 sin, 16 cos, 16 products, 15 sums; by level that
+  // is sin | cos (level 1), the products (level 2) and the balanced sum (levels 3–6): 7
+  // groups for 63 instructions (one dispatch per instruction before)
+  std::vector<symbol> x;
+  for (int k = 0; k < 16; ++k) x.emplace_back(fmt::format("x{}", k));
+  ex sum = 0;
+  for (const symbol& s : x) sum += GiNaC::sin(s) * GiNaC::cos(s);
+  TapeBuilder b(x);
+  b.add_output(sum);
+  const Tape tape = b.build();
+  EXPECT_EQ(tape.size(), 63u);
+  EXPECT_EQ(tape.num_groups(), 7u);
+  std::vector<double> in(16);
+  double expected = 0;
+  for (int k = 0; k < 16; ++k) {
+    in[static_cast<std::size_t>(k)] = 0.1 * k - 0.7;
+    expected += std::sin(in[static_cast<std::size_t>(k)]) * std::cos(in[static_cast<std::size_t>(k)]);
+  }
+  double out = 0;
+  tape.evaluate(in.data(), &out);
+  // 16 terms of magnitude ≤ ½ summed in another order: ≤ 16 roundings of ≤ 8
+  EXPECT_NEAR(out, expected, test::ulps(16, 8.0));
+}
+
+TEST(Tape, InstructionsReadOnlyEarlierSlots) {
+  // the execution order is a valid straight-line program (what the code export prints)
+  const symbol x("x"), y("y");
+  TapeBuilder b({x, y});
+  b.add_output(GiNaC::sin(x * y) + GiNaC::pow(x, 5) - y / (x + 1));
+  b.add_output(GiNaC::cos(x * y) * GiNaC::sqrt(y));
+  const Tape tape = b.build();
+  const std::size_t base = tape.num_inputs() + tape.constants().size();
+  for (std::size_t k = 0; k < tape.instructions().size(); ++k) {
+    const Instruction& in = tape.instructions()[k];
+    EXPECT_LT(static_cast<std::size_t>(in.a), base + k) << k;
+    const bool binary = in.op == Op::kAdd || in.op == Op::kSub || in.op == Op::kMul ||
+                        in.op == Op::kDiv || in.op == Op::kPow;
+    if (binary) {
+      EXPECT_LT(static_cast<std::size_t>(in.b), base + k) << k;
+    }
+  }
 }
 
 }  // namespace

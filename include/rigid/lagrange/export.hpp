@@ -1,0 +1,63 @@
+#pragma once
+
+// Code export: a System's equations of motion as one dependency-free source file.
+
+#include <string>
+#include <string_view>
+
+#include <Eigen/Core>
+
+#include "rigid/lagrange/system.hpp"
+
+namespace rigid::lagrange {
+
+/// The languages of the code export.
+enum class Language { kCpp, kPython };
+
+/// "c++" (or "cpp", "cxx") and "python" (or "py").
+/// @throws rigid::Error naming the unknown language, a close match and the languages.
+[[nodiscard]] Language parse_language(std::string_view name);
+
+/// What the exported file is called and where its equations come from (for its comments).
+struct ExportOptions {
+  /// The C++ namespace of the functions (made an identifier: other characters become '_').
+  std::string name = "model";
+  /// Where the system came from (a scene file), named in the file's first comment; may be empty.
+  std::string source{};
+};
+
+/// One C++ header (only <cmath>, plain arrays, no Eigen) with, in namespace `options.name`:
+///   struct Parameters { double <name> = <value>; ... };   // the System's current values
+///   void mass_matrix(const double q[n], double t, double M[n*n], const Parameters& p = {});
+///   void forces(const double q[n], const double q_dot[n], double t, double f[n], p = {});
+///   void mass_matrix_and_forces(q, q_dot, t, M, f, p = {});           // shares the work
+///   void constraint_jacobian(const double q[n], double t, double G[m*n], p = {});
+///   void constraint_gamma(const double q[n], const double q_dot[n], double t, double gamma[m], p);
+/// with M row-major, f including the generalized forces, G = ∂g/∂q row-major (m × n) and γ
+/// such that G q̈ = γ: M q̈ = f + Gᵀ λ. Each function is the straight-line code of the
+/// common-subexpression-eliminated tape of its outputs, with the operations of the engine's
+/// tape in the same order, so it computes the engine's numbers (bitwise, on the same platform
+/// and libm). Parameters are named arguments: `forces(q, qd, t, f, {.m1 = 2.0})`.
+[[nodiscard]] std::string emit_cpp(const System& system, const ExportOptions& options = {});
+
+/// One Python module (only `math`) with the same functions, returning lists:
+///   mass_matrix(q, t=0.0, *, <name>=<value>, ...) -> M (n lists of n floats)
+///   forces(q, q_dot, t=0.0, *, ...) -> f;  mass_matrix_and_forces(...) -> (M, f)
+///   constraint_jacobian(q, t=0.0, *, ...) -> G (m lists of n);  constraint_gamma(...) -> γ
+/// and COORDINATES, CONSTRAINTS, PARAMETERS (name → default). A parameter whose name is a
+/// Python keyword, an argument's name (q, q_dot, t), `math` or starts with '_' takes a
+/// trailing or leading mark (listed in PARAMETER_NAMES). Where C++ gives inf or NaN (a
+/// division by 0, sqrt of a negative number), Python's math raises ValueError or
+/// ZeroDivisionError.
+[[nodiscard]] std::string emit_python(const System& system, const ExportOptions& options = {});
+
+/// emit_cpp or emit_python.
+[[nodiscard]] std::string emit(const System& system, Language language,
+                               const ExportOptions& options = {});
+
+/// The constraint terms the exported code computes, from the engine: G = ∂g/∂q (m × n) and
+/// γ with G q̈ = γ, at (t, q, q̇), for the parameters of `w`.
+void constraint_terms(const System& system, Workspace& w, double t, const Eigen::VectorXd& q,
+                      const Eigen::VectorXd& q_dot, Eigen::MatrixXd& G, Eigen::VectorXd& gamma);
+
+}  // namespace rigid::lagrange

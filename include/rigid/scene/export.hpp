@@ -1,0 +1,20 @@
+#pragma once
+
+// Code export of a scene: its equations of motion as one dependency-free source file.
+
+#include <string>
+#include <string_view>
+
+#include "rigid/scene/model.hpp"
+
+namespace rigid::scene {
+
+/// The equations of motion of a coordinate scene as C++ or Python source
+/// (rigid::lagrange::emit_cpp / emit_python), for the scene's parameters (after overrides)
+/// as the defaults; `name` is the C++ namespace (default: the scene file's stem).
+/// @throws rigid::Error for an unknown language (with a close match) or a scene of free
+///   bodies, which has no generalized coordinates to export.
+[[nodiscard]] std::string emit_code(const Model& model, std::string_view language,
+                                    const std::string& name = {});
+
+}  // namespace rigid::scene

@@ -1,0 +1,530 @@
+// Code export: the equations of motion of a System as straight-line C++ or Python.
+//
+// Each exported function is one tape (detail::TapeBuilder: shared subexpressions, value
+// numbering, the engine's operation order) printed instruction by instruction, one local per
+// instruction. Printing the tape rather than the expressions keeps the sharing, and makes the
+// exported numbers the engine's own: the same operations on the same operands in the same
+// order (binary powering for integer powers included).
+#include "rigid/lagrange/export.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <set>
+
+#include <fmt/format.h>
+
+#include "rigid/common/did_you_mean.hpp"
+#include "rigid/common/error.hpp"
+#include "detail/system_impl.hpp"
+#include "detail/tape.hpp"
+
+namespace rigid::lagrange {
+namespace {
+
+using detail::Instruction;
+using detail::Op;
+using detail::Tape;
+
+// The compiled model of a System. System's public header declares no friend for the other
+// files of this module; a workspace records the model it belongs to, which is this one.
+const System::Impl& impl_of(const System& system) {
+  Workspace w = system.make_workspace();
+  return *Workspace::Access::impl(w)->owner;
+}
+
+// ----------------------------------------------------------------------------------------
+// names
+
+const std::set<std::string>& cpp_reserved() {
+  // keywords, alternative tokens, the macros of <cmath>/<cerrno> a member could meet, and the
+  // struct's own name (a trailing '_' never makes another of these)
+  static const std::set<std::string> kWords = {
+      "alignas", "alignof", "and", "and_eq", "asm", "auto", "bitand", "bitor", "bool", "break",
+      "case", "catch", "char", "char8_t", "char16_t", "char32_t", "class", "compl", "concept",
+      "const", "consteval", "constexpr", "constinit", "const_cast", "continue", "co_await",
+      "co_return", "co_yield", "decltype", "default", "delete", "do", "double", "dynamic_cast",
+      "else", "enum", "explicit", "export", "extern", "false", "float", "for", "friend", "goto",
+      "if", "inline", "int", "long", "mutable", "namespace", "new", "noexcept", "not", "not_eq",
+      "nullptr", "operator", "or", "or_eq", "private", "protected", "public", "register",
+      "reinterpret_cast", "requires", "return", "short", "signed", "sizeof", "static",
+      "static_assert", "static_cast", "struct", "switch", "template", "this", "thread_local",
+      "throw", "true", "try", "typedef", "typeid", "typename", "union", "unsigned", "using",
+      "virtual", "void", "volatile", "wchar_t", "while", "xor", "xor_eq", "final", "override",
+      "import", "module", "errno", "NAN", "INFINITY", "HUGE_VAL", "HUGE_VALF", "HUGE_VALL",
+      "EDOM", "ERANGE", "EILSEQ", "MATH_ERRNO", "MATH_ERREXCEPT", "math_errhandling", "assert",
+      "NULL", "Parameters", "std", "M_E", "M_LOG2E", "M_LOG10E", "M_LN2", "M_LN10", "M_PI",
+      "M_PI_2", "M_PI_4", "M_1_PI", "M_2_PI", "M_2_SQRTPI", "M_SQRT2", "M_SQRT1_2", "FP_NAN",
+      "FP_INFINITE", "FP_ZERO", "FP_SUBNORMAL", "FP_NORMAL", "FP_ILOGB0", "FP_ILOGBNAN",
+      "FP_FAST_FMA", "FP_FAST_FMAF", "FP_FAST_FMAL"};
+  return kWords;
+}
+
+bool cpp_needs_mark(const std::string& name) { return cpp_reserved().count(name) > 0; }
+
+const std::set<std::string>& python_reserved() {
+  // keywords and the names the generated functions use
+  static const std::set<std::string> kWords = {
+      "False", "None", "True", "and", "as", "assert", "async", "await", "break", "class",
+      "continue", "def", "del", "elif", "else", "except", "finally", "for", "from", "global",
+      "if", "import", "in", "is", "lambda", "nonlocal", "not", "or", "pass", "raise", "return",
+      "try", "while", "with", "yield", "q", "q_dot", "t", "math"};
+  return kWords;
+}
+
+// Unique identifiers for the parameters: a reserved name takes a trailing '_' (a Python name
+// starting with '_', which the generated code keeps for itself, a leading 'p'), repeated
+// until it is unused.
+std::vector<std::string> identifiers(const std::vector<std::string>& names, bool python) {
+  std::set<std::string> used(names.begin(), names.end());
+  std::vector<std::string> out;
+  for (const std::string& name : names) {
+    const bool reserved = python ? python_reserved().count(name) > 0 || name.starts_with("_")
+                                 : cpp_needs_mark(name);
+    if (!reserved) {
+      out.push_back(name);
+      continue;
+    }
+    std::string id = python && name.starts_with("_") ? fmt::format("p{}", name) : fmt::format("{}_", name);
+    while (used.count(id) || (python ? python_reserved().count(id) > 0 : cpp_needs_mark(id))) {
+      id += "_";
+    }
+    used.insert(id);
+    out.push_back(id);
+  }
+  return out;
+}
+
+std::string namespace_name(const std::string& requested) {
+  std::string id;
+  for (char c : requested) id += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+  if (id.empty() || std::isdigit(static_cast<unsigned char>(id[0]))) id = fmt::format("model_{}", id);
+  while (cpp_needs_mark(id)) id += "_";
+  return id;
+}
+
+// ----------------------------------------------------------------------------------------
+// printing a tape
+
+struct Syntax {
+  bool python = false;
+  std::vector<std::string> inputs;  // the text of each input slot
+};
+
+std::string literal(double v, bool python) {
+  if (std::isinf(v)) {
+    const char* inf = python ? "math.inf" : "HUGE_VAL";
+    return v > 0 ? inf : fmt::format("(-{})", inf);
+  }
+  std::string s = fmt::format("{}", v);  // shortest round-trip decimal
+  if (s.find_first_of(".en") == std::string::npos) s += ".0";
+  return v < 0 ? "(" + s + ")" : s;
+}
+
+class TapePrinter {
+ public:
+  TapePrinter(const Tape& tape, const Syntax& syntax) : tape_(tape), syntax_(syntax) {}
+
+  // One line per instruction, `indent` before each.
+  [[nodiscard]] std::string body(std::string_view indent) const {
+    std::string out;
+    const auto& code = tape_.instructions();
+    for (std::size_t k = 0; k < code.size(); ++k) {
+      out += fmt::format("{}{}{} = {}{}\n", indent, syntax_.python ? "" : "const double ",
+                         local(k), expression(code[k]), syntax_.python ? "" : ";");
+    }
+    return out;
+  }
+  // The text of output k.
+  [[nodiscard]] std::string output(std::size_t k) const {
+    return operand(tape_.outputs()[k]);
+  }
+
+ private:
+  [[nodiscard]] std::string local(std::size_t k) const {
+    return fmt::format("{}v{}", syntax_.python ? "_" : "", k);
+  }
+  [[nodiscard]] std::string operand(std::int32_t slot) const {
+    const auto s = static_cast<std::size_t>(slot);
+    const std::size_t ni = tape_.num_inputs(), nc = tape_.constants().size();
+    if (s < ni) return syntax_.inputs[s];
+    if (s < ni + nc) return literal(tape_.constants()[s - ni], syntax_.python);
+    return local(s - ni - nc);
+  }
+  [[nodiscard]] std::string call(std::string_view cpp, std::string_view py, std::int32_t a) const {
+    return fmt::format("{}({})", syntax_.python ? py : cpp, operand(a));
+  }
+  [[nodiscard]] std::string expression(const Instruction& in) const {
+    const std::string a = operand(in.a);
+    auto b = [&] { return operand(in.b); };
+    switch (in.op) {
+      case Op::kAdd: return a + " + " + b();
+      case Op::kSub: return a + " - " + b();
+      case Op::kMul: return a + " * " + b();
+      case Op::kDiv: return a + " / " + b();
+      case Op::kNeg: return "-" + a;
+      case Op::kInv: return "1.0 / " + a;
+      case Op::kSquare: return a + " * " + a;
+      case Op::kPow: return fmt::format("{}({}, {})", syntax_.python ? "math.pow" : "std::pow", a, b());
+      case Op::kPowInt: return fmt::format("{}({}, {})", syntax_.python ? "_pow_int" : "detail::pow_int", a, in.b);
+      case Op::kSqrt: return call("std::sqrt", "math.sqrt", in.a);
+      case Op::kInvSqrt: return "1.0 / " + call("std::sqrt", "math.sqrt", in.a);
+      case Op::kSin: return call("std::sin", "math.sin", in.a);
+      case Op::kCos: return call("std::cos", "math.cos", in.a);
+      case Op::kTan: return call("std::tan", "math.tan", in.a);
+      case Op::kAsin: return call("std::asin", "math.asin", in.a);
+      case Op::kAcos: return call("std::acos", "math.acos", in.a);
+      case Op::kAtan: return call("std::atan", "math.atan", in.a);
+      case Op::kExp: return call("std::exp", "math.exp", in.a);
+      case Op::kLog: return call("std::log", "math.log", in.a);
+      case Op::kAbs: return call("std::abs", "math.fabs", in.a);
+      case Op::kSinh: return call("std::sinh", "math.sinh", in.a);
+      case Op::kCosh: return call("std::cosh", "math.cosh", in.a);
+      case Op::kTanh: return call("std::tanh", "math.tanh", in.a);
+    }
+    return "0.0";
+  }
+
+  const Tape& tape_;
+  const Syntax& syntax_;
+};
+
+// ----------------------------------------------------------------------------------------
+// the exported functions
+
+// Which outputs a function computes.
+struct Parts {
+  bool M = false, f = false, G = false, gamma = false;
+};
+
+struct FunctionSpec {
+  const char* name;
+  Parts parts;
+  bool velocity;  // takes q̇
+  const char* doc;
+};
+
+constexpr FunctionSpec kFunctions[] = {
+    {"mass_matrix", {true, false, false, false}, false,
+     "M(q, t) = ∂²L/∂q̇∂q̇, n × n"},
+    {"forces", {false, true, false, false}, true,
+     "f(q, q̇, t) = ∂L/∂q − (∂²L/∂q̇∂q) q̇ − ∂²L/∂q̇∂t + Q (generalized forces included)"},
+    {"mass_matrix_and_forces", {true, true, false, false}, true,
+     "M and f together (their common subexpressions computed once)"},
+    {"constraint_jacobian", {false, false, true, false}, false,
+     "G(q, t) = ∂g/∂q, m × n"},
+    {"constraint_gamma", {false, false, false, true}, true,
+     "γ(q, q̇, t) = −(∂(G q̇ + ∂g/∂t)/∂q q̇ + ∂(G q̇ + ∂g/∂t)/∂t), so that G q̈ = γ"},
+};
+
+Tape function_tape(const System::Impl& s, const Parts& parts) {
+  std::vector<GiNaC::symbol> inputs;
+  inputs.insert(inputs.end(), s.q.begin(), s.q.end());
+  inputs.insert(inputs.end(), s.qd.begin(), s.qd.end());
+  inputs.push_back(s.t);
+  inputs.insert(inputs.end(), s.params.begin(), s.params.end());
+  detail::TapeBuilder b(inputs, inputs.size() - s.params.size());  // as System's
+  const auto n = static_cast<std::size_t>(s.n);
+  // the order of System's dynamics tape: M's upper triangle, f, G, γ
+  if (parts.M) {
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = i; j < n; ++j) b.add_output(s.M[i * n + j]);
+  }
+  if (parts.f) {
+    for (const auto& e : s.f) b.add_output(e);
+  }
+  if (parts.G) {
+    for (const auto& e : s.G) b.add_output(e);
+  }
+  if (parts.gamma) {
+    for (const auto& e : s.gamma) b.add_output(e);
+  }
+  return b.build();
+}
+
+std::string header_comment(const System::Impl& s, const ExportOptions& options,
+                           std::string_view mark) {
+  std::string out;
+  auto line = [&](const std::string& text) {
+    out += fmt::format("{}{}{}\n", mark, text.empty() ? "" : " ", text);
+  };
+  // the source on one comment line: control characters (a newline in a path) become '?'
+  std::string source = options.source;
+  for (char& c : source) c = static_cast<unsigned char>(c) < 0x20 || c == 0x7f ? '?' : c;
+  line(fmt::format("Equations of motion{}, generated by rigid; do not edit.",
+                   source.empty() ? "" : fmt::format(" of {}", source)));
+  line("");
+  line("  M(q, t) q̈ = f(q, q̇, t) + Gᵀ λ,   G(q, t) q̈ = γ(q, q̇, t)");
+  line("");
+  std::string coords;
+  for (std::size_t i = 0; i < s.coord_names.size(); ++i) {
+    coords += fmt::format("{}q[{}] = {}", i ? ", " : "", i, s.coord_names[i]);
+  }
+  line(fmt::format("Coordinates (n = {}): {}.", s.n, coords));
+  if (s.m > 0) {
+    std::string cons;
+    for (std::size_t k = 0; k < s.constraint_names.size(); ++k) {
+      cons += fmt::format("{}{}", k ? ", " : "", s.constraint_names[k]);
+    }
+    line(fmt::format("Constraints (m = {}), rows of G and γ: {}.", s.m, cons));
+  } else {
+    line("Constraints: none (m = 0; G and γ are empty).");
+  }
+  line("Units: SI (the model's parameters and coordinates as given).");
+  return out;
+}
+
+// ----------------------------------------------------------------------------------------
+// C++
+
+std::string cpp_function(const System::Impl& s, const FunctionSpec& fn,
+                         const std::vector<std::string>& params) {
+  const auto n = static_cast<std::size_t>(s.n);
+  const auto m = static_cast<std::size_t>(s.m);
+  Syntax syntax;
+  for (std::size_t i = 0; i < n; ++i) syntax.inputs.push_back(fmt::format("q[{}]", i));
+  for (std::size_t i = 0; i < n; ++i) syntax.inputs.push_back(fmt::format("q_dot[{}]", i));
+  syntax.inputs.push_back("t");
+  for (const std::string& p : params) syntax.inputs.push_back("p." + p);
+  const Tape tape = function_tape(s, fn.parts);
+  const TapePrinter printer(tape, syntax);
+
+  auto array = [](std::string_view type, std::string_view name, std::size_t size) {
+    return size > 0 ? fmt::format("{} {}[{}]", type, name, size)
+                    : fmt::format("[[maybe_unused]] {}* {}", type, name);
+  };
+  std::vector<std::string> args = {array("const double", "q", n)};
+  if (fn.velocity) args.push_back(array("const double", "q_dot", n));
+  args.emplace_back("[[maybe_unused]] double t");
+  if (fn.parts.M) args.push_back(array("double", "M", n * n));
+  if (fn.parts.f) args.push_back(array("double", "f", n));
+  if (fn.parts.G) args.push_back(array("double", "G", m * n));
+  if (fn.parts.gamma) args.push_back(array("double", "gamma", m));
+  args.emplace_back("[[maybe_unused]] const Parameters& p = {}");
+  // q is unused by a function of constants only, q_dot by one that q̇ does not enter
+  args[0] = "[[maybe_unused]] " + args[0];
+  if (fn.velocity) args[1] = "[[maybe_unused]] " + args[1];
+
+  std::string out = fmt::format("/// {}\ninline void {}({}) {{\n", fn.doc, fn.name,
+                                fmt::join(args, ", "));
+  out += printer.body("  ");
+  std::size_t k = 0;
+  if (fn.parts.M) {
+    for (std::size_t i = 0; i < n; ++i) {
+      for (std::size_t j = i; j < n; ++j) {
+        const std::string v = printer.output(k++);
+        out += fmt::format("  M[{}] = {};\n", i * n + j, v);
+        if (j != i) out += fmt::format("  M[{}] = {};\n", j * n + i, v);
+      }
+    }
+  }
+  if (fn.parts.f) {
+    for (std::size_t i = 0; i < n; ++i) out += fmt::format("  f[{}] = {};\n", i, printer.output(k++));
+  }
+  if (fn.parts.G) {
+    for (std::size_t i = 0; i < m * n; ++i) out += fmt::format("  G[{}] = {};\n", i, printer.output(k++));
+  }
+  if (fn.parts.gamma) {
+    for (std::size_t i = 0; i < m; ++i) out += fmt::format("  gamma[{}] = {};\n", i, printer.output(k++));
+  }
+  return out + "}\n";
+}
+
+// ----------------------------------------------------------------------------------------
+// Python
+
+std::string python_function(const System::Impl& s, const FunctionSpec& fn,
+                            const std::vector<std::string>& params) {
+  const auto n = static_cast<std::size_t>(s.n);
+  const auto m = static_cast<std::size_t>(s.m);
+  Syntax syntax;
+  syntax.python = true;
+  for (std::size_t i = 0; i < n; ++i) syntax.inputs.push_back(fmt::format("_q[{}]", i));
+  for (std::size_t i = 0; i < n; ++i) syntax.inputs.push_back(fmt::format("_qd[{}]", i));
+  syntax.inputs.push_back("t");
+  for (const std::string& p : params) syntax.inputs.push_back(p);
+  const Tape tape = function_tape(s, fn.parts);
+  const TapePrinter printer(tape, syntax);
+
+  std::string signature = fn.velocity ? "q, q_dot, t=0.0" : "q, t=0.0";
+  if (!params.empty()) {
+    signature += ", *";
+    for (std::size_t k = 0; k < params.size(); ++k) {
+      signature += fmt::format(", {}={}", params[k], literal(s.param_values[k], true));
+    }
+  }
+  std::string out = fmt::format("def {}({}):\n    \"\"\"{}.\"\"\"\n", fn.name, signature, fn.doc);
+  out += fmt::format("    _q = _vector(q, {}, \"q\")\n", n);
+  if (fn.velocity) out += fmt::format("    _qd = _vector(q_dot, {}, \"q_dot\")\n", n);
+  out += "    t = float(t)\n";
+  out += printer.body("    ");
+  std::size_t k = 0;
+  std::vector<std::string> results;
+  if (fn.parts.M) {
+    std::vector<std::string> M(n * n);
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = i; j < n; ++j) M[i * n + j] = M[j * n + i] = printer.output(k++);
+    std::vector<std::string> rows;
+    for (std::size_t i = 0; i < n; ++i) {
+      rows.push_back(fmt::format("[{}]", fmt::join(M.begin() + static_cast<std::ptrdiff_t>(i * n),
+                                                   M.begin() + static_cast<std::ptrdiff_t>((i + 1) * n), ", ")));
+    }
+    results.push_back(fmt::format("[{}]", fmt::join(rows, ", ")));
+  }
+  if (fn.parts.f) {
+    std::vector<std::string> f;
+    for (std::size_t i = 0; i < n; ++i) f.push_back(printer.output(k++));
+    results.push_back(fmt::format("[{}]", fmt::join(f, ", ")));
+  }
+  if (fn.parts.G) {
+    std::vector<std::string> rows;
+    for (std::size_t a = 0; a < m; ++a) {
+      std::vector<std::string> row;
+      for (std::size_t i = 0; i < n; ++i) row.push_back(printer.output(k++));
+      rows.push_back(fmt::format("[{}]", fmt::join(row, ", ")));
+    }
+    results.push_back(fmt::format("[{}]", fmt::join(rows, ", ")));
+  }
+  if (fn.parts.gamma) {
+    std::vector<std::string> g;
+    for (std::size_t a = 0; a < m; ++a) g.push_back(printer.output(k++));
+    results.push_back(fmt::format("[{}]", fmt::join(g, ", ")));
+  }
+  out += fmt::format("    return {}\n", fmt::join(results, ", "));
+  return out;
+}
+
+std::string quoted(const std::string& s) { return "\"" + s + "\""; }
+
+}  // namespace
+
+Language parse_language(std::string_view name) {
+  if (name == "c++" || name == "cpp" || name == "cxx" || name == "C++") return Language::kCpp;
+  if (name == "python" || name == "py") return Language::kPython;
+  const std::vector<std::string> known = {"c++", "python", "cpp", "py"};
+  throw Error(fmt::format("unknown export language '{}'; expected c++ or python{}", name,
+                          did_you_mean_hint(name, known)));
+}
+
+std::string emit_cpp(const System& system, const ExportOptions& options) {
+  const System::Impl& s = impl_of(system);
+  const std::vector<std::string> params = identifiers(s.param_names, false);
+  const std::string ns = namespace_name(options.name);
+  std::string out = header_comment(s, options, "//");
+  out += "//\n// Arrays are row-major: M[i*n + j], G[k*n + i]. Parameters are named arguments with\n"
+         "// the model's values as defaults: forces(q, q_dot, t, f, {.name = value}).\n";
+  out += "#pragma once\n\n#include <cmath>\n\n";
+  out += fmt::format("namespace {} {{\n\n", ns);
+  out += fmt::format("inline constexpr int kNumCoordinates = {};\n", s.n);
+  out += fmt::format("inline constexpr int kNumConstraints = {};\n", s.m);
+  std::vector<std::string> names;
+  for (const auto& c : s.coord_names) names.push_back(quoted(c));
+  out += fmt::format("inline constexpr const char* kCoordinateNames[] = {{{}}};\n", fmt::join(names, ", "));
+  if (s.m > 0) {
+    names.clear();
+    for (const auto& c : s.constraint_names) names.push_back(quoted(c));
+    out += fmt::format("inline constexpr const char* kConstraintNames[] = {{{}}};\n", fmt::join(names, ", "));
+  }
+  out += "\n/// The model's parameters (SI), defaults as in the model";
+  bool renamed = false;
+  for (std::size_t k = 0; k < params.size(); ++k) renamed = renamed || params[k] != s.param_names[k];
+  out += renamed ? "; a name that is a C++ keyword or macro takes a trailing '_'.\n" : ".\n";
+  out += "struct Parameters {\n";
+  for (std::size_t k = 0; k < params.size(); ++k) {
+    out += fmt::format("  double {} = {};{}\n", params[k], literal(s.param_values[k], false),
+                       params[k] != s.param_names[k] ? fmt::format("  // {}", s.param_names[k]) : "");
+  }
+  out += "};\n\nnamespace detail {\n"
+         "/// x^k (k ≥ 1) by binary powering, as the engine computes it.\n"
+         "inline double pow_int(double x, int k) {\n"
+         "  double v = 1.0;\n"
+         "  while (k > 0) {\n"
+         "    if (k & 1) v *= x;\n"
+         "    x *= x;\n"
+         "    k >>= 1;\n"
+         "  }\n"
+         "  return v;\n"
+         "}\n"
+         "}  // namespace detail\n";
+  for (const FunctionSpec& fn : kFunctions) {
+    out += "\n";
+    out += cpp_function(s, fn, params);
+  }
+  out += fmt::format("\n}}  // namespace {}\n", ns);
+  return out;
+}
+
+std::string emit_python(const System& system, const ExportOptions& options) {
+  const System::Impl& s = impl_of(system);
+  const std::vector<std::string> params = identifiers(s.param_names, true);
+  std::string out = header_comment(s, options, "#");
+  out += "#\n# Matrices are lists of rows. Parameters are keyword arguments with the model's values\n"
+         "# as defaults: forces(q, q_dot, t, m1=2.0).\n";
+  out += "import math\n\n";
+  std::vector<std::string> names;
+  for (const auto& c : s.coord_names) names.push_back(quoted(c));
+  out += fmt::format("COORDINATES = ({}{})\n", fmt::join(names, ", "), names.size() == 1 ? "," : "");
+  names.clear();
+  for (const auto& c : s.constraint_names) names.push_back(quoted(c));
+  out += fmt::format("CONSTRAINTS = ({}{})\n", fmt::join(names, ", "), names.size() == 1 ? "," : "");
+  std::vector<std::string> items, renames;
+  for (std::size_t k = 0; k < params.size(); ++k) {
+    items.push_back(fmt::format("{}: {}", quoted(s.param_names[k]), literal(s.param_values[k], true)));
+    renames.push_back(fmt::format("{}: {}", quoted(s.param_names[k]), quoted(params[k])));
+  }
+  out += fmt::format("PARAMETERS = {{{}}}\n", fmt::join(items, ", "));
+  out += "# the keyword argument of each parameter (its name unless that is reserved)\n";
+  out += fmt::format("PARAMETER_NAMES = {{{}}}\n\n\n", fmt::join(renames, ", "));
+  out += "def _vector(values, size, name):\n"
+         "    values = [float(v) for v in values]\n"
+         "    if len(values) != size:\n"
+         "        raise ValueError(f\"{name} needs {size} values (one per coordinate), got {len(values)}\")\n"
+         "    return values\n\n\n"
+         "def _pow_int(x, k):\n"
+         "    \"\"\"x**k (k >= 1) by binary powering, as the engine computes it.\"\"\"\n"
+         "    v = 1.0\n"
+         "    while k > 0:\n"
+         "        if k & 1:\n"
+         "            v *= x\n"
+         "        x *= x\n"
+         "        k >>= 1\n"
+         "    return v\n";
+  for (const FunctionSpec& fn : kFunctions) {
+    out += "\n\n";
+    out += python_function(s, fn, params);
+  }
+  return out;
+}
+
+std::string emit(const System& system, Language language, const ExportOptions& options) {
+  return language == Language::kCpp ? emit_cpp(system, options) : emit_python(system, options);
+}
+
+void constraint_terms(const System& system, Workspace& ws, double t, const Eigen::VectorXd& q,
+                      const Eigen::VectorXd& q_dot, Eigen::MatrixXd& G, Eigen::VectorXd& gamma) {
+  const System::Impl& s = impl_of(system);
+  Workspace::Impl* w = Workspace::Access::impl(ws);
+  RIGID_REQUIRE(w != nullptr && w->owner == &s,
+                "the workspace belongs to another System (or was moved from); make one with "
+                "this System's make_workspace()");
+  RIGID_REQUIRE(q.size() == s.n && q_dot.size() == s.n,
+                "expected q and q_dot of size {} (one per coordinate), got {} and {}", s.n,
+                q.size(), q_dot.size());
+  const auto n = static_cast<std::size_t>(s.n);
+  for (std::size_t i = 0; i < n; ++i) {
+    w->in[i] = q[static_cast<Eigen::Index>(i)];
+    w->in[n + i] = q_dot[static_cast<Eigen::Index>(i)];
+  }
+  w->in[2 * n] = t;
+  std::copy(w->params.begin(), w->params.end(), w->in.begin() + static_cast<std::ptrdiff_t>(2 * n + 1));
+  s.dyn.evaluate(w->in.data(), w->out.data(), w->dyn_scratch);
+  // the dynamics tape's outputs: M's upper triangle, f, G (m × n), γ (m), ġ, g
+  std::size_t k = n * (n + 1) / 2 + n;
+  G.resize(s.m, s.n);
+  gamma.resize(s.m);
+  for (int a = 0; a < s.m; ++a)
+    for (int i = 0; i < s.n; ++i) G(a, i) = w->out[k++];
+  for (int a = 0; a < s.m; ++a) gamma[a] = w->out[k++];
+}
+
+}  // namespace rigid::lagrange

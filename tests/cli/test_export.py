@@ -1,0 +1,135 @@
+"""Code export: `rigid eom SCENE --emit c++|python`, rigid.Scene.emit and
+rigid.lagrange.System.emit. The exported Python module is imported and compared with the
+engine (M, f, G, γ); the command line and Python give the same bytes and the same refusals."""
+import importlib.util
+import math
+import pathlib
+
+import numpy as np
+import pytest
+
+import rigid
+
+EXAMPLES = pathlib.Path(__file__).resolve().parents[2] / "examples"
+WITH_COORDINATES = ["atwood", "cone_pendulum", "double_pendulum", "physical_pendulum",
+                    "rolling_cylinder", "rolling_sphere", "rolling_tube", "stiff_dumbbell"]
+
+
+def import_file(path, name):
+    spec = importlib.util.spec_from_file_location(name, path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def samples(system):
+    """States around the initial one, as the C++ test takes them."""
+    n = len(system.coordinate_names)
+    for k in range(5):
+        q = np.array([0.4 * math.sin(1.3 * i + 0.9 * k + 0.2) for i in range(n)])
+        qd = np.array([0.7 * math.cos(2.1 * i - 0.5 * k) for i in range(n)])
+        yield q, qd, 0.37 * k
+
+
+def close(a, b):
+    """The same operations in the same order as the engine: equal to the last bit on one
+    platform; 16 ulps of the largest entry (at least 1) allow another libm's last bit."""
+    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    assert a.shape == b.shape
+    scale = max(1.0, float(np.max(np.abs(b)))) if b.size else 1.0
+    np.testing.assert_allclose(a, b, rtol=0, atol=16 * np.finfo(float).eps * scale)
+
+
+@pytest.mark.parametrize("example", WITH_COORDINATES)
+def test_exported_python_computes_the_engines_numbers(example, run, tmp_path):
+    scene = EXAMPLES / f"{example}.toml"
+    out = tmp_path / f"{example}_eom.py"
+    run("eom", scene, "--emit", "python", "-o", out, check=True)
+    eom = import_file(out, f"{example}_eom")
+    system = rigid.Scene(scene).system
+    assert list(eom.COORDINATES) == system.coordinate_names
+    assert list(eom.CONSTRAINTS) == system.constraint_names
+    for q, qd, t in samples(system):
+        M, f = system.mass_matrix_and_forces(t, q, qd)
+        G, gamma = system.constraint_terms(t, q, qd)
+        close(eom.mass_matrix(q, t), M)
+        close(eom.forces(q, qd, t), f)
+        Me, fe = eom.mass_matrix_and_forces(q, qd, t)
+        close(Me, M)
+        close(fe, f)
+        m = len(system.constraint_names)
+        close(np.reshape(eom.constraint_jacobian(q, t), (m, len(q))), G)
+        close(eom.constraint_gamma(q, qd, t), gamma)
+
+
+def test_parameters_are_keyword_arguments_with_the_scenes_defaults(run, tmp_path):
+    scene = EXAMPLES / "double_pendulum.toml"
+    out = tmp_path / "dp.py"
+    run("eom", scene, "--emit", "python", "-o", out, check=True)
+    eom = import_file(out, "dp")
+    assert eom.PARAMETERS == rigid.Scene(scene).parameters
+    q, qd = [0.3, -0.2], [0.0, 0.0]
+    # with q̇ = 0, f = −∂V/∂q and V ∝ g: doubling g doubles f exactly (binary scaling)
+    assert eom.forces(q, qd, g=2 * 9.81) == [2 * v for v in eom.forces(q, qd)]
+    # the engine with the same override (--set on the command line, set= in Python)
+    system = rigid.Scene(scene, set=["g=19.62"]).system
+    _, f = system.mass_matrix_and_forces(0.0, np.array(q), np.array(qd))
+    close(eom.forces(q, qd, g=19.62), f)
+    with pytest.raises(ValueError, match="q needs 2 values"):
+        eom.mass_matrix([0.1])
+
+
+def test_command_line_and_python_give_the_same_bytes(run):
+    for example in ["atwood", "double_pendulum"]:
+        scene = EXAMPLES / f"{example}.toml"
+        model = rigid.Scene(scene)
+        for language in ["c++", "python"]:
+            first = run("eom", scene, "--emit", language, check=True).stdout
+            second = run("eom", scene, "--emit", language, check=True).stdout
+            assert first == second  # deterministic
+            assert first == model.emit(language)
+    # System.emit: the same code for the same model (the namespace named as asked)
+    system = rigid.Scene(EXAMPLES / "atwood.toml").system
+    # (the scene's file is named in the first line)
+    by_scene = rigid.Scene(EXAMPLES / "atwood.toml").emit("python")
+    assert by_scene.startswith(f"# Equations of motion of {EXAMPLES / 'atwood.toml'},")
+    assert system.emit("python").split("\n", 1)[1] == by_scene.split("\n", 1)[1]
+    assert "namespace atwood {" in system.emit("c++", name="atwood")
+
+
+def test_written_file_and_namespace_from_its_name(run, tmp_path):
+    out = tmp_path / "pendulum_eom.hpp"
+    proc = run("eom", EXAMPLES / "physical_pendulum.toml", "--emit", "c++", "-o", out, check=True)
+    assert proc.stdout == ""
+    text = out.read_text()
+    assert "namespace pendulum_eom {" in text
+    assert text.count("#include") == 1 and "#include <cmath>" in text
+
+
+def test_unknown_language_is_refused_with_a_close_match(run):
+    proc = run("eom", EXAMPLES / "double_pendulum.toml", "--emit", "pyhton", check=False)
+    assert proc.returncode == 2
+    assert "--emit: unknown export language 'pyhton'; expected c++ or python; did you mean 'python'?" in proc.stderr
+    with pytest.raises(rigid.Error, match="unknown export language 'pyhton'; expected c\\+\\+ or python; did you mean 'python'"):
+        rigid.Scene(EXAMPLES / "double_pendulum.toml").emit("pyhton")
+    with pytest.raises(rigid.Error, match="did you mean 'c\\+\\+'"):
+        rigid.Scene(EXAMPLES / "double_pendulum.toml").system.emit("c+")
+
+
+def test_free_bodies_are_refused_with_a_reason(run, tmp_path):
+    out = tmp_path / "racket.py"
+    proc = run("eom", EXAMPLES / "tennis_racket.toml", "--emit", "python", "-o", out, check=False)
+    assert proc.returncode == 1
+    assert "code export needs generalized coordinates" in proc.stderr
+    assert "tennis_racket.toml" in proc.stderr
+    assert not out.exists()
+    with pytest.raises(rigid.Error, match="code export needs generalized coordinates"):
+        rigid.Scene(EXAMPLES / "tennis_racket.toml").emit("python")
+
+
+def test_output_needs_emit_and_latex_excludes_it(run, tmp_path):
+    scene = EXAMPLES / "double_pendulum.toml"
+    proc = run("eom", scene, "-o", tmp_path / "x.py", check=False)
+    assert proc.returncode == 2 and "--emit" in proc.stderr
+    proc = run("eom", scene, "--emit", "python", "--latex", check=False)
+    assert proc.returncode == 1 and "use one" in proc.stderr

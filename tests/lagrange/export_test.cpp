@@ -1,0 +1,124 @@
+#include "rigid/lagrange/export.hpp"
+
+#include <cmath>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "support/expect_error.hpp"
+#include "support/tolerance.hpp"
+
+namespace rigid::lagrange {
+namespace {
+
+using ::testing::HasSubstr;
+using ::testing::Not;
+
+// A mass on a rod of length l swinging about a pivot that slides along x (coordinates x, θ),
+// held on the line x = a·θ by a constraint: M, f, G and γ all non-trivial.
+SystemSpec slider_spec() {
+  SystemSpec spec;
+  spec.parameters = {{"m", 2.0}, {"l", 0.5}, {"g", 9.81}, {"a", 0.3}};
+  spec.coordinates = {{"x", 0.0, 0.0}, {"theta", 0.0, 0.0}};
+  spec.lagrangian = "m/2*((x_dot + l*cos(theta)*theta_dot)^2 + (l*sin(theta)*theta_dot)^2) "
+                    "+ m*g*l*cos(theta)";
+  spec.constraints = {{"track", "x - a*sin(theta)"}};
+  return spec;
+}
+
+TEST(Export, ParsesTheLanguagesAndRefusesOthersWithACloseMatch) {
+  EXPECT_EQ(parse_language("c++"), Language::kCpp);
+  EXPECT_EQ(parse_language("cpp"), Language::kCpp);
+  EXPECT_EQ(parse_language("python"), Language::kPython);
+  EXPECT_EQ(parse_language("py"), Language::kPython);
+  EXPECT_RIGID_ERROR((void)parse_language("pyhton"), "did you mean 'python'?");
+  EXPECT_RIGID_ERROR((void)parse_language("rust"), "unknown export language 'rust'; expected c++ or python");
+}
+
+TEST(Export, SameSystemGivesTheSameBytes) {
+  // two Systems of one spec in one process (GiNaC's term order differs between them)
+  const System a(slider_spec()), b(slider_spec());
+  EXPECT_EQ(emit_cpp(a), emit_cpp(b));
+  EXPECT_EQ(emit_python(a), emit_python(b));
+}
+
+TEST(Export, CppIsSelfContainedWithParametersAsNamedDefaults) {
+  const System sys(slider_spec());
+  ExportOptions o;
+  o.name = "slider-1";  // not an identifier: made one
+  const std::string code = emit_cpp(sys, o);
+  EXPECT_THAT(code, HasSubstr("namespace slider_1 {"));
+  EXPECT_THAT(code, HasSubstr("#include <cmath>"));
+  EXPECT_THAT(code, Not(HasSubstr("Eigen")));
+  EXPECT_THAT(code, HasSubstr("double m = 2.0;"));
+  EXPECT_THAT(code, HasSubstr("double g = 9.81;"));
+  EXPECT_THAT(code, HasSubstr("inline constexpr int kNumConstraints = 1;"));
+  EXPECT_THAT(code, HasSubstr("inline void constraint_gamma("));
+  // only <cmath>: no other include
+  EXPECT_EQ(code.find("#include"), code.rfind("#include"));
+}
+
+TEST(Export, TheSourceStaysOnItsCommentLine) {
+  const System sys(slider_spec());
+  ExportOptions o;
+  o.source = "dir\nint x = 1;/scene.toml";
+  const std::string cpp = emit_cpp(sys, o), py = emit_python(sys, o);
+  EXPECT_THAT(cpp, HasSubstr("// Equations of motion of dir?int x = 1;/scene.toml, generated"));
+  EXPECT_THAT(py, HasSubstr("# Equations of motion of dir?int x = 1;/scene.toml, generated"));
+}
+
+TEST(Export, ReservedParameterNamesAreMarked) {
+  SystemSpec spec;
+  spec.parameters = {{"lambda", 1.0}, {"class", 2.0}, {"q", 3.0}, {"_k", 4.0}, {"M_PI", 5.0}};
+  spec.coordinates = {{"x", 0.0, 0.0}};
+  spec.lagrangian = "lambda*x_dot^2/2 - class*q*_k*M_PI*x^2/2";
+  const System sys(spec);
+  const std::string cpp = emit_cpp(sys), py = emit_python(sys);
+  // C++: keywords and <cmath> macros; lambda and q are fine there
+  EXPECT_THAT(cpp, HasSubstr("double class_ = 2.0;"));
+  EXPECT_THAT(cpp, HasSubstr("double M_PI_ = 5.0;"));
+  EXPECT_THAT(cpp, HasSubstr("double lambda = 1.0;"));
+  EXPECT_THAT(cpp, HasSubstr("double q = 3.0;"));
+  // Python: keywords, argument names, and names starting with '_'
+  EXPECT_THAT(py, HasSubstr("lambda_=1.0"));
+  EXPECT_THAT(py, HasSubstr("q_=3.0"));
+  EXPECT_THAT(py, HasSubstr("p_k=4.0"));
+  EXPECT_THAT(py, HasSubstr("class_=2.0"));
+  EXPECT_THAT(py, HasSubstr("\"lambda\": \"lambda_\""));
+}
+
+TEST(Export, ConstraintTermsSatisfyTheEquationsOfMotion) {
+  // q̈ and λ from the engine satisfy M q̈ = f + Gᵀλ and G q̈ = γ with the G and γ returned
+  const System sys(slider_spec());
+  Workspace w = sys.make_workspace();
+  const Eigen::VectorXd q = Eigen::Vector2d(0.2, 0.4), qd = Eigen::Vector2d(-0.3, 1.1);
+  Eigen::MatrixXd M, G;
+  Eigen::VectorXd f, gamma, qdd, lambda;
+  sys.mass_matrix_and_forces(w, 0.0, q, qd, M, f);
+  constraint_terms(sys, w, 0.0, q, qd, G, gamma);
+  sys.accelerations(w, 0.0, q, qd, qdd, lambda);
+  ASSERT_EQ(G.rows(), 1);
+  ASSERT_EQ(G.cols(), 2);
+  // g = x − a sin θ: G = (1, −a cos θ), γ = −a sin θ θ̇² (from g̈ = ẍ − a cos θ θ̈ + a sin θ θ̇²)
+  EXPECT_NEAR(G(0, 0), 1.0, test::ulps(2));
+  EXPECT_NEAR(G(0, 1), -0.3 * std::cos(0.4), test::ulps(4));
+  EXPECT_NEAR(gamma[0], -0.3 * std::sin(0.4) * 1.1 * 1.1, test::ulps(8));
+  // residuals of a solve with M ≈ 1 and |f| ≈ 10: 1e-12 covers its round-off
+  EXPECT_NEAR((G * qdd)[0], gamma[0], 1e-12);
+  EXPECT_LT((M * qdd - f - G.transpose() * lambda).norm(), 1e-12);
+}
+
+TEST(Export, ConstraintTermsRefuseAnotherSystemsWorkspace) {
+  const System a(slider_spec()), b(slider_spec());
+  Workspace w = b.make_workspace();
+  Eigen::MatrixXd G;
+  Eigen::VectorXd gamma;
+  EXPECT_RIGID_ERROR(constraint_terms(a, w, 0.0, Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero(), G, gamma),
+                     "belongs to another System");
+  Workspace wa = a.make_workspace();
+  EXPECT_RIGID_ERROR(constraint_terms(a, wa, 0.0, Eigen::Vector3d::Zero(), Eigen::Vector2d::Zero(), G, gamma),
+                     "expected q and q_dot of size 2");
+}
+
+}  // namespace
+}  // namespace rigid::lagrange

@@ -1,0 +1,148 @@
+// The exported C++ of the examples with coordinates (generated at build time by
+// rigid_export_examples_gen into exported/<example>.hpp and compiled here with the project's
+// flags) against the engine: M, f, G and γ at several states.
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "atwood.hpp"
+#include "cone_pendulum.hpp"
+#include "double_pendulum.hpp"
+#include "physical_pendulum.hpp"
+#include "rigid/lagrange/export.hpp"
+#include "rigid/scene/export.hpp"
+#include "rigid/scene/model.hpp"
+#include "rolling_cylinder.hpp"
+#include "rolling_sphere.hpp"
+#include "rolling_tube.hpp"
+#include "stiff_dumbbell.hpp"
+#include "support/expect_error.hpp"
+#include "support/tolerance.hpp"
+
+namespace rigid::scene {
+namespace {
+
+// One exported model, its functions with the scene's parameters (the defaults).
+struct Exported {
+  std::string example;
+  int n, m;
+  void (*mass_matrix)(const double* q, double t, double* M);
+  void (*forces)(const double* q, const double* q_dot, double t, double* f);
+  void (*mass_matrix_and_forces)(const double* q, const double* q_dot, double t, double* M, double* f);
+  void (*constraint_jacobian)(const double* q, double t, double* G);
+  void (*constraint_gamma)(const double* q, const double* q_dot, double t, double* gamma);
+};
+
+#define RIGID_EXPORTED(ns)                                                                          \
+  Exported {                                                                                        \
+    #ns, ns::kNumCoordinates, ns::kNumConstraints,                                                  \
+        [](const double* q, double t, double* M) { ns::mass_matrix(q, t, M); },                     \
+        [](const double* q, const double* qd, double t, double* f) { ns::forces(q, qd, t, f); },    \
+        [](const double* q, const double* qd, double t, double* M, double* f) {                     \
+          ns::mass_matrix_and_forces(q, qd, t, M, f);                                               \
+        },                                                                                          \
+        [](const double* q, double t, double* G) { ns::constraint_jacobian(q, t, G); },             \
+        [](const double* q, const double* qd, double t, double* g) { ns::constraint_gamma(q, qd, t, g); } \
+  }
+
+std::vector<Exported> exported_examples() {
+  return {RIGID_EXPORTED(atwood),           RIGID_EXPORTED(cone_pendulum),
+          RIGID_EXPORTED(double_pendulum),  RIGID_EXPORTED(physical_pendulum),
+          RIGID_EXPORTED(rolling_cylinder), RIGID_EXPORTED(rolling_sphere),
+          RIGID_EXPORTED(rolling_tube),     RIGID_EXPORTED(stiff_dumbbell)};
+}
+
+// Entries of `a` and `b` agree to `k` ulps of the largest entry of `b` (and at least 1).
+void expect_close(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, double k, const std::string& what) {
+  ASSERT_EQ(a.rows(), b.rows()) << what;
+  ASSERT_EQ(a.cols(), b.cols()) << what;
+  const double scale = std::max(1.0, b.cwiseAbs().maxCoeff());
+  for (Eigen::Index i = 0; i < a.size(); ++i) {
+    EXPECT_NEAR(a.data()[i], b.data()[i], test::ulps(k, scale)) << what << " entry " << i;
+  }
+}
+
+TEST(ExportExamples, CompiledCodeComputesTheEnginesMfGAndGamma) {
+  for (const Exported& ex : exported_examples()) {
+    SCOPED_TRACE(ex.example);
+    const Model model = load_model(std::string(RIGID_EXAMPLES_DIR) + "/" + ex.example + ".toml");
+    const lagrange::System& sys = model.system();
+    ASSERT_EQ(sys.num_coordinates(), ex.n);
+    ASSERT_EQ(sys.num_constraints(), ex.m);
+    lagrange::Workspace w = sys.make_workspace();
+    const auto n = static_cast<Eigen::Index>(ex.n), m = static_cast<Eigen::Index>(ex.m);
+    for (int sample = 0; sample < 5; ++sample) {
+      // states around the initial one: q0 + 0.4 sin(…), q̇ = 0.7 cos(…), t ≠ 0
+      Eigen::VectorXd q = sys.initial_q(), qd(n);
+      for (Eigen::Index i = 0; i < n; ++i) {
+        q[i] += 0.4 * std::sin(1.3 * static_cast<double>(i) + 0.9 * sample + 0.2);
+        qd[i] = 0.7 * std::cos(2.1 * static_cast<double>(i) - 0.5 * sample);
+      }
+      const double t = 0.37 * sample;
+      Eigen::MatrixXd M, G;
+      Eigen::VectorXd f, gamma;
+      sys.mass_matrix_and_forces(w, t, q, qd, M, f);
+      lagrange::constraint_terms(sys, w, t, q, qd, G, gamma);
+      // exported: row-major arrays
+      Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> Me(n, n), Me2(n, n), Ge(m, n);
+      Eigen::VectorXd fe(n), fe2(n), gammae(m);
+      ex.mass_matrix(q.data(), t, Me.data());
+      ex.forces(q.data(), qd.data(), t, fe.data());
+      ex.mass_matrix_and_forces(q.data(), qd.data(), t, Me2.data(), fe2.data());
+      ex.constraint_jacobian(q.data(), t, Ge.data());
+      ex.constraint_gamma(q.data(), qd.data(), t, gammae.data());
+      // the same operations in the same order as the engine's tape: equal to the last bit on
+      // this platform; 16 ulps of the largest entry leave room for a compiler that contracts
+      // a·b + c into one fused multiply-add
+      expect_close(Me, M, 16, "M");
+      expect_close(Me2, M, 16, "M (with f)");
+      expect_close(fe, f, 16, "f");
+      expect_close(fe2, f, 16, "f (with M)");
+      if (m > 0) {
+        expect_close(Ge, G, 16, "G");
+        expect_close(gammae, gamma, 16, "gamma");
+        // and independently of the engine's G and γ: its q̈ and λ satisfy the exported
+        // M q̈ = f + Gᵀλ and G q̈ = γ (a solve's round-off: 1e-9 of the scale)
+        Eigen::VectorXd qdd, lambda;
+        sys.accelerations(w, t, q, qd, qdd, lambda);
+        const double scale = 1 + M.norm() * qdd.norm() + f.norm();
+        EXPECT_LT((Me * qdd - fe - Ge.transpose() * lambda).norm(), 1e-9 * scale);
+        EXPECT_LT((Ge * qdd - gammae).norm(), 1e-9 * (1 + Ge.norm() * qdd.norm() + gammae.norm()));
+      }
+    }
+  }
+}
+
+TEST(ExportExamples, ParametersAreNamedArgumentsWithTheScenesDefaults) {
+  // the double pendulum with g doubled: f doubles where q̇ = 0 (f = −∂V/∂q, V ∝ g)
+  const Model model = load_model(std::string(RIGID_EXAMPLES_DIR) + "/double_pendulum.toml");
+  const double q[] = {0.3, -0.2}, qd[] = {0.0, 0.0};
+  double f1[2], f2[2];
+  double_pendulum::forces(q, qd, 0.0, f1);
+  double_pendulum::forces(q, qd, 0.0, f2, {.g = 2 * 9.81});
+  EXPECT_EQ(double_pendulum::Parameters{}.g, 9.81);
+  // doubling is exact in binary: the products scale by 2 exactly
+  EXPECT_EQ(f2[0], 2 * f1[0]);
+  EXPECT_EQ(f2[1], 2 * f1[1]);
+  // and the engine with the same value
+  lagrange::Workspace w = model.system().make_workspace();
+  w.set_parameter("g", 2 * 9.81);
+  Eigen::MatrixXd M;
+  Eigen::VectorXd f;
+  model.system().mass_matrix_and_forces(w, 0.0, Eigen::Vector2d(0.3, -0.2), Eigen::Vector2d::Zero(), M, f);
+  EXPECT_NEAR(f[0], f2[0], test::ulps(16, std::abs(f[0])));
+  EXPECT_NEAR(f[1], f2[1], test::ulps(16, std::abs(f[1])));
+}
+
+TEST(ExportExamples, FreeBodiesAndUnknownLanguagesAreRefused) {
+  const Model top = load_model(std::string(RIGID_EXAMPLES_DIR) + "/tennis_racket.toml");
+  EXPECT_RIGID_ERROR((void)emit_code(top, "c++"), "code export needs generalized coordinates");
+  const Model pendulum = load_model(std::string(RIGID_EXAMPLES_DIR) + "/double_pendulum.toml");
+  EXPECT_RIGID_ERROR((void)emit_code(pendulum, "c+"), "did you mean 'c++'?");
+}
+
+}  // namespace
+}  // namespace rigid::scene
