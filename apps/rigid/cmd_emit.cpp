@@ -11,6 +11,7 @@
 #include "rigid/lagrange/export.hpp"
 #include "rigid/scene/export.hpp"
 #include "rigid/scene/model.hpp"
+#include "scene_output.hpp"
 
 namespace rigid::cli {
 
@@ -24,18 +25,7 @@ std::string check_emit_language(const std::string& language) {
 }
 
 void run_emit(const SceneOptions& opts, const EmitOptions& emit) {
-  scene::Model model = [&] {
-    try {
-      return scene::load_model(opts.scene, opts.set);
-    } catch (const Error& e) {
-      const std::string what = e.what();
-      if (what.starts_with("parameter override")) throw Error("--set: " + what);
-      throw;
-    }
-  }();
-  for (const auto& w : model.warnings()) {
-    std::fprintf(stderr, "rigid: warning: %s\n", word_for(Surface::kCli, w).c_str());
-  }
+  scene::Model model = load_scene(opts.scene, opts.set);
   const std::filesystem::path out(emit.output);
   // the C++ namespace: the output file's stem, else the scene's
   const std::string code = scene::emit_code(model, emit.language, out.empty() ? "" : out.stem().string());

@@ -9,23 +9,13 @@
 #include "rigid/io/atomic_file.hpp"
 #include "rigid/lagrange/linearize.hpp"
 #include "rigid/scene/model.hpp"
+#include "scene_output.hpp"
 #include "rigid/scene/modes.hpp"
 
 namespace rigid::cli {
 
 void run_modes(const ModesOptions& opts) {
-  const scene::Model model = [&] {
-    try {
-      return scene::load_model(opts.scene, opts.set);
-    } catch (const Error& e) {
-      const std::string what = e.what();
-      if (what.starts_with("parameter override")) throw Error("--set: " + what);
-      throw;
-    }
-  }();
-  for (const auto& w : model.warnings()) {
-    std::fprintf(stderr, "rigid: warning: %s\n", word_for(Surface::kCli, w).c_str());
-  }
+  const scene::Model model = load_scene(opts.scene, opts.set);
   const lagrange::NormalModes modes = [&] {
     try {
       return scene::normal_modes(model, opts.at);

@@ -28,16 +28,6 @@ using Clock = std::chrono::steady_clock;
 std::atomic<bool> g_interrupted{false};
 extern "C" void on_interrupt(int /*signal*/) { g_interrupted = true; }
 
-scene::Model load(const SceneOptions& opts) {
-  try {
-    return scene::load_model(opts.scene, opts.set);
-  } catch (const Error& e) {
-    // an override comes from --set: say so
-    const std::string what = e.what();
-    if (what.starts_with("parameter override")) throw Error("--set: " + what);
-    throw;
-  }
-}
 
 // The run options of a scene command: the integrator and --max-memory.
 scene::RunOptions run_options(const SceneOptions& opts) {
@@ -53,11 +43,6 @@ scene::RunOptions run_options(const SceneOptions& opts) {
   return ro;
 }
 
-void print_warnings(const std::vector<std::string>& warnings) {
-  for (const auto& w : warnings) {
-    std::fprintf(stderr, "rigid: warning: %s\n", word_for(Surface::kCli, w).c_str());
-  }
-}
 
 // A one-line progress bar on standard error, redrawn at most ten times a second, shown only
 // when standard error is a terminal and the run has taken more than half a second.
@@ -98,8 +83,7 @@ class Progress {
 }  // namespace
 
 void run_run(const RunOptions& opts) {
-  const scene::Model model = load(opts.scene);
-  print_warnings(model.warnings());
+  const scene::Model model = load_scene(opts.scene.scene, opts.scene.set);
   const std::vector<io::OutputFormat> formats = [&] {
     try {
       return model.output_formats(opts.formats);
@@ -139,8 +123,7 @@ void run_run(const RunOptions& opts) {
 }
 
 void run_check(const SceneOptions& opts) {
-  const scene::Model model = load(opts);
-  print_warnings(model.warnings());
+  const scene::Model model = load_scene(opts.scene, opts.set);
   model.check(run_options(opts));
   fmt::print("{}", describe_model(opts.scene, model, opts.integrator));
   fmt::print("ok: {} is a valid scene\n", opts.scene);
@@ -159,8 +142,7 @@ void run_eom(const SceneOptions& opts, bool latex, const std::string& format) {
       throw Error(fmt::format("--latex and --format {} ask for two formats; give one", format));
     }
   }
-  const scene::Model model = load(opts);
-  print_warnings(model.warnings());
+  const scene::Model model = load_scene(opts.scene, opts.set);
   fmt::print("{}", model.equations(f));
 }
 

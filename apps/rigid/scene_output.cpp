@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include <fmt/format.h>
 
+#include "rigid/common/error.hpp"
+#include "rigid/common/wording.hpp"
 #include "rigid/io/table.hpp"
 
 namespace rigid::cli {
@@ -63,6 +66,23 @@ std::string describe_model(const std::string& scene_file, const scene::Model& mo
   out += "bodies:\n" + bodies_lines(model);
   out += fmt::format("integrator: {}, t_end = {:.6g} s\n", model.integrator(integrator), model.t_end());
   return out;
+}
+
+scene::Model load_scene(const std::string& file, const std::vector<std::string>& set) {
+  scene::Model model = [&] {
+    try {
+      return scene::load_model(file, set);
+    } catch (const Error& e) {
+      // an override comes from --set: say so
+      const std::string what = e.what();
+      if (what.starts_with("parameter override")) throw Error("--set: " + what);
+      throw;
+    }
+  }();
+  for (const auto& w : model.warnings()) {
+    std::fprintf(stderr, "rigid: warning: %s\n", word_for(Surface::kCli, w).c_str());
+  }
+  return model;
 }
 
 }  // namespace rigid::cli

@@ -13,6 +13,7 @@
 #include <set>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "rigid/common/did_you_mean.hpp"
 #include "rigid/common/error.hpp"
@@ -406,8 +407,23 @@ Language parse_language(std::string_view name) {
                           did_you_mean_hint(name, known)));
 }
 
+namespace {
+
+// The exported functions hold M, f and the holonomic rows G, γ; velocity constraints would be
+// missing from them without a word, so such a system is refused.
+const System::Impl& exportable(const System& system) {
+  if (system.num_velocity_constraints() > 0) {
+    throw Error(fmt::format("the system has velocity constraints ({}); the export writes M, f and "
+                            "the holonomic constraints' G and gamma only",
+                            fmt::join(system.velocity_constraint_names(), ", ")));
+  }
+  return impl_of(system);
+}
+
+}  // namespace
+
 std::string emit_cpp(const System& system, const ExportOptions& options) {
-  const System::Impl& s = impl_of(system);
+  const System::Impl& s = exportable(system);
   const std::vector<std::string> params = identifiers(s.param_names, false);
   const std::string ns = namespace_name(options.name);
   std::string out = header_comment(s, options, "//");
@@ -455,7 +471,7 @@ std::string emit_cpp(const System& system, const ExportOptions& options) {
 }
 
 std::string emit_python(const System& system, const ExportOptions& options) {
-  const System::Impl& s = impl_of(system);
+  const System::Impl& s = exportable(system);
   const std::vector<std::string> params = identifiers(s.param_names, true);
   std::string out = header_comment(s, options, "#");
   out += "#\n# Matrices are lists of rows. Parameters are keyword arguments with the model's values\n"

@@ -12,7 +12,10 @@ import rigid
 
 EXAMPLES = pathlib.Path(__file__).resolve().parents[2] / "examples"
 WITH_COORDINATES = ["atwood", "cone_pendulum", "double_pendulum", "physical_pendulum",
-                    "rolling_cylinder", "rolling_sphere", "rolling_tube", "stiff_dumbbell"]
+                    "rolling_cylinder", "rolling_sphere", "rolling_tube", "sleeping_top",
+                    "stiff_dumbbell"]
+# examples with velocity constraints: refused (the export holds the holonomic rows only)
+WITH_VELOCITY_CONSTRAINTS = ["chaplygin_sleigh", "rolling_disk"]
 
 
 def import_file(path, name):
@@ -133,3 +136,14 @@ def test_output_needs_emit_and_latex_excludes_it(run, tmp_path):
     assert proc.returncode == 2 and "--emit" in proc.stderr
     proc = run("eom", scene, "--emit", "python", "--latex", check=False)
     assert proc.returncode == 1 and "use one" in proc.stderr
+
+
+@pytest.mark.parametrize("example", WITH_VELOCITY_CONSTRAINTS)
+def test_velocity_constraints_are_refused_not_left_out(run, tmp_path, example):
+    out = tmp_path / "eom.hpp"
+    proc = run("eom", EXAMPLES / f"{example}.toml", "--emit", "c++", "-o", out, check=False)
+    assert proc.returncode == 1
+    assert "the system has velocity constraints" in proc.stderr
+    assert not out.exists()
+    with pytest.raises(rigid.Error, match="the system has velocity constraints"):
+        rigid.Scene(EXAMPLES / f"{example}.toml").emit("python")
