@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
@@ -21,10 +23,13 @@ namespace {
 
 constexpr const char* kArchive = "/usr/share/doc/libcgal-demo/data.tar.gz";
 
-// Extracts the named members of data/meshes once per test binary and returns the folder.
+// Extracts the named members of data/meshes once per test process and returns the folder.
 std::string cgal_meshes() {
   static const std::string dir = [] {
-    const std::string out = (std::filesystem::path(testing::TempDir()) / "rigid_cgal").string();
+    // one folder per process: ctest runs the tests of this binary as parallel processes, and
+    // two tar runs into one folder fail with "File exists"
+    const std::string out =
+        (std::filesystem::path(testing::TempDir()) / fmt::format("rigid_cgal_{}", ::getpid())).string();
     std::filesystem::create_directories(out);
     const std::string cmd = fmt::format(
         "tar -xzf {} -C {} data/meshes/cube.off data/meshes/cube-shuffled.off "
