@@ -15,6 +15,7 @@
 #include <benchmark/benchmark.h>
 #include <fmt/format.h>
 
+#include "lagrange_chain.hpp"
 #include "rigid/body/free_body_integrators.hpp"
 #include "rigid/lagrange/system.hpp"
 #include "rigid/scene/model.hpp"
@@ -36,25 +37,9 @@ void BM_SimulateFreeBody(benchmark::State& st) {
   st.SetItemsProcessed(st.iterations() * 10'000);
 }
 
-rigid::lagrange::SystemSpec chain_spec(int n) {
-  rigid::lagrange::SystemSpec spec;
-  std::string x = "0", y = "0";
-  for (int i = 1; i <= n; ++i) {
-    spec.parameters.push_back({fmt::format("l{}", i), 1.0});
-    spec.coordinates.push_back({fmt::format("q{}", i), 0.1 * i, 0.0});
-    x = fmt::format("{} + l{}*sin(q{})", x, i, i);
-    y = fmt::format("{} - l{}*cos(q{})", y, i, i);
-    spec.bodies.push_back(rigid::lagrange::Body{
-        fmt::format("bob{}", i), rigid::MassProperties(1.0, Eigen::Vector3d::Zero(), Eigen::Matrix3d::Zero()),
-        {x, y, "0"}, {}});
-  }
-  spec.gravity_W = Eigen::Vector3d(0, -9.81, 0);
-  return spec;
-}
-
 void BM_LagrangeSimulate(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
-  const rigid::lagrange::System sys(chain_spec(n));
+  const rigid::lagrange::System sys(rigid::bench::chain_spec(n));
   rigid::lagrange::SimulationOptions o;
   o.t_end = 10.0;
   o.method = rigid::integrate::Method::kRk4;
