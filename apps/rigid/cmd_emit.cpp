@@ -28,7 +28,9 @@ void run_emit(const SceneOptions& opts, const EmitOptions& emit) {
   scene::Model model = load_scene(opts.scene, opts.set);
   const std::filesystem::path out(emit.output);
   // the C++ namespace: the output file's stem, else the scene's
-  const std::string code = scene::emit_code(model, emit.language, out.empty() ? "" : out.stem().string());
+  const std::string code = about_scene(opts.scene, [&] {
+    return scene::emit_code(model, emit.language, out.empty() ? "" : out.stem().string());
+  });
   if (out.empty()) {
     std::fwrite(code.data(), 1, code.size(), stdout);
     return;

@@ -16,7 +16,7 @@ namespace rigid::cli {
 
 void run_modes(const ModesOptions& opts) {
   const scene::Model model = load_scene(opts.scene, opts.set);
-  const lagrange::NormalModes modes = [&] {
+  const lagrange::NormalModes modes = about_scene(opts.scene, [&] {
     try {
       return scene::normal_modes(model, opts.at);
     } catch (const Error& e) {
@@ -24,7 +24,7 @@ void run_modes(const ModesOptions& opts) {
       if (what.starts_with("point '")) throw Error("--at: " + what);
       throw;
     }
-  }();
+  });
   const std::string json = scene::modes_json(modes, opts.scene);
   if (!opts.output.empty()) io::write_file_atomically(opts.output, json);
   if (opts.json) {

@@ -2,8 +2,11 @@
 
 #include <filesystem>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
+#include "rigid/common/error.hpp"
 #include "rigid/scene/model.hpp"
 
 namespace rigid::cli {
@@ -11,6 +14,21 @@ namespace rigid::cli {
 /// The scene a subcommand works on, with its `--set` overrides (an override's error starts
 /// with `--set: `); its warnings are printed to standard error as `rigid: warning: …`.
 [[nodiscard]] scene::Model load_scene(const std::string& file, const std::vector<std::string>& set);
+
+/// Runs `work` on the scene in `file`; a rigid::Error it throws that does not already name a place
+/// is rethrown with the scene file in front (`FILE: message`), as load_scene's errors are.
+template <class Work>
+decltype(auto) about_scene(const std::string& file, Work&& work) {
+  try {
+    return std::forward<Work>(work)();
+  } catch (const Cancelled&) {
+    throw;
+  } catch (const Error& e) {
+    const std::string_view what = e.what();
+    if (what.starts_with(file) || what.starts_with("--")) throw;
+    throw Error(file + ": " + std::string(what));
+  }
+}
 
 /// The human summary `rigid run` prints.
 [[nodiscard]] std::string describe_run(const std::string& scene_file, const scene::Model& model,

@@ -161,3 +161,13 @@ t_end = 1.0
     w2 = [m.omega_squared for m in rigid.Scene(scene).modes(at=["theta1=0", "theta2=0"]).modes]
     assert w2 == pytest.approx([m.omega_squared for m in system.modes(at={"theta1": 0, "theta2": 0}).modes],
                                rel=1e-13)
+
+
+@pytest.mark.parametrize("args", [["modes"], ["eom", "--emit", "c++"]])
+def test_refusals_after_loading_name_the_scene_file(run, args):
+    # a refusal that comes after the scene loaded (here: velocity constraints) starts with the
+    # scene file, as the loader's own errors do, so a script running many scenes knows which one
+    path = EXAMPLES / "rolling_disk.toml"
+    proc = run(args[0], path, *args[1:])
+    assert proc.returncode == 1
+    assert proc.stderr.startswith(f"rigid: error: {path}: the system has velocity constraints"), proc.stderr
