@@ -52,6 +52,15 @@ py::dict to_python(const rigid::io::RunResult& r) {
   summary["parameters"] = parameters;
   summary["diagnostics"] = diagnostics;
   summary["warnings"] = s.warnings;
+  py::dict metrics;  // name → {"value", "unit", "note"}, in file order (NaN: did not happen)
+  for (const rigid::io::Metric& m : s.metrics) {
+    py::dict e;
+    e["value"] = m.value;
+    e["unit"] = m.unit;
+    e["note"] = m.note;
+    metrics[py::str(m.name)] = e;
+  }
+  summary["metrics"] = metrics;
   py::dict out;
   out["columns"] = columns;
   out["summary"] = summary;
@@ -108,7 +117,7 @@ void bind_scene(py::module_& m) {
              return rigid::scene::load_model(path, set);
            }),
            py::arg("path"), py::arg("set") = std::vector<std::string>{},
-           "Loads a TOML scene (a str or pathlib.Path); `set` holds 'name=value' parameter overrides.")
+           "Loads a TOML scene (a str or pathlib.Path); `set` holds 'name=value' overrides: parameters, simulation.<key>, <coordinate>.initial/.velocity, <body>.omega (docs/scene-format.md).")
       .def_property_readonly("kind", [](const Model& mo) {
         return mo.kind() == rigid::scene::SceneKind::kCoordinates ? "coordinates" : "free_bodies";
       })
