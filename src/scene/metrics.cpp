@@ -10,7 +10,7 @@
 #include <boost/math/tools/roots.hpp>
 #include <fmt/format.h>
 
-namespace rigid::scene::detail {
+namespace rigid::scene {
 namespace {
 
 using Kind = MetricSpec::Kind;
@@ -57,7 +57,7 @@ void MetricRecorder::start(double t, const std::vector<double>& values) {
   }
 }
 
-void MetricRecorder::step(double t, const std::vector<double>& values, const Probe* dense) {
+void MetricRecorder::step(double t, const std::vector<double>& values, const MetricProbe* dense) {
   if (dense != nullptr) {
     // the method's continuous extension on this step
     dense_mode_ = true;
@@ -196,19 +196,29 @@ std::vector<io::Metric> MetricRecorder::finish() {
         }
         break;
       case Kind::kPeriod: {
-        const std::size_t n = st.crossings.size();
+        // same-direction crossings: every one (up, down), every other one (any: they alternate)
+        const std::size_t stride = s.direction == Direction::kAny ? 2 : 1;
+        const std::vector<double>& c = st.crossings;
+        const std::size_t n = c.size();
+        const std::size_t intervals = n > stride ? n - stride : 0;
         if (!s.k) {
-          if (n >= 2) {
-            m.value = (st.crossings.back() - st.crossings.front()) / static_cast<double>(n - 1);
+          if (intervals > 0) {
+            // the mean of c[i + stride] − c[i]: the sum telescopes per residue class
+            double sum = 0;
+            for (std::size_t r = 0; r < stride && r + stride < n; ++r) {
+              const std::size_t last = r + ((n - 1 - r) / stride) * stride;
+              sum += c[last] - c[r];
+            }
+            m.value = sum / static_cast<double>(intervals);
           } else {
-            m.note = fmt::format("{} {}crossing(s) of {} before t_end = {} s; a period needs two", n,
-                                 direction_word(s.direction), of_what(s), t_last_);
+            m.note = fmt::format("{} {}crossing(s) of {} before t_end = {} s; a period needs {}", n,
+                                 direction_word(s.direction), of_what(s), t_last_, stride + 1);
           }
-        } else if (n >= *s.k + 1) {
-          m.value = st.crossings[*s.k] - st.crossings[*s.k - 1];
+        } else if (*s.k <= intervals) {
+          m.value = c[*s.k - 1 + stride] - c[*s.k - 1];
         } else {
           m.note = fmt::format("{} {}crossing(s) of {} before t_end = {} s; interval {} needs {}", n,
-                               direction_word(s.direction), of_what(s), t_last_, *s.k, *s.k + 1);
+                               direction_word(s.direction), of_what(s), t_last_, *s.k, *s.k + stride);
         }
         break;
       }
@@ -222,4 +232,4 @@ std::vector<io::Metric> MetricRecorder::finish() {
   return out;
 }
 
-}  // namespace rigid::scene::detail
+}  // namespace rigid::scene

@@ -532,7 +532,7 @@ struct Model::Impl {
 
   // The metrics of a run from the recorder, with their units, and the drifts from the samples:
   // max |x_k − x_0| / |x_0| (the absolute change, with a note, when x_0 = 0).
-  [[nodiscard]] std::vector<io::Metric> metrics_of(detail::MetricRecorder& recorder,
+  [[nodiscard]] std::vector<io::Metric> metrics_of(MetricRecorder& recorder,
                                                    const std::vector<std::pair<std::string, std::vector<double>>>& drift) const {
     std::vector<io::Metric> out = recorder.finish();
     for (std::size_t i = 0; i < out.size(); ++i) {
@@ -810,7 +810,7 @@ RunResult Model::Impl::run_coordinates(const Method& method, const RunOptions& o
   so.control = o.control;
   // metrics: every step's state (and dopri5's dense output inside it) through the probe
   const bool with_metrics = !scene.output.metrics.empty();
-  detail::MetricRecorder recorder(scene.output.metrics, metric_columns);
+  MetricRecorder recorder(scene.output.metrics, metric_columns);
   lagrange::Workspace probe_workspace = system->make_workspace();
   const auto n = static_cast<Eigen::Index>(system->coordinate_names().size());
   std::vector<Eigen::Vector4d> probe_previous(system->body_names().size(), Eigen::Vector4d(1, 0, 0, 0));
@@ -838,13 +838,15 @@ RunResult Model::Impl::run_coordinates(const Method& method, const RunOptions& o
       pqd = Eigen::Map<const Eigen::VectorXd>(v.y.data() + n, n);
       probe(v.t1, values);
       if (v.dense) {
-        const detail::Probe dense = [&](double t, std::vector<double>& out) {
+        const MetricProbe dense = [&](double t, std::vector<double>& out) {
           v.dense(t, ybuf);
           pq = Eigen::Map<const Eigen::VectorXd>(ybuf.data(), n);
           pqd = Eigen::Map<const Eigen::VectorXd>(ybuf.data() + n, n);
           probe(t, out);
         };
-        recorder.step(v.t1, values, &dense);
+        // dopri5's last step may pass t_end: the run (and its metrics) end at t_end
+        if (v.t1 > t_end) dense(t_end, values);
+        recorder.step(std::min(v.t1, t_end), values, &dense);
       } else {
         recorder.step(v.t1, values, nullptr);
       }
@@ -970,7 +972,7 @@ RunResult Model::Impl::run_free(const Method& method, const RunOptions& o) const
   // metrics: every step's state through the same row (fixed steps: interpolated by cubics;
   // the closed form: evaluated where the root finder asks)
   const bool with_metrics = !scene.output.metrics.empty();
-  detail::MetricRecorder recorder(scene.output.metrics, metric_columns);
+  MetricRecorder recorder(scene.output.metrics, metric_columns);
   std::vector<Eigen::Vector4d> probe_previous(free.size(), Eigen::Vector4d(1, 0, 0, 0));
   std::vector<double> values;
   integrate::MarchControl control = o.control;
@@ -1002,7 +1004,7 @@ RunResult Model::Impl::run_free(const Method& method, const RunOptions& o) const
       }
     };
     // the closed form is its own dense output: events between output times are found on it
-    const detail::Probe exact = [&](double t, std::vector<double>& out) {
+    const MetricProbe exact = [&](double t, std::vector<double>& out) {
       set_state(t);
       (void)fill_row(t, out, probe_previous);
     };

@@ -969,10 +969,9 @@ std::array<double, N> override_vector(const std::string& value, const std::strin
   if (a->size() != N) return refuse(fmt::format("has {} elements", a->size()));
   std::array<double, N> out{};
   for (std::size_t i = 0; i < N; ++i) {
-    const toml::node& e = *a->get(i);
-    const std::optional<double> v = e.is_integer() ? std::optional<double>(static_cast<double>(e.as_integer()->get()))
-                                    : e.is_floating_point() ? std::optional<double>(e.as_floating_point()->get())
-                                                            : std::nullopt;
+    const toml::node* e = a->get(i);
+    // an integer or a float (toml++ converts an integer that a double holds exactly)
+    const std::optional<double> v = e != nullptr && e->is_number() ? e->value<double>() : std::nullopt;
     if (!v || !std::isfinite(*v)) return refuse(fmt::format("element {} is not a finite number", i + 1));
     out[i] = *v;
   }

@@ -200,7 +200,9 @@ TEST(Integrator, OnStepSeesEveryStepWithItsStateAndDenseOutput) {
     } else {
       EXPECT_EQ(reached, 2.0);
     }
-    if (m == Method::kDopri5) EXPECT_LT(worst, 1e-8);
+    if (m == Method::kDopri5) {
+      EXPECT_LT(worst, 1e-8);
+    }
   }
 }
 

@@ -21,7 +21,7 @@ lagrangian = "x_dot^2/2 - x^2/2"
 name = "x"
 initial = 1
 [simulation]
-t_end = 7
+t_end = 11
 integrator = ")toml" +
          integrator + R"toml("
 dt = 1e-3
@@ -74,7 +74,12 @@ unit = "m"
 [[output.metrics]]
 name = "period"
 kind = "period"
+column = "x"
+[[output.metrics]]
+name = "period_any"
+kind = "period"
 column = "x_dot"
+direction = "any"
 [[output.metrics]]
 name = "third_up"
 kind = "crossing"
@@ -105,14 +110,14 @@ const io::Metric& metric_entry(const RunResult& r, const std::string& name) {
 // The events lie between output rows 0.5 s apart: they are located on the steps, not the grid.
 // rk4 (h = 1e-3): the run's global error ≈ t h⁴/120 ≈ 1e-13 and the cubic through four steps
 // errs by ≤ h⁴/24 ≈ 4e-14 in x, so crossing times are good to ~1e-12 s; 1e-10 leaves room.
-// dopri5 at tolerance 1e-12 over 7 s: the same 1e-10. The extremum's time is flat-conditioned
+// dopri5 at tolerance 1e-12 over 11 s: the same 1e-10. The extremum's time is flat-conditioned
 // (its error is √ of the value's): 1e-6 s.
 TEST(Metrics, OscillatorEventsAreLocatedBetweenOutputRows) {
   for (const char* integrator : {"rk4", "dopri5"}) {
     SCOPED_TRACE(integrator);
     const RunResult r = Model(parse_scene(oscillator(integrator, kOscillatorMetrics), "osc.toml")).run();
     const double pi = std::numbers::pi;
-    ASSERT_EQ(r.summary.metrics.size(), 11u);
+    ASSERT_EQ(r.summary.metrics.size(), 12u);
     EXPECT_EQ(r.summary.metrics[0].name, "first_zero");  // file order
     EXPECT_NEAR(metric(r, "first_zero"), pi / 2, 1e-10);
     EXPECT_NEAR(metric(r, "second_zero"), 3 * pi / 2, 1e-10);
@@ -121,9 +126,11 @@ TEST(Metrics, OscillatorEventsAreLocatedBetweenOutputRows) {
     EXPECT_NEAR(metric(r, "t_min"), pi, 1e-6);
     EXPECT_NEAR(metric(r, "x_min"), -1.0, 1e-10);
     EXPECT_NEAR(metric(r, "lowest"), -1.0, 1e-10);
-    EXPECT_NEAR(metric(r, "x_end"), std::cos(7.0), 1e-10);
-    // x_dot = −sin t crosses upward at π, 3π: one interval of 2π in 7 s
+    EXPECT_NEAR(metric(r, "x_end"), std::cos(11.0), 1e-10);
+    // x = cos t crosses upward at 3π/2 and 7π/2 (10.996 s): one interval of 2π in 11 s;
+    // x_dot = −sin t crosses at π (up), 2π (down), 3π (up): every other one is 2π apart
     EXPECT_NEAR(metric(r, "period"), 2 * pi, 1e-10);
+    EXPECT_NEAR(metric(r, "period_any"), 2 * pi, 1e-10);
     EXPECT_EQ(metric_entry(r, "first_zero").unit, "s");
     EXPECT_EQ(metric_entry(r, "x_end").unit, "m");
     EXPECT_EQ(metric_entry(r, "drift").unit, "");
@@ -132,7 +139,7 @@ TEST(Metrics, OscillatorEventsAreLocatedBetweenOutputRows) {
     // the third upward crossing (at 11π/2) is after t_end: NaN with a note, not an error
     const io::Metric& third = metric_entry(r, "third_up");
     EXPECT_TRUE(std::isnan(third.value));
-    EXPECT_NE(third.note.find("1 upward crossing(s) of x before t_end = 7 s; crossing 3 did not happen"),
+    EXPECT_NE(third.note.find("2 upward crossing(s) of x before t_end = 11 s; crossing 3 did not happen"),
               std::string::npos)
         << third.note;
   }

@@ -13,10 +13,10 @@
 #include "rigid/io/run_output.hpp"
 #include "rigid/scene/scene.hpp"
 
-namespace rigid::scene::detail {
+namespace rigid::scene {
 
 /// The values of the metrics' columns at a time t inside the current step.
-using Probe = std::function<void(double t, std::vector<double>& values)>;
+using MetricProbe = std::function<void(double t, std::vector<double>& values)>;
 
 class MetricRecorder {
  public:
@@ -28,7 +28,7 @@ class MetricRecorder {
   void start(double t, const std::vector<double>& values);
   /// A step ending at t with the columns `values` there; `dense` evaluates them anywhere in
   /// the step (nullptr: a fixed-step method, whose steps are interpolated by cubics).
-  void step(double t, const std::vector<double>& values, const Probe* dense);
+  void step(double t, const std::vector<double>& values, const MetricProbe* dense);
   /// The metrics' values (NaN with a note for an event that did not happen), in spec order;
   /// units are left to the caller.
   [[nodiscard]] std::vector<io::Metric> finish();
@@ -59,4 +59,4 @@ class MetricRecorder {
   double t_last_ = 0, t_start_ = 0;
 };
 
-}  // namespace rigid::scene::detail
+}  // namespace rigid::scene
