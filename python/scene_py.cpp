@@ -164,7 +164,9 @@ void bind_scene(py::module_& m) {
       .def("run", &run, py::arg("integrator") = std::string{}, py::arg("output") = py::none(),
            py::arg("formats") = std::vector<std::string>{}, py::arg("max_memory") = py::none(),
            "Simulates to t_end: {'columns': {name: numpy array}, 'summary': {...}} with the columns "
-           "of docs/scene-format.md. With `output` (a directory), also writes the files `rigid run` "
+           "of docs/scene-format.md; summary['metrics'] holds the scene's [[output.metrics]] as "
+           "{name: {'value', 'unit', 'note'}} (value NaN, with a note, when the event did not happen). "
+           "With `output` (a directory), also writes the files `rigid run` "
            "writes (trajectory.csv, trajectory.npy, summary.json; `formats` as in the scene's "
            "[output] by default; summary.json always comes with trajectory.npy) as one set that "
            "replaces the directory, only after the run succeeded; the paths are under 'written'. "
