@@ -52,6 +52,15 @@ py::dict to_python(const rigid::io::RunResult& r) {
   summary["parameters"] = parameters;
   summary["diagnostics"] = diagnostics;
   summary["warnings"] = s.warnings;
+  py::dict metrics;  // name → {"value", "unit", "note"}, in file order (NaN: did not happen)
+  for (const rigid::io::Metric& m : s.metrics) {
+    py::dict e;
+    e["value"] = m.value;
+    e["unit"] = m.unit;
+    e["note"] = m.note;
+    metrics[py::str(m.name)] = e;
+  }
+  summary["metrics"] = metrics;
   py::dict out;
   out["columns"] = columns;
   out["summary"] = summary;
@@ -108,7 +117,7 @@ void bind_scene(py::module_& m) {
              return rigid::scene::load_model(path, set);
            }),
            py::arg("path"), py::arg("set") = std::vector<std::string>{},
-           "Loads a TOML scene (a str or pathlib.Path); `set` holds 'name=value' parameter overrides.")
+           "Loads a TOML scene (a str or pathlib.Path); `set` holds 'name=value' overrides: parameters, simulation.<key>, <coordinate>.initial/.velocity, <body>.omega (docs/scene-format.md).")
       .def_property_readonly("kind", [](const Model& mo) {
         return mo.kind() == rigid::scene::SceneKind::kCoordinates ? "coordinates" : "free_bodies";
       })
@@ -155,7 +164,9 @@ void bind_scene(py::module_& m) {
       .def("run", &run, py::arg("integrator") = std::string{}, py::arg("output") = py::none(),
            py::arg("formats") = std::vector<std::string>{}, py::arg("max_memory") = py::none(),
            "Simulates to t_end: {'columns': {name: numpy array}, 'summary': {...}} with the columns "
-           "of docs/scene-format.md. With `output` (a directory), also writes the files `rigid run` "
+           "of docs/scene-format.md; summary['metrics'] holds the scene's [[output.metrics]] as "
+           "{name: {'value', 'unit', 'note'}} (value NaN, with a note, when the event did not happen). "
+           "With `output` (a directory), also writes the files `rigid run` "
            "writes (trajectory.csv, trajectory.npy, summary.json; `formats` as in the scene's "
            "[output] by default; summary.json always comes with trajectory.npy) as one set that "
            "replaces the directory, only after the run succeeded; the paths are under 'written'. "

@@ -8,7 +8,10 @@
 
 inline void add_scene_options(CLI::App* cmd, rigid::cli::SceneOptions& o) {
   cmd->add_option("SCENE", o.scene, "scene file (TOML; see docs/scene-format.md)")->required();
-  cmd->add_option("--set", o.set, "override a parameter: name=value (repeatable)")
+  cmd->add_option("--set", o.set,
+                  "override a value of the scene (repeatable): a parameter (m=2), a setting "
+                  "(simulation.t_end=20, simulation.tolerance=1e-12), an initial condition "
+                  "(theta.initial=0.2, theta.velocity=0, racket.omega=[0.01,1,0.01])")
       ->type_name("NAME=VALUE")
       ->allow_extra_args(false);
   cmd->add_option("--integrator", o.integrator,

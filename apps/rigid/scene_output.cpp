@@ -45,6 +45,13 @@ std::string describe_run(const std::string& scene_file, const scene::Model& mode
   if (s.rhs_evaluations > 0) out += fmt::format(", {} right-hand sides", s.rhs_evaluations);
   out += fmt::format(", {} samples, {:.3g} s wall time\n", s.samples, s.wall_seconds);
   out += diagnostics_lines(s);
+  if (!s.metrics.empty()) out += "metrics:\n";
+  for (const io::Metric& m : s.metrics) {
+    const std::string unit = m.unit.empty() ? "" : " " + m.unit;
+    // 10 significant digits: what a period or a crossing time is located to at tight tolerances
+    out += std::isfinite(m.value) ? fmt::format("  {:<36} {:.10g}{}\n", m.name, m.value, unit)
+                                  : fmt::format("  {:<36} nan ({})\n", m.name, m.note);
+  }
   return out;
 }
 
@@ -75,7 +82,7 @@ scene::Model load_scene(const std::string& file, const std::vector<std::string>&
     } catch (const Error& e) {
       // an override comes from --set: say so
       const std::string what = e.what();
-      if (what.starts_with("parameter override")) throw Error("--set: " + what);
+      if (what.starts_with("override '")) throw Error("--set: " + what);
       throw;
     }
   }();

@@ -42,7 +42,7 @@ def test_errors_carry_the_file_position(tmp_path):
                  'position = ["y", 0, 0]\n[simulation]\nt_end = 1\n')
     with pytest.raises(rigid.Error, match=r"bad.toml:5:14: .*undefined symbol 'y'"):
         rigid.Scene(str(p))
-    with pytest.raises(rigid.Error, match="no parameter 'q'"):
+    with pytest.raises(rigid.Error, match="has no parameter, setting or initial condition 'q'; did you mean 'g'"):
         rigid.Scene(str(EXAMPLES / "atwood.toml"), set=["q=1"])
 
 

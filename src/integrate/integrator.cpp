@@ -207,7 +207,14 @@ Solution run_fixed(const Problem& p, const Options& o) {
     sol.t.push_back(t);
     sol.y.push_back(y);
   };
-  sol.steps = march(grid, o.dt, step, [&] { return find_nonfinite(p, y); }, observe, control_of(o)).steps;
+  MarchControl control = control_of(o);
+  if (control.on_step) {
+    // the march knows the step's span; the state is ours
+    control.on_step = [&y, &outer = o.control.on_step](const StepView& v) {
+      outer(StepView{v.t0, v.t1, {y.data(), static_cast<std::size_t>(y.size())}, {}});
+    };
+  }
+  sol.steps = march(grid, o.dt, step, [&] { return find_nonfinite(p, y); }, observe, control).steps;
   return sol;
 }
 
@@ -272,6 +279,14 @@ Solution run_dopri5(const Problem& p, const Options& o) {
     }
     const Eigen::Map<const Eigen::VectorXd> yc(xc.data(), n);
     if (auto bad = find_nonfinite(p, yc)) throw_nonfinite(*bad, sol.steps, tc, h_last);
+    if (control.on_step) {
+      // the continuous extension of the step just taken (valid on [before, tc])
+      control.on_step(StepView{before, tc, {xc.data(), xc.size()}, [&stepper](double t, std::span<double> out) {
+                                 StdState x(out.size());
+                                 stepper.calc_state(t, x);
+                                 std::copy(x.begin(), x.end(), out.begin());
+                               }});
+    }
     if (grid) {
       // dense output at every sample time passed by this step
       while (next_output < grid->size() && (*grid)[next_output] <= tc) {

@@ -72,6 +72,21 @@ std::string summary_json(const RunResult& result) {
   for (const auto& [name, value] : s.parameters) j["parameters"][name] = value;
   j["diagnostics"] = nlohmann::ordered_json::object();
   for (const auto& [name, value] : s.diagnostics) j["diagnostics"][name] = value;
+  if (!s.metrics.empty()) {
+    j["metrics"] = nlohmann::ordered_json::object();
+    for (const Metric& m : s.metrics) {
+      nlohmann::ordered_json e;
+      // JSON has no NaN: an event that did not happen is null, with its note
+      if (std::isfinite(m.value)) {
+        e["value"] = m.value;
+      } else {
+        e["value"] = nullptr;
+      }
+      e["unit"] = m.unit;
+      if (!m.note.empty()) e["note"] = m.note;
+      j["metrics"][m.name] = std::move(e);
+    }
+  }
   const Table& t = result.trajectory;
   j["columns"] = t.columns();
   j["final"] = nlohmann::ordered_json::object();

@@ -22,6 +22,7 @@
 #include "rigid/mass/primitives.hpp"
 #include "rigid/mesh/mass_from_file.hpp"
 #include "rigid/mesh/read_mesh.hpp"
+#include "detail/metrics.hpp"
 
 namespace rigid::scene {
 namespace {
@@ -267,6 +268,10 @@ struct Model::Impl {
   std::unique_ptr<lagrange::System> system;
   // free bodies
   std::vector<FreeBody> free;
+  // metrics: the column each reads (index in columns()), and how many leading columns are
+  // functions of the state alone (what a step can evaluate)
+  std::vector<std::size_t> metric_columns;
+  std::size_t probe_size = 0;
 
   void read_simulation() {
     const Simulation& s = scene.simulation;
@@ -470,6 +475,87 @@ struct Model::Impl {
     }
   }
 
+  // The unit of a column: s, m, J, ... ("" for a coordinate, whose unit the scene does not say,
+  // and for the quaternions).
+  [[nodiscard]] std::string unit_of(const std::string& column) const {
+    if (column == "t") return "s";
+    if (column == "energy" || column == "jacobi") return "J";
+    const auto dot = column.rfind('.');
+    if (dot == std::string::npos) return "";
+    const std::string c = column.substr(dot + 1);
+    if (c == "x" || c == "y" || c == "z") return "m";
+    if (c == "vx" || c == "vy" || c == "vz") return "m/s";
+    if (c == "wx" || c == "wy" || c == "wz") return "rad/s";
+    if (c == "Lx" || c == "Ly" || c == "Lz") return "kg·m²/s";
+    return "";
+  }
+
+  // Every metric's column is checked against the run's columns, at the metric's line.
+  void check_metrics() {
+    const std::vector<std::string> cols = columns();
+    probe_size = cols.size();
+    if (kind == SceneKind::kCoordinates) {
+      probe_size = static_cast<std::size_t>(std::find(cols.begin(), cols.end(), "jacobi") - cols.begin()) + 1;
+    }
+    for (const MetricSpec& m : scene.output.metrics) {
+      const std::string what = fmt::format("[[output.metrics]] '{}'", m.name);
+      if (m.kind == MetricSpec::Kind::kDrift) {
+        std::vector<std::string> takes = {"energy"};
+        if (kind == SceneKind::kCoordinates) takes.push_back("jacobi");
+        for (const FreeBody& f : free) takes.push_back(f.name + ".L");
+        if (std::find(takes.begin(), takes.end(), m.column) == takes.end()) {
+          detail::throw_error_at(m.column_where,
+                                 fmt::format("{}: drift of '{}' is not known{}; expected one of: {} (<body>.L: the "
+                                             "norm of a free body's angular momentum, its vertical component "
+                                             "on a pivot)",
+                                             what, m.column, did_you_mean_hint(m.column, takes), fmt::join(takes, ", ")));
+        }
+        metric_columns.push_back(0);
+        continue;
+      }
+      const auto it = std::find(cols.begin(), cols.end(), m.column);
+      if (it == cols.end()) {
+        detail::throw_error_at(m.column_where, fmt::format("{}: the run has no column '{}'{} (columns: {})", what, m.column,
+                                                           did_you_mean_hint(m.column, cols), fmt::join(cols, ", ")));
+      }
+      const auto index = static_cast<std::size_t>(it - cols.begin());
+      if (index >= probe_size) {
+        detail::throw_error_at(
+            m.column_where,
+            fmt::format("{}: column '{}' is computed at the output times only (multipliers, residuals and "
+                        "momenta are not part of the state the steps see); metrics read: {}",
+                        what, m.column, fmt::join(cols.begin(), cols.begin() + static_cast<std::ptrdiff_t>(probe_size), ", ")));
+      }
+      metric_columns.push_back(index);
+    }
+  }
+
+  // The metrics of a run from the recorder, with their units, and the drifts from the samples:
+  // max |x_k − x_0| / |x_0| (the absolute change, with a note, when x_0 = 0).
+  [[nodiscard]] std::vector<io::Metric> metrics_of(MetricRecorder& recorder,
+                                                   const std::vector<std::pair<std::string, std::vector<double>>>& drift) const {
+    std::vector<io::Metric> out = recorder.finish();
+    for (std::size_t i = 0; i < out.size(); ++i) {
+      const MetricSpec& m = scene.output.metrics[i];
+      using K = MetricSpec::Kind;
+      const bool time = m.kind == K::kCrossing || m.kind == K::kPeriod || (m.kind == K::kExtremum && !m.report_value);
+      out[i].unit = m.unit_given ? m.unit : time ? "s" : m.kind == K::kDrift ? "" : unit_of(m.column);
+      if (m.kind != K::kDrift) continue;
+      for (const auto& [name, x] : drift) {
+        if (name != m.column || x.empty()) continue;
+        const double change = max_change(x);
+        if (x.front() != 0) {
+          out[i].value = change / std::abs(x.front());
+        } else {
+          out[i].value = change;
+          out[i].unit = m.column == "energy" || m.column == "jacobi" ? "J" : "kg·m²/s";
+          out[i].note = fmt::format("{} is 0 at t = 0: the absolute change", m.column);
+        }
+      }
+    }
+    return out;
+  }
+
   [[nodiscard]] Method parse_method(const std::string& requested) const;
   RunResult run_coordinates(const Method& method, const RunOptions& o) const;
   RunResult run_free(const Method& method, const RunOptions& o) const;
@@ -498,6 +584,7 @@ Model::Model(const Scene& scene) : impl_(std::make_unique<Impl>()) {
   } else {
     m.build_free_bodies(masses);
   }
+  m.check_metrics();
   (void)integrator();  // an unknown [simulation] integrator is an error of the scene
 }
 
@@ -721,6 +808,51 @@ RunResult Model::Impl::run_coordinates(const Method& method, const RunOptions& o
   so.tolerance = tolerance;
   so.output_dt = output_dt;
   so.control = o.control;
+  // metrics: every step's state (and dopri5's dense output inside it) through the probe
+  const bool with_metrics = !scene.output.metrics.empty();
+  MetricRecorder recorder(scene.output.metrics, metric_columns);
+  lagrange::Workspace probe_workspace = system->make_workspace();
+  const auto n = static_cast<Eigen::Index>(system->coordinate_names().size());
+  std::vector<Eigen::Vector4d> probe_previous(system->body_names().size(), Eigen::Vector4d(1, 0, 0, 0));
+  Eigen::VectorXd pq(n), pqd(n);
+  // the leading columns of a row (t, q, q̇, poses, energy, jacobi) at (t, q, q̇)
+  auto probe = [&](double t, std::vector<double>& out) {
+    out.clear();
+    out.push_back(t);
+    for (Eigen::Index i = 0; i < n; ++i) out.push_back(pq[i]);
+    for (Eigen::Index i = 0; i < n; ++i) out.push_back(pqd[i]);
+    const std::vector<lagrange::BodyPose> poses = system->body_poses(probe_workspace, t, pq);
+    for (std::size_t b = 0; b < poses.size(); ++b) push_pose(out, poses[b].p_WB, poses[b].R_WB, probe_previous[b]);
+    out.push_back(system->energy(probe_workspace, t, pq, pqd));
+    out.push_back(system->jacobi_integral(probe_workspace, t, pq, pqd));
+  };
+  std::vector<double> values;
+  std::vector<double> ybuf(static_cast<std::size_t>(2 * n));
+  if (with_metrics) {
+    pq = system->initial_q();
+    pqd = system->initial_q_dot();
+    probe(0.0, values);
+    recorder.start(0.0, values);
+    so.control.on_step = [&, outer = o.control.on_step](const integrate::StepView& v) {
+      pq = Eigen::Map<const Eigen::VectorXd>(v.y.data(), n);
+      pqd = Eigen::Map<const Eigen::VectorXd>(v.y.data() + n, n);
+      probe(v.t1, values);
+      if (v.dense) {
+        const MetricProbe dense = [&](double t, std::vector<double>& out) {
+          v.dense(t, ybuf);
+          pq = Eigen::Map<const Eigen::VectorXd>(ybuf.data(), n);
+          pqd = Eigen::Map<const Eigen::VectorXd>(ybuf.data() + n, n);
+          probe(t, out);
+        };
+        // dopri5's last step may pass t_end: the run (and its metrics) end at t_end
+        if (v.t1 > t_end) dense(t_end, values);
+        recorder.step(std::min(v.t1, t_end), values, &dense);
+      } else {
+        recorder.step(v.t1, values, nullptr);
+      }
+      if (outer) outer(v);
+    };
+  }
   const lagrange::Trajectory tr = system->simulate(so);
 
   RunResult r;
@@ -770,6 +902,7 @@ RunResult Model::Impl::run_coordinates(const Method& method, const RunOptions& o
     s.diagnostics.emplace_back("p_" + tr.cyclic_names[static_cast<std::size_t>(c)] + "_max_change",
                                max_change(std::vector<double>(col.data(), col.data() + col.size())));
   }
+  if (with_metrics) s.metrics = metrics_of(recorder, {{"energy", energy}, {"jacobi", jacobi}});
   return r;
 }
 
@@ -790,9 +923,12 @@ RunResult Model::Impl::run_free(const Method& method, const RunOptions& o) const
   std::vector<double> ortho(free.size(), 0.0), energy;
   const Eigen::Vector3d g_dir = gravity.norm() > 0 ? Eigen::Vector3d(gravity.normalized()) : Eigen::Vector3d::UnitZ();
   std::vector<double> row;
-  auto observe = [&](std::size_t, double t) {
-    row.clear();
-    row.push_back(t);
+  // a row of the trajectory from the bodies' state at t; `conserved` gets each body's |L| (free)
+  // or g·L (top), the return value is the total energy
+  std::vector<double> conserved(free.size());
+  auto fill_row = [&](double t, std::vector<double>& out, std::vector<Eigen::Vector4d>& continuity) {
+    out.clear();
+    out.push_back(t);
     double e_total = 0;
     for (std::size_t i = 0; i < free.size(); ++i) {
       const FreeBody& f = free[i];
@@ -807,7 +943,7 @@ RunResult Model::Impl::run_free(const Method& method, const RunOptions& o) const
         v_WC = R_WP * s.w_B.cross(f.top->com_from_pivot());
         L_W = R_WP * (f.top->inertia_about_pivot() * s.w_B);  // about the pivot
         e_total += f.top->energy(rot);
-        L[i].push_back(g_dir.dot(L_W));
+        conserved[i] = g_dir.dot(L_W);
       } else {
         // P is principal: I ω is a componentwise product; energy ½ m |v|² + ½ ωᵀ I ω − m g·p
         const Eigen::Vector3d L_P = f.rigid->principal_moments().cwiseProduct(s.w_B);
@@ -816,16 +952,39 @@ RunResult Model::Impl::run_free(const Method& method, const RunOptions& o) const
         L_W = R_WP * L_P;  // about the COM
         e_total += 0.5 * f.rigid->mass() * s.v_WC.squaredNorm() + 0.5 * s.w_B.dot(L_P) -
                    f.rigid->mass() * gravity.dot(s.p_WC);
-        L[i].push_back(L_W.norm());
+        conserved[i] = L_W.norm();
       }
-      push_pose(row, p_WB, R_WB, previous[i]);
-      row.insert(row.end(), {v_WC.x(), v_WC.y(), v_WC.z(), w_B.x(), w_B.y(), w_B.z(), L_W.x(), L_W.y(), L_W.z()});
+      push_pose(out, p_WB, R_WB, continuity[i]);
+      out.insert(out.end(), {v_WC.x(), v_WC.y(), v_WC.z(), w_B.x(), w_B.y(), w_B.z(), L_W.x(), L_W.y(), L_W.z()});
+    }
+    out.push_back(e_total);
+    return e_total;
+  };
+  auto observe = [&](std::size_t, double t) {
+    energy.push_back(fill_row(t, row, previous));
+    for (std::size_t i = 0; i < free.size(); ++i) {
+      L[i].push_back(conserved[i]);
+      const Eigen::Matrix3d R_WP = state[i].R_WB.matrix();
       ortho[i] = std::max(ortho[i], (R_WP.transpose() * R_WP - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff());
     }
-    row.push_back(e_total);
-    energy.push_back(e_total);
     r.trajectory.add_row(row);
   };
+  // metrics: every step's state through the same row (fixed steps: interpolated by cubics;
+  // the closed form: evaluated where the root finder asks)
+  const bool with_metrics = !scene.output.metrics.empty();
+  MetricRecorder recorder(scene.output.metrics, metric_columns);
+  std::vector<Eigen::Vector4d> probe_previous(free.size(), Eigen::Vector4d(1, 0, 0, 0));
+  std::vector<double> values;
+  integrate::MarchControl control = o.control;
+  if (with_metrics) {
+    (void)fill_row(0.0, values, probe_previous);
+    recorder.start(0.0, values);
+    control.on_step = [&, outer = o.control.on_step](const integrate::StepView& v) {
+      (void)fill_row(v.t1, values, probe_previous);
+      recorder.step(v.t1, values, nullptr);
+      if (outer) outer(v);
+    };
+  }
 
   std::size_t steps = 0;
   if (method.exact) {
@@ -835,8 +994,7 @@ RunResult Model::Impl::run_free(const Method& method, const RunOptions& o) const
     for (std::size_t i = 0; i < free.size(); ++i) {
       motions.emplace_back(free[i].rigid->principal_moments(), free[i].initial.R_WB, free[i].initial.w_B);
     }
-    for (std::size_t k = 0; k < grid.size(); ++k) {
-      const double t = grid[k];
+    auto set_state = [&](double t) {
       for (std::size_t i = 0; i < free.size(); ++i) {
         const body::RigidBodyState& s0 = free[i].initial;
         state[i].R_WB = motions[i].orientation(t);
@@ -844,6 +1002,19 @@ RunResult Model::Impl::run_free(const Method& method, const RunOptions& o) const
         state[i].p_WC = s0.p_WC + s0.v_WC * t + 0.5 * gravity * t * t;
         state[i].v_WC = s0.v_WC + gravity * t;
       }
+    };
+    // the closed form is its own dense output: events between output times are found on it
+    const MetricProbe exact = [&](double t, std::vector<double>& out) {
+      set_state(t);
+      (void)fill_row(t, out, probe_previous);
+    };
+    for (std::size_t k = 0; k < grid.size(); ++k) {
+      const double t = grid[k];
+      if (with_metrics) {
+        exact(t, values);
+        recorder.step(t, values, &exact);
+      }
+      set_state(t);
       observe(k, t);
       integrate::poll(o.control, t);
     }
@@ -869,7 +1040,7 @@ RunResult Model::Impl::run_free(const Method& method, const RunOptions& o) const
       }
       return std::nullopt;
     };
-    steps = integrate::march(grid, dt, step, find_nonfinite, observe, o.control).steps;
+    steps = integrate::march(grid, dt, step, find_nonfinite, observe, control).steps;
   }
 
   RunSummary& s = r.summary;
@@ -883,6 +1054,11 @@ RunResult Model::Impl::run_free(const Method& method, const RunOptions& o) const
     const std::string& n = free[i].name;
     s.diagnostics.emplace_back(n + (free[i].top ? ".L_vertical_max_change" : ".L_norm_max_change"), max_change(L[i]));
     s.diagnostics.emplace_back(n + ".orthonormality_max", ortho[i]);
+  }
+  if (with_metrics) {
+    std::vector<std::pair<std::string, std::vector<double>>> drift = {{"energy", energy}};
+    for (std::size_t i = 0; i < free.size(); ++i) drift.emplace_back(free[i].name + ".L", L[i]);
+    s.metrics = metrics_of(recorder, drift);
   }
   return r;
 }

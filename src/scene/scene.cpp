@@ -493,6 +493,108 @@ void parse_pose(const Parser& p, const toml::table& t, const std::string& contex
   }
 }
 
+// [[output.metrics]]: every key checked, and the keys a kind does not take refused by name.
+void parse_metrics(const Parser& p, const toml::node& node, std::vector<MetricSpec>& out) {
+  using Kind = MetricSpec::Kind;
+  static const std::vector<std::pair<std::string, Kind>> kKinds = {
+      {"crossing", Kind::kCrossing}, {"extremum", Kind::kExtremum}, {"period", Kind::kPeriod},
+      {"max", Kind::kMax},           {"min", Kind::kMin},           {"final", Kind::kFinal},
+      {"drift", Kind::kDrift}};
+  const toml::array* a = node.as_array();
+  if (a == nullptr) {
+    p.fail(node, fmt::format("[output] metrics must be an array of tables, written [[output.metrics]], "
+                             "got {}",
+                             Parser::type_name(node)));
+  }
+  std::size_t i = 0;
+  for (const toml::node& e : *a) {
+    ++i;
+    const std::string ctx = fmt::format("[[output.metrics]] entry {}", i);
+    const toml::table& t = p.table(e, ctx);
+    p.check_keys(t, ctx, {"name", "kind", "column", "value", "direction", "k", "extremum", "report", "unit"});
+    MetricSpec m;
+    m.where = p.where(e.source());
+    m.name = p.identifier(p.required(t, e.source(), "name", ctx), ctx + " name");
+    for (const MetricSpec& other : out) {
+      if (other.name == m.name) {
+        p.fail(*t.get("name"), fmt::format("{}: a metric named '{}' is already defined (at {}:{}); "
+                                           "metric names must be distinct",
+                                           ctx, m.name, other.where.line, other.where.column));
+      }
+    }
+    const std::string what = fmt::format("metric '{}'", m.name);
+    const toml::node& kind_node = p.required(t, e.source(), "kind", what);
+    const std::string kind = p.string(kind_node, what + " kind");
+    std::vector<std::string> kinds;
+    for (const auto& [n, k] : kKinds) kinds.push_back(n);
+    const auto found = std::find_if(kKinds.begin(), kKinds.end(), [&](const auto& nk) { return nk.first == kind; });
+    if (found == kKinds.end()) {
+      p.fail(kind_node, fmt::format("{}: unknown kind '{}'{}; expected one of: {}", what, kind,
+                                    did_you_mean_hint(kind, kinds), fmt::join(kinds, ", ")));
+    }
+    m.kind = found->second;
+    const toml::node& column = p.required(t, e.source(), "column", what);
+    m.column = p.string(column, what + " column");
+    m.column_where = p.where(column.source());
+    // the keys each kind takes beyond name, kind, column and unit
+    auto only_for = [&](const char* key, std::initializer_list<Kind> takes, const char* kinds_text) {
+      const toml::node* n = t.get(key);
+      if (n != nullptr && std::find(takes.begin(), takes.end(), m.kind) == takes.end()) {
+        p.fail(*n, fmt::format("{}: '{}' goes with kind {}, not '{}'", what, key, kinds_text, kind));
+      }
+      return n;
+    };
+    if (auto n = only_for("value", {Kind::kCrossing, Kind::kPeriod}, "crossing or period")) {
+      m.level = p.number(*n, what + " value");
+    }
+    m.direction = m.kind == Kind::kPeriod ? MetricSpec::Direction::kUp : MetricSpec::Direction::kAny;
+    if (auto n = only_for("direction", {Kind::kCrossing, Kind::kPeriod}, "crossing or period")) {
+      const std::string d = p.string(*n, what + " direction");
+      if (d == "up") {
+        m.direction = MetricSpec::Direction::kUp;
+      } else if (d == "down") {
+        m.direction = MetricSpec::Direction::kDown;
+      } else if (d == "any") {
+        m.direction = MetricSpec::Direction::kAny;
+      } else {
+        p.fail(*n, fmt::format("{}: direction '{}' is not one of up (from below the value to above), "
+                               "down, any{}",
+                               what, d, did_you_mean_hint(d, {"up", "down", "any"})));
+      }
+    }
+    if (auto n = only_for("k", {Kind::kCrossing, Kind::kExtremum, Kind::kPeriod}, "crossing, extremum or period")) {
+      const auto* k = n->as_integer();
+      if (k == nullptr || k->get() < 1 || k->get() > 1'000'000'000) {
+        p.fail(*n, fmt::format("{}: k must be a whole number from 1 (the first event) to 1e9, got {}", what,
+                               k == nullptr ? std::string(Parser::type_name(*n)) : fmt::format("{}", k->get())));
+      }
+      m.k = static_cast<std::size_t>(k->get());
+    } else if (m.kind != Kind::kPeriod) {
+      m.k = 1;
+    }
+    if (auto n = only_for("extremum", {Kind::kExtremum}, "extremum")) {
+      const std::string x = p.string(*n, what + " extremum");
+      if (x != "max" && x != "min") {
+        p.fail(*n, fmt::format("{}: extremum '{}' is not max or min{}", what, x, did_you_mean_hint(x, {"max", "min"})));
+      }
+      m.maximum = x == "max";
+    }
+    if (auto n = only_for("report", {Kind::kExtremum}, "extremum")) {
+      const std::string r = p.string(*n, what + " report");
+      if (r != "time" && r != "value") {
+        p.fail(*n, fmt::format("{}: report '{}' is not time (s) or value (the column's){}", what, r,
+                               did_you_mean_hint(r, {"time", "value"})));
+      }
+      m.report_value = r == "value";
+    }
+    if (auto n = t.get("unit")) {
+      m.unit = p.string(*n, what + " unit");
+      m.unit_given = true;
+    }
+    out.push_back(std::move(m));
+  }
+}
+
 Scene parse_document(const toml::table& root, const Parser& p) {
   Scene s;
   s.file = p.file();
@@ -645,7 +747,8 @@ Scene parse_document(const toml::table& root, const Parser& p) {
 
   if (auto n = root.get("output")) {
     const toml::table& ot = p.table(*n, "[output]");
-    p.check_keys(ot, "[output]", {"directory", "formats", "quantities", "max_memory"});
+    p.check_keys(ot, "[output]", {"directory", "formats", "quantities", "max_memory", "metrics"});
+    if (auto m = ot.get("metrics")) parse_metrics(p, *m, s.output.metrics);
     if (auto m = ot.get("max_memory")) {
       s.output.max_memory_where = p.where(m->source());
       if (auto i = m->as_integer(); i != nullptr && i->get() > 0) {
@@ -819,28 +922,190 @@ Scene load_scene(const std::filesystem::path& file) {
   return parse_scene(text, file);
 }
 
+namespace {
+
+// The [simulation] keys an override may set.
+const Keys kSimulationOverrides = {"t_end", "dt", "tolerance", "output_dt", "integrator"};
+// A free body's initial state: the file's key and its short alias (the same setting).
+const std::array<std::pair<const char*, const char*>, 4> kFreeBodyOverrides = {{
+    {"initial_position", "position"},
+    {"initial_velocity", "velocity"},
+    {"angular_velocity", "omega"},
+    {"initial_quaternion", "quaternion"},
+}};
+
+std::string trimmed(std::string_view s) {
+  const auto b = s.find_first_not_of(" \t");
+  if (b == std::string_view::npos) return {};
+  const auto e = s.find_last_not_of(" \t");
+  return std::string(s.substr(b, e - b + 1));
+}
+
+// A scalar value as the file would hold it: a number, or an expression of the parameters.
+Expression override_expression(const std::string& value, const std::string& assignment) {
+  Expression e{value, {fmt::format("override '{}'", assignment), 0, 0}, std::nullopt, false};
+  double v = 0;
+  const auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), v);
+  if (ec == std::errc() && end == value.data() + value.size() && std::isfinite(v)) e.number = v;
+  return e;
+}
+
+// A vector value "[a, b, c]" of `size` finite numbers, read as a TOML array.
+template <std::size_t N>
+std::array<double, N> override_vector(const std::string& value, const std::string& assignment,
+                                      const std::string& what) {
+  auto refuse = [&](const std::string& why) -> std::array<double, N> {
+    throw Error(fmt::format("override '{}': {} {}; expected {} numbers such as [{}]", assignment, what, why, N,
+                            N == 3 ? "0, 1, 0" : "1, 0, 0, 0"));
+  };
+  toml::table t;
+  try {
+    t = toml::parse("v = " + value);
+  } catch (const toml::parse_error&) {
+    return refuse(fmt::format("'{}' is not an array", value));
+  }
+  const toml::array* a = t.get("v") != nullptr ? t.get("v")->as_array() : nullptr;
+  if (a == nullptr) return refuse(fmt::format("'{}' is not an array", value));
+  if (a->size() != N) return refuse(fmt::format("has {} elements", a->size()));
+  std::array<double, N> out{};
+  for (std::size_t i = 0; i < N; ++i) {
+    const toml::node* e = a->get(i);
+    // an integer or a float (toml++ converts an integer that a double holds exactly)
+    const std::optional<double> v = e != nullptr && e->is_number() ? e->value<double>() : std::nullopt;
+    if (!v || !std::isfinite(*v)) return refuse(fmt::format("element {} is not a finite number", i + 1));
+    out[i] = *v;
+  }
+  return out;
+}
+
+const Coordinate* find_coordinate(const Scene& s, std::string_view name) {
+  for (const Coordinate& c : s.coordinates) {
+    if (c.name == name) return &c;
+  }
+  return nullptr;
+}
+
+Body* find_free_body(Scene& s, std::string_view name) {
+  for (Body& b : s.bodies) {
+    if (b.free && b.name == name) return &b;
+  }
+  return nullptr;
+}
+
+std::string free_body_names_text(const std::string& body) {
+  std::vector<std::string> names;
+  for (const auto& [key, alias] : kFreeBodyOverrides) names.push_back(fmt::format("'{}.{}'", body, alias));
+  return fmt::format("{}", fmt::join(names, ", "));
+}
+
+}  // namespace
+
+std::vector<std::string> override_names(const Scene& scene) {
+  std::vector<std::string> names;
+  for (const Parameter& p : scene.parameters) names.push_back(p.name);
+  for (const std::string& k : kSimulationOverrides) names.push_back("simulation." + k);
+  for (const Coordinate& c : scene.coordinates) {
+    names.push_back(c.name + ".initial");
+    names.push_back(c.name + ".velocity");
+  }
+  for (const Body& b : scene.bodies) {
+    if (!b.free) continue;
+    for (const auto& [key, alias] : kFreeBodyOverrides) {
+      names.push_back(b.name + "." + key);
+      names.push_back(b.name + "." + alias);
+    }
+  }
+  return names;
+}
+
 void apply_overrides(Scene& scene, const std::vector<std::string>& assignments) {
   for (const std::string& a : assignments) {
     const auto eq = a.find('=');
-    if (eq == std::string::npos || eq == 0 || eq + 1 == a.size()) {
-      throw Error(fmt::format("parameter override '{}' is not of the form name=value", a));
+    const std::string name = eq == std::string::npos ? std::string() : trimmed(std::string_view(a).substr(0, eq));
+    const std::string value = eq == std::string::npos ? std::string() : trimmed(std::string_view(a).substr(eq + 1));
+    if (name.empty() || value.empty()) {
+      throw Error(fmt::format("override '{}' is not of the form name=value (e.g. theta.initial=0.2, "
+                              "simulation.t_end=20)",
+                              a));
     }
-    const std::string name = a.substr(0, eq);
-    const std::string value = a.substr(eq + 1);
-    auto it = std::find_if(scene.parameters.begin(), scene.parameters.end(),
-                           [&](const Parameter& p) { return p.name == name; });
-    if (it == scene.parameters.end()) {
-      std::vector<std::string> names;
-      for (const auto& p : scene.parameters) names.push_back(p.name);
-      std::string hint;
-      if (auto g = did_you_mean(name, names)) hint = fmt::format("; did you mean '{}'?", *g);
-      throw Error(fmt::format("parameter override '{}': the scene has no parameter '{}'{} (parameters: {})", a,
-                              name, hint, names.empty() ? std::string("none") : fmt::format("{}", fmt::join(names, ", "))));
+    // a parameter by its plain name
+    auto param = std::find_if(scene.parameters.begin(), scene.parameters.end(),
+                              [&](const Parameter& p) { return p.name == name; });
+    if (param != scene.parameters.end()) {
+      param->value = override_expression(value, a);
+      continue;
     }
-    it->value = Expression{value, {fmt::format("override '{}'", a), 0, 0}, std::nullopt, false};
-    double v = 0;
-    const auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), v);
-    if (ec == std::errc() && end == value.data() + value.size() && std::isfinite(v)) it->value.number = v;
+    const auto dot = name.find('.');
+    const std::string owner = name.substr(0, dot);
+    const std::string key = dot == std::string::npos ? std::string() : name.substr(dot + 1);
+    if (dot != std::string::npos && owner == "simulation" &&
+        std::find(kSimulationOverrides.begin(), kSimulationOverrides.end(), key) != kSimulationOverrides.end()) {
+      Simulation& sim = scene.simulation;
+      if (key == "integrator") {
+        std::string v = value;
+        if (v.size() >= 2 && (v.front() == '"' || v.front() == '\'') && v.back() == v.front()) v = v.substr(1, v.size() - 2);
+        sim.integrator = v;
+      } else if (key == "t_end") {
+        sim.t_end = override_expression(value, a);
+      } else if (key == "dt") {
+        sim.dt = override_expression(value, a);
+      } else if (key == "tolerance") {
+        sim.tolerance = override_expression(value, a);
+      } else {
+        sim.output_dt = override_expression(value, a);
+      }
+      continue;
+    }
+    if (dot != std::string::npos && (key == "initial" || key == "velocity")) {
+      if (auto it = std::find_if(scene.coordinates.begin(), scene.coordinates.end(),
+                                 [&](const Coordinate& c) { return c.name == owner; });
+          it != scene.coordinates.end()) {
+        (key == "initial" ? it->initial : it->velocity) = override_expression(value, a);
+        continue;
+      }
+    }
+    if (Body* b = dot != std::string::npos ? find_free_body(scene, owner) : nullptr) {
+      const auto setting = std::find_if(kFreeBodyOverrides.begin(), kFreeBodyOverrides.end(),
+                                        [&](const auto& ka) { return key == ka.first || key == ka.second; });
+      if (setting != kFreeBodyOverrides.end()) {
+        const std::string what = fmt::format("{}.{}", owner, setting->first);
+        if (setting == kFreeBodyOverrides.begin()) {
+          b->initial_position = override_vector<3>(value, a, what);
+        } else if (setting == kFreeBodyOverrides.begin() + 1) {
+          b->initial_velocity = override_vector<3>(value, a, what);
+        } else if (setting == kFreeBodyOverrides.begin() + 2) {
+          b->angular_velocity = override_vector<3>(value, a, what);
+        } else {
+          const auto q = override_vector<4>(value, a, what + " (w, x, y, z)");
+          const double norm = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+          if (std::abs(norm - 1.0) > 1e-9) {
+            throw Error(fmt::format("override '{}': {} has norm {}; expected a unit quaternion (|q| "
+                                    "within 1e-9 of 1)",
+                                    a, what, norm));
+          }
+          b->initial_orientation = q;
+        }
+        continue;
+      }
+    }
+    // unknown: say what the name is if it names something that is set through its keys
+    const std::vector<std::string> names = override_names(scene);
+    std::string why;
+    if (find_coordinate(scene, name) != nullptr) {
+      why = fmt::format("'{}' is a coordinate: set '{}.initial' or '{}.velocity'", name, name, name);
+    } else if (find_free_body(scene, name) != nullptr) {
+      why = fmt::format("'{}' is a free body: set {}", name, free_body_names_text(name));
+    } else if (name == "simulation") {
+      why = fmt::format("set one of its keys: simulation.{}", fmt::join(kSimulationOverrides, ", simulation."));
+    } else {
+      const bool is_body = std::any_of(scene.bodies.begin(), scene.bodies.end(), [&](const Body& b) { return b.name == owner; });
+      why = fmt::format("the scene has no parameter, setting or initial condition '{}'{}", name,
+                        did_you_mean_hint(name, names));
+      if (is_body && find_free_body(scene, owner) == nullptr) {
+        why += fmt::format(" (body '{}' is posed by the coordinates: set their initial values)", owner);
+      }
+    }
+    throw Error(fmt::format("override '{}': {} (names: {})", a, why, fmt::join(names, ", ")));
   }
 }
 

@@ -1,5 +1,7 @@
 #include "rigid/integrate/integrator.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -159,6 +161,49 @@ TEST(Integrator, Dopri5EveryStepRowsAreCapped) {
                      "dopri5 without an output spacing records every step: more than 10 rows");
   o.output_dt = 1.0;  // 11 rows on a grid: the cap is the front end's to check before the run
   EXPECT_EQ(integrate(oscillator(10.0), o).t.size(), 11u);
+}
+
+}  // namespace
+}  // namespace rigid::integrate
+
+namespace rigid::integrate {
+namespace {
+
+// Every accepted step reaches control.on_step: the spans tile [t0, t_end] in order, the state
+// is the step's end, and dopri5's dense output inside a step is the solution to its tolerance
+// (cos t at the step's midpoint within 1e-8 at rtol = atol = 1e-10: the continuous extension
+// is one order below the step, and a step at this tolerance is ~0.05 s).
+TEST(Integrator, OnStepSeesEveryStepWithItsStateAndDenseOutput) {
+  for (Method m : {Method::kRk4, Method::kDopri5, Method::kImplicitMidpoint, Method::kStormerVerlet}) {
+    SCOPED_TRACE(to_string(m));
+    Options o{.method = m, .dt = 1e-2, .output_dt = 0.25};
+    std::size_t seen = 0;
+    double reached = 0.0, worst = 0.0;
+    o.control.on_step = [&](const StepView& v) {
+      ++seen;
+      EXPECT_NEAR(v.t0, reached, 1e-15);  // t0 + j·h against the last step's t + h: round-off
+      EXPECT_GT(v.t1, v.t0);
+      reached = v.t1;
+      ASSERT_EQ(v.y.size(), 2u);
+      if (v.dense) {
+        std::array<double, 2> mid{};
+        const double tm = 0.5 * (v.t0 + v.t1);
+        v.dense(tm, mid);
+        worst = std::max(worst, std::abs(mid[0] - std::cos(tm)));
+      }
+    };
+    const Solution s = integrate(oscillator(2.0), o);
+    EXPECT_EQ(seen, s.steps);
+    // the last fixed step ends on t_end; dopri5's may pass it (its dense output closes the run)
+    if (m == Method::kDopri5) {
+      EXPECT_GE(reached, 2.0);
+    } else {
+      EXPECT_EQ(reached, 2.0);
+    }
+    if (m == Method::kDopri5) {
+      EXPECT_LT(worst, 1e-8);
+    }
+  }
 }
 
 }  // namespace

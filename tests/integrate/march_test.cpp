@@ -3,6 +3,7 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -122,6 +123,26 @@ TEST(March, CancelFlagIsReadEveryStep) {
   EXPECT_THAT([&] { (void)march(g, 1e-3, step, kNoNonFinite, [](std::size_t, double) {}, stop); },
               ::testing::ThrowsMessage<Cancelled>(::testing::HasSubstr("cancelled at t = 0.007")));
   EXPECT_EQ(steps, 7);
+}
+
+}  // namespace
+}  // namespace rigid::integrate
+
+namespace rigid::integrate {
+namespace {
+
+// control.on_step sees each step after its finiteness check: the spans tile the grid.
+TEST(March, OnStepSeesEveryStepInOrder) {
+  const TimeGrid grid = TimeGrid::uniform(0.0, 1.0, 0.3);
+  std::vector<std::pair<double, double>> spans;
+  MarchControl control;
+  control.on_step = [&](const StepView& v) { spans.emplace_back(v.t0, v.t1); };
+  const MarchStats stats = march(grid, 0.1, [](double, double) {}, kNoNonFinite, [](std::size_t, double) {}, control);
+  ASSERT_EQ(spans.size(), stats.steps);
+  EXPECT_EQ(spans.front().first, 0.0);
+  EXPECT_EQ(spans.back().second, 1.0);
+  // t0 + j·h against the previous step's t + h: equal up to round-off
+  for (std::size_t i = 1; i < spans.size(); ++i) EXPECT_NEAR(spans[i].first, spans[i - 1].second, 1e-15);
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -48,6 +49,24 @@ TEST(RunOutput, SummaryJsonHoldsTheRunAndTheLastRow) {
   EXPECT_EQ(j["columns"].size(), 2u);
   EXPECT_FALSE(j.contains("tolerance"));  // fixed-step: no tolerance
   EXPECT_EQ(j["warnings"][0], "a warning");
+}
+
+// Metrics in file order, each {value, unit}; an event that did not happen is null (JSON has no
+// NaN) with its note; a run without metrics has no "metrics" key.
+TEST(RunOutput, SummaryJsonHoldsTheMetricsWithUnitsAndNotes) {
+  EXPECT_FALSE(nlohmann::json::parse(summary_json(sample_run())).contains("metrics"));
+  RunResult r = sample_run();
+  r.summary.metrics = {{"period", 1.75, "s", ""}, {"z", 0.5, "", ""},
+                       {"third", std::numeric_limits<double>::quiet_NaN(), "s", "2 crossing(s)"}};
+  const auto j = nlohmann::ordered_json::parse(summary_json(r));
+  ASSERT_EQ(j["metrics"].size(), 3u);
+  EXPECT_EQ(j["metrics"].begin().key(), "period");
+  EXPECT_EQ(j["metrics"]["period"]["value"].get<double>(), 1.75);
+  EXPECT_EQ(j["metrics"]["period"]["unit"], "s");
+  EXPECT_FALSE(j["metrics"]["period"].contains("note"));
+  EXPECT_EQ(j["metrics"]["z"]["unit"], "");
+  EXPECT_TRUE(j["metrics"]["third"]["value"].is_null());
+  EXPECT_EQ(j["metrics"]["third"]["note"], "2 crossing(s)");
 }
 
 TEST(RunOutput, WritesTheChosenFilesIntoANewDirectory) {

@@ -1,5 +1,7 @@
 #include "rigid/scene/scene.hpp"
 
+#include <algorithm>
+#include <array>
 #include <filesystem>
 #include <fstream>
 
@@ -182,8 +184,62 @@ TEST(Scene, OverridesReplaceParameters) {
   EXPECT_EQ(s.parameters[2].value.text, "pi/6");
   EXPECT_FALSE(s.parameters[2].value.number.has_value());
   EXPECT_RIGID_ERROR(apply_overrides(s, {"rr=1"}),
-                     "parameter override 'rr=1': the scene has no parameter 'rr'; did you mean 'r'?");
-  EXPECT_RIGID_ERROR(apply_overrides(s, {"r"}), "parameter override 'r' is not of the form name=value");
+                     "override 'rr=1': the scene has no parameter, setting or initial condition 'rr'; did "
+                     "you mean 'r'?");
+  EXPECT_RIGID_ERROR(apply_overrides(s, {"r"}), "override 'r' is not of the form name=value");
+}
+
+// Settings and initial conditions are named as the file nests them.
+TEST(Scene, OverridesSetSimulationSettingsAndInitialConditions) {
+  Scene s = parse_scene(kRolling, "roll.toml");
+  apply_overrides(s, {"simulation.t_end=20", "simulation.tolerance = 1e-12", "simulation.integrator=dopri5",
+                      "simulation.output_dt=0.1", "simulation.dt=2*r", "s.initial=0.2", "s.velocity=-1"});
+  EXPECT_EQ(s.simulation.t_end.number, 20.0);
+  ASSERT_TRUE(s.simulation.tolerance.has_value());
+  EXPECT_EQ(s.simulation.tolerance->number, 1e-12);
+  EXPECT_EQ(s.simulation.integrator, "dopri5");
+  EXPECT_EQ(s.simulation.output_dt->number, 0.1);
+  EXPECT_EQ(s.simulation.dt->text, "2*r");
+  EXPECT_EQ(s.coordinates[0].initial.number, 0.2);
+  EXPECT_EQ(s.coordinates[0].velocity.number, -1.0);
+}
+
+// `--set theta=0.2` said "the scene has no parameter 'theta'": a coordinate named alone says
+// how to set it.
+TEST(Scene, OverrideOfACoordinateNamesItsInitialConditions) {
+  Scene s = parse_scene(kRolling, "roll.toml");
+  EXPECT_RIGID_ERROR(apply_overrides(s, {"s=0.2"}), "override 's=0.2': 's' is a coordinate: set 's.initial' or 's.velocity'");
+  EXPECT_RIGID_ERROR(apply_overrides(s, {"simulation.t_edn=3"}), "did you mean 'simulation.t_end'?");
+  EXPECT_RIGID_ERROR(apply_overrides(s, {"s.inital=3"}), "did you mean 's.initial'?");
+  EXPECT_RIGID_ERROR(apply_overrides(s, {"wheel.omega=[1,2,3]"}), "body 'wheel' is posed by the coordinates");
+}
+
+TEST(Scene, OverridesSetAFreeBodysInitialState) {
+  Scene s = parse_scene(R"toml(
+[[bodies]]
+name = "racket"
+free = true
+inertia = {mass = 0.35, ixx = 1, iyy = 2, izz = 3}
+angular_velocity = [0.01, 1, 0.01]
+[simulation]
+t_end = 1
+)toml",
+                        "racket.toml");
+  apply_overrides(s, {"racket.omega=[0.02, 1, 0.01]", "racket.initial_velocity=[1,2,3]", "racket.position=[0,0,1.5]",
+                      "racket.quaternion=[0, 1, 0, 0]"});
+  EXPECT_EQ(s.bodies[0].angular_velocity, (std::array<double, 3>{0.02, 1, 0.01}));
+  EXPECT_EQ(s.bodies[0].initial_velocity, (std::array<double, 3>{1, 2, 3}));
+  EXPECT_EQ(s.bodies[0].initial_position, (std::array<double, 3>{0, 0, 1.5}));
+  EXPECT_EQ(s.bodies[0].initial_orientation, (std::array<double, 4>{0, 1, 0, 0}));
+  EXPECT_RIGID_ERROR(apply_overrides(s, {"racket.omega=[1, 2]"}),
+                     "override 'racket.omega=[1, 2]': racket.angular_velocity has 2 elements; expected 3 numbers");
+  EXPECT_RIGID_ERROR(apply_overrides(s, {"racket.omega=1"}), "racket.angular_velocity '1' is not an array");
+  EXPECT_RIGID_ERROR(apply_overrides(s, {"racket.omega=[1, nan, 0]"}), "element 2 is not a finite number");
+  EXPECT_RIGID_ERROR(apply_overrides(s, {"racket.quaternion=[1, 1, 0, 0]"}), "expected a unit quaternion");
+  EXPECT_RIGID_ERROR(apply_overrides(s, {"racket=1"}), "'racket' is a free body: set 'racket.position'");
+  const std::vector<std::string> names = override_names(s);
+  EXPECT_NE(std::find(names.begin(), names.end(), "racket.omega"), names.end());
+  EXPECT_NE(std::find(names.begin(), names.end(), "simulation.t_end"), names.end());
 }
 
 TEST(Scene, DidYouMeanOnlyForCloseWords) {

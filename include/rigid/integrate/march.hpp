@@ -70,6 +70,19 @@ class TimeGrid {
   std::vector<double> outputs_;
 };
 
+/// One accepted step as an observer of every step sees it: its span, and the state and the
+/// method's continuous extension when the stepping code has them.
+struct StepView {
+  double t0 = 0;  ///< start of the step (s)
+  double t1 = 0;  ///< end of the step (s)
+  /// The state at t1 when it is one vector (rigid::integrate::integrate's y); empty when the
+  /// caller keeps the state itself (free bodies read it from their own variables).
+  std::span<const double> y{};
+  /// The method's dense output on [t0, t1]: writes y(t) into `out` (the size of y). Empty when
+  /// the method has none (fixed-step methods); dopri5 has its 4th-order continuous extension.
+  std::function<void(double t, std::span<double> out)> dense{};
+};
+
 /// How a march reports progress and is stopped. Default: silent and unstoppable.
 struct MarchControl {
   /// Called with the simulated time reached (s) after every output time and at least every
@@ -83,6 +96,10 @@ struct MarchControl {
   /// Most output rows a run may record when their number is not known before it runs (dopri5
   /// sampling every step): a memory guard, set by the front end from its memory limit.
   std::size_t max_outputs = TimeGrid::kMaxOutputs;
+  /// When set, called after every accepted step whose state passed the finiteness check,
+  /// before the step's output (if it ends an interval) is observed: events between output
+  /// times (a scene's metrics) are found here, at the resolution of the steps. It may throw.
+  std::function<void(const StepView& step)> on_step{};
   /// Steps between two polls inside a long output interval.
   static constexpr std::size_t kPollSteps = 1024;
 };
@@ -122,6 +139,7 @@ void poll(const MarchControl& control, double t);
 ///    (std::optional<NonFinite>), checked after every step;
 ///  - `observe(k, t)` records output k at its time t (output times are exact grid values; the
 ///    last step of an interval lands on it).
+/// After each step (and its check) control.on_step, when set, sees the step's span.
 /// Steps between outputs follow TimeGrid::steps_in; the time inside an interval is
 /// before(k) + j·h. Returns the number of steps.
 /// @throws rigid::Error for a non-positive or non-finite h_max, a step count above
@@ -145,6 +163,7 @@ MarchStats march(const TimeGrid& grid, double h_max, Step&& step, FindNonFinite&
       if (auto bad = find_nonfinite()) [[unlikely]] {
         throw_nonfinite(*bad, stats.steps, j + 1 == n ? t1 : t + h, h);
       }
+      if (control.on_step) control.on_step(StepView{t, j + 1 == n ? t1 : t + h});
       if (++since_poll == MarchControl::kPollSteps) [[unlikely]] {
         since_poll = 0;
         poll(control, t + h);

@@ -17,6 +17,15 @@
 
 namespace rigid::io {
 
+/// A scalar a run reports (a scene's [outputs] metric): name, value (NaN when the event did not
+/// happen in the run, with `note` saying so), SI unit ("" when dimensionless).
+struct Metric {
+  std::string name;
+  double value = 0;
+  std::string unit;
+  std::string note;
+};
+
 /// What a run measured, for summary.json and the printed summary. Units SI.
 struct RunSummary {
   std::string scene;       ///< the scene file (as given), or empty
@@ -33,6 +42,7 @@ struct RunSummary {
   /// Conservation and constraint diagnostics, name → value (see docs/scene-format.md).
   std::vector<std::pair<std::string, double>> diagnostics;
   std::vector<std::string> warnings;
+  std::vector<Metric> metrics;  ///< the scene's [outputs] metrics, in file order
 };
 
 /// A run's trajectory (one row per output time, column `t` first) and its summary.
@@ -52,7 +62,8 @@ enum class OutputFormat { kCsv, kNpy, kJson };
 [[nodiscard]] std::string_view file_name(OutputFormat format);
 
 /// summary.json: scene, kind, integrator and its statistics, wall time, parameters,
-/// diagnostics, the columns of the trajectory and the values of its last row, warnings.
+/// diagnostics, metrics (`"metrics": {name: {"value": v, "unit": u}}`, plus `"note"` when the
+/// value is NaN because its event did not happen; a NaN value is written as null), the columns of the trajectory and the values of its last row, warnings.
 /// Doubles in their shortest round-trip form.
 [[nodiscard]] std::string summary_json(const RunResult& result);
 

@@ -141,6 +141,28 @@ struct Simulation {
   SourceLocation where;
 };
 
+/// A scalar a run reports, from `[[output.metrics]]` (docs/scene-format.md, "Metrics").
+struct MetricSpec {
+  enum class Kind { kCrossing, kExtremum, kPeriod, kMax, kMin, kFinal, kDrift };
+  enum class Direction { kUp, kDown, kAny };
+  std::string name;
+  Kind kind = Kind::kFinal;
+  /// The trajectory column it reads (drift: "energy", "jacobi" or "<body>.L", the norm of a
+  /// free body's angular momentum).
+  std::string column;
+  double level = 0;  ///< crossing, period: the zeros of column − level
+  Direction direction = Direction::kAny;  ///< crossing (default any), period (default up)
+  /// crossing, extremum: which event (1 = the first); period: which interval between successive
+  /// crossings (unset: their mean).
+  std::optional<std::size_t> k;
+  bool maximum = true;         ///< extremum: of a maximum (true) or a minimum
+  bool report_value = false;   ///< extremum: its value instead of its time
+  std::string unit;            ///< as given by `unit` (empty: derived from the column)
+  bool unit_given = false;
+  SourceLocation where;         ///< the metric's table
+  SourceLocation column_where;  ///< its `column` value
+};
+
 /// `[output]`.
 struct Output {
   /// relative to the working directory; empty: "out/<scene file stem>"
@@ -154,6 +176,8 @@ struct Output {
   /// the front end's value or rigid::io::kDefaultMaxMemory.
   std::optional<std::uint64_t> max_memory;
   SourceLocation max_memory_where;
+  /// `[[output.metrics]]`, in file order.
+  std::vector<MetricSpec> metrics;
 };
 
 /// A whole scene as written, checked for structure, types and names but not yet turned
@@ -194,10 +218,20 @@ inline constexpr std::uintmax_t kMaxSceneFileBytes = std::uintmax_t{16} << 20;
 ///   /dev/zero, a pipe), larger than the cap, cannot be read, or cannot be parsed.
 [[nodiscard]] Scene load_scene(const std::filesystem::path& file);
 
-/// Replaces the values of parameters by `name=value` assignments (the command line's --set,
-/// Python's set=[...]).
-/// @throws rigid::Error for a malformed assignment or an unknown parameter name (with "did
-/// you mean").
+/// The names an override may set, as the scene file nests them: each parameter by its plain
+/// name, `simulation.<key>` (t_end, dt, tolerance, output_dt, integrator), `<coordinate>.initial`
+/// and `<coordinate>.velocity`, and for each free body `<body>.<key>` with key one of
+/// initial_position (alias position), initial_velocity (velocity), angular_velocity (omega),
+/// initial_quaternion (quaternion).
+[[nodiscard]] std::vector<std::string> override_names(const Scene& scene);
+
+/// Applies `name=value` assignments (the command line's --set, Python's set=[...], a sweep's
+/// grid): a parameter, a [simulation] setting or an initial condition, named as
+/// override_names() lists them. A scalar value is a number or an expression of the parameters
+/// (as the file would hold it); a vector value is `[a, b, c]` (numbers); integrator a name.
+/// @throws rigid::Error naming the assignment for a malformed one, an unknown name (with "did
+///   you mean" and, for a coordinate or body named alone, the names that set it), a value of
+///   the wrong shape or a non-finite number.
 void apply_overrides(Scene& scene, const std::vector<std::string>& assignments);
 
 }  // namespace rigid::scene
