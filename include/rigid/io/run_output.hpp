@@ -17,6 +17,15 @@
 
 namespace rigid::io {
 
+/// A scalar a run reports (a scene's [outputs] metric): name, value (NaN when the event did not
+/// happen in the run, with `note` saying so), SI unit ("" when dimensionless).
+struct Metric {
+  std::string name;
+  double value = 0;
+  std::string unit;
+  std::string note;
+};
+
 /// What a run measured, for summary.json and the printed summary. Units SI.
 struct RunSummary {
   std::string scene;       ///< the scene file (as given), or empty
@@ -33,6 +42,7 @@ struct RunSummary {
   /// Conservation and constraint diagnostics, name → value (see docs/scene-format.md).
   std::vector<std::pair<std::string, double>> diagnostics;
   std::vector<std::string> warnings;
+  std::vector<Metric> metrics;  ///< the scene's [outputs] metrics, in file order
 };
 
 /// A run's trajectory (one row per output time, column `t` first) and its summary.
