@@ -302,11 +302,10 @@ std::vector<std::string> swept_names(const SweepSpec& spec) {
 }
 
 std::vector<double> run_values(const SweepSpec& spec, std::size_t index) {
-  std::vector<double> values;
   if (!spec.grid.empty()) {
     // mixed radix, the last axis fastest (the order of nested loops, of numpy's meshgrid
     // with indexing="ij" flattened in C order)
-    values.resize(spec.grid.size());
+    std::vector<double> values(spec.grid.size(), 0.0);
     std::size_t rest = index;
     for (std::size_t k = spec.grid.size(); k-- > 0;) {
       const GridAxis& g = spec.grid[k];
@@ -323,6 +322,8 @@ std::vector<double> run_values(const SweepSpec& spec, std::size_t index) {
     }
     return values;
   }
+  std::vector<double> values;
+  values.reserve(spec.sample.size());
   for (std::size_t k = 0; k < spec.sample.size(); ++k) {
     values.push_back(sample_value(spec.sample[k], counter_uniform(spec.seed, index, k)));
   }
@@ -619,7 +620,7 @@ SweepOutputs make_outputs(const std::vector<std::string>& names, std::size_t run
     columns.push_back(result_columns.back());
   }
 
-  SweepOutputs out{.numbers = io::Table(columns)};
+  SweepOutputs out{.numbers = io::Table(columns), .errors = {}, .summary_json = {}};
   std::vector<double> line(columns.size());
   std::vector<std::vector<double>> per_column(result_names.size());
   std::size_t failures = 0;
