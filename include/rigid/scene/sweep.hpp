@@ -33,7 +33,7 @@ namespace rigid::scene {
 /// One axis of a grid: `count` equally spaced values from `start` to `stop`, both included
 /// (count 1: start alone).
 struct GridAxis {
-  std::string name;
+  std::string name{};
   double start = 0;
   double stop = 0;
   std::size_t count = 1;
@@ -44,7 +44,7 @@ enum class Distribution { kUniform, kNormal, kLogUniform };
 /// One sampled value: uniform(a, b) on [a, b); normal(mu = a, sigma = b); loguniform(a, b),
 /// whose logarithm is uniform on [log a, log b).
 struct SampleAxis {
-  std::string name;
+  std::string name{};
   Distribution distribution = Distribution::kUniform;
   double a = 0;
   double b = 1;
@@ -53,8 +53,8 @@ struct SampleAxis {
 /// What a sweep runs: a grid (every combination of the axes, the first axis varying slowest)
 /// or `samples` Monte Carlo draws of the sample axes with `seed`; never both.
 struct SweepSpec {
-  std::vector<GridAxis> grid;
-  std::vector<SampleAxis> sample;
+  std::vector<GridAxis> grid{};
+  std::vector<SampleAxis> sample{};
   std::size_t samples = 0;
   std::uint64_t seed = 0;
 };
@@ -99,10 +99,10 @@ struct Shard {
 /// The result of one run.
 struct SweepRow {
   std::size_t index = 0;
-  std::vector<double> values;  ///< the swept values (swept_names order)
+  std::vector<double> values{};  ///< the swept values (swept_names order)
   /// The run's summary metrics, then its diagnostics (name, value); empty for a failed run.
-  std::vector<std::pair<std::string, double>> results;
-  std::string error;  ///< empty when the run succeeded
+  std::vector<std::pair<std::string, double>> results{};
+  std::string error{};  ///< empty when the run succeeded
 };
 
 /// A row as one line of JSON (no newline): {"run":…,"values":[…],"results":[[name,value],…],
@@ -114,10 +114,10 @@ struct SweepRow {
 /// What identifies a sweep: its scene file (bytes), the fixed overrides, the integrator and the
 /// spec. Two commands with the same description compute the same rows.
 struct SweepIdentity {
-  std::filesystem::path scene;
-  std::vector<std::string> set;  ///< overrides every run gets (before its own)
-  std::string integrator;        ///< empty: the scene's
-  SweepSpec spec;
+  std::filesystem::path scene{};
+  std::vector<std::string> set{};  ///< overrides every run gets (before its own)
+  std::string integrator{};      ///< empty: the scene's
+  SweepSpec spec{};
 };
 /// A readable, canonical description: the scene's content hash (FNV-1a 64, hex), the set, the
 /// integrator, the axes, samples and seed. @throws rigid::Error if the scene cannot be read.
@@ -196,8 +196,8 @@ void check_overrides(const SweepIdentity& identity);
 /// result names in index order; a name equal to an earlier column is prefixed "result.".
 struct SweepOutputs {
   io::Table numbers{{"run"}};
-  std::vector<std::string> errors;
-  std::string summary_json;
+  std::vector<std::string> errors{};
+  std::string summary_json{};
 };
 /// @throws rigid::Error if an index is missing, repeated (with different rows) or out of range.
 /// `names` are the swept names, `runs` the sweep's run count.
