@@ -62,6 +62,12 @@ class Ranks {
       size_ = static_cast<std::size_t>(s);
       mpi_ = true;
     }
+#else
+    if (env_size("OMPI_COMM_WORLD_SIZE", 1) > 1) {
+      throw Error("this rigid was built without MPI, so the processes mpirun started would each run the whole "
+                  "sweep into one directory; run it without mpirun (it uses the threads of its machine), with "
+                  "--shard I/N per process, or build rigid with MPI (Debian libopenmpi-dev)");
+    }
 #endif
   }
   ~Ranks() {
