@@ -78,6 +78,23 @@ class Ranks {
   Ranks(const Ranks&) = delete;
   Ranks& operator=(const Ranks&) = delete;
 
+  // A rank that stops (an error, Ctrl-C) while the others may be waiting in a collective call
+  // stops them all: the message, then MPI_Abort with the command's exit status. Without MPI (or
+  // with one rank) it returns and the error takes the usual way out.
+  void stop_all(const Error& e, int status) const {
+#ifdef RIGID_HAVE_MPI
+    if (mpi_ && size_ > 1) {
+      std::fprintf(stderr, "rigid: %s (rank %zu): %s\n", status == 130 ? "interrupted" : "error", rank_,
+                   word_for(Surface::kCli, e.what()).c_str());
+      std::fflush(stderr);
+      MPI_Abort(MPI_COMM_WORLD, status);
+    }
+#else
+    (void)e;
+    (void)status;
+#endif
+  }
+
   [[nodiscard]] std::size_t rank() const { return rank_; }
   [[nodiscard]] std::size_t size() const { return size_; }
   [[nodiscard]] bool root() const { return rank_ == 0; }
@@ -198,40 +215,12 @@ std::string paths_text(const std::vector<fs::path>& paths) {
   return fmt::format("{}", fmt::join(names, ", "));
 }
 
-}  // namespace
-
-void run_sweep(const SweepOptions& opts) {
-  scene::SweepIdentity id{.scene = opts.scene, .set = opts.set, .integrator = opts.integrator, .spec = parse_spec(opts)};
-  const scene::Shard shard = [&] {
-    if (opts.shard.empty()) return scene::Shard{};
-    try {
-      return scene::parse_shard(opts.shard);
-    } catch (const Error& e) {
-      throw Error(fmt::format("--shard: {}", e.what()));
-    }
-  }();
-  check_names(id);
+// The runs of this process (its shard's unfinished runs, its rank's share), the gather to rank 0
+// and rank 0's outputs.
+void sweep_on_ranks(const SweepOptions& opts, const scene::SweepIdentity& id, scene::Shard shard, const fs::path& dir,
+                    const Ranks& ranks, scene::Journal* journal, const std::vector<std::uint8_t>& finished) {
   const std::size_t runs = scene::run_count(id.spec);
   const auto names = scene::swept_names(id.spec);
-  const std::string description = scene::describe(id);
-  const fs::path dir = opts.output.empty() ? fs::path("out") / (fs::path(opts.scene).stem().string() + "-sweep")
-                                           : fs::path(opts.output);
-
-  const Ranks ranks;
-  // rank 0 owns the directory: it opens the journal and tells the others what is finished
-  std::unique_ptr<scene::Journal> journal;
-  std::string refused;
-  std::vector<std::uint8_t> finished(runs, 0);
-  if (ranks.root()) {
-    try {
-      journal = std::make_unique<scene::Journal>(dir, description, names, runs, shard);
-      for (const auto& r : journal->finished()) finished[r.index] = 1;
-    } catch (const Error& e) {
-      refused = e.what();
-    }
-  }
-  ranks.broadcast(refused, finished);
-  if (!refused.empty()) throw Error(refused);
 
   // this process's runs: the shard's unfinished runs, dealt round robin to the ranks
   std::vector<std::size_t> mine;
@@ -249,12 +238,11 @@ void run_sweep(const SweepOptions& opts) {
   if (opts.keep_trajectories) ro.keep_trajectories = dir / "runs";
   g_interrupted = false;
   ro.cancel = &g_interrupted;
-  std::size_t done = 0, failed_now = 0;
+  std::size_t done = 0;
   ProgressBar bar(!opts.quiet && ranks.root());
   ro.on_row = [&](const scene::SweepRow& row) {
     if (journal) journal->append(row);
     ++done;
-    if (!row.error.empty()) ++failed_now;
     bar.update(static_cast<double>(done) / static_cast<double>(mine.size()),
                [&] { return fmt::format("{} / {} runs", done, mine.size()); });
   };
@@ -301,6 +289,51 @@ void run_sweep(const SweepOptions& opts) {
   fmt::print("sweep: {} runs ({} now in {:.3g} s on {} thread(s) x {} rank(s), {} from the journal), {} failed\n",
              runs, ran, seconds, ro.threads, ranks.size(), journal->finished().size(), failures);
   fmt::print("wrote {}\n", paths_text(written));
+}
+
+}  // namespace
+
+void run_sweep(const SweepOptions& opts) {
+  scene::SweepIdentity id{.scene = opts.scene, .set = opts.set, .integrator = opts.integrator, .spec = parse_spec(opts)};
+  const scene::Shard shard = [&] {
+    if (opts.shard.empty()) return scene::Shard{};
+    try {
+      return scene::parse_shard(opts.shard);
+    } catch (const Error& e) {
+      throw Error(fmt::format("--shard: {}", e.what()));
+    }
+  }();
+  check_names(id);
+  const std::size_t runs = scene::run_count(id.spec);
+  const auto names = scene::swept_names(id.spec);
+  const std::string description = scene::describe(id);
+  const fs::path dir = opts.output.empty() ? fs::path("out") / (fs::path(opts.scene).stem().string() + "-sweep")
+                                           : fs::path(opts.output);
+
+  const Ranks ranks;
+  // rank 0 owns the directory: it opens the journal and tells the others what is finished
+  std::unique_ptr<scene::Journal> journal;
+  std::string refused;
+  std::vector<std::uint8_t> finished(runs, 0);
+  if (ranks.root()) {
+    try {
+      journal = std::make_unique<scene::Journal>(dir, description, names, runs, shard);
+      for (const auto& r : journal->finished()) finished[r.index] = 1;
+    } catch (const Error& e) {
+      refused = e.what();
+    }
+  }
+  ranks.broadcast(refused, finished);
+  if (!refused.empty()) throw Error(refused);
+  try {
+    sweep_on_ranks(opts, id, shard, dir, ranks, journal.get(), finished);
+  } catch (const Cancelled& e) {
+    ranks.stop_all(e, 130);
+    throw;
+  } catch (const Error& e) {
+    ranks.stop_all(e, 1);
+    throw;
+  }
 }
 
 void run_sweep_merge(const SweepMergeOptions& opts) {
