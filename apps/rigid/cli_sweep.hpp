@@ -50,7 +50,7 @@ inline void add_sweep_command(CLI::App& app) {
 
   cmd->callback([opts, m] {
     if (m->parsed()) return;
-    if (opts->scene.empty()) throw CLI::RequiredError("SCENE is required (or: rigid sweep merge DIR... -o OUT)");
+    if (opts->scene.empty()) throw CLI::RequiredError("SCENE (or: rigid sweep merge DIR... -o OUT)");
     rigid::cli::run_sweep(*opts);
   });
 }

@@ -95,6 +95,11 @@ def test_a_row_is_the_run_of_rigid_run_with_that_override(run, tmp_path):
     assert float(row["L"]) == 1.25
     for name, value in diag.items():
         assert float(row[name]) == value, name
+    # and Python's Scene with the same override (the module built next to the executable)
+    rigid = pytest.importorskip("rigid")
+    summary = rigid.Scene(str(PENDULUM), set=["L=1.25"]).run()["summary"]
+    for name, value in summary["diagnostics"].items():
+        assert float(row[name]) == value, name
 
 
 def test_one_and_two_threads_give_the_same_bytes(run, tmp_path):
