@@ -11,6 +11,7 @@
 #include <fstream>
 #include <limits>
 #include <mutex>
+#include <new>
 #include <sstream>
 #include <thread>
 
@@ -519,6 +520,11 @@ std::vector<SweepRow> run_sweep(const SweepIdentity& id, std::span<const std::si
       row.results.clear();
       row.error = word_for(options.wording, e.what());
       if (row.error.empty()) row.error = "failed";
+    } catch (const std::bad_alloc&) {
+      // one run asked for more memory than there is (its trajectory): that run fails, the
+      // sweep goes on with the memory freed
+      row.results.clear();
+      row.error = "out of memory: the run needs more memory than is available; lower its trajectory's size";
     }
     {
       std::lock_guard lock(g_symbolic);
@@ -643,7 +649,7 @@ SweepOutputs make_outputs(const std::vector<std::string>& names, std::size_t run
   }
 
   Json j;
-  j["runs"] = runs;
+  j["count"] = runs;
   j["failures"] = failures;
   j["columns"] = columns;
   j["swept"] = names;

@@ -168,7 +168,7 @@ TEST(SweepOutputs, CsvHasOneRowPerRunInIndexOrderAndStatistics) {
   // x over the runs that have it: 0, 1, 9 → mean 10/3, std (n−1) √((100/9 + 49/9 + 289/9)/2),
   // median 1, quantile 0.25 at h = 0.5 → 0.5 (numpy.quantile's linear rule)
   const auto j = nlohmann::json::parse(out.summary_json);
-  EXPECT_EQ(j["runs"], 4);
+  EXPECT_EQ(j["count"], 4);
   EXPECT_EQ(j["failures"], 1);
   EXPECT_DOUBLE_EQ(j["results"]["x"]["mean"].get<double>(), 10.0 / 3);
   EXPECT_DOUBLE_EQ(j["results"]["x"]["std"].get<double>(), std::sqrt((100.0 / 9 + 49.0 / 9 + 289.0 / 9) / 2));
