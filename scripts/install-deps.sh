@@ -10,6 +10,7 @@ build_packages=(
   libeigen3-dev libboost-dev libboost-math-dev libginac-dev libcln-dev
   libfmt-dev libspdlog-dev libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
   libtinyxml2-dev
+  openmpi-bin libopenmpi-dev
   libcgal-demo assimp-testmodels
   libgtest-dev libgmock-dev libbenchmark-dev
   pybind11-dev python3-dev python3-numpy python3-pytest python3-scipy python3-sympy

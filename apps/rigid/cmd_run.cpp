@@ -15,13 +15,13 @@
 #include "rigid/common/wording.hpp"
 #include "rigid/io/run_output.hpp"
 #include "rigid/scene/model.hpp"
+#include "progress.hpp"
 #include "scene_output.hpp"
 
 namespace rigid::cli {
 namespace {
 
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
 
 // Set by Ctrl-C; the run polls it (integrate::MarchControl::cancel) and stops with
 // rigid::Cancelled, so nothing is written.
@@ -44,40 +44,18 @@ scene::RunOptions run_options(const SceneOptions& opts) {
 }
 
 
-// A one-line progress bar on standard error, redrawn at most ten times a second, shown only
-// when standard error is a terminal and the run has taken more than half a second.
+// The progress bar of a run: the simulated time against t_end.
 class Progress {
  public:
-  Progress(double t_end, bool enabled) : t_end_(t_end), enabled_(enabled && isatty(STDERR_FILENO) != 0) {}
-  ~Progress() { clear(); }
-  Progress(const Progress&) = delete;
-  Progress& operator=(const Progress&) = delete;
-
+  Progress(double t_end, bool enabled) : t_end_(t_end), bar_(enabled) {}
   void operator()(double t) {
-    if (!enabled_) return;
-    const auto now = Clock::now();  // ~20 ns: small next to a step or a right-hand side
-    if (now - start_ < std::chrono::milliseconds(500) || now - last_ < std::chrono::milliseconds(100)) return;
-    last_ = now;
-    const double f = std::clamp(t / t_end_, 0.0, 1.0);
-    constexpr int kWidth = 30;
-    const int filled = static_cast<int>(f * kWidth);
-    const double elapsed = std::chrono::duration<double>(now - start_).count();
-    std::fprintf(stderr, "\r[%s%s] %3.0f%%  t = %.4g / %.4g s  %.1f s elapsed ",
-                 std::string(static_cast<std::size_t>(filled), '#').c_str(),
-                 std::string(static_cast<std::size_t>(kWidth - filled), ' ').c_str(), 100 * f, t, t_end_,
-                 elapsed);
-    drawn_ = true;
+    bar_.update(t / t_end_, [&] { return fmt::format("t = {:.4g} / {:.4g} s", t, t_end_); });
   }
-  void clear() {
-    if (drawn_) std::fputs("\r\033[K", stderr);
-    drawn_ = false;
-  }
+  void clear() { bar_.clear(); }
 
  private:
   double t_end_;
-  bool enabled_;
-  bool drawn_ = false;
-  Clock::time_point start_ = Clock::now(), last_ = start_;
+  ProgressBar bar_;
 };
 
 }  // namespace

@@ -16,6 +16,7 @@
 #include "cli_mesh.hpp"
 #include "cli_modes.hpp"
 #include "cli_run.hpp"
+#include "cli_sweep.hpp"
 
 namespace {
 // The exit status of every subcommand (documented in the --help footer, README and
@@ -43,6 +44,7 @@ int main(int argc, char** argv) {
   add_mesh_command(app);
   add_run_command(app);
   add_modes_command(app);
+  add_sweep_command(app);
 
   try {
     app.parse(argc, argv);

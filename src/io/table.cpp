@@ -36,18 +36,54 @@ std::size_t Table::column(std::string_view name) const {
   return static_cast<std::size_t>(it - columns_.begin());
 }
 
-std::string to_csv(const Table& table) {
+namespace {
+
+// A CSV field of text: as it is, or in double quotes with each quote doubled (RFC 4180) when
+// it holds a character that would end the field.
+void append_text_field(fmt::memory_buffer& out, std::string_view text) {
+  if (text.find_first_of(",\"\r\n") == std::string_view::npos) {
+    out.append(text);
+    return;
+  }
+  out.push_back('"');
+  for (const char c : text) {
+    if (c == '"') out.push_back('"');
+    out.push_back(c);
+  }
+  out.push_back('"');
+}
+
+std::string csv_text(const Table& table, std::string_view name, std::span<const std::string> text,
+                     bool with_text) {
   fmt::memory_buffer out;
-  fmt::format_to(std::back_inserter(out), "{}\n", fmt::join(table.columns(), ","));
+  fmt::format_to(std::back_inserter(out), "{}", fmt::join(table.columns(), ","));
+  if (with_text) fmt::format_to(std::back_inserter(out), "{}{}", table.columns().empty() ? "" : ",", name);
+  out.push_back('\n');
   const std::size_t n = table.columns().size();
   for (std::size_t r = 0; r < table.rows(); ++r) {
     for (std::size_t c = 0; c < n; ++c) {
       // fmt's "{}" for double is the shortest representation that round-trips.
       fmt::format_to(std::back_inserter(out), "{}", table(r, c));
-      out.push_back(c + 1 < n ? ',' : '\n');
+      if (c + 1 < n) out.push_back(',');
     }
+    if (with_text) {
+      if (n > 0) out.push_back(',');
+      append_text_field(out, text[r]);
+    }
+    out.push_back('\n');
   }
   return fmt::to_string(out);
+}
+
+}  // namespace
+
+std::string to_csv(const Table& table) { return csv_text(table, {}, {}, false); }
+
+std::string to_csv(const Table& table, std::string_view name, std::span<const std::string> text) {
+  RIGID_REQUIRE(!name.empty(), "the text column has an empty name");
+  RIGID_REQUIRE(text.size() == table.rows(), "{} texts for a table of {} rows (one per row)", text.size(),
+                table.rows());
+  return csv_text(table, name, text, true);
 }
 
 std::string to_npy(const Table& table) {

@@ -6,6 +6,8 @@
 #include <fstream>
 #include <limits>
 #include <random>
+#include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -72,6 +74,20 @@ TEST(Table, BadInputIsNamed) {
   }
   EXPECT_RIGID_ERROR((void)read_csv(file), file.string() + ":2:1: row has 3 fields, expected 2");
   EXPECT_RIGID_ERROR((void)read_csv(file.string() + ".missing"), "cannot open");
+}
+
+TEST(Table, CsvTextColumnIsQuotedAsRfc4180Says) {
+  Table t({"run", "x"});
+  t.add_row(std::vector<double>{0, 0.1});
+  t.add_row(std::vector<double>{1, std::nan("")});
+  t.add_row(std::vector<double>{2, -2.5});
+  const std::vector<std::string> text{"", "file.toml:3:1: a, b \"c\"\nd", "plain"};
+  // a field with a comma, quote or line break goes in quotes with each quote doubled
+  EXPECT_EQ(to_csv(t, "error", text), "run,x,error\n0,0.1,\n1,nan,\"file.toml:3:1: a, b \"\"c\"\"\nd\"\n2,-2.5,plain\n");
+  // a table without rows: the header alone
+  EXPECT_EQ(to_csv(Table({"a"}), "e", {}), "a,e\n");
+  EXPECT_RIGID_ERROR((void)to_csv(t, "error", std::vector<std::string>{"one"}), "1 texts for a table of 3 rows");
+  EXPECT_RIGID_ERROR((void)to_csv(t, "", text), "empty name");
 }
 
 }  // namespace

@@ -39,6 +39,12 @@ class Table {
 /// printed in its shortest form that reads back to the same bits.
 [[nodiscard]] std::string to_csv(const Table& table);
 
+/// CSV text of `table` with one column of text after its numbers (a sweep's `error`): `name`
+/// in the header and `text[r]` on row r, quoted as RFC 4180 says (in double quotes, a quote
+/// doubled) when it holds a comma, a quote or a line break; an empty text is an empty field.
+/// @throws rigid::Error if text.size() differs from table.rows() or `name` is empty.
+[[nodiscard]] std::string to_csv(const Table& table, std::string_view name, std::span<const std::string> text);
+
 /// NumPy .npy (format 1.0) bytes: a little-endian float64 array of shape (rows, columns),
 /// C order. Column names are not stored; they are the CSV header.
 [[nodiscard]] std::string to_npy(const Table& table);

@@ -1,0 +1,379 @@
+#include "cmd_sweep.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <limits>
+#include <set>
+#include <thread>
+
+#include <fmt/format.h>
+
+#ifdef RIGID_HAVE_MPI
+#include <mpi.h>
+#endif
+
+#include "progress.hpp"
+#include "rigid/common/error.hpp"
+#include "rigid/common/wording.hpp"
+#include "rigid/scene/scene.hpp"
+#include "rigid/scene/sweep.hpp"
+
+namespace rigid::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Set by Ctrl-C: no run starts after it, the runs in flight stop (their march polls it), the
+// finished ones are in the journal.
+std::atomic<bool> g_interrupted{false};
+extern "C" void on_sweep_interrupt(int /*signal*/) { g_interrupted = true; }
+
+// Launched by mpirun (Open MPI or any PMIx launcher) — the only case where MPI is started, so
+// a plain `rigid sweep` and every other command never touch MPI.
+[[maybe_unused]] bool under_mpirun() {
+  return std::getenv("OMPI_COMM_WORLD_SIZE") != nullptr || std::getenv("PMIX_RANK") != nullptr ||
+         std::getenv("PMI_RANK") != nullptr;
+}
+
+std::size_t env_size(const char* name, std::size_t fallback) {
+  const char* v = std::getenv(name);
+  if (v == nullptr) return fallback;
+  const long n = std::strtol(v, nullptr, 10);
+  return n > 0 ? static_cast<std::size_t>(n) : fallback;
+}
+
+// The ranks of the sweep: MPI's world when launched by mpirun, else one.
+class Ranks {
+ public:
+  Ranks() {
+#ifdef RIGID_HAVE_MPI
+    if (under_mpirun()) {
+      int provided = 0;
+      MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
+      int r = 0, s = 1;
+      MPI_Comm_rank(MPI_COMM_WORLD, &r);
+      MPI_Comm_size(MPI_COMM_WORLD, &s);
+      rank_ = static_cast<std::size_t>(r);
+      size_ = static_cast<std::size_t>(s);
+      mpi_ = true;
+    }
+#else
+    if (env_size("OMPI_COMM_WORLD_SIZE", 1) > 1) {
+      throw Error("this rigid was built without MPI, so the processes mpirun started would each run the whole "
+                  "sweep into one directory; run it without mpirun (it uses the threads of its machine), with "
+                  "--shard I/N per process, or build rigid with MPI (Debian libopenmpi-dev)");
+    }
+#endif
+  }
+  ~Ranks() {
+#ifdef RIGID_HAVE_MPI
+    if (mpi_) MPI_Finalize();
+#endif
+  }
+  Ranks(const Ranks&) = delete;
+  Ranks& operator=(const Ranks&) = delete;
+
+  // A rank that stops (an error, Ctrl-C) while the others may be waiting in a collective call
+  // stops them all: the message, then MPI_Abort with the command's exit status. Without MPI (or
+  // with one rank) it returns and the error takes the usual way out.
+  void stop_all(const Error& e, int status) const {
+#ifdef RIGID_HAVE_MPI
+    if (mpi_ && size_ > 1) {
+      std::fprintf(stderr, "rigid: %s (rank %zu): %s\n", status == 130 ? "interrupted" : "error", rank_,
+                   word_for(Surface::kCli, e.what()).c_str());
+      std::fflush(stderr);
+      MPI_Abort(MPI_COMM_WORLD, status);
+    }
+#else
+    (void)e;
+    (void)status;
+#endif
+  }
+
+  [[nodiscard]] std::size_t rank() const { return rank_; }
+  [[nodiscard]] std::size_t size() const { return size_; }
+  [[nodiscard]] bool root() const { return rank_ == 0; }
+
+  // Rank 0's verdict (empty: go on; else the error every rank throws) and its list of finished
+  // runs, sent to every rank.
+  void broadcast(std::string& error, std::vector<std::uint8_t>& finished) const {
+#ifdef RIGID_HAVE_MPI
+    if (!mpi_) return;
+    auto n = static_cast<unsigned long long>(error.size());
+    MPI_Bcast(&n, 1, MPI_UNSIGNED_LONG_LONG, 0, MPI_COMM_WORLD);
+    error.resize(n);
+    MPI_Bcast(error.data(), static_cast<int>(n), MPI_CHAR, 0, MPI_COMM_WORLD);
+    auto m = static_cast<unsigned long long>(finished.size());
+    MPI_Bcast(&m, 1, MPI_UNSIGNED_LONG_LONG, 0, MPI_COMM_WORLD);
+    finished.resize(m);
+    // in pieces: an MPI count is an int
+    constexpr std::size_t kPiece = std::size_t{1} << 30;
+    for (std::size_t at = 0; at < m; at += kPiece) {
+      MPI_Bcast(finished.data() + at, static_cast<int>(std::min<std::size_t>(kPiece, m - at)), MPI_BYTE, 0, MPI_COMM_WORLD);
+    }
+#else
+    (void)error;
+    (void)finished;
+#endif
+  }
+
+  // Every rank's rows, as journal lines, gathered to rank 0 (MPI_Gatherv of the bytes); rank 0
+  // gets the others' rows, the others get nothing.
+  [[nodiscard]] std::vector<scene::SweepRow> gather(const std::vector<scene::SweepRow>& rows) const {
+#ifdef RIGID_HAVE_MPI
+    if (!mpi_) return {};
+    std::string bytes;
+    if (!root()) {
+      for (const auto& r : rows) bytes += scene::row_to_json(r) + "\n";
+    }
+    if (bytes.size() > static_cast<std::size_t>(std::numeric_limits<int>::max())) {
+      throw Error(fmt::format("rank {}'s rows take {} bytes, more than one MPI message holds (2 GiB); use more "
+                              "ranks or shards",
+                              rank_, bytes.size()));
+    }
+    const int n = static_cast<int>(bytes.size());
+    std::vector<int> sizes(root() ? size_ : 0), offsets(root() ? size_ : 0);
+    MPI_Gather(&n, 1, MPI_INT, sizes.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
+    std::string all;
+    if (root()) {
+      long long total = 0;
+      for (std::size_t r = 0; r < size_; ++r) {
+        offsets[r] = static_cast<int>(total);
+        total += sizes[r];
+      }
+      if (total > std::numeric_limits<int>::max()) throw Error("the gathered rows exceed 2 GiB; use shards");
+      all.resize(static_cast<std::size_t>(total));
+    }
+    MPI_Gatherv(bytes.data(), n, MPI_CHAR, all.data(), sizes.data(), offsets.data(), MPI_CHAR, 0, MPI_COMM_WORLD);
+    std::vector<scene::SweepRow> out;
+    std::size_t start = 0;
+    while (start < all.size()) {
+      const auto nl = all.find('\n', start);
+      out.push_back(scene::row_from_json(std::string_view(all).substr(start, nl - start), "gathered rows"));
+      start = nl + 1;
+    }
+    return out;
+#else
+    (void)rows;
+    return {};
+#endif
+  }
+
+ private:
+  std::size_t rank_ = 0;
+  std::size_t size_ = 1;
+  bool mpi_ = false;
+};
+
+scene::SweepSpec parse_spec(const SweepOptions& opts) {
+  scene::SweepSpec spec;
+  try {
+    for (const auto& g : opts.grid) spec.grid.push_back(scene::parse_grid_axis(g));
+  } catch (const Error& e) {
+    throw Error(fmt::format("--grid: {}", e.what()));
+  }
+  try {
+    for (const auto& s : opts.sample) spec.sample.push_back(scene::parse_sample_axis(s));
+  } catch (const Error& e) {
+    throw Error(fmt::format("--sample: {}", e.what()));
+  }
+  spec.samples = opts.samples;
+  spec.seed = opts.seed;
+  if (spec.grid.empty() && spec.sample.empty()) {
+    throw Error("give the runs: --grid NAME=START:STOP:COUNT (repeatable) or --sample NAME=DIST(A,B) with -n N");
+  }
+  if (!spec.grid.empty() && !spec.sample.empty()) throw Error("--grid and --sample: give one of them");
+  if (!spec.sample.empty() && spec.samples == 0) throw Error("--sample needs -n N, the number of runs");
+  if (!spec.grid.empty() && spec.samples > 0) throw Error("-n is for --sample; a --grid axis has its own count");
+  scene::check_spec(spec);
+  return spec;
+}
+
+// Refuses, before any run, the names the scene does not have (one message, not N failed runs).
+void check_names(const scene::SweepIdentity& id) {
+  scene::Scene s = scene::load_scene(id.scene);
+  try {
+    scene::apply_overrides(s, id.set);
+  } catch (const Error& e) {
+    throw Error(fmt::format("--set: {}", e.what()));
+  }
+  try {
+    scene::check_overrides(id);
+  } catch (const Error& e) {
+    throw Error(fmt::format("{}: {}", id.spec.grid.empty() ? "--sample" : "--grid", e.what()));
+  }
+}
+
+std::string paths_text(const std::vector<fs::path>& paths) {
+  std::vector<std::string> names;
+  for (const auto& p : paths) names.push_back(p.string());
+  return fmt::format("{}", fmt::join(names, ", "));
+}
+
+// The runs of this process (its shard's unfinished runs, its rank's share), the gather to rank 0
+// and rank 0's outputs.
+void sweep_on_ranks(const SweepOptions& opts, const scene::SweepIdentity& id, scene::Shard shard, const fs::path& dir,
+                    const Ranks& ranks, scene::Journal* journal, const std::vector<std::uint8_t>& finished) {
+  const std::size_t runs = scene::run_count(id.spec);
+  const auto names = scene::swept_names(id.spec);
+
+  // this process's runs: the shard's unfinished runs, dealt round robin to the ranks
+  std::vector<std::size_t> mine;
+  std::size_t k = 0;
+  for (std::size_t i = shard.index; i < runs; i += shard.count) {
+    if (finished[i] != 0) continue;
+    if (k++ % ranks.size() == ranks.rank()) mine.push_back(i);
+  }
+
+  scene::SweepRunOptions ro;
+  const std::size_t cores = std::max(1u, std::thread::hardware_concurrency());
+  ro.threads = opts.threads > 0 ? opts.threads
+                                : std::max<std::size_t>(1, cores / env_size("OMPI_COMM_WORLD_LOCAL_SIZE", 1));
+  ro.wording = Surface::kCli;
+  if (opts.keep_trajectories) ro.keep_trajectories = dir / "runs";
+  g_interrupted = false;
+  ro.cancel = &g_interrupted;
+  std::size_t done = 0;
+  ProgressBar bar(!opts.quiet && ranks.root());
+  ro.on_row = [&](const scene::SweepRow& row) {
+    if (journal) journal->append(row);
+    ++done;
+    bar.update(static_cast<double>(done) / static_cast<double>(mine.size()),
+               [&] { return fmt::format("{} / {} runs", done, mine.size()); });
+  };
+  const auto start = std::chrono::steady_clock::now();
+  const auto previous = std::signal(SIGINT, on_sweep_interrupt);
+  std::vector<scene::SweepRow> rows;
+  try {
+    rows = scene::run_sweep(id, mine, ro);
+  } catch (const Cancelled& e) {
+    bar.clear();
+    std::signal(SIGINT, previous);
+    throw Cancelled(fmt::format("{}; the {} finished runs are kept in {}: run the same command again to go on",
+                                e.what(), journal ? journal->finished().size() + done : done,
+                                (dir / ".journal.jsonl").string()));
+  } catch (...) {
+    bar.clear();
+    std::signal(SIGINT, previous);
+    throw;
+  }
+  bar.clear();
+  std::signal(SIGINT, previous);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  std::vector<scene::SweepRow> others = ranks.gather(rows);
+  if (!ranks.root()) return;
+  for (const auto& r : others) journal->append(r);
+
+  std::vector<scene::SweepRow> all = journal->finished();
+  all.insert(all.end(), rows.begin(), rows.end());
+  all.insert(all.end(), others.begin(), others.end());
+  const std::size_t ran = rows.size() + others.size();
+  if (shard.count > 1) {
+    if (!opts.quiet) {
+      fmt::print("shard {}/{}: {} runs now ({} before) in {}; join the shards with rigid sweep merge\n", shard.index,
+                 shard.count, ran, journal->finished().size(), (dir / ".journal.jsonl").string());
+    }
+    return;
+  }
+  const scene::SweepOutputs outputs = scene::make_outputs(names, runs, std::move(all));
+  const auto written = scene::write_outputs(dir, outputs);
+  if (opts.quiet) return;
+  const auto failures = static_cast<std::size_t>(
+      std::count_if(outputs.errors.begin(), outputs.errors.end(), [](const std::string& e) { return !e.empty(); }));
+  fmt::print("sweep: {} runs ({} now in {:.3g} s on {} thread(s) x {} rank(s), {} from the journal), {} failed\n",
+             runs, ran, seconds, ro.threads, ranks.size(), journal->finished().size(), failures);
+  fmt::print("wrote {}\n", paths_text(written));
+}
+
+}  // namespace
+
+void run_sweep(const SweepOptions& opts) {
+  scene::SweepIdentity id{.scene = opts.scene, .set = opts.set, .integrator = opts.integrator, .spec = parse_spec(opts)};
+  const scene::Shard shard = [&] {
+    if (opts.shard.empty()) return scene::Shard{};
+    try {
+      return scene::parse_shard(opts.shard);
+    } catch (const Error& e) {
+      throw Error(fmt::format("--shard: {}", e.what()));
+    }
+  }();
+  check_names(id);
+  const std::size_t runs = scene::run_count(id.spec);
+  const auto names = scene::swept_names(id.spec);
+  const std::string description = scene::describe(id);
+  const fs::path dir = opts.output.empty() ? fs::path("out") / (fs::path(opts.scene).stem().string() + "-sweep")
+                                           : fs::path(opts.output);
+
+  const Ranks ranks;
+  // rank 0 owns the directory: it opens the journal and tells the others what is finished
+  std::unique_ptr<scene::Journal> journal;
+  std::string refused;
+  std::vector<std::uint8_t> finished(runs, 0);
+  if (ranks.root()) {
+    try {
+      journal = std::make_unique<scene::Journal>(dir, description, names, runs, shard);
+      for (const auto& r : journal->finished()) finished[r.index] = 1;
+    } catch (const Error& e) {
+      refused = e.what();
+    }
+  }
+  ranks.broadcast(refused, finished);
+  if (!refused.empty()) throw Error(refused);
+  try {
+    sweep_on_ranks(opts, id, shard, dir, ranks, journal.get(), finished);
+  } catch (const Cancelled& e) {
+    ranks.stop_all(e, 130);
+    throw;
+  } catch (const Error& e) {
+    ranks.stop_all(e, 1);
+    throw;
+  }
+}
+
+void run_sweep_merge(const SweepMergeOptions& opts) {
+  if (opts.directories.empty()) throw Error("rigid sweep merge: give the shards' directories");
+  std::vector<scene::JournalContents> parts;
+  for (const auto& d : opts.directories) parts.push_back(scene::read_journal(d));
+  const auto& first = parts.front();
+  std::vector<std::string> shards;
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    const auto& p = parts[i];
+    if (p.description != first.description || p.names != first.names || p.runs != first.runs) {
+      throw Error(fmt::format("'{}' holds another sweep ({}) than '{}' ({}); merge the shards of one sweep",
+                              opts.directories[i], p.description, opts.directories.front(), first.description));
+    }
+    shards.push_back(fmt::format("{}/{}", p.shard.index, p.shard.count));
+  }
+  std::vector<scene::SweepRow> all;
+  for (const auto& p : parts) all.insert(all.end(), p.rows.begin(), p.rows.end());
+  const scene::SweepOutputs outputs = [&] {
+    try {
+      return scene::make_outputs(first.names, first.runs, all);
+    } catch (const Error& e) {
+      throw Error(fmt::format("rigid sweep merge of shards {}: {}; run the missing shards (or finish them: the "
+                              "same command again) and merge again",
+                              fmt::join(shards, ", "), e.what()));
+    }
+  }();
+  // the merged directory is an unsharded sweep's: its journal holds every run, so the sweep's
+  // own command on it finds everything done
+  const fs::path out = opts.output.empty() ? fs::path("out/sweep-merged") : fs::path(opts.output);
+  scene::Journal journal(out, first.description, first.names, first.runs, scene::Shard{});
+  std::set<std::size_t> have;
+  for (const auto& r : journal.finished()) have.insert(r.index);
+  for (const auto& r : all) {
+    if (have.insert(r.index).second) journal.append(r);
+  }
+  const auto written = scene::write_outputs(out, outputs);
+  if (!opts.quiet) {
+    fmt::print("merged {} runs from shards {}\nwrote {}\n", first.runs, fmt::join(shards, ", "), paths_text(written));
+  }
+}
+
+}  // namespace rigid::cli

@@ -1,0 +1,109 @@
+// Sweeps: scene::run_sweep, the path of `rigid sweep` without the files (a separate binary from
+// run_bench, which must keep building against older commits).
+//  - runs per second on 1 and 2 threads for a grid of 32 runs of a small scene: the racket for
+//    10 s (splitting4, 10³ steps), and the physical pendulum for 2 s by dopri5 (tolerance 1e-10),
+//    whose equations are derived again for every run (under the lock of the symbolic side);
+//  - one run through run_sweep (read the scene, apply the override, build the model, run, make
+//    the row) against Model::run of a model built once: the difference is a sweep's overhead
+//    per run beyond the integration.
+// MPI ranks are measured from the command line (docs/performance.md gives the commands).
+#include <filesystem>
+#include <fstream>
+#include <numeric>
+#include <string>
+#include <vector>
+
+#include <benchmark/benchmark.h>
+
+#include "rigid/scene/model.hpp"
+#include "rigid/scene/scene.hpp"
+#include "rigid/scene/sweep.hpp"
+
+namespace {
+
+constexpr const char* kSmallRacket = R"toml(
+[parameters]
+I2 = 2
+[[bodies]]
+name = "racket"
+free = true
+inertia = {mass = 0.35, ixx = 1, iyy = "I2", izz = 2.9}
+angular_velocity = [0.01, 1, 0.01]
+[simulation]
+t_end = 10.0
+integrator = "splitting4"
+dt = 0.01
+output_dt = 0.05
+)toml";
+
+constexpr const char* kSmallPendulum = R"toml(
+gravity = [0, 0, "-g"]
+[parameters]
+g = 9.81
+m = 0.5
+L = 1.0
+[[coordinates]]
+name = "theta"
+initial = 1.0
+[[bodies]]
+name = "rod"
+primitive = "thin_rod"
+length = "L"
+mass = "m"
+position = ["-(L/2)*sin(theta)", 0, "-(L/2)*cos(theta)"]
+rotation = [{axis = [0, 1, 0], angle = "-theta"}]
+[simulation]
+t_end = 2.0
+integrator = "dopri5"
+tolerance = 1e-10
+output_dt = 0.005
+)toml";
+
+// The sweep of the scene `text` (written to a temporary file named after `name`) over `axis`.
+rigid::scene::SweepIdentity sweep_of(const std::string& name, const char* text, const char* axis) {
+  const auto file = std::filesystem::temp_directory_path() / ("rigid_sweep_bench_" + name + ".toml");
+  std::ofstream(file) << text;
+  return {.scene = file, .set = {}, .integrator = "", .spec = {.grid = {rigid::scene::parse_grid_axis(axis)}}};
+}
+
+void BM_Sweep_runs(benchmark::State& st, const char* name, const char* text, const char* axis) {
+  const auto id = sweep_of(name, text, axis);
+  std::vector<std::size_t> all(rigid::scene::run_count(id.spec));
+  std::iota(all.begin(), all.end(), 0);
+  for (auto _ : st) {
+    const auto rows = rigid::scene::run_sweep(id, all, {.threads = static_cast<std::size_t>(st.range(0))});
+    benchmark::DoNotOptimize(rows.data());
+  }
+  st.counters["runs/s"] =
+      benchmark::Counter(static_cast<double>(st.iterations() * all.size()), benchmark::Counter::kIsRate);
+}
+
+// One run through the sweep's path, to compare with BM_Sweep_modelRun of the same scene.
+void BM_Sweep_oneRun(benchmark::State& st, const char* name, const char* text, const char* axis) {
+  const auto id = sweep_of(name, text, axis);
+  const std::vector<std::size_t> one{0};
+  for (auto _ : st) {
+    const auto rows = rigid::scene::run_sweep(id, one, {.threads = 1});
+    benchmark::DoNotOptimize(rows.data());
+  }
+}
+
+// The integration alone: Model::run of a model built once.
+void BM_Sweep_modelRun(benchmark::State& st, const char* text) {
+  const rigid::scene::Model model(rigid::scene::parse_scene(text, "bench.toml"));
+  for (auto _ : st) {
+    const auto result = model.run();
+    benchmark::DoNotOptimize(result.trajectory.data().data());
+  }
+}
+
+BENCHMARK_CAPTURE(BM_Sweep_runs, racket_10s_x32, "racket", kSmallRacket, "I2=1.95:2.05:32")
+    ->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Sweep_runs, pendulum_2s_x32, "pendulum", kSmallPendulum, "L=0.5:2:32")
+    ->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Sweep_modelRun, racket_10s, kSmallRacket)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_Sweep_oneRun, racket_10s, "racket1", kSmallRacket, "I2=2:2:1")->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_Sweep_modelRun, pendulum_2s, kSmallPendulum)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_Sweep_oneRun, pendulum_2s, "pendulum1", kSmallPendulum, "L=1:1:1")->Unit(benchmark::kMicrosecond);
+
+}  // namespace

@@ -1,0 +1,210 @@
+#pragma once
+
+/// Sweeps: one scene run many times, each run with its own overrides (`name=value`, as
+/// `--set` takes them), over a cartesian grid or a Monte Carlo sample. A run is
+/// `load_model(scene, set + its overrides)` then `Model::run`; its row holds the swept values,
+/// the metrics and diagnostics of its summary, or the error that stopped it.
+///
+/// What makes a sweep reproducible, byte for byte, whatever the threads, processes or shards:
+///  - a run's values depend only on (spec, seed, run index) — counter-based sampling;
+///  - the outputs (runs.csv, runs.npy, summary.json) are made from the rows sorted by index;
+///  - doubles are printed in their shortest round-trip form.
+/// What makes it resumable: each finished run is one line appended to the journal
+/// DIR/.journal.jsonl, whose first line is the sweep's fingerprint; a sweep started again on the
+/// same DIR skips the runs the journal holds and refuses a journal of another sweep.
+
+#include <atomic>
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "rigid/common/wording.hpp"
+#include "rigid/io/table.hpp"
+
+namespace rigid::scene {
+
+/// One axis of a grid: `count` equally spaced values from `start` to `stop`, both included
+/// (count 1: start alone).
+struct GridAxis {
+  std::string name{};
+  double start = 0;
+  double stop = 0;
+  std::size_t count = 1;
+};
+
+enum class Distribution { kUniform, kNormal, kLogUniform };
+
+/// One sampled value: uniform(a, b) on [a, b); normal(mu = a, sigma = b); loguniform(a, b),
+/// whose logarithm is uniform on [log a, log b).
+struct SampleAxis {
+  std::string name{};
+  Distribution distribution = Distribution::kUniform;
+  double a = 0;
+  double b = 1;
+};
+
+/// What a sweep runs: a grid (every combination of the axes, the first axis varying slowest)
+/// or `samples` Monte Carlo draws of the sample axes with `seed`; never both.
+struct SweepSpec {
+  std::vector<GridAxis> grid{};
+  std::vector<SampleAxis> sample{};
+  std::size_t samples = 0;
+  std::uint64_t seed = 0;
+};
+
+/// Parses `name=start:stop:count` (count ≥ 1 whole; start, stop finite; count 1 needs start == stop).
+/// @throws rigid::Error naming the text and what was expected.
+[[nodiscard]] GridAxis parse_grid_axis(std::string_view text);
+/// Parses `name=uniform(a,b)`, `name=normal(mu,sigma)` or `name=loguniform(a,b)` (a < b;
+/// sigma > 0; 0 < a for loguniform). @throws rigid::Error naming the text and what was expected.
+[[nodiscard]] SampleAxis parse_sample_axis(std::string_view text);
+
+/// Checks a spec: a grid or a sample (not both, not neither), samples ≥ 1 with a sample, no
+/// name twice, at most kMaxSweepRuns runs. @throws rigid::Error saying what is wrong.
+void check_spec(const SweepSpec& spec);
+
+/// Most runs of one sweep (2^32): a bound on the journal and the outputs.
+inline constexpr std::size_t kMaxSweepRuns = std::size_t{1} << 32;
+
+/// The number of runs of a (checked) spec: the product of the grid counts, or `samples`.
+[[nodiscard]] std::size_t run_count(const SweepSpec& spec);
+/// The swept names in column order: the grid's axes, or the sample's.
+[[nodiscard]] std::vector<std::string> swept_names(const SweepSpec& spec);
+/// The swept values of run `index` (< run_count), in the order of swept_names.
+[[nodiscard]] std::vector<double> run_values(const SweepSpec& spec, std::size_t index);
+/// A uniform number in (0, 1) that depends only on (seed, run index, axis index): the 53 high
+/// bits of a SplitMix64 hash chain of the three, plus half an ulp (so never 0 or 1).
+[[nodiscard]] double counter_uniform(std::uint64_t seed, std::uint64_t index, std::uint64_t axis);
+/// The value of `axis` at the uniform number u in (0, 1): its distribution's inverse CDF.
+[[nodiscard]] double sample_value(const SampleAxis& axis, double u);
+/// `name=value` with the value in its shortest round-trip form: what a run passes as override.
+[[nodiscard]] std::string override_text(std::string_view name, double value);
+
+/// The part of a sweep a process runs: the runs whose index i satisfies i ≡ index (mod count)
+/// (round robin, so a grid's slow corner is shared by every shard).
+struct Shard {
+  std::size_t index = 0;
+  std::size_t count = 1;
+};
+/// Parses `i/N` (0 ≤ i < N). @throws rigid::Error naming the text.
+[[nodiscard]] Shard parse_shard(std::string_view text);
+
+/// The result of one run.
+struct SweepRow {
+  std::size_t index = 0;
+  std::vector<double> values{};  ///< the swept values (swept_names order)
+  /// The run's summary metrics, then its diagnostics (name, value); empty for a failed run.
+  std::vector<std::pair<std::string, double>> results{};
+  std::string error{};  ///< empty when the run succeeded
+};
+
+/// A row as one line of JSON (no newline): {"run":…,"values":[…],"results":[[name,value],…],
+/// "error":…}; doubles in their shortest round-trip form, non-finite ones as strings.
+[[nodiscard]] std::string row_to_json(const SweepRow& row);
+/// Inverse of row_to_json. @throws rigid::Error naming `where` if the line is not a row.
+[[nodiscard]] SweepRow row_from_json(std::string_view line, std::string_view where);
+
+/// What identifies a sweep: its scene file (bytes), the fixed overrides, the integrator and the
+/// spec. Two commands with the same description compute the same rows.
+struct SweepIdentity {
+  std::filesystem::path scene{};
+  std::vector<std::string> set{};  ///< overrides every run gets (before its own)
+  std::string integrator{};      ///< empty: the scene's
+  SweepSpec spec{};
+};
+/// A readable, canonical description: the scene's content hash (FNV-1a 64, hex), the set, the
+/// integrator, the axes, samples and seed. @throws rigid::Error if the scene cannot be read.
+[[nodiscard]] std::string describe(const SweepIdentity& identity);
+
+/// The journal of a sweep's directory, DIR/.journal.jsonl: a header line
+/// {"rigid_sweep":1,"sweep":<describe()>,"names":[…],"runs":N,"shard":"i/N"} then one row per finished
+/// run, appended with one write(2) each, so a killed process loses at most the runs in flight
+/// (a last line cut short is dropped when the journal is opened again).
+class Journal {
+ public:
+  /// Opens DIR/.journal.jsonl (making DIR if needed) for the sweep `description` of `runs` runs,
+  /// shard `shard`: a new journal gets its header; an existing one must have the same header.
+  /// @throws rigid::Error if DIR cannot be made or written, or holds the journal of another
+  ///   sweep or shard (saying which, with the remedy: another directory).
+  Journal(const std::filesystem::path& directory, const std::string& description,
+          const std::vector<std::string>& names, std::size_t runs, Shard shard);
+  ~Journal();
+  Journal(const Journal&) = delete;
+  Journal& operator=(const Journal&) = delete;
+
+  /// The rows the journal held when opened, in the order they finished.
+  [[nodiscard]] const std::vector<SweepRow>& finished() const { return finished_; }
+  /// Appends a row (thread-safe). @throws rigid::Error if the write fails (disk full).
+  void append(const SweepRow& row);
+
+ private:
+  std::filesystem::path path_;
+  int fd_ = -1;
+  std::vector<SweepRow> finished_;
+};
+
+/// The journal's header and rows, read without opening it for appending (rigid sweep merge).
+struct JournalContents {
+  std::string description;
+  std::vector<std::string> names;
+  std::size_t runs = 0;
+  Shard shard;
+  std::vector<SweepRow> rows;
+};
+/// @throws rigid::Error if DIR holds no journal or it is not one.
+[[nodiscard]] JournalContents read_journal(const std::filesystem::path& directory);
+
+/// How the runs of a sweep are run.
+struct SweepRunOptions {
+  std::size_t threads = 1;
+  /// Called after each run (from the worker thread that ran it; calls are serialized).
+  std::function<void(const SweepRow&)> on_row{};
+  /// When set and true, no further run starts and the runs in flight stop (rigid::Cancelled,
+  /// not recorded).
+  const std::atomic<bool>* cancel = nullptr;
+  /// When not empty, each run's trajectory and summary go to keep_trajectories/NNNNN
+  /// (io::write_run with the scene's output formats).
+  std::filesystem::path keep_trajectories{};
+  /// How error texts are worded in the rows.
+  Surface wording = Surface::kLibrary;
+};
+
+/// Checks, before running, that every swept and fixed name is one the scene accepts (the
+/// overrides of run 0 applied to the parsed scene). @throws rigid::Error from the overrides.
+void check_overrides(const SweepIdentity& identity);
+
+/// Runs the runs `indices` on a pool of options.threads threads (each takes the next index from
+/// an atomic counter) and returns their rows sorted by index. A run that throws rigid::Error is
+/// a row with its error. Models are built and destroyed one at a time (the symbolic derivation
+/// is single-threaded); runs go in parallel.
+/// @throws rigid::Cancelled when options.cancel stopped it (rows already passed to on_row stay).
+[[nodiscard]] std::vector<SweepRow> run_sweep(const SweepIdentity& identity, std::span<const std::size_t> indices,
+                                              const SweepRunOptions& options);
+
+/// The outputs of a whole sweep made from its rows (all indices 0 … runs-1, any order, each once):
+/// runs.csv (run, swept names, result columns, error), runs.npy (the same without error; NaN
+/// for a failed run's results) and summary.json (count, failures, npy columns, per result
+/// column: mean, std (n−1), min, max, quantiles 0.05 0.25 0.5 0.75 0.95 by linear
+/// interpolation, over the runs where it is finite). Result columns are the union of the rows'
+/// result names in index order; a name equal to an earlier column is prefixed "result.".
+struct SweepOutputs {
+  io::Table numbers{{"run"}};
+  std::vector<std::string> errors{};
+  std::string summary_json{};
+};
+/// @throws rigid::Error if an index is missing, repeated (with different rows) or out of range.
+/// `names` are the swept names, `runs` the sweep's run count.
+[[nodiscard]] SweepOutputs make_outputs(const std::vector<std::string>& names, std::size_t runs,
+                                        std::vector<SweepRow> rows);
+/// Writes runs.csv, runs.npy and summary.json into `directory`, each atomically.
+/// Returns the paths written.
+std::vector<std::filesystem::path> write_outputs(const std::filesystem::path& directory, const SweepOutputs& outputs);
+
+}  // namespace rigid::scene

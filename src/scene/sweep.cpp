@@ -1,0 +1,690 @@
+#include "rigid/scene/sweep.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <mutex>
+#include <new>
+#include <sstream>
+#include <thread>
+
+#include <boost/math/distributions/normal.hpp>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "rigid/common/did_you_mean.hpp"
+#include "rigid/common/error.hpp"
+#include "rigid/io/atomic_file.hpp"
+#include "rigid/io/run_output.hpp"
+#include "rigid/scene/model.hpp"
+#include "rigid/scene/scene.hpp"
+
+namespace rigid::scene {
+namespace {
+
+namespace fs = std::filesystem;
+using Json = nlohmann::ordered_json;
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+std::string_view trim(std::string_view s) {
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t')) s.remove_suffix(1);
+  return s;
+}
+
+std::optional<double> parse_double(std::string_view s) {
+  s = trim(s);
+  if (!s.empty() && s.front() == '+') s.remove_prefix(1);
+  double v = 0;
+  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (s.empty() || ec != std::errc() || end != s.data() + s.size() || !std::isfinite(v)) return std::nullopt;
+  return v;
+}
+
+// "name=rest": the name (trimmed, non-empty, no blanks inside) and the rest.
+std::pair<std::string, std::string_view> split_assignment(std::string_view text, std::string_view expected) {
+  const auto eq = text.find('=');
+  const std::string_view name = eq == std::string_view::npos ? std::string_view{} : trim(text.substr(0, eq));
+  if (eq == std::string_view::npos || name.empty() || name.find_first_of(" \t,") != std::string_view::npos) {
+    throw Error(fmt::format("'{}' is not an assignment; expected {}", text, expected));
+  }
+  return {std::string(name), text.substr(eq + 1)};
+}
+
+// SplitMix64's output function (Steele, Lea and Flood 2014): a bijection of 64-bit words whose
+// every output bit depends on every input bit.
+std::uint64_t splitmix64(std::uint64_t x) {
+  x += 0x9e3779b97f4a7c15ULL;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+  return x ^ (x >> 31);
+}
+
+std::string_view distribution_name(Distribution d) {
+  switch (d) {
+    case Distribution::kUniform: return "uniform";
+    case Distribution::kNormal: return "normal";
+    case Distribution::kLogUniform: return "loguniform";
+  }
+  return "uniform";
+}
+
+// FNV-1a, 64 bits, of a file's bytes: a content hash that is the same on every machine and
+// every build (std::hash is not), for the fingerprint only (not a security measure).
+std::string file_hash(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw Error(fmt::format("cannot read the scene file '{}'", file.string()));
+  std::uint64_t h = 0xcbf29ce484222325ULL;
+  char buffer[1 << 14];
+  while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
+    for (std::streamsize i = 0; i < in.gcount(); ++i) {
+      h = (h ^ static_cast<unsigned char>(buffer[i])) * 0x100000001b3ULL;
+    }
+  }
+  return fmt::format("{:016x}", h);
+}
+
+Json number_json(double v) {
+  if (std::isfinite(v)) return v;
+  return std::isnan(v) ? "nan" : (v > 0 ? "inf" : "-inf");
+}
+
+double number_from_json(const Json& j) {
+  if (j.is_number()) return j.get<double>();
+  if (j.is_string()) {
+    const auto s = j.get<std::string>();
+    if (s == "nan") return kNaN;
+    if (s == "inf") return std::numeric_limits<double>::infinity();
+    if (s == "-inf") return -std::numeric_limits<double>::infinity();
+  }
+  throw Error("a value is neither a number nor nan/inf");
+}
+
+std::string shard_text(Shard s) { return fmt::format("{}/{}", s.index, s.count); }
+
+Json header_json(const std::string& description, const std::vector<std::string>& names, std::size_t runs,
+                 Shard shard) {
+  Json j;
+  j["rigid_sweep"] = 1;
+  j["sweep"] = description;
+  j["names"] = names;
+  j["runs"] = runs;
+  j["shard"] = shard_text(shard);
+  return j;
+}
+
+fs::path journal_path(const fs::path& directory) { return directory / ".journal.jsonl"; }
+
+// The journal's text: the header and the complete lines (a line cut short by a kill has no
+// newline and is dropped). Returns the byte count of the complete part.
+struct JournalText {
+  JournalContents contents;
+  std::size_t complete_bytes = 0;
+};
+
+JournalText parse_journal(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(fmt::format("cannot read the sweep journal '{}'", path.string()));
+  std::stringstream ss;
+  ss << in.rdbuf();
+  const std::string text = ss.str();
+  JournalText out;
+  std::size_t start = 0;
+  int line_no = 0;
+  while (start < text.size()) {
+    const auto nl = text.find('\n', start);
+    if (nl == std::string::npos) break;  // cut short: dropped
+    ++line_no;
+    const std::string_view line(text.data() + start, nl - start);
+    const std::string where = fmt::format("{}:{}", path.string(), line_no);
+    if (line_no == 1) {
+      try {
+        const Json h = Json::parse(line);
+        out.contents.description = h.at("sweep").get<std::string>();
+        out.contents.names = h.at("names").get<std::vector<std::string>>();
+        out.contents.runs = h.at("runs").get<std::size_t>();
+        out.contents.shard = parse_shard(h.at("shard").get<std::string>());
+        if (h.at("rigid_sweep").get<int>() != 1) throw Error("version");
+      } catch (const std::exception&) {
+        throw Error(fmt::format("{}: not the header of a rigid sweep journal", where));
+      }
+    } else {
+      out.contents.rows.push_back(row_from_json(line, where));
+    }
+    start = nl + 1;
+    out.complete_bytes = start;
+  }
+  if (line_no == 0) throw Error(fmt::format("'{}' is empty; it is not a rigid sweep journal", path.string()));
+  return out;
+}
+
+std::string system_reason() { return std::strerror(errno); }
+
+void write_all(int fd, std::string_view bytes, const fs::path& path) {
+  while (!bytes.empty()) {
+    const ssize_t n = ::write(fd, bytes.data(), bytes.size());
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) throw Error(fmt::format("cannot write the sweep journal '{}': {}", path.string(), system_reason()));
+    bytes.remove_prefix(static_cast<std::size_t>(n));
+  }
+}
+
+// GiNaC (the symbolic derivation inside a Model's construction, and the expressions a Model
+// holds) is not thread-safe: models are built and destroyed under this lock; runs are not.
+std::mutex g_symbolic;
+
+}  // namespace
+
+GridAxis parse_grid_axis(std::string_view text) {
+  constexpr std::string_view kExpected = "NAME=START:STOP:COUNT, e.g. theta.initial=0.1:2.5:25";
+  auto [name, rest] = split_assignment(text, kExpected);
+  std::vector<std::string_view> parts;
+  std::size_t start = 0;
+  while (true) {
+    const auto colon = rest.find(':', start);
+    parts.push_back(rest.substr(start, colon - start));
+    if (colon == std::string_view::npos) break;
+    start = colon + 1;
+  }
+  if (parts.size() != 3) {
+    throw Error(fmt::format("'{}' has {} field(s) after '='; expected {}", text, parts.size(), kExpected));
+  }
+  GridAxis axis{.name = name};
+  const auto a = parse_double(parts[0]);
+  const auto b = parse_double(parts[1]);
+  if (!a || !b) {
+    throw Error(fmt::format("'{}': START and STOP must be finite numbers, got '{}' and '{}'", text, trim(parts[0]),
+                            trim(parts[1])));
+  }
+  axis.start = *a;
+  axis.stop = *b;
+  const std::string_view c = trim(parts[2]);
+  std::uint64_t count = 0;
+  const auto [end, ec] = std::from_chars(c.data(), c.data() + c.size(), count);
+  if (c.empty() || ec != std::errc() || end != c.data() + c.size() || count < 1 || count > kMaxSweepRuns) {
+    throw Error(fmt::format("'{}': COUNT must be a whole number from 1 to {}, got '{}'", text, kMaxSweepRuns, c));
+  }
+  axis.count = count;
+  if (count == 1 && axis.start != axis.stop) {
+    throw Error(fmt::format("'{}': one point cannot span {} to {}; give COUNT ≥ 2 or START = STOP", text,
+                            axis.start, axis.stop));
+  }
+  return axis;
+}
+
+SampleAxis parse_sample_axis(std::string_view text) {
+  constexpr std::string_view kExpected = "NAME=uniform(A,B), NAME=normal(MU,SIGMA) or NAME=loguniform(A,B)";
+  auto [name, rest] = split_assignment(text, kExpected);
+  rest = trim(rest);
+  const auto open = rest.find('(');
+  if (open == std::string_view::npos || rest.back() != ')') {
+    throw Error(fmt::format("'{}' is not a distribution; expected {}", text, kExpected));
+  }
+  const std::string dist(trim(rest.substr(0, open)));
+  const std::string_view args = rest.substr(open + 1, rest.size() - open - 2);
+  SampleAxis axis{.name = name};
+  if (dist == "uniform") {
+    axis.distribution = Distribution::kUniform;
+  } else if (dist == "normal") {
+    axis.distribution = Distribution::kNormal;
+  } else if (dist == "loguniform") {
+    axis.distribution = Distribution::kLogUniform;
+  } else {
+    throw Error(fmt::format("'{}': unknown distribution '{}'; expected uniform, normal or loguniform{}", text, dist,
+                            did_you_mean_hint(dist, {"uniform", "normal", "loguniform"})));
+  }
+  const auto comma = args.find(',');
+  const auto a = comma == std::string_view::npos ? std::nullopt : parse_double(args.substr(0, comma));
+  const auto b = comma == std::string_view::npos ? std::nullopt : parse_double(args.substr(comma + 1));
+  if (!a || !b) throw Error(fmt::format("'{}': expected two finite numbers in {}(…, …)", text, dist));
+  axis.a = *a;
+  axis.b = *b;
+  switch (axis.distribution) {
+    case Distribution::kUniform:
+      if (!(axis.a < axis.b)) throw Error(fmt::format("'{}': uniform(a, b) needs a < b", text));
+      break;
+    case Distribution::kNormal:
+      if (!(axis.b > 0)) throw Error(fmt::format("'{}': normal(mu, sigma) needs sigma > 0", text));
+      break;
+    case Distribution::kLogUniform:
+      if (!(axis.a > 0 && axis.a < axis.b)) throw Error(fmt::format("'{}': loguniform(a, b) needs 0 < a < b", text));
+      break;
+  }
+  return axis;
+}
+
+void check_spec(const SweepSpec& spec) {
+  if (spec.grid.empty() && spec.sample.empty()) {
+    throw Error("a sweep needs a grid (NAME=START:STOP:COUNT) or a sample (NAME=DIST(A,B) and a sample count)");
+  }
+  if (!spec.grid.empty() && !spec.sample.empty()) {
+    throw Error("a sweep is a grid or a sample, not both; give the grid axes or the sample axes");
+  }
+  if (!spec.sample.empty() && spec.samples < 1) throw Error("a sample needs a sample count of at least 1");
+  if (!spec.grid.empty() && spec.samples > 0) throw Error("a sample count is for a sample; a grid has its counts");
+  if (spec.samples > kMaxSweepRuns) throw Error(fmt::format("{} samples: at most {}", spec.samples, kMaxSweepRuns));
+  const auto names = swept_names(spec);
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    if (std::find(names.begin(), names.begin() + static_cast<std::ptrdiff_t>(i), names[i]) !=
+        names.begin() + static_cast<std::ptrdiff_t>(i)) {
+      throw Error(fmt::format("'{}' is swept twice; give each name once", names[i]));
+    }
+    if (names[i] == "run" || names[i] == "error") {
+      throw Error(fmt::format("'{}' names a column of runs.csv; a swept name cannot be 'run' or 'error'", names[i]));
+    }
+  }
+  std::size_t total = 1;
+  for (const auto& g : spec.grid) {
+    if (g.count > kMaxSweepRuns / total) throw Error(fmt::format("the grid has more than {} runs", kMaxSweepRuns));
+    total *= g.count;
+  }
+}
+
+std::size_t run_count(const SweepSpec& spec) {
+  if (!spec.sample.empty()) return spec.samples;
+  std::size_t n = 1;
+  for (const auto& g : spec.grid) n *= g.count;
+  return spec.grid.empty() ? 0 : n;
+}
+
+std::vector<std::string> swept_names(const SweepSpec& spec) {
+  std::vector<std::string> names;
+  for (const auto& g : spec.grid) names.push_back(g.name);
+  for (const auto& s : spec.sample) names.push_back(s.name);
+  return names;
+}
+
+std::vector<double> run_values(const SweepSpec& spec, std::size_t index) {
+  if (!spec.grid.empty()) {
+    // mixed radix, the last axis fastest (the order of nested loops, of numpy's meshgrid
+    // with indexing="ij" flattened in C order)
+    std::vector<double> values(spec.grid.size(), 0.0);
+    std::size_t rest = index;
+    for (std::size_t k = spec.grid.size(); k-- > 0;) {
+      const GridAxis& g = spec.grid[k];
+      const std::size_t j = rest % g.count;
+      rest /= g.count;
+      // both ends exact; between them start + (stop − start)·j/(count − 1)
+      if (j == 0) {
+        values[k] = g.start;
+      } else if (j + 1 == g.count) {
+        values[k] = g.stop;
+      } else {
+        values[k] = g.start + (g.stop - g.start) * static_cast<double>(j) / static_cast<double>(g.count - 1);
+      }
+    }
+    return values;
+  }
+  std::vector<double> values;
+  values.reserve(spec.sample.size());
+  for (std::size_t k = 0; k < spec.sample.size(); ++k) {
+    values.push_back(sample_value(spec.sample[k], counter_uniform(spec.seed, index, k)));
+  }
+  return values;
+}
+
+// Counter-based rather than a stream (std::mt19937 and a std:: distribution): a run's numbers
+// must not depend on which runs came before it in this process (threads, ranks and shards take
+// runs in any order, a resumed sweep skips some), and the std:: distributions are
+// implementation-defined (libstdc++ and libc++ give different normals from the same engine).
+// A hash of (seed, index, axis) fed to the inverse CDF depends on nothing else.
+double counter_uniform(std::uint64_t seed, std::uint64_t index, std::uint64_t axis) {
+  const std::uint64_t h = splitmix64(splitmix64(splitmix64(seed) ^ index) ^ (axis + 0x632be59bd9b4e019ULL));
+  // the 53 high bits as k·2⁻⁵³, moved by half a step: (k + ½)·2⁻⁵³ ∈ (0, 1), symmetric about ½
+  return (static_cast<double>(h >> 11) + 0.5) * 0x1.0p-53;
+}
+
+double sample_value(const SampleAxis& axis, double u) {
+  switch (axis.distribution) {
+    case Distribution::kUniform: return axis.a + (axis.b - axis.a) * u;
+    case Distribution::kNormal:
+      // boost's quantile is the inverse of the normal CDF to a few ulps, and the same on every
+      // platform (it is computed, not drawn)
+      return boost::math::quantile(boost::math::normal_distribution<double>(axis.a, axis.b), u);
+    case Distribution::kLogUniform: {
+      const double la = std::log(axis.a), lb = std::log(axis.b);
+      return std::exp(la + (lb - la) * u);
+    }
+  }
+  return kNaN;
+}
+
+std::string override_text(std::string_view name, double value) { return fmt::format("{}={}", name, value); }
+
+Shard parse_shard(std::string_view text) {
+  const auto slash = text.find('/');
+  std::size_t i = 0, n = 0;
+  bool ok = slash != std::string_view::npos;
+  if (ok) {
+    const auto a = text.substr(0, slash), b = text.substr(slash + 1);
+    const auto ra = std::from_chars(a.data(), a.data() + a.size(), i);
+    const auto rb = std::from_chars(b.data(), b.data() + b.size(), n);
+    ok = !a.empty() && !b.empty() && ra.ec == std::errc() && ra.ptr == a.data() + a.size() &&
+         rb.ec == std::errc() && rb.ptr == b.data() + b.size() && n >= 1 && i < n;
+  }
+  if (!ok) throw Error(fmt::format("shard '{}' is not I/N with 0 ≤ I < N (e.g. 0/3, 1/3, 2/3)", text));
+  return {i, n};
+}
+
+std::string row_to_json(const SweepRow& row) {
+  Json j;
+  j["run"] = row.index;
+  j["values"] = Json::array();
+  for (double v : row.values) j["values"].push_back(number_json(v));
+  j["results"] = Json::array();
+  for (const auto& [name, v] : row.results) j["results"].push_back(Json::array({name, number_json(v)}));
+  j["error"] = row.error;
+  // nlohmann prints doubles in their shortest round-trip form, and escapes line breaks
+  return j.dump();
+}
+
+SweepRow row_from_json(std::string_view line, std::string_view where) {
+  try {
+    const Json j = Json::parse(line);
+    SweepRow row;
+    row.index = j.at("run").get<std::size_t>();
+    for (const auto& v : j.at("values")) row.values.push_back(number_from_json(v));
+    for (const auto& r : j.at("results")) {
+      row.results.emplace_back(r.at(0).get<std::string>(), number_from_json(r.at(1)));
+    }
+    row.error = j.at("error").get<std::string>();
+    return row;
+  } catch (const std::exception&) {
+    throw Error(fmt::format("{}: not a row of a rigid sweep journal (the journal was edited or damaged; start "
+                            "the sweep in another directory)",
+                            where));
+  }
+}
+
+std::string describe(const SweepIdentity& id) {
+  std::string d = fmt::format("scene {} (fnv1a64 {})", id.scene.filename().string(), file_hash(id.scene));
+  for (const auto& s : id.set) d += fmt::format("; set {}", s);
+  if (!id.integrator.empty()) d += fmt::format("; integrator {}", id.integrator);
+  for (const auto& g : id.spec.grid) d += fmt::format("; grid {}={}:{}:{}", g.name, g.start, g.stop, g.count);
+  for (const auto& s : id.spec.sample) {
+    d += fmt::format("; sample {}={}({},{})", s.name, distribution_name(s.distribution), s.a, s.b);
+  }
+  if (!id.spec.sample.empty()) d += fmt::format("; n {}; seed {}", id.spec.samples, id.spec.seed);
+  return d;
+}
+
+Journal::Journal(const fs::path& directory, const std::string& description, const std::vector<std::string>& names,
+                 std::size_t runs, Shard shard)
+    : path_(journal_path(directory)) {
+  std::error_code ec;
+  fs::create_directories(directory, ec);
+  if (ec || !fs::is_directory(directory)) {
+    throw Error(fmt::format("cannot make the sweep directory '{}': {}", directory.string(),
+                            ec ? ec.message() : "a file of that name is in the way"));
+  }
+  const std::string header = header_json(description, names, runs, shard).dump() + "\n";
+  if (fs::exists(path_)) {
+    const JournalText j = parse_journal(path_);
+    const JournalContents& c = j.contents;
+    if (c.description != description || c.names != names || c.runs != runs) {
+      throw Error(fmt::format("'{}' holds another sweep ({}); this one is {}. Give another output directory, or "
+                              "remove that one to start again",
+                              directory.string(), c.description, description));
+    }
+    if (c.shard.index != shard.index || c.shard.count != shard.count) {
+      throw Error(fmt::format("'{}' holds shard {} of this sweep, not shard {}; give each shard its own directory",
+                              directory.string(), shard_text(c.shard), shard_text(shard)));
+    }
+    finished_ = c.rows;
+    fd_ = ::open(path_.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
+    // a line cut short by a kill is cut off, so the next row starts a line of its own
+    if (fd_ >= 0 && ::ftruncate(fd_, static_cast<off_t>(j.complete_bytes)) != 0) {
+      ::close(fd_);
+      fd_ = -1;
+    }
+  } else {
+    fd_ = ::open(path_.c_str(), O_WRONLY | O_APPEND | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+    if (fd_ >= 0) write_all(fd_, header, path_);
+  }
+  if (fd_ < 0) throw Error(fmt::format("cannot write the sweep journal '{}': {}", path_.string(), system_reason()));
+}
+
+Journal::~Journal() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+void Journal::append(const SweepRow& row) {
+  // one write(2) per line, O_APPEND: a whole line reaches the file or (killed mid-write) a
+  // piece without its newline, which the next open drops
+  write_all(fd_, row_to_json(row) + "\n", path_);
+}
+
+JournalContents read_journal(const fs::path& directory) {
+  const fs::path p = journal_path(directory);
+  if (!fs::is_regular_file(p)) {
+    throw Error(fmt::format("'{}' holds no sweep journal (.journal.jsonl); expected the output directory of a "
+                            "sweep or shard",
+                            directory.string()));
+  }
+  return parse_journal(p).contents;
+}
+
+void check_overrides(const SweepIdentity& id) {
+  check_spec(id.spec);
+  Scene s = load_scene(id.scene);
+  std::vector<std::string> set = id.set;
+  const auto names = swept_names(id.spec);
+  const auto values = run_values(id.spec, 0);
+  for (std::size_t k = 0; k < names.size(); ++k) set.push_back(override_text(names[k], values[k]));
+  apply_overrides(s, set);
+}
+
+std::vector<SweepRow> run_sweep(const SweepIdentity& id, std::span<const std::size_t> indices,
+                                const SweepRunOptions& options) {
+  const auto names = swept_names(id.spec);
+  std::vector<SweepRow> rows(indices.size());
+  std::atomic<std::size_t> next{0};
+  std::atomic<bool> stopped{false};
+  std::mutex report;
+
+  auto one_run = [&](std::size_t slot) {
+    SweepRow& row = rows[slot];
+    row.index = indices[slot];
+    row.values = run_values(id.spec, row.index);
+    std::vector<std::string> set = id.set;
+    for (std::size_t k = 0; k < names.size(); ++k) set.push_back(override_text(names[k], row.values[k]));
+    std::optional<Model> model;
+    try {
+      {
+        std::lock_guard lock(g_symbolic);
+        model.emplace(load_model(id.scene, set));
+      }
+      RunOptions ro;
+      ro.integrator = id.integrator;
+      ro.control.cancel = options.cancel;
+      const RunResult result = model->run(ro);
+      for (const auto& m : result.summary.metrics) row.results.emplace_back(m.name, m.value);
+      for (const auto& [n, v] : result.summary.diagnostics) row.results.emplace_back(n, v);
+      if (!options.keep_trajectories.empty()) {
+        const auto formats = model->output_formats();
+        (void)io::write_run(options.keep_trajectories / fmt::format("{:05}", row.index), result, formats);
+      }
+    } catch (const Cancelled&) {
+      std::lock_guard lock(g_symbolic);
+      model.reset();
+      throw;
+    } catch (const Error& e) {
+      row.results.clear();
+      row.error = word_for(options.wording, e.what());
+      if (row.error.empty()) row.error = "failed";
+    } catch (const std::bad_alloc&) {
+      // one run asked for more memory than there is (its trajectory): that run fails, the
+      // sweep goes on with the memory freed
+      row.results.clear();
+      row.error = "out of memory: the run needs more memory than is available; lower its trajectory's size";
+    }
+    {
+      std::lock_guard lock(g_symbolic);
+      model.reset();
+    }
+    std::lock_guard lock(report);
+    if (options.on_row) options.on_row(row);
+  };
+
+  std::exception_ptr failure;
+  std::mutex failure_lock;
+  std::vector<std::size_t> done(indices.size(), 0);
+  auto worker = [&] {
+    while (true) {
+      if (stopped || (options.cancel != nullptr && options.cancel->load(std::memory_order_relaxed))) return;
+      const std::size_t slot = next.fetch_add(1);
+      if (slot >= indices.size()) return;
+      try {
+        one_run(slot);
+        done[slot] = 1;
+      } catch (...) {
+        // a cancellation, or an error outside a run (the journal cannot be written): stop all
+        stopped = true;
+        std::lock_guard lock(failure_lock);
+        if (!failure) failure = std::current_exception();
+        return;
+      }
+    }
+  };
+  const std::size_t threads = std::clamp<std::size_t>(options.threads, 1, std::max<std::size_t>(indices.size(), 1));
+  {
+    std::vector<std::jthread> pool;
+    for (std::size_t t = 1; t < threads; ++t) pool.emplace_back(worker);
+    worker();
+  }  // joined
+  if (options.cancel != nullptr && options.cancel->load()) {
+    throw Cancelled(fmt::format("the sweep stopped after {} of {} runs",
+                                std::count(done.begin(), done.end(), std::size_t{1}), indices.size()));
+  }
+  if (failure) std::rethrow_exception(failure);
+  std::sort(rows.begin(), rows.end(), [](const SweepRow& a, const SweepRow& b) { return a.index < b.index; });
+  return rows;
+}
+
+namespace {
+
+// Quantile q of sorted values by linear interpolation between order statistics (the default of
+// numpy.quantile and R's type 7): h = (n − 1) q, x[⌊h⌋] + (h − ⌊h⌋)(x[⌊h⌋+1] − x[⌊h⌋]).
+double quantile_sorted(const std::vector<double>& x, double q) {
+  const double h = static_cast<double>(x.size() - 1) * q;
+  const auto lo = static_cast<std::size_t>(std::floor(h));
+  const std::size_t hi = std::min(lo + 1, x.size() - 1);
+  return x[lo] + (h - static_cast<double>(lo)) * (x[hi] - x[lo]);
+}
+
+}  // namespace
+
+SweepOutputs make_outputs(const std::vector<std::string>& names, std::size_t runs, std::vector<SweepRow> rows) {
+  std::sort(rows.begin(), rows.end(), [](const SweepRow& a, const SweepRow& b) { return a.index < b.index; });
+  // each index once (a row run twice, e.g. by two shards that overlap, must agree)
+  std::vector<SweepRow> unique;
+  for (auto& r : rows) {
+    if (r.index >= runs) throw Error(fmt::format("run {} is beyond the sweep's {} runs", r.index, runs));
+    if (!unique.empty() && unique.back().index == r.index) {
+      if (row_to_json(unique.back()) != row_to_json(r)) {
+        throw Error(fmt::format("run {} was recorded twice with different results", r.index));
+      }
+      continue;
+    }
+    unique.push_back(std::move(r));
+  }
+  if (unique.size() != runs) {
+    std::vector<std::size_t> missing;
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < runs && missing.size() < 10; ++i) {
+      if (k < unique.size() && unique[k].index == i) {
+        ++k;
+      } else {
+        missing.push_back(i);
+      }
+    }
+    throw Error(fmt::format("{} of the sweep's {} runs are missing (runs {}{})", runs - unique.size(), runs,
+                            fmt::join(missing, ", "), runs - unique.size() > missing.size() ? ", …" : ""));
+  }
+
+  // the result columns: every name in index order of first appearance
+  std::vector<std::string> columns{"run"};
+  for (const auto& n : names) columns.push_back(n);
+  std::vector<std::string> result_names;
+  for (const auto& r : unique) {
+    for (const auto& [n, v] : r.results) {
+      if (std::find(result_names.begin(), result_names.end(), n) == result_names.end()) result_names.push_back(n);
+    }
+  }
+  std::vector<std::string> result_columns;
+  for (const auto& n : result_names) {
+    const bool taken = std::find(columns.begin(), columns.end(), n) != columns.end() || n == "error";
+    result_columns.push_back(taken ? "result." + n : n);
+    columns.push_back(result_columns.back());
+  }
+
+  SweepOutputs out{.numbers = io::Table(columns), .errors = {}, .summary_json = {}};
+  std::vector<double> line(columns.size());
+  std::vector<std::vector<double>> per_column(result_names.size());
+  std::size_t failures = 0;
+  for (const auto& r : unique) {
+    std::fill(line.begin(), line.end(), kNaN);
+    line[0] = static_cast<double>(r.index);
+    std::copy(r.values.begin(), r.values.end(), line.begin() + 1);
+    for (const auto& [n, v] : r.results) {
+      const auto k = static_cast<std::size_t>(std::find(result_names.begin(), result_names.end(), n) -
+                                              result_names.begin());
+      line[1 + names.size() + k] = v;
+    }
+    for (std::size_t k = 0; k < result_names.size(); ++k) {
+      const double v = line[1 + names.size() + k];
+      if (std::isfinite(v)) per_column[k].push_back(v);
+    }
+    out.numbers.add_row(line);
+    out.errors.push_back(r.error);
+    if (!r.error.empty()) ++failures;
+  }
+
+  Json j;
+  j["count"] = runs;
+  j["failures"] = failures;
+  j["columns"] = columns;
+  j["swept"] = names;
+  j["results"] = Json::object();
+  for (std::size_t k = 0; k < result_names.size(); ++k) {
+    std::vector<double>& x = per_column[k];
+    Json s;
+    s["count"] = x.size();
+    if (!x.empty()) {
+      // sums in index order: the same bits whatever the threads or shards
+      double sum = 0;
+      for (double v : x) sum += v;
+      const double mean = sum / static_cast<double>(x.size());
+      double ss = 0;
+      for (double v : x) ss += (v - mean) * (v - mean);
+      s["mean"] = mean;
+      s["std"] = x.size() > 1 ? Json(std::sqrt(ss / static_cast<double>(x.size() - 1))) : Json(nullptr);
+      std::sort(x.begin(), x.end());
+      s["min"] = x.front();
+      s["max"] = x.back();
+      Json q;
+      for (double p : {0.05, 0.25, 0.5, 0.75, 0.95}) q[fmt::format("{}", p)] = quantile_sorted(x, p);
+      s["quantiles"] = q;
+    }
+    j["results"][result_columns[k]] = s;
+  }
+  out.summary_json = j.dump(2) + "\n";
+  return out;
+}
+
+std::vector<fs::path> write_outputs(const fs::path& directory, const SweepOutputs& outputs) {
+  io::write_file_atomically(directory / "runs.csv", io::to_csv(outputs.numbers, "error", outputs.errors));
+  io::write_file_atomically(directory / "runs.npy", io::to_npy(outputs.numbers));
+  io::write_file_atomically(directory / "summary.json", outputs.summary_json);
+  return {directory / "runs.csv", directory / "runs.npy", directory / "summary.json"};
+}
+
+}  // namespace rigid::scene

@@ -1,0 +1,261 @@
+#include "rigid/scene/sweep.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <numeric>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "support/expect_error.hpp"
+
+namespace rigid::scene {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path temp_dir(const std::string& name) {
+  // one folder per test process: ctest -j runs several at once
+  const fs::path dir = fs::temp_directory_path() / fmt::format("rigid_sweep_test_{}_{}", name, ::getpid());
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+TEST(SweepGrid, ValuesIncludeBothEndsAndAreEquallySpaced) {
+  const GridAxis a = parse_grid_axis("theta.initial=0.1:2.5:25");
+  EXPECT_EQ(a.name, "theta.initial");
+  SweepSpec spec{.grid = {a}};
+  check_spec(spec);
+  ASSERT_EQ(run_count(spec), 25u);
+  EXPECT_EQ(run_values(spec, 0)[0], 0.1);   // exact: the ends are the given numbers
+  EXPECT_EQ(run_values(spec, 24)[0], 2.5);
+  for (std::size_t j = 1; j < 24; ++j) {
+    // 0.1 + 0.1·j, to the rounding of one product and one sum (2 ulps of 2.5)
+    EXPECT_NEAR(run_values(spec, j)[0], 0.1 + 0.1 * static_cast<double>(j), 2 * 4.5e-16) << j;
+  }
+}
+
+TEST(SweepGrid, CartesianOrderHasTheLastAxisFastest) {
+  SweepSpec spec{.grid = {parse_grid_axis("a=0:1:2"), parse_grid_axis("b=10:30:3")}};
+  ASSERT_EQ(run_count(spec), 6u);
+  const std::vector<std::vector<double>> expected{{0, 10}, {0, 20}, {0, 30}, {1, 10}, {1, 20}, {1, 30}};
+  for (std::size_t i = 0; i < 6; ++i) EXPECT_EQ(run_values(spec, i), expected[i]) << i;
+  EXPECT_EQ(swept_names(spec), (std::vector<std::string>{"a", "b"}));
+}
+
+TEST(SweepSample, UniformNumbersDependOnlyOnSeedIndexAndAxis) {
+  // the same (seed, index, axis) gives the same bits whatever was drawn before
+  const double u = counter_uniform(7, 123, 1);
+  for (std::uint64_t i = 0; i < 200; ++i) (void)counter_uniform(7, i, 0);
+  EXPECT_EQ(counter_uniform(7, 123, 1), u);
+  EXPECT_NE(counter_uniform(8, 123, 1), u);
+  EXPECT_NE(counter_uniform(7, 124, 1), u);
+  EXPECT_NE(counter_uniform(7, 123, 0), u);
+  for (std::uint64_t i = 0; i < 1000; ++i) {
+    const double v = counter_uniform(0, i, 0);
+    EXPECT_GT(v, 0.0);
+    EXPECT_LT(v, 1.0);
+  }
+}
+
+TEST(SweepSample, MomentsMatchTheDistributions) {
+  // n draws; the sample mean is within 5 standard errors (σ/√n) of the mean: a false alarm
+  // has probability 6e-7, and the draws are fixed (seed 1), so the test is deterministic
+  constexpr std::size_t n = 20000;
+  SweepSpec spec{.sample = {parse_sample_axis("u=uniform(2,3)"), parse_sample_axis("x=normal(1,0.1)"),
+                            parse_sample_axis("l=loguniform(1e-3,1e3)")},
+                 .samples = n,
+                 .seed = 1};
+  check_spec(spec);
+  std::vector<double> u, x, l;
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto v = run_values(spec, i);
+    u.push_back(v[0]);
+    x.push_back(v[1]);
+    l.push_back(std::log10(v[2]));
+  }
+  auto mean = [](const std::vector<double>& v) { return std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size()); };
+  const double se = 1 / std::sqrt(static_cast<double>(n));
+  EXPECT_NEAR(mean(u), 2.5, 5 * se / std::sqrt(12.0));  // σ of uniform(2,3) = 1/√12
+  EXPECT_NEAR(mean(x), 1.0, 5 * 0.1 * se);
+  EXPECT_NEAR(mean(l), 0.0, 5 * 6 / std::sqrt(12.0) * se);  // log10 is uniform on (−3, 3)
+  EXPECT_GE(*std::min_element(u.begin(), u.end()), 2.0);
+  EXPECT_LT(*std::max_element(u.begin(), u.end()), 3.0);
+  const double mx = mean(x);
+  double ss = 0;
+  for (double v : x) ss += (v - mx) * (v - mx);
+  // the sample variance's standard error is σ²·√(2/(n−1)) for a normal
+  EXPECT_NEAR(ss / (n - 1), 0.01, 5 * 0.01 * std::sqrt(2.0 / (n - 1)));
+}
+
+TEST(SweepSample, NormalIsTheInverseCdf) {
+  const SampleAxis z = parse_sample_axis("z=normal(0,1)");
+  // Φ⁻¹(0.975) = 1.959963984540054 (tables); to 4 ulps
+  EXPECT_NEAR(sample_value(z, 0.975), 1.959963984540054, 4 * 2.2e-16 * 2);
+  EXPECT_EQ(sample_value(z, 0.5), 0.0);
+  // symmetry Φ⁻¹(1 − u) = −Φ⁻¹(u) (u and 1 − u both exact), to a few ulps of the value
+  for (double u : {0x1p-30, 0x1p-7, 0.25}) EXPECT_NEAR(sample_value(z, 1 - u), -sample_value(z, u), 1e-14 * 7) << u;
+  const SampleAxis s = parse_sample_axis("s=normal(10,2)");
+  EXPECT_NEAR(sample_value(s, 0.975), 10 + 2 * 1.959963984540054, 4 * 2.2e-16 * 14);
+}
+
+TEST(SweepSpec, BadTextIsRefusedWithWhatWasExpected) {
+  EXPECT_RIGID_ERROR((void)parse_grid_axis("L=1:2"), "expected NAME=START:STOP:COUNT");
+  EXPECT_RIGID_ERROR((void)parse_grid_axis("L"), "is not an assignment");
+  EXPECT_RIGID_ERROR((void)parse_grid_axis("L=1:2:0"), "COUNT must be a whole number");
+  EXPECT_RIGID_ERROR((void)parse_grid_axis("L=1:2:2.5"), "COUNT must be a whole number");
+  EXPECT_RIGID_ERROR((void)parse_grid_axis("L=a:2:3"), "START and STOP must be finite numbers");
+  EXPECT_RIGID_ERROR((void)parse_grid_axis("L=nan:2:3"), "START and STOP must be finite numbers");
+  EXPECT_RIGID_ERROR((void)parse_grid_axis("L=1:2:1"), "one point cannot span");
+  EXPECT_RIGID_ERROR((void)parse_sample_axis("I2=gauss(1,2)"), "unknown distribution 'gauss'");
+  EXPECT_RIGID_ERROR((void)parse_sample_axis("I2=normall(1,2)"), "did you mean 'normal'");
+  EXPECT_RIGID_ERROR((void)parse_sample_axis("I2=normal(1,0)"), "sigma > 0");
+  EXPECT_RIGID_ERROR((void)parse_sample_axis("I2=uniform(2,1)"), "a < b");
+  EXPECT_RIGID_ERROR((void)parse_sample_axis("I2=loguniform(0,1)"), "0 < a < b");
+  EXPECT_RIGID_ERROR((void)parse_sample_axis("I2=uniform(1)"), "two finite numbers");
+  EXPECT_RIGID_ERROR((void)parse_shard("3/3"), "0 ≤ I < N");
+  EXPECT_RIGID_ERROR((void)parse_shard("1"), "0 ≤ I < N");
+  EXPECT_RIGID_ERROR(check_spec(SweepSpec{}), "needs a grid");
+  EXPECT_RIGID_ERROR(check_spec(SweepSpec{.grid = {parse_grid_axis("a=0:1:2"), parse_grid_axis("a=0:1:3")}}),
+                     "'a' is swept twice");
+  EXPECT_RIGID_ERROR(check_spec(SweepSpec{.sample = {parse_sample_axis("a=uniform(0,1)")}}), "sample count");
+  // 2^17 · 2^17 = 2^34 runs: more than the bound, refused before anything is allocated
+  EXPECT_RIGID_ERROR(check_spec(SweepSpec{.grid = {parse_grid_axis("a=0:1:131072"), parse_grid_axis("b=0:1:131072")}}),
+                     "more than");
+}
+
+TEST(SweepRow, JsonRoundTripsEveryBitAndText) {
+  const double inf = std::numeric_limits<double>::infinity();
+  const SweepRow row{.index = 17,
+                     .values = {0.1, 1e-300, -2.5},
+                     .results = {{"period", 1.7466013148237887}, {"t_flip", std::nan("")}, {"big", inf}},
+                     .error = "a \"quoted\", two-line\nmessage"};
+  const SweepRow back = row_from_json(row_to_json(row), "test");
+  EXPECT_EQ(back.index, 17u);
+  EXPECT_EQ(back.values, row.values);
+  ASSERT_EQ(back.results.size(), 3u);
+  EXPECT_EQ(back.results[0], row.results[0]);
+  EXPECT_TRUE(std::isnan(back.results[1].second));
+  EXPECT_EQ(back.results[2].second, inf);
+  EXPECT_EQ(back.error, row.error);
+  EXPECT_EQ(row_to_json(row).find('\n'), std::string::npos);  // one line
+  EXPECT_RIGID_ERROR((void)row_from_json("{\"run\":1}", "journal:3"), "journal:3: not a row");
+}
+
+TEST(SweepOutputs, CsvHasOneRowPerRunInIndexOrderAndStatistics) {
+  std::vector<SweepRow> rows;
+  for (std::size_t i : {3u, 0u, 2u, 1u}) {
+    SweepRow r{.index = i, .values = {static_cast<double>(i) / 2}};
+    if (i == 2) {
+      r.error = "diverged, at t = 1";
+    } else {
+      r.results = {{"x", static_cast<double>(i * i)}};
+    }
+    rows.push_back(r);
+  }
+  const SweepOutputs out = make_outputs({"a"}, 4, rows);
+  EXPECT_EQ(io::to_csv(out.numbers, "error", out.errors),
+            "run,a,x,error\n0,0,0,\n1,0.5,1,\n2,1,nan,\"diverged, at t = 1\"\n3,1.5,9,\n");
+  // x over the runs that have it: 0, 1, 9 → mean 10/3, std (n−1) √((100/9 + 49/9 + 289/9)/2),
+  // median 1, quantile 0.25 at h = 0.5 → 0.5 (numpy.quantile's linear rule)
+  const auto j = nlohmann::json::parse(out.summary_json);
+  EXPECT_EQ(j["count"], 4);
+  EXPECT_EQ(j["failures"], 1);
+  EXPECT_DOUBLE_EQ(j["results"]["x"]["mean"].get<double>(), 10.0 / 3);
+  EXPECT_DOUBLE_EQ(j["results"]["x"]["std"].get<double>(), std::sqrt((100.0 / 9 + 49.0 / 9 + 289.0 / 9) / 2));
+  EXPECT_EQ(j["results"]["x"]["quantiles"]["0.5"].get<double>(), 1.0);
+  EXPECT_EQ(j["results"]["x"]["quantiles"]["0.25"].get<double>(), 0.5);
+  EXPECT_EQ(j["results"]["x"]["max"].get<double>(), 9.0);
+}
+
+TEST(SweepOutputs, MissingOrConflictingRunsAreRefused) {
+  std::vector<SweepRow> rows{{.index = 0}, {.index = 2}};
+  EXPECT_RIGID_ERROR((void)make_outputs({}, 4, rows), "2 of the sweep's 4 runs are missing (runs 1, 3)");
+  rows = {{.index = 0}, {.index = 0, .error = "x"}};
+  EXPECT_RIGID_ERROR((void)make_outputs({}, 1, rows), "run 0 was recorded twice with different results");
+}
+
+TEST(SweepJournal, KeepsRowsRefusesAnotherSweepAndDropsACutLine) {
+  const fs::path dir = temp_dir("journal");
+  {
+    Journal j(dir, "sweep A", {"a"}, 3, Shard{});
+    EXPECT_TRUE(j.finished().empty());
+    j.append(SweepRow{.index = 2, .values = {1.5}, .results = {{"x", 2}}});
+  }
+  // a kill in the middle of a write leaves a line without its newline
+  {
+    std::ofstream(dir / ".journal.jsonl", std::ios::app) << "{\"run\":0,\"val";
+  }
+  {
+    Journal j(dir, "sweep A", {"a"}, 3, Shard{});
+    ASSERT_EQ(j.finished().size(), 1u);
+    EXPECT_EQ(j.finished()[0].index, 2u);
+    j.append(SweepRow{.index = 0, .values = {0.5}});
+  }
+  EXPECT_EQ(read_journal(dir).rows.size(), 2u);  // the cut line is gone, the new one whole
+  EXPECT_RIGID_ERROR(Journal(dir, "sweep B", {"a"}, 3, Shard{}), "holds another sweep (sweep A)");
+  EXPECT_RIGID_ERROR(Journal(dir, "sweep A", {"a"}, 3, Shard{1, 2}), "holds shard 0/1 of this sweep, not shard 1/2");
+  EXPECT_RIGID_ERROR((void)read_journal(dir / "nothing"), "holds no sweep journal");
+  fs::remove_all(dir);
+}
+
+constexpr const char* kRacket = R"toml(
+[parameters]
+I2 = 2
+[[bodies]]
+name = "racket"
+free = true
+inertia = {mass = 0.35, ixx = 1, iyy = "I2", izz = 3}
+angular_velocity = [0.01, 1, 0.01]
+[simulation]
+t_end = 2.0
+output_dt = 0.1
+)toml";
+
+TEST(SweepRun, RowsAreBitwiseTheSameOnOneOrThreeThreadsAndFailuresAreRows) {
+  const fs::path dir = temp_dir("run");
+  const fs::path scene = dir / "racket.toml";
+  std::ofstream(scene) << kRacket;
+  // I2 from 2 to 4.5: valid up to I1 + I3 = 4 (the triangle inequality I2 ≤ I1 + I3)
+  const SweepIdentity id{.scene = scene, .set = {}, .integrator = "", .spec = {.grid = {parse_grid_axis("I2=2:4.5:6")}}};
+  check_overrides(id);
+  std::vector<std::size_t> all(run_count(id.spec));
+  std::iota(all.begin(), all.end(), 0);
+  const auto one = run_sweep(id, all, {.threads = 1});
+  const auto three = run_sweep(id, all, {.threads = 3});
+  ASSERT_EQ(one.size(), 6u);
+  for (std::size_t i = 0; i < one.size(); ++i) EXPECT_EQ(row_to_json(one[i]), row_to_json(three[i])) << i;
+  // I2 = 4.5 > I1 + I3 = 4 violates the triangle inequality: that run is a row with its error
+  EXPECT_THAT(one[5].error, ::testing::HasSubstr("violate I₁ + I₂ ≥ I₃"));
+  EXPECT_TRUE(one[5].results.empty());
+  for (std::size_t i = 0; i < 5; ++i) EXPECT_TRUE(one[i].error.empty()) << one[i].error;
+  EXPECT_TRUE(one[0].error.empty());
+  EXPECT_FALSE(one[0].results.empty());
+  // a name the scene lacks is refused before any run
+  const SweepIdentity bad{.scene = scene, .set = {}, .integrator = "", .spec = {.grid = {parse_grid_axis("I9=1:2:2")}}};
+  EXPECT_RIGID_ERROR(check_overrides(bad), "I9");
+  fs::remove_all(dir);
+}
+
+TEST(SweepRun, ACancelledSweepStopsWithCancelled) {
+  const fs::path dir = temp_dir("cancel");
+  const fs::path scene = dir / "racket.toml";
+  std::ofstream(scene) << kRacket;
+  const SweepIdentity id{.scene = scene, .set = {}, .integrator = "", .spec = {.grid = {parse_grid_axis("I2=1.5:2.5:5")}}};
+  std::vector<std::size_t> all{0, 1, 2, 3, 4};
+  std::atomic<bool> cancel{true};
+  EXPECT_THROW((void)run_sweep(id, all, {.threads = 2, .cancel = &cancel}), Cancelled);
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace rigid::scene
