@@ -106,6 +106,7 @@ void bind_mass(py::module_& m) {
   RIGID_BIND_PRIMITIVE(thin_rod, py::arg("l"));
   RIGID_BIND_PRIMITIVE(thin_rectangular_plate, py::arg("lx"), py::arg("ly"));
   RIGID_BIND_PRIMITIVE(thin_disk, py::arg("r"));
+  RIGID_BIND_PRIMITIVE(thin_ring, py::arg("r"));
   RIGID_BIND_PRIMITIVE(solid_tetrahedron, py::arg("v0"), py::arg("v1"), py::arg("v2"), py::arg("v3"));
   RIGID_BIND_PRIMITIVE(disk_lamina, py::arg("r"));
   RIGID_BIND_PRIMITIVE(annulus_lamina, py::arg("r_inner"), py::arg("r_outer"));
