@@ -13,6 +13,39 @@
 
 namespace py = pybind11;
 
+namespace {
+
+// a placement's 3-vector (origin=, rpy=, axis=), refused by name when it is not 3 numbers
+Eigen::Vector3d vector3_from_python(const py::handle& value, const char* what, const char* expected) {
+  Eigen::VectorXd v;
+  try {
+    v = value.cast<Eigen::VectorXd>();
+  } catch (const py::cast_error&) {
+    v.resize(0);
+  }
+  if (v.size() != 3) {
+    throw rigid::Error(fmt::format("{}= must be {}, got {}", what, expected, py::repr(value).cast<std::string>()));
+  }
+  return v;
+}
+
+// axis= of a placement: 'x', 'y', 'z', '-x', '-y', '-z' or a 3-vector
+Eigen::Vector3d axis_from_python(const py::handle& axis) {
+  if (py::isinstance<py::str>(axis)) {
+    const auto s = axis.cast<std::string>();
+    const bool neg = !s.empty() && s[0] == '-';
+    const std::string letter = neg ? s.substr(1) : s;
+    if (letter == "x" || letter == "y" || letter == "z") {
+      Eigen::Vector3d v = Eigen::Vector3d::Unit(letter[0] - 'x');
+      return neg ? (-v).eval() : v;
+    }
+    throw rigid::Error(fmt::format("axis= must be 'x', 'y', 'z', '-x', '-y', '-z' or a vector (vx, vy, vz), got '{}'", s));
+  }
+  return vector3_from_python(axis, "axis", "'x', 'y', 'z', '-x', '-y', '-z' or a vector (vx, vy, vz)");
+}
+
+}  // namespace
+
 void bind_mass(py::module_& m) {
   using rigid::MassProperties;
   using rigid::MassProperties2;
@@ -119,9 +152,20 @@ void bind_mass(py::module_& m) {
     const rm::PrimitiveEntry& e = rm::find_primitive(name);
     std::optional<double> amount_mass, amount_density;
     rm::PrimitiveArguments args;
+    rm::Placement placement;
+    bool placed = false;
     for (auto item : kwargs) {
       const auto key = item.first.cast<std::string>();
-      if (key == "mass") {
+      if (key == "axis") {
+        placement.axis = axis_from_python(item.second);
+        placed = true;
+      } else if (key == "origin") {
+        placement.origin = vector3_from_python(item.second, "origin", "a point (x, y, z) in m");
+        placed = true;
+      } else if (key == "rpy") {
+        placement.rpy = vector3_from_python(item.second, "rpy", "(roll, pitch, yaw) in rad");
+        placed = true;
+      } else if (key == "mass") {
         amount_mass = item.second.cast<double>();
       } else if (key == "density") {
         amount_density = item.second.cast<double>();
@@ -135,9 +179,28 @@ void bind_mass(py::module_& m) {
       throw rigid::Error(fmt::format("rigid.mass.{}(): give exactly one of mass= (kg) and density= ({}), got {}",
                                      name, e.density_unit, amount_mass ? "both" : "neither"));
     }
-    return rm::make_primitive(name, amount_mass ? rm::Amount::kMass : rm::Amount::kDensity,
-                              amount_mass ? *amount_mass : *amount_density, args);
+    const MassProperties own = rm::make_primitive(name, amount_mass ? rm::Amount::kMass : rm::Amount::kDensity,
+                                                  amount_mass ? *amount_mass : *amount_density, args);
+    return placed ? rm::place(own, placement) : own;
   };
+  mass.def(
+      "place",
+      [](const MassProperties& body, const py::object& axis, const Eigen::Vector3d& origin,
+         const Eigen::Vector3d& rpy) {
+        return rm::place(body, rm::Placement{.axis = axis_from_python(axis), .rpy = rpy, .origin = origin});
+      },
+      py::arg("body"), py::arg("axis") = "z", py::arg("origin") = Eigen::Vector3d::Zero().eval(),
+      py::arg("rpy") = Eigen::Vector3d::Zero().eval(),
+      "The body (given in a shape's own frame) placed in the link frame: its z axis turned along "
+      "axis ('x', 'y', 'z', '-x', '-y', '-z' or a vector), then rotated by rpy (rad, URDF: "
+      "Rz(yaw) Ry(pitch) Rx(roll)), then its origin moved to origin (m). Every catalogue "
+      "factory takes the same axis=, origin=, rpy=.");
+  mass.def("placement_rotation",
+           [](const py::object& axis, const Eigen::Vector3d& rpy) {
+             return rm::placement_rotation(rm::Placement{.axis = axis_from_python(axis), .rpy = rpy, .origin = Eigen::Vector3d::Zero()});
+           },
+           py::arg("axis") = "z", py::arg("rpy") = Eigen::Vector3d::Zero().eval(),
+           "R_LS of a placement: Rz(yaw) Ry(pitch) Rx(roll) · (shortest rotation from z to axis).");
   mass.def(
       "primitive", [make](const std::string& name, const py::kwargs& kwargs) { return make(name, kwargs); },
       py::arg("name"),
@@ -239,12 +302,14 @@ void bind_mass(py::module_& m) {
   mass.def(
       "write_inertial_document",
       [parse_format](const MassProperties& mp, const std::string& format, const std::string& name,
-                     bool principal) {
+                     bool principal, const std::optional<Eigen::Matrix3d>& inertial_frame) {
         return rigid::io::write_inertial_document(mp, parse_format(format),
-                                                  {.name = name, .principal = principal});
+                                                  {.name = name, .principal = principal}, inertial_frame);
       },
       py::arg("mp"), py::arg("format"), py::arg("name") = "body", py::arg("principal") = false,
-      "A minimal URDF/MJCF/SDF document holding one inertial.");
+      py::arg("inertial_frame") = py::none(),
+      "A minimal URDF/MJCF/SDF document holding one inertial; with principal=True, "
+      "inertial_frame=R_LI (e.g. placement_rotation(axis, rpy)) writes that frame exactly.");
   mass.def(
       "read_inertials",
       [](const std::string& xml, const std::string& source) {

@@ -16,13 +16,15 @@
 #include "rigid/io/atomic_file.hpp"
 #include "rigid/io/inertial_xml.hpp"
 #include "rigid/lie/so3.hpp"
+#include "rigid/mass/placement.hpp"
 #include "rigid/mass/primitive_table.hpp"
 
 namespace rigid::cli {
 namespace {
 
-// "x,y,z" in metres; `what` names the option in the message
-Eigen::Vector3d parse_xyz(const std::string& text, const std::string& what) {
+// "x,y,z" in metres; `what` names the option in the message, `expected` the form
+Eigen::Vector3d parse_xyz(const std::string& text, const std::string& what,
+                          const char* expected = "a point 'x,y,z' in metres") {
   Eigen::Vector3d p;
   std::size_t start = 0;
   for (int i = 0; i < 3; ++i) {
@@ -33,7 +35,7 @@ Eigen::Vector3d parse_xyz(const std::string& text, const std::string& what) {
     const char* last = text.data() + (ok_sep ? end : text.size());
     const auto [ptr, ec] = std::from_chars(first, last, value);
     if (!ok_sep || ec != std::errc() || ptr != last || !std::isfinite(value)) {
-      CLI_THROW("{} must be a point 'x,y,z' in metres, got '{}'", what, text);
+      CLI_THROW("{} must be {}, got '{}'", what, expected, text);
     }
     p(i) = value;
     start = end + 1;
@@ -81,11 +83,21 @@ std::string format_inertia(const MassProperties& mp, const InertiaOutputOptions&
   const bool principal = out.frame == "principal";
   for (const auto format : {io::InertialFormat::urdf, io::InertialFormat::mjcf, io::InertialFormat::sdf}) {
     if (out.format == io::to_string(format)) {
-      CLI_REQUIRE(out.about == "com",
-                    "--about {} cannot be used with --format {}: {} stores the inertia about the "
-                    "center of mass; leave --about at 'com'",
-                    out.about, out.format, out.format);
-      return io::write_inertial_document(mp, format, {.name = out.name, .principal = principal});
+      // the file states the inertia about the COM and the COM from the link origin, which
+      // fixes the inertia about any point: about a point p, the link origin goes to p
+      MassProperties stated = mp;
+      if (out.about != "com" && out.about != "origin") {
+        const Eigen::Vector3d p = parse_about(out.about, mp);
+        CLI_REQUIRE(!principal,
+                    "--frame principal with --about {} cannot be written as {}: {} gives the "
+                    "principal axes of the inertia about the center of mass, and those of the "
+                    "tensor about {} differ; use --frame body (the file then states the inertia "
+                    "about the point exactly, with the link origin there) or --format text/json",
+                    out.about, out.format, out.format, out.about);
+        stated = mp.shifted(-p);
+      }
+      return io::write_inertial_document(
+          stated, format, {.name = out.name, .principal = principal}, out.inertial_frame);
     }
   }
   CLI_REQUIRE(out.format == "text" || out.format == "json",
@@ -150,9 +162,39 @@ void run_inertia_primitive(const InertiaPrimitiveOptions& opts) {
     CLI_REQUIRE(it != opts.points.end(), "{} needs --{} ({} as x,y,z in m)", name, pt.name, pt.help);
     args.points.emplace_back(pt.name, parse_xyz(it->second, "--" + pt.name));
   }
-  const MassProperties mp = mass::make_primitive(e.name, opts.mass ? mass::Amount::kMass : mass::Amount::kDensity,
-                                                 opts.mass ? *opts.mass : *opts.density, args);
-  emit_inertia(mp, opts.output);
+  const MassProperties own = mass::make_primitive(e.name, opts.mass ? mass::Amount::kMass : mass::Amount::kDensity,
+                                                  opts.mass ? *opts.mass : *opts.density, args);
+  const PlacedPrimitive placed = place_primitive(own, opts);
+  InertiaOutputOptions out = opts.output;
+  // the shape's own frame is principal (every catalogue shape but the tetrahedron, whose
+  // vertices are given in the link frame already): urdf/mjcf/sdf --frame principal write the
+  // placement's rotation exactly, so the given rpy is what the file says
+  if (placed.R_LS && e.points.empty()) out.inertial_frame = placed.R_LS;
+  emit_inertia(placed.mp, out);
+}
+
+PlacedPrimitive place_primitive(const MassProperties& own, const InertiaPrimitiveOptions& opts) {
+  if (opts.axis.empty() && opts.origin.empty() && opts.rpy.empty()) return {own, std::nullopt};
+  mass::Placement placement;
+  if (!opts.axis.empty()) {
+    static const std::pair<const char*, Eigen::Vector3d> kNamed[] = {
+        {"x", Eigen::Vector3d::UnitX()},  {"y", Eigen::Vector3d::UnitY()},  {"z", Eigen::Vector3d::UnitZ()},
+        {"-x", -Eigen::Vector3d::UnitX()}, {"-y", -Eigen::Vector3d::UnitY()}, {"-z", -Eigen::Vector3d::UnitZ()}};
+    const auto* named = std::find_if(std::begin(kNamed), std::end(kNamed),
+                                     [&](const auto& n) { return opts.axis == n.first; });
+    if (named != std::end(kNamed)) {
+      placement.axis = named->second;
+    } else {
+      placement.axis = parse_xyz(opts.axis, "--axis", "x, y, z, -x, -y, -z or a direction 'vx,vy,vz'");
+      CLI_REQUIRE(placement.axis.norm() > 1e-12, "--axis must be a non-zero direction, got '{}'", opts.axis);
+    }
+  }
+  if (!opts.origin.empty()) placement.origin = parse_xyz(opts.origin, "--origin");
+  if (!opts.rpy.empty()) {
+    placement.rpy = parse_xyz(opts.rpy, "--rpy", "roll,pitch,yaw in radians 'r,p,y'");
+  }
+  const Eigen::Matrix3d R_LS = mass::placement_rotation(placement);
+  return {mass::place(own, R_LS, placement.origin), R_LS};
 }
 
 void run_inertia_source(const InertiaSourceOptions& opts) {

@@ -4,6 +4,7 @@
 #include "rigid/mass/density.hpp"
 #include "rigid/mass/mass_properties.hpp"
 #include "rigid/mass/mass_properties2.hpp"
+#include "rigid/mass/placement.hpp"
 #include "rigid/mass/primitive_table.hpp"
 #include "rigid/mass/primitives.hpp"
 #include "rigid/mass/second_moments.hpp"

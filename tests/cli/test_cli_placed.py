@@ -35,3 +35,89 @@ def test_hoop_acceptance_numbers(run):
     py = rigid.mass.hoop(mass=2.0, radius=0.5)
     assert py.inertia_com.tolist() == j["inertia"]
     assert rigid.mass.thin_ring_with_density(1.0, 0.5).mass == pytest.approx(math.pi, rel=REL)
+
+
+CYL = ("inertia", "cylinder", "--radius", 0.05, "--height", 0.4, "--mass", 2)
+
+
+def test_cylinder_along_x_at_an_offset_is_the_parallel_axis_closed_form(run):
+    m, r, h, d = 2.0, 0.05, 0.4, 0.1
+    j = json.loads(run(*CYL, "--axis", "x", "--origin", "0.1,0,0", "--about", "origin",
+                       "--format", "json", check=True).stdout)
+    axial, transverse = m * r * r / 2, m * (3 * r * r + h * h) / 12
+    expected = np.diag([axial, transverse + m * d * d, transverse + m * d * d])
+    assert j["com"] == pytest.approx([d, 0, 0], rel=REL)
+    assert np.array(j["inertia"]) == pytest.approx(expected, rel=REL, abs=1e-16)
+    # Python: the same factory with axis=, origin= gives the same doubles
+    py = rigid.mass.cylinder(mass=m, radius=r, height=h, axis="x", origin=(d, 0, 0))
+    assert py.inertia_about(np.zeros(3)).tolist() == j["inertia"]
+    assert py.com.tolist() == j["com"]
+
+
+@pytest.mark.parametrize("fmt", ["urdf", "sdf", "mjcf"])
+def test_rpy_round_trip_through_the_robot_formats(run, tmp_path, fmt):
+    rpy = (0.1, 0.2, 0.3)
+    args = (*CYL, "--axis", "z", "--rpy", "0.1,0.2,0.3", "--origin", "0.1,0,0.05")
+    out = tmp_path / f"placed.{fmt}"
+    run(*args, "--frame", "principal", "--format", fmt, "-o", out, check=True)
+    text = out.read_text()
+    if fmt == "urdf":
+        origin = ET.fromstring(text).find("link/inertial/origin")
+        # R → quaternion → rpy: a few ε
+        assert [float(v) for v in origin.get("rpy").split()] == pytest.approx(rpy, abs=1e-15)
+    # read back: `rigid inertia check` accepts it and read_inertials gives the placed body
+    assert "0 invalid" in run("inertia", "check", out, check=True).stdout
+    (entry,) = rigid.mass.read_inertials(text)
+    placed = rigid.mass.cylinder(mass=2.0, radius=0.05, height=0.4, rpy=rpy, origin=(0.1, 0, 0.05))
+    assert entry["com"] == pytest.approx(placed.com, rel=REL)
+    # the principal frame goes through rpy/quaternion and back: a few hundred ε of tr I
+    assert entry["inertia_com"] == pytest.approx(placed.inertia_com, abs=1e-14)
+    # independent: R = Rz(y) Ry(p) Rx(r) by hand, the tensor diag(t, t, a) rotated
+    cr, sr, cp, sp, cy, sy = (f(a) for a in rpy for f in (math.cos, math.sin))
+    Rx = np.array([[1, 0, 0], [0, cr, -sr], [0, sr, cr]])
+    Ry = np.array([[cp, 0, sp], [0, 1, 0], [-sp, 0, cp]])
+    Rz = np.array([[cy, -sy, 0], [sy, cy, 0], [0, 0, 1]])
+    R = Rz @ Ry @ Rx
+    t, a = 2.0 * (3 * 0.05**2 + 0.4**2) / 12, 2.0 * 0.05**2 / 2
+    assert entry["inertia_com"] == pytest.approx(R @ np.diag([t, t, a]) @ R.T, abs=1e-14)
+
+
+def test_about_a_point_in_the_robot_formats_moves_the_link_origin(run):
+    # URDF states the inertia about the COM and the COM from the link origin: about p the
+    # link origin is at p, so the inertia about the file's link origin is the tensor about p
+    p = np.array([0.2, -0.1, 0.3])
+    j = json.loads(run(*CYL, "--axis", "y", "--about", "0.2,-0.1,0.3", "--format", "json",
+                       check=True).stdout)
+    for fmt in ("urdf", "sdf", "mjcf"):
+        text = run(*CYL, "--axis", "y", "--about", "0.2,-0.1,0.3", "--format", fmt, check=True).stdout
+        (entry,) = rigid.mass.read_inertials(text)
+        c = np.array(entry["com"])
+        assert c == pytest.approx(-p, rel=REL)
+        # parallel axis from the file's numbers to its link origin
+        I_link = np.array(entry["inertia_com"]) + 2.0 * (c @ c * np.eye(3) - np.outer(c, c))
+        assert I_link == pytest.approx(np.array(j["inertia"]), rel=REL, abs=1e-16)
+    # principal axes about a point are not what these formats state: refused, with the reason
+    proc = run(*CYL, "--about", "0.2,-0.1,0.3", "--frame", "principal", "--format", "urdf", check=False)
+    assert "principal axes of the inertia about the center of mass" in proc.stderr
+    assert proc.stdout == ""
+
+
+@pytest.mark.parametrize("args, message", [
+    (("--axis", "0,0,0"), "--axis must be a non-zero direction, got '0,0,0'"),
+    (("--axis", "w"), "--axis must be x, y, z, -x, -y, -z or a direction 'vx,vy,vz', got 'w'"),
+    (("--rpy", "1,2"), "--rpy must be roll,pitch,yaw in radians 'r,p,y', got '1,2'"),
+    (("--origin", "1,2,inf"), "--origin must be a point 'x,y,z' in metres, got '1,2,inf'"),
+])
+def test_bad_placements_are_refused(run, args, message):
+    proc = run(*CYL, *args, check=False)
+    assert proc.returncode == 1
+    assert message in proc.stderr
+    # the same input through Python: the same refusal
+    with pytest.raises(rigid.Error):
+        bad = {"--axis": "axis", "--rpy": "rpy", "--origin": "origin"}[args[0]]
+        value = args[1]
+        if bad == "axis" and "," not in value:
+            rigid.mass.cylinder(mass=2, radius=0.05, height=0.4, axis=value)
+        else:
+            vec = [float(v) for v in value.split(",")]
+            rigid.mass.cylinder(mass=2, radius=0.05, height=0.4, **{bad: vec})
