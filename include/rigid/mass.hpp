@@ -6,5 +6,6 @@
 #include "rigid/mass/mass_properties2.hpp"
 #include "rigid/mass/placement.hpp"
 #include "rigid/mass/primitive_table.hpp"
+#include "rigid/mass/pseudo_inertia.hpp"
 #include "rigid/mass/primitives.hpp"
 #include "rigid/mass/second_moments.hpp"
