@@ -310,6 +310,19 @@ void bind_mass(py::module_& m) {
       py::arg("inertial_frame") = py::none(),
       "A minimal URDF/MJCF/SDF document holding one inertial; with principal=True, "
       "inertial_frame=R_LI (e.g. placement_rotation(axis, rpy)) writes that frame exactly.");
+  mass.def("pseudo_inertia", &rm::pseudo_inertia, py::arg("mp"),
+           "The 4×4 pseudo-inertia J = [[Σ, h], [hᵀ, m]] about the frame origin: Σ = ½ tr(I_O) 1 − I_O, "
+           "h = m c [Wensing2017].");
+  mass.def("from_pseudo_inertia", &rm::from_pseudo_inertia, py::arg("J"),
+           "The body of a pseudo-inertia J; raises rigid.Error naming the failed condition (mass, "
+           "triangle inequality) when J is not positive semidefinite.");
+  mass.def("log_cholesky", &rm::log_cholesky, py::arg("mp"),
+           "The 10 log-Cholesky parameters (alpha, d1, d2, d3, s12, s23, s13, t1, t2, t3) of the body "
+           "about the frame origin [Rucker2022]; J = U Uᵀ, m = exp(2 alpha).");
+  mass.def("from_log_cholesky", &rm::from_log_cholesky, py::arg("theta"),
+           "The body of 10 log-Cholesky parameters (any finite vector is a physical body).");
+  mass.def("pseudo_inertia_from_log_cholesky", &rm::pseudo_inertia_from_log_cholesky, py::arg("theta"),
+           "J = U Uᵀ of 10 log-Cholesky parameters.");
   mass.def(
       "read_inertials",
       [](const std::string& xml, const std::string& source) {

@@ -18,7 +18,8 @@ inline void add_inertia_output_options(CLI::App* cmd, rigid::cli::InertiaOutputO
       ->default_str("com");
   cmd->add_option("--frame", out.frame, "body (the primitive's frame) or principal")
       ->default_str("body");
-  cmd->add_option("--format", out.format, "text, json, urdf, mjcf or sdf")->default_str("text");
+  cmd->add_option("--format", out.format, "text, json, urdf, mjcf, sdf, pseudo (4×4 pseudo-inertia) or "
+                  "log-cholesky (its 10 parameters)")->default_str("text");
   cmd->add_option("--name", out.name, "link/body name in urdf/mjcf/sdf output")->default_str("body");
   cmd->add_option("-o,--output", out.output, "write to this file instead of standard output");
 }

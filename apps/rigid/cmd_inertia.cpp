@@ -18,6 +18,7 @@
 #include "rigid/lie/so3.hpp"
 #include "rigid/mass/placement.hpp"
 #include "rigid/mass/primitive_table.hpp"
+#include "rigid/mass/pseudo_inertia.hpp"
 
 namespace rigid::cli {
 namespace {
@@ -69,6 +70,34 @@ std::string text_mat(const Eigen::Matrix3d& m, const char* indent) {
   return out;
 }
 
+// --format pseudo | log-cholesky: the body about a frame origin, as JSON. Like urdf/mjcf/sdf
+// these state the COM (h = m c), so --about com or origin keeps the link origin and
+// --about x,y,z moves it to that point.
+std::string format_identification(const MassProperties& mp, const InertiaOutputOptions& out) {
+  CLI_REQUIRE(out.frame == "body",
+              "--frame {} cannot be used with --format {}: it states the body in the link frame "
+              "about the link origin (or the --about point); leave --frame at body",
+              out.frame, out.format);
+  Eigen::Vector3d p = Eigen::Vector3d::Zero();
+  if (out.about != "com" && out.about != "origin") p = parse_about(out.about, mp);
+  const MassProperties stated = mp.shifted(-p);
+  if (out.format == "pseudo") {
+    const Eigen::Matrix4d J = mass::pseudo_inertia(stated);
+    std::string rows;
+    for (int i = 0; i < 4; ++i) {
+      rows += fmt::format("{}[{}, {}, {}, {}]", i ? ", " : "", J(i, 0) + 0.0, J(i, 1) + 0.0, J(i, 2) + 0.0,
+                          J(i, 3) + 0.0);
+    }
+    return fmt::format("{{\n  \"about\": {},\n  \"pseudo_inertia\": [{}]\n}}\n", json_vec(p), rows);
+  }
+  const mass::LogCholesky th = mass::log_cholesky(stated);
+  return fmt::format(
+      "{{\n  \"about\": {},\n  \"log_cholesky\": {{\"alpha\": {}, \"d\": [{}, {}, {}], \"s12\": {}, "
+      "\"s23\": {}, \"s13\": {}, \"t\": [{}, {}, {}]}},\n  \"theta\": [{}]\n}}\n",
+      json_vec(p), th(0), th(1), th(2), th(3), th(4), th(5), th(6), th(7), th(8), th(9),
+      fmt::join(th.data(), th.data() + 10, ", "));
+}
+
 }  // namespace
 
 std::string cli_name(const std::string& catalogue_name) {
@@ -81,6 +110,7 @@ std::string format_inertia(const MassProperties& mp, const InertiaOutputOptions&
   CLI_REQUIRE(out.frame == "body" || out.frame == "principal",
                 "--frame must be 'body' or 'principal', got '{}'", out.frame);
   const bool principal = out.frame == "principal";
+  if (out.format == "pseudo" || out.format == "log-cholesky") return format_identification(mp, out);
   for (const auto format : {io::InertialFormat::urdf, io::InertialFormat::mjcf, io::InertialFormat::sdf}) {
     if (out.format == io::to_string(format)) {
       // the file states the inertia about the COM and the COM from the link origin, which
@@ -101,7 +131,7 @@ std::string format_inertia(const MassProperties& mp, const InertiaOutputOptions&
     }
   }
   CLI_REQUIRE(out.format == "text" || out.format == "json",
-                "--format must be one of text, json, urdf, mjcf, sdf; got '{}'", out.format);
+                "--format must be one of text, json, urdf, mjcf, sdf, pseudo, log-cholesky; got '{}'", out.format);
   const Eigen::Vector3d about = parse_about(out.about, mp);
   const Eigen::Matrix3d I = mp.inertia_about(about);
   // principal axes of the tensor about the chosen point (a physical tensor, so it can be

@@ -121,3 +121,46 @@ def test_bad_placements_are_refused(run, args, message):
         else:
             vec = [float(v) for v in value.split(",")]
             rigid.mass.cylinder(mass=2, radius=0.05, height=0.4, **{bad: vec})
+
+
+BOX = ("inertia", "box", "--lx", 0.2, "--ly", 0.4, "--lz", 0.6, "--mass", 3, "--origin", "0.1,-0.2,0.3")
+
+
+def test_pseudo_inertia_and_log_cholesky_match_the_closed_form_and_python(run):
+    m, l, c = 3.0, np.array([0.2, 0.4, 0.6]), np.array([0.1, -0.2, 0.3])
+    J = np.array(json.loads(run(*BOX, "--format", "pseudo", check=True).stdout)["pseudo_inertia"])
+    # [Wensing2017]: Σ = ∫ r rᵀ dm = m diag(l²)/12 + m c cᵀ, h = m c; a few ε of round-off
+    expected = np.zeros((4, 4))
+    expected[:3, :3] = m * np.diag(l**2) / 12 + m * np.outer(c, c)
+    expected[:3, 3] = expected[3, :3] = m * c
+    expected[3, 3] = m
+    assert J == pytest.approx(expected, abs=1e-15)
+    body = rigid.mass.box(mass=m, lx=0.2, ly=0.4, lz=0.6, origin=c)
+    assert rigid.mass.pseudo_inertia(body).tolist() == J.tolist()
+    theta = json.loads(run(*BOX, "--format", "log-cholesky", check=True).stdout)["theta"]
+    assert rigid.mass.log_cholesky(body).tolist() == theta
+    # m = e^{2α}, and J = U Uᵀ rebuilt here from θ by [Rucker2022]'s U
+    a, d1, d2, d3, s12, s23, s13, t1, t2, t3 = theta
+    U = math.exp(a) * np.array([[math.exp(d1), s12, s13, t1], [0, math.exp(d2), s23, t2],
+                                [0, 0, math.exp(d3), t3], [0, 0, 0, 1]])
+    assert U @ U.T == pytest.approx(expected, abs=1e-14)
+    back = rigid.mass.from_log_cholesky(np.array(theta))
+    assert back.com == pytest.approx(c, abs=1e-15)
+    # about a point: J about it (the link origin moved there)
+    Jp = np.array(json.loads(run(*BOX, "--format", "pseudo", "--about", "0.1,-0.2,0.3",
+                                 check=True).stdout)["pseudo_inertia"])
+    assert Jp[:3, 3] == pytest.approx([0, 0, 0], abs=1e-15)
+
+
+def test_singular_and_invalid_parameters_are_refused_on_every_surface(run):
+    proc = run("inertia", "rod", "--length", 1, "--mass", 1, "--format", "log-cholesky", check=False)
+    assert proc.returncode == 1
+    assert "log-Cholesky parameters need a positive definite pseudo-inertia" in proc.stderr
+    with pytest.raises(rigid.Error, match="positive definite pseudo-inertia"):
+        rigid.mass.log_cholesky(rigid.mass.rod(mass=1, length=1))
+    J = rigid.mass.pseudo_inertia(rigid.mass.box(mass=1, lx=1, ly=1, lz=1))
+    J[2, 2] = -0.1
+    with pytest.raises(rigid.Error, match="violate the triangle inequality"):
+        rigid.mass.from_pseudo_inertia(J)
+    proc = run(*BOX, "--format", "pseudo", "--frame", "principal", check=False)
+    assert "--frame principal cannot be used with --format pseudo" in proc.stderr
