@@ -9,3 +9,4 @@
 #include "rigid/mass/pseudo_inertia.hpp"
 #include "rigid/mass/primitives.hpp"
 #include "rigid/mass/second_moments.hpp"
+#include "rigid/mass/uncertainty.hpp"
