@@ -148,41 +148,79 @@ void bind_mass(py::module_& m) {
 #undef RIGID_BIND_PRIMITIVE
   // the primitive catalogue: one factory per name and alias (rigid.mass.solid_cylinder,
   // rigid.mass.cylinder, ...), taking mass= or density= and the sizes by name
-  auto make = [](const std::string& name, const py::kwargs& kwargs) {
-    const rm::PrimitiveEntry& e = rm::find_primitive(name);
-    std::optional<double> amount_mass, amount_density;
+  // the keyword arguments of a catalogue factory: mass= or density=, the sizes and points by
+  // name, and the placement axis=, origin=, rpy=
+  struct PrimitiveCall {
+    rm::Amount amount;
+    double value;
     rm::PrimitiveArguments args;
     rm::Placement placement;
-    bool placed = false;
+  };
+  auto parse_call = [](const std::string& name, const py::kwargs& kwargs) {
+    const rm::PrimitiveEntry& e = rm::find_primitive(name);
+    std::optional<double> amount_mass, amount_density;
+    PrimitiveCall call{rm::Amount::kMass, 0.0, {}, {}};
     for (auto item : kwargs) {
       const auto key = item.first.cast<std::string>();
       if (key == "axis") {
-        placement.axis = axis_from_python(item.second);
-        placed = true;
+        call.placement.axis = axis_from_python(item.second);
       } else if (key == "origin") {
-        placement.origin = vector3_from_python(item.second, "origin", "a point (x, y, z) in m");
-        placed = true;
+        call.placement.origin = vector3_from_python(item.second, "origin", "a point (x, y, z) in m");
       } else if (key == "rpy") {
-        placement.rpy = vector3_from_python(item.second, "rpy", "(roll, pitch, yaw) in rad");
-        placed = true;
+        call.placement.rpy = vector3_from_python(item.second, "rpy", "(roll, pitch, yaw) in rad");
       } else if (key == "mass") {
         amount_mass = item.second.cast<double>();
       } else if (key == "density") {
         amount_density = item.second.cast<double>();
       } else if (e.point_index(key)) {
-        args.points.emplace_back(key, item.second.cast<Eigen::Vector3d>());
+        call.args.points.emplace_back(key, item.second.cast<Eigen::Vector3d>());
       } else {
-        args.sizes.emplace_back(key, item.second.cast<double>());
+        call.args.sizes.emplace_back(key, item.second.cast<double>());
       }
     }
     if (amount_mass.has_value() == amount_density.has_value()) {
       throw rigid::Error(fmt::format("rigid.mass.{}(): give exactly one of mass= (kg) and density= ({}), got {}",
                                      name, e.density_unit, amount_mass ? "both" : "neither"));
     }
-    const MassProperties own = rm::make_primitive(name, amount_mass ? rm::Amount::kMass : rm::Amount::kDensity,
-                                                  amount_mass ? *amount_mass : *amount_density, args);
-    return placed ? rm::place(own, placement) : own;
+    call.amount = amount_mass ? rm::Amount::kMass : rm::Amount::kDensity;
+    call.value = amount_mass ? *amount_mass : *amount_density;
+    return call;
   };
+  auto make = [parse_call](const std::string& name, const py::kwargs& kwargs) {
+    const PrimitiveCall c = parse_call(name, kwargs);
+    return rm::place(rm::make_primitive(name, c.amount, c.value, c.args), c.placement);
+  };
+  mass.def(
+      "primitive_uncertainty",
+      [parse_call](const std::string& name, const std::string& tolerance, const py::object& about,
+                   const py::kwargs& kwargs) {
+        const PrimitiveCall c = parse_call(name, kwargs);
+        std::optional<Eigen::Vector3d> point;
+        if (!about.is_none()) point = vector3_from_python(about, "about", "a point (x, y, z) in m, or None for the COM");
+        const auto u = rm::primitive_uncertainty(name, c.amount, c.value, c.args, c.placement,
+                                                 rm::parse_tolerances(tolerance), point);
+        const auto tensor = [](const Eigen::Matrix<double, 10, 1>& y) {
+          Eigen::Matrix3d I;
+          I << y(4), y(7), y(8), y(7), y(5), y(9), y(8), y(9), y(6);
+          return I;
+        };
+        py::dict d;
+        d["mass"] = u.value(0);
+        d["com"] = Eigen::Vector3d(u.value.segment<3>(1));
+        d["inertia"] = tensor(u.value);
+        py::dict sigma;
+        sigma["mass"] = u.sigma(0);
+        sigma["com"] = Eigen::Vector3d(u.sigma.segment<3>(1));
+        sigma["inertia"] = tensor(u.sigma);
+        d["sigma"] = sigma;
+        d["inputs"] = u.inputs;
+        return d;
+      },
+      py::arg("name"), py::arg("tolerance"), py::arg("about") = py::none(),
+      "Mass, COM and inertia (about `about`, the COM when None) of a catalogue primitive with "
+      "their 1σ, first-order propagation of independent inputs: primitive_uncertainty('cylinder', "
+      "'dims=±0.1mm,density=±2%', density=2700, radius=0.05, height=0.4). Takes the factories' "
+      "keywords (axis=, origin=, rpy= too); ± is one standard deviation.");
   mass.def(
       "place",
       [](const MassProperties& body, const py::object& axis, const Eigen::Vector3d& origin,

@@ -75,6 +75,10 @@ inline void add_inertia_command(CLI::App& app) {
         "--density", [opts](double v) { opts->density = v; }, "density (" + entry.density_unit + ")");
     add_inertia_output_options(cmd, opts->output);
     add_placement_options(cmd, *opts);
+    cmd->add_option("--tolerance", opts->tolerance,
+                    "1σ of the inputs, propagated to first order: dims=±0.1mm, density=±2%, "
+                    "mass=±5g, a size by name (radius=±0.05mm), vertices=±0.05mm (tetrahedron); "
+                    "text and json only");
     cmd->callback([opts] { rigid::cli::run_inertia_primitive(*opts); });
   }
 

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <functional>
+#include <ranges>
 
 #include <fmt/format.h>
 
@@ -19,6 +20,7 @@
 #include "rigid/mass/placement.hpp"
 #include "rigid/mass/primitive_table.hpp"
 #include "rigid/mass/pseudo_inertia.hpp"
+#include "rigid/mass/uncertainty.hpp"
 
 namespace rigid::cli {
 namespace {
@@ -192,6 +194,10 @@ void run_inertia_primitive(const InertiaPrimitiveOptions& opts) {
     CLI_REQUIRE(it != opts.points.end(), "{} needs --{} ({} as x,y,z in m)", name, pt.name, pt.help);
     args.points.emplace_back(pt.name, parse_xyz(it->second, "--" + pt.name));
   }
+  if (!opts.tolerance.empty()) {
+    emit_uncertain_primitive(e, args, opts);
+    return;
+  }
   const MassProperties own = mass::make_primitive(e.name, opts.mass ? mass::Amount::kMass : mass::Amount::kDensity,
                                                   opts.mass ? *opts.mass : *opts.density, args);
   const PlacedPrimitive placed = place_primitive(own, opts);
@@ -203,8 +209,7 @@ void run_inertia_primitive(const InertiaPrimitiveOptions& opts) {
   emit_inertia(placed.mp, out);
 }
 
-PlacedPrimitive place_primitive(const MassProperties& own, const InertiaPrimitiveOptions& opts) {
-  if (opts.axis.empty() && opts.origin.empty() && opts.rpy.empty()) return {own, std::nullopt};
+mass::Placement parse_placement(const InertiaPrimitiveOptions& opts) {
   mass::Placement placement;
   if (!opts.axis.empty()) {
     static const std::pair<const char*, Eigen::Vector3d> kNamed[] = {
@@ -223,8 +228,66 @@ PlacedPrimitive place_primitive(const MassProperties& own, const InertiaPrimitiv
   if (!opts.rpy.empty()) {
     placement.rpy = parse_xyz(opts.rpy, "--rpy", "roll,pitch,yaw in radians 'r,p,y'");
   }
+  return placement;
+}
+
+PlacedPrimitive place_primitive(const MassProperties& own, const InertiaPrimitiveOptions& opts) {
+  if (opts.axis.empty() && opts.origin.empty() && opts.rpy.empty()) return {own, std::nullopt};
+  const mass::Placement placement = parse_placement(opts);
   const Eigen::Matrix3d R_LS = mass::placement_rotation(placement);
   return {mass::place(own, R_LS, placement.origin), R_LS};
+}
+
+void emit_uncertain_primitive(const mass::PrimitiveEntry& e, const mass::PrimitiveArguments& args,
+                              const InertiaPrimitiveOptions& opts) {
+  const InertiaOutputOptions& out = opts.output;
+  CLI_REQUIRE(out.format == "text" || out.format == "json",
+              "--tolerance is printed with --format text or json (each value ± its 1σ); {} has no "
+              "place for a standard deviation; got --format {}",
+              out.format, out.format);
+  CLI_REQUIRE(out.frame == "body",
+              "--tolerance gives the 1σ of the tensor's elements in the body frame; use --frame "
+              "body, got --frame {}", out.frame);
+  std::optional<Eigen::Vector3d> about;
+  if (out.about != "com") about = out.about == "origin" ? Eigen::Vector3d::Zero() : parse_about(out.about, MassProperties(1.0, Eigen::Vector3d::Zero(), Eigen::Matrix3d::Zero()));
+  const auto u = mass::primitive_uncertainty(e.name, opts.mass ? mass::Amount::kMass : mass::Amount::kDensity,
+                                             opts.mass ? *opts.mass : *opts.density, args,
+                                             parse_placement(opts), mass::parse_tolerances(opts.tolerance), about);
+  const Eigen::Vector3d p = about ? *about : u.nominal.com();
+  const auto tensor = [](const Eigen::Matrix<double, 10, 1>& y) {
+    Eigen::Matrix3d I;
+    I << y(4), y(7), y(8), y(7), y(5), y(9), y(8), y(9), y(6);
+    return I;
+  };
+  const Eigen::Matrix3d I = tensor(u.value), sI = tensor(u.sigma);
+  const Eigen::Vector3d c = u.value.segment<3>(1), sc = u.sigma.segment<3>(1);
+  std::string text;
+  if (out.format == "json") {
+    text = fmt::format(
+        "{{\n  \"mass\": {},\n  \"com\": {},\n  \"about\": {},\n  \"frame\": \"body\",\n"
+        "  \"inertia\": {},\n  \"sigma\": {{\"mass\": {}, \"com\": {}, \"inertia\": {}}},\n"
+        "  \"uncertainty\": \"1 standard deviation, first-order propagation, inputs independent\",\n"
+        "  \"uncertain_inputs\": [{}]\n}}\n",
+        u.value(0), json_vec(c), json_vec(p), json_mat(I), u.sigma(0), json_vec(sc), json_mat(sI),
+        fmt::join(u.inputs | std::views::transform([](const std::string& s) { return "\"" + s + "\""; }), ", "));
+  } else {
+    const std::string where = out.about == "com" ? "the center of mass" : fmt::format("{} m", json_vec(p));
+    text = fmt::format("mass            {:.10g} ± {:.3g} kg\n", u.value(0), u.sigma(0));
+    text += fmt::format("center of mass  [{:.10g} ± {:.3g}, {:.10g} ± {:.3g}, {:.10g} ± {:.3g}] m\n", c(0), sc(0),
+                        c(1), sc(1), c(2), sc(2));
+    text += fmt::format("inertia tensor about {}, body frame (kg·m²), each element ± 1σ\n", where);
+    for (int i = 0; i < 3; ++i) {
+      text += fmt::format("  [{:>14.7g} ± {:<9.3g} {:>14.7g} ± {:<9.3g} {:>14.7g} ± {:<9.3g} ]\n", I(i, 0), sI(i, 0),
+                          I(i, 1), sI(i, 1), I(i, 2), sI(i, 2));
+    }
+    text += fmt::format("± is 1 standard deviation (first-order propagation, inputs independent) of: {}\n",
+                        fmt::join(u.inputs, ", "));
+  }
+  if (out.output.empty()) {
+    std::fputs(text.c_str(), stdout);
+  } else {
+    io::write_file_atomically(out.output, text);
+  }
 }
 
 void run_inertia_source(const InertiaSourceOptions& opts) {

@@ -8,6 +8,8 @@
 #include <Eigen/Core>
 
 #include "rigid/mass/mass_properties.hpp"
+#include "rigid/mass/placement.hpp"
+#include "rigid/mass/primitive_table.hpp"
 
 namespace rigid::cli {
 
@@ -54,6 +56,8 @@ struct InertiaPrimitiveOptions {
   std::string axis;    ///< x, y, z, -x, -y, -z or "vx,vy,vz"
   std::string origin;  ///< "x,y,z" (m)
   std::string rpy;     ///< "roll,pitch,yaw" (rad)
+  /// "dims=±0.1mm,density=±2%,..." (rigid::mass::parse_tolerances); empty: none
+  std::string tolerance;
 };
 
 /// `rigid inertia <primitive> ...`.
@@ -68,6 +72,13 @@ struct PlacedPrimitive {
 /// The primitive `own` (in its own frame) placed by --axis, --rpy and --origin
 /// (rigid::mass::Placement); unchanged, with no R_LS, when none is given.
 /// @throws rigid::Error for a malformed or zero axis, origin or rpy.
+/// The placement of --axis, --rpy, --origin. @throws rigid::Error for a malformed one.
+[[nodiscard]] mass::Placement parse_placement(const InertiaPrimitiveOptions& opts);
+
+/// `rigid inertia <primitive> ... --tolerance ...`: values ± 1σ (text or json).
+void emit_uncertain_primitive(const mass::PrimitiveEntry& e, const mass::PrimitiveArguments& args,
+                              const InertiaPrimitiveOptions& opts);
+
 [[nodiscard]] PlacedPrimitive place_primitive(const MassProperties& own, const InertiaPrimitiveOptions& opts);
 
 /// Options of `rigid inertia SOURCE` when SOURCE is not a primitive or `check`.
