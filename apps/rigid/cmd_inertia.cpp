@@ -241,6 +241,15 @@ PlacedPrimitive place_primitive(const MassProperties& own, const InertiaPrimitiv
 void emit_uncertain_primitive(const mass::PrimitiveEntry& e, const mass::PrimitiveArguments& args,
                               const InertiaPrimitiveOptions& opts) {
   const InertiaOutputOptions& out = opts.output;
+  require_uncertainty_output(out);
+  const std::optional<Eigen::Vector3d> about = uncertainty_about(out);
+  const auto u = mass::primitive_uncertainty(e.name, opts.mass ? mass::Amount::kMass : mass::Amount::kDensity,
+                                             opts.mass ? *opts.mass : *opts.density, args,
+                                             parse_placement(opts), mass::parse_tolerances(opts.tolerance), about);
+  emit_uncertain(u.value, u.sigma, u.inputs, about ? *about : u.nominal.com(), out);
+}
+
+void require_uncertainty_output(const InertiaOutputOptions& out) {
   CLI_REQUIRE(out.format == "text" || out.format == "json",
               "--tolerance is printed with --format text or json (each value ± its 1σ); {} has no "
               "place for a standard deviation; got --format {}",
@@ -248,19 +257,26 @@ void emit_uncertain_primitive(const mass::PrimitiveEntry& e, const mass::Primiti
   CLI_REQUIRE(out.frame == "body",
               "--tolerance gives the 1σ of the tensor's elements in the body frame; use --frame "
               "body, got --frame {}", out.frame);
-  std::optional<Eigen::Vector3d> about;
-  if (out.about != "com") about = out.about == "origin" ? Eigen::Vector3d::Zero() : parse_about(out.about, MassProperties(1.0, Eigen::Vector3d::Zero(), Eigen::Matrix3d::Zero()));
-  const auto u = mass::primitive_uncertainty(e.name, opts.mass ? mass::Amount::kMass : mass::Amount::kDensity,
-                                             opts.mass ? *opts.mass : *opts.density, args,
-                                             parse_placement(opts), mass::parse_tolerances(opts.tolerance), about);
-  const Eigen::Vector3d p = about ? *about : u.nominal.com();
+}
+
+std::optional<Eigen::Vector3d> uncertainty_about(const InertiaOutputOptions& out) {
+  if (out.about == "com") return std::nullopt;
+  if (out.about == "origin") return Eigen::Vector3d::Zero();
+  CLI_REQUIRE(out.about.find(',') != std::string::npos,
+              "--about must be 'com', 'origin' or a point 'x,y,z' in metres, got '{}'", out.about);
+  return parse_xyz(out.about, "--about");
+}
+
+void emit_uncertain(const Eigen::Matrix<double, 10, 1>& value, const Eigen::Matrix<double, 10, 1>& sigma,
+                    const std::vector<std::string>& inputs, const Eigen::Vector3d& p,
+                    const InertiaOutputOptions& out) {
   const auto tensor = [](const Eigen::Matrix<double, 10, 1>& y) {
     Eigen::Matrix3d I;
     I << y(4), y(7), y(8), y(7), y(5), y(9), y(8), y(9), y(6);
     return I;
   };
-  const Eigen::Matrix3d I = tensor(u.value), sI = tensor(u.sigma);
-  const Eigen::Vector3d c = u.value.segment<3>(1), sc = u.sigma.segment<3>(1);
+  const Eigen::Matrix3d I = tensor(value), sI = tensor(sigma);
+  const Eigen::Vector3d c = value.segment<3>(1), sc = sigma.segment<3>(1);
   std::string text;
   if (out.format == "json") {
     text = fmt::format(
@@ -268,11 +284,11 @@ void emit_uncertain_primitive(const mass::PrimitiveEntry& e, const mass::Primiti
         "  \"inertia\": {},\n  \"sigma\": {{\"mass\": {}, \"com\": {}, \"inertia\": {}}},\n"
         "  \"uncertainty\": \"1 standard deviation, first-order propagation, inputs independent\",\n"
         "  \"uncertain_inputs\": [{}]\n}}\n",
-        u.value(0), json_vec(c), json_vec(p), json_mat(I), u.sigma(0), json_vec(sc), json_mat(sI),
-        fmt::join(u.inputs | std::views::transform([](const std::string& s) { return "\"" + s + "\""; }), ", "));
+        value(0), json_vec(c), json_vec(p), json_mat(I), sigma(0), json_vec(sc), json_mat(sI),
+        fmt::join(inputs | std::views::transform([](const std::string& s) { return "\"" + s + "\""; }), ", "));
   } else {
     const std::string where = out.about == "com" ? "the center of mass" : fmt::format("{} m", json_vec(p));
-    text = fmt::format("mass            {:.10g} ± {:.3g} kg\n", u.value(0), u.sigma(0));
+    text = fmt::format("mass            {:.10g} ± {:.3g} kg\n", value(0), sigma(0));
     text += fmt::format("center of mass  [{:.10g} ± {:.3g}, {:.10g} ± {:.3g}, {:.10g} ± {:.3g}] m\n", c(0), sc(0),
                         c(1), sc(1), c(2), sc(2));
     text += fmt::format("inertia tensor about {}, body frame (kg·m²), each element ± 1σ\n", where);
@@ -281,7 +297,7 @@ void emit_uncertain_primitive(const mass::PrimitiveEntry& e, const mass::Primiti
                           I(i, 1), sI(i, 1), I(i, 2), sI(i, 2));
     }
     text += fmt::format("± is 1 standard deviation (first-order propagation, inputs independent) of: {}\n",
-                        fmt::join(u.inputs, ", "));
+                        fmt::join(inputs, ", "));
   }
   if (out.output.empty()) {
     std::fputs(text.c_str(), stdout);
@@ -302,7 +318,7 @@ void run_inertia_source(const InertiaSourceOptions& opts) {
   if (path_like) {
     run_inertia_mesh(
         opts.source,
-        {opts.mass, opts.density, opts.units, opts.shell, opts.thickness, opts.fill_holes},
+        {opts.mass, opts.density, opts.units, opts.shell, opts.thickness, opts.fill_holes, opts.tolerance},
         opts.output);
     return;
   }

@@ -79,6 +79,18 @@ struct PlacedPrimitive {
 void emit_uncertain_primitive(const mass::PrimitiveEntry& e, const mass::PrimitiveArguments& args,
                               const InertiaPrimitiveOptions& opts);
 
+/// Refuses --tolerance with an output that has no place for σ (urdf, ..., --frame principal).
+void require_uncertainty_output(const InertiaOutputOptions& out);
+
+/// The --about point of a propagated tensor: nullopt for the COM.
+[[nodiscard]] std::optional<Eigen::Vector3d> uncertainty_about(const InertiaOutputOptions& out);
+
+/// Prints mass, COM and inertia (about p) each ± its 1σ (rigid::mass::mass_properties_vector
+/// order), in text or JSON, naming the uncertain inputs.
+void emit_uncertain(const Eigen::Matrix<double, 10, 1>& value, const Eigen::Matrix<double, 10, 1>& sigma,
+                    const std::vector<std::string>& inputs, const Eigen::Vector3d& p,
+                    const InertiaOutputOptions& out);
+
 [[nodiscard]] PlacedPrimitive place_primitive(const MassProperties& own, const InertiaPrimitiveOptions& opts);
 
 /// Options of `rigid inertia SOURCE` when SOURCE is not a primitive or `check`.
@@ -91,6 +103,7 @@ struct InertiaSourceOptions {
   bool shell = false;               ///< mesh as a thin shell
   std::optional<double> thickness;  ///< m, with shell
   bool fill_holes = false;          ///< mesh: close simple holes first
+  std::string tolerance;            ///< mesh: "vertices=±0.05mm,density=±2%"
 };
 
 /// `rigid inertia SOURCE`: SOURCE names no primitive; reports the choices.
