@@ -233,3 +233,20 @@ def test_mesh_vertex_noise_agrees_with_monte_carlo(run, tmp_path):
     assert np.std(com_x, ddof=1) == pytest.approx(j["sigma"]["com"][0], rel=bound)
     proc = run("inertia", path, "--density", 2700, "--tolerance", "dims=±1mm", check=False)
     assert "unknown tolerance 'dims' for a mesh; it takes vertices=±LENGTH and density=±…" in proc.stderr
+
+
+def test_mesh_vertex_noise_is_the_same_in_python(run, tmp_path):
+    a, b, c = 0.3, 0.2, 0.1
+    V = np.array([((i & 1) * a, ((i >> 1) & 1) * b, ((i >> 2) & 1) * c) for i in range(8)])
+    quads = [(0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (2, 6, 7, 3), (0, 4, 6, 2), (1, 3, 7, 5)]
+    T = np.array([(q[0], q[1], q[2]) for q in quads] + [(q[0], q[2], q[3]) for q in quads])
+    path = tmp_path / "box.off"
+    path.write_text("OFF\n8 12 0\n" + "".join(f"{x} {y} {z}\n" for x, y, z in V)
+                    + "".join(f"3 {i} {j} {k}\n" for i, j, k in T))
+    j = json.loads(run("inertia", path, "--mass", 2, "--tolerance", "vertices=±0.1mm", "--about", "origin",
+                       "--format", "json", check=True).stdout)
+    mesh = rigid.mesh.TriangleMesh(V, T)
+    py = rigid.mesh.vertex_noise_uncertainty(mesh, 1e-4, mass=2.0, about=(0, 0, 0))
+    # the same mesh and the same arithmetic: equal to round-off (the file's text repeats the doubles)
+    assert py["sigma"]["inertia"] == pytest.approx(np.array(j["sigma"]["inertia"]), rel=1e-12, abs=1e-18)
+    assert py["sigma"]["mass"] == j["sigma"]["mass"] == 0.0
