@@ -51,7 +51,7 @@ TEST(MeshUncertainty, VertexNoiseAgreesWithMonteCarloOnABox) {
 }
 
 TEST(MeshUncertainty, VertexNoiseAgreesWithMonteCarloOnASphereAboutAPoint) {
-  expect_monte_carlo_agrees(test::uv_sphere(0.1, 5), mesh::MassSpec{2.0, std::nullopt, false, std::nullopt}, 1e-4,
+  expect_monte_carlo_agrees(test::uv_sphere(0.1, 3), mesh::MassSpec{2.0, std::nullopt, false, std::nullopt}, 1e-4,
                             Eigen::Vector3d(0.05, 0.0, -0.1));
 }
 
