@@ -9,10 +9,6 @@
 
 namespace rigid::mass {
 
-bool Placement::is_identity() const {
-  return axis.normalized() == Eigen::Vector3d::UnitZ() && rpy.isZero(0.0) && origin.isZero(0.0);
-}
-
 Eigen::Matrix3d rotation_z_to(const Eigen::Vector3d& axis) {
   const double n = axis.norm();
   RIGID_REQUIRE(axis.allFinite() && n > 1e-12,

@@ -17,9 +17,6 @@ struct Placement {
   Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();  ///< direction in L (any length > 0)
   Eigen::Vector3d rpy = Eigen::Vector3d::Zero();    ///< roll, pitch, yaw (rad)
   Eigen::Vector3d origin = Eigen::Vector3d::Zero(); ///< p_LS_L (m)
-
-  /// True when the placement is the identity (axis z, rpy 0, origin 0).
-  [[nodiscard]] bool is_identity() const;
 };
 
 /// The shortest rotation taking the unit z axis to axis/|axis| (a half turn about x for −z).
