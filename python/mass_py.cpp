@@ -13,6 +13,39 @@
 
 namespace py = pybind11;
 
+namespace {
+
+// a placement's 3-vector (origin=, rpy=, axis=), refused by name when it is not 3 numbers
+Eigen::Vector3d vector3_from_python(const py::handle& value, const char* what, const char* expected) {
+  Eigen::VectorXd v;
+  try {
+    v = value.cast<Eigen::VectorXd>();
+  } catch (const py::cast_error&) {
+    v.resize(0);
+  }
+  if (v.size() != 3) {
+    throw rigid::Error(fmt::format("{}= must be {}, got {}", what, expected, py::repr(value).cast<std::string>()));
+  }
+  return v;
+}
+
+// axis= of a placement: 'x', 'y', 'z', '-x', '-y', '-z' or a 3-vector
+Eigen::Vector3d axis_from_python(const py::handle& axis) {
+  if (py::isinstance<py::str>(axis)) {
+    const auto s = axis.cast<std::string>();
+    const bool neg = !s.empty() && s[0] == '-';
+    const std::string letter = neg ? s.substr(1) : s;
+    if (letter == "x" || letter == "y" || letter == "z") {
+      Eigen::Vector3d v = Eigen::Vector3d::Unit(letter[0] - 'x');
+      return neg ? (-v).eval() : v;
+    }
+    throw rigid::Error(fmt::format("axis= must be 'x', 'y', 'z', '-x', '-y', '-z' or a vector (vx, vy, vz), got '{}'", s));
+  }
+  return vector3_from_python(axis, "axis", "'x', 'y', 'z', '-x', '-y', '-z' or a vector (vx, vy, vz)");
+}
+
+}  // namespace
+
 void bind_mass(py::module_& m) {
   using rigid::MassProperties;
   using rigid::MassProperties2;
@@ -106,6 +139,7 @@ void bind_mass(py::module_& m) {
   RIGID_BIND_PRIMITIVE(thin_rod, py::arg("l"));
   RIGID_BIND_PRIMITIVE(thin_rectangular_plate, py::arg("lx"), py::arg("ly"));
   RIGID_BIND_PRIMITIVE(thin_disk, py::arg("r"));
+  RIGID_BIND_PRIMITIVE(thin_ring, py::arg("r"));
   RIGID_BIND_PRIMITIVE(solid_tetrahedron, py::arg("v0"), py::arg("v1"), py::arg("v2"), py::arg("v3"));
   RIGID_BIND_PRIMITIVE(disk_lamina, py::arg("r"));
   RIGID_BIND_PRIMITIVE(annulus_lamina, py::arg("r_inner"), py::arg("r_outer"));
@@ -114,29 +148,97 @@ void bind_mass(py::module_& m) {
 #undef RIGID_BIND_PRIMITIVE
   // the primitive catalogue: one factory per name and alias (rigid.mass.solid_cylinder,
   // rigid.mass.cylinder, ...), taking mass= or density= and the sizes by name
-  auto make = [](const std::string& name, const py::kwargs& kwargs) {
+  // the keyword arguments of a catalogue factory: mass= or density=, the sizes and points by
+  // name, and the placement axis=, origin=, rpy=
+  struct PrimitiveCall {
+    rm::Amount amount;
+    double value;
+    rm::PrimitiveArguments args;
+    rm::Placement placement;
+  };
+  auto parse_call = [](const std::string& name, const py::kwargs& kwargs) {
     const rm::PrimitiveEntry& e = rm::find_primitive(name);
     std::optional<double> amount_mass, amount_density;
-    rm::PrimitiveArguments args;
+    PrimitiveCall call{rm::Amount::kMass, 0.0, {}, {}};
     for (auto item : kwargs) {
       const auto key = item.first.cast<std::string>();
-      if (key == "mass") {
+      if (key == "axis") {
+        call.placement.axis = axis_from_python(item.second);
+      } else if (key == "origin") {
+        call.placement.origin = vector3_from_python(item.second, "origin", "a point (x, y, z) in m");
+      } else if (key == "rpy") {
+        call.placement.rpy = vector3_from_python(item.second, "rpy", "(roll, pitch, yaw) in rad");
+      } else if (key == "mass") {
         amount_mass = item.second.cast<double>();
       } else if (key == "density") {
         amount_density = item.second.cast<double>();
       } else if (e.point_index(key)) {
-        args.points.emplace_back(key, item.second.cast<Eigen::Vector3d>());
+        call.args.points.emplace_back(key, item.second.cast<Eigen::Vector3d>());
       } else {
-        args.sizes.emplace_back(key, item.second.cast<double>());
+        call.args.sizes.emplace_back(key, item.second.cast<double>());
       }
     }
     if (amount_mass.has_value() == amount_density.has_value()) {
       throw rigid::Error(fmt::format("rigid.mass.{}(): give exactly one of mass= (kg) and density= ({}), got {}",
                                      name, e.density_unit, amount_mass ? "both" : "neither"));
     }
-    return rm::make_primitive(name, amount_mass ? rm::Amount::kMass : rm::Amount::kDensity,
-                              amount_mass ? *amount_mass : *amount_density, args);
+    call.amount = amount_mass ? rm::Amount::kMass : rm::Amount::kDensity;
+    call.value = amount_mass ? *amount_mass : *amount_density;
+    return call;
   };
+  auto make = [parse_call](const std::string& name, const py::kwargs& kwargs) {
+    const PrimitiveCall c = parse_call(name, kwargs);
+    return rm::place(rm::make_primitive(name, c.amount, c.value, c.args), c.placement);
+  };
+  mass.def(
+      "primitive_uncertainty",
+      [parse_call](const std::string& name, const std::string& tolerance, const py::object& about,
+                   const py::kwargs& kwargs) {
+        const PrimitiveCall c = parse_call(name, kwargs);
+        std::optional<Eigen::Vector3d> point;
+        if (!about.is_none()) point = vector3_from_python(about, "about", "a point (x, y, z) in m, or None for the COM");
+        const auto u = rm::primitive_uncertainty(name, c.amount, c.value, c.args, c.placement,
+                                                 rm::parse_tolerances(tolerance), point);
+        const auto tensor = [](const Eigen::Matrix<double, 10, 1>& y) {
+          Eigen::Matrix3d I;
+          I << y(4), y(7), y(8), y(7), y(5), y(9), y(8), y(9), y(6);
+          return I;
+        };
+        py::dict d;
+        d["mass"] = u.value(0);
+        d["com"] = Eigen::Vector3d(u.value.segment<3>(1));
+        d["inertia"] = tensor(u.value);
+        py::dict sigma;
+        sigma["mass"] = u.sigma(0);
+        sigma["com"] = Eigen::Vector3d(u.sigma.segment<3>(1));
+        sigma["inertia"] = tensor(u.sigma);
+        d["sigma"] = sigma;
+        d["inputs"] = u.inputs;
+        return d;
+      },
+      py::arg("name"), py::arg("tolerance"), py::arg("about") = py::none(),
+      "Mass, COM and inertia (about `about`, the COM when None) of a catalogue primitive with "
+      "their 1σ, first-order propagation of independent inputs: primitive_uncertainty('cylinder', "
+      "'dims=±0.1mm,density=±2%', density=2700, radius=0.05, height=0.4). Takes the factories' "
+      "keywords (axis=, origin=, rpy= too); ± is one standard deviation.");
+  mass.def(
+      "place",
+      [](const MassProperties& body, const py::object& axis, const Eigen::Vector3d& origin,
+         const Eigen::Vector3d& rpy) {
+        return rm::place(body, rm::Placement{.axis = axis_from_python(axis), .rpy = rpy, .origin = origin});
+      },
+      py::arg("body"), py::arg("axis") = "z", py::arg("origin") = Eigen::Vector3d::Zero().eval(),
+      py::arg("rpy") = Eigen::Vector3d::Zero().eval(),
+      "The body (given in a shape's own frame) placed in the link frame: its z axis turned along "
+      "axis ('x', 'y', 'z', '-x', '-y', '-z' or a vector), then rotated by rpy (rad, URDF: "
+      "Rz(yaw) Ry(pitch) Rx(roll)), then its origin moved to origin (m). Every catalogue "
+      "factory takes the same axis=, origin=, rpy=.");
+  mass.def("placement_rotation",
+           [](const py::object& axis, const Eigen::Vector3d& rpy) {
+             return rm::placement_rotation(rm::Placement{.axis = axis_from_python(axis), .rpy = rpy, .origin = Eigen::Vector3d::Zero()});
+           },
+           py::arg("axis") = "z", py::arg("rpy") = Eigen::Vector3d::Zero().eval(),
+           "R_LS of a placement: Rz(yaw) Ry(pitch) Rx(roll) · (shortest rotation from z to axis).");
   mass.def(
       "primitive", [make](const std::string& name, const py::kwargs& kwargs) { return make(name, kwargs); },
       py::arg("name"),
@@ -238,12 +340,27 @@ void bind_mass(py::module_& m) {
   mass.def(
       "write_inertial_document",
       [parse_format](const MassProperties& mp, const std::string& format, const std::string& name,
-                     bool principal) {
+                     bool principal, const std::optional<Eigen::Matrix3d>& inertial_frame) {
         return rigid::io::write_inertial_document(mp, parse_format(format),
-                                                  {.name = name, .principal = principal});
+                                                  {.name = name, .principal = principal}, inertial_frame);
       },
       py::arg("mp"), py::arg("format"), py::arg("name") = "body", py::arg("principal") = false,
-      "A minimal URDF/MJCF/SDF document holding one inertial.");
+      py::arg("inertial_frame") = py::none(),
+      "A minimal URDF/MJCF/SDF document holding one inertial; with principal=True, "
+      "inertial_frame=R_LI (e.g. placement_rotation(axis, rpy)) writes that frame exactly.");
+  mass.def("pseudo_inertia", &rm::pseudo_inertia, py::arg("mp"),
+           "The 4×4 pseudo-inertia J = [[Σ, h], [hᵀ, m]] about the frame origin: Σ = ½ tr(I_O) 1 − I_O, "
+           "h = m c [Wensing2017].");
+  mass.def("from_pseudo_inertia", &rm::from_pseudo_inertia, py::arg("J"),
+           "The body of a pseudo-inertia J; raises rigid.Error naming the failed condition (mass, "
+           "triangle inequality) when J is not positive semidefinite.");
+  mass.def("log_cholesky", &rm::log_cholesky, py::arg("mp"),
+           "The 10 log-Cholesky parameters (alpha, d1, d2, d3, s12, s23, s13, t1, t2, t3) of the body "
+           "about the frame origin [Rucker2022]; J = U Uᵀ, m = exp(2 alpha).");
+  mass.def("from_log_cholesky", &rm::from_log_cholesky, py::arg("theta"),
+           "The body of 10 log-Cholesky parameters (any finite vector is a physical body).");
+  mass.def("pseudo_inertia_from_log_cholesky", &rm::pseudo_inertia_from_log_cholesky, py::arg("theta"),
+           "J = U Uᵀ of 10 log-Cholesky parameters.");
   mass.def(
       "read_inertials",
       [](const std::string& xml, const std::string& source) {

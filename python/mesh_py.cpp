@@ -171,4 +171,31 @@ void bind_mesh(py::module_& m) {
       "(rigid.MassProperties, warnings) of a mesh file read, repaired (holes filled with "
       "fill_holes=True) and integrated: what `rigid inertia FILE` prints. Exactly one of mass, "
       "density; units m, cm, mm or in.");
+  mesh.def(
+      "vertex_noise_uncertainty",
+      [](const TriangleMesh& t, double sigma, std::optional<double> mass, std::optional<double> density,
+         std::optional<Eigen::Vector3d> about) {
+        const auto u = with_repair_worded([&] {
+          return rm::vertex_noise_uncertainty(t, {mass, density, false, std::nullopt}, sigma, about);
+        });
+        const auto tensor = [](const Eigen::Matrix<double, 10, 1>& y) {
+          Eigen::Matrix3d I;
+          I << y(4), y(7), y(8), y(7), y(5), y(9), y(8), y(9), y(6);
+          return I;
+        };
+        py::dict d, s;
+        d["mass"] = u.value(0);
+        d["com"] = Eigen::Vector3d(u.value.segment<3>(1));
+        d["inertia"] = tensor(u.value);
+        s["mass"] = u.sigma(0);
+        s["com"] = Eigen::Vector3d(u.sigma.segment<3>(1));
+        s["inertia"] = tensor(u.sigma);
+        d["sigma"] = s;
+        return d;
+      },
+      py::arg("mesh"), py::arg("sigma"), py::kw_only(), py::arg("mass") = py::none(),
+      py::arg("density") = py::none(), py::arg("about") = py::none(),
+      "Mass, COM and inertia (about `about`, the COM when None) of a solid mesh with their 1σ when "
+      "each vertex coordinate has an independent error of standard deviation sigma (m): first-order "
+      "propagation, as `rigid inertia FILE --tolerance vertices=±…`.");
 }

@@ -13,13 +13,29 @@
 /// --about, --frame, --format, --name, --output (shared by every inertia source).
 inline void add_inertia_output_options(CLI::App* cmd, rigid::cli::InertiaOutputOptions& out) {
   cmd->add_option("--about", out.about,
-                  "point the inertia is about: com, origin, or x,y,z in metres (text/json)")
+                  "point the inertia is about: com, origin, or x,y,z in metres (urdf/mjcf/sdf: "
+                  "the link origin is put at x,y,z)")
       ->default_str("com");
   cmd->add_option("--frame", out.frame, "body (the primitive's frame) or principal")
       ->default_str("body");
-  cmd->add_option("--format", out.format, "text, json, urdf, mjcf or sdf")->default_str("text");
+  cmd->add_option("--format", out.format, "text, json, urdf, mjcf, sdf, pseudo (4×4 pseudo-inertia) or "
+                  "log-cholesky (its 10 parameters)")->default_str("text");
   cmd->add_option("--name", out.name, "link/body name in urdf/mjcf/sdf output")->default_str("body");
   cmd->add_option("-o,--output", out.output, "write to this file instead of standard output");
+}
+
+/// --axis, --origin, --rpy: where a primitive sits in the link frame.
+inline void add_placement_options(CLI::App* cmd, rigid::cli::InertiaPrimitiveOptions& opts) {
+  cmd->add_option("--axis", opts.axis,
+                  "direction of the shape's own z axis in the link frame: x, y, z, -x, -y, -z or "
+                  "vx,vy,vz (applied before --rpy)")
+      ->default_str("z");
+  cmd->add_option("--rpy", opts.rpy,
+                  "then rotate by roll,pitch,yaw in radians (URDF: R = Rz(yaw) Ry(pitch) Rx(roll))")
+      ->default_str("0,0,0");
+  cmd->add_option("--origin", opts.origin,
+                  "then put the shape's own origin (its centre; the cone's base centre) at x,y,z (m)")
+      ->default_str("0,0,0");
 }
 
 inline void add_inertia_command(CLI::App& app) {
@@ -58,6 +74,11 @@ inline void add_inertia_command(CLI::App& app) {
     cmd->add_option_function<double>(
         "--density", [opts](double v) { opts->density = v; }, "density (" + entry.density_unit + ")");
     add_inertia_output_options(cmd, opts->output);
+    add_placement_options(cmd, *opts);
+    cmd->add_option("--tolerance", opts->tolerance,
+                    "1σ of the inputs, propagated to first order: dims=±0.1mm, density=±2%, "
+                    "mass=±5g, a size by name (radius=±0.05mm), vertices=±0.05mm (tetrahedron); "
+                    "text and json only");
     cmd->callback([opts] { rigid::cli::run_inertia_primitive(*opts); });
   }
 
@@ -85,6 +106,9 @@ inline void add_inertia_command(CLI::App& app) {
   inertia->add_flag("--fill-holes", source->fill_holes,
                     "mesh files: close holes whose border is a simple loop before computing "
                     "(a planar hole is closed exactly)");
+  inertia->add_option("--tolerance", source->tolerance,
+                      "mesh files: 1σ of each vertex coordinate and of the amount, propagated to "
+                      "first order: vertices=±0.05mm,density=±2% (text and json only)");
   // unknown words after an unknown SOURCE reach the callback, which names the real problem
   inertia->allow_extras();
   inertia->callback([inertia, source] {

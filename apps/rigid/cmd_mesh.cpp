@@ -12,6 +12,7 @@
 #include "cli_error.hpp"
 #include "rigid/common/error.hpp"
 #include "rigid/common/wording.hpp"
+#include "rigid/mass/uncertainty.hpp"
 #include "rigid/mesh.hpp"
 
 namespace rigid::cli {
@@ -84,9 +85,51 @@ void run_mesh_check(const MeshCheckOptions& opts) {
   if (!problem.empty()) CLI_THROW("{}: {}", opts.file, problem);
 }
 
+// --tolerance vertices=±…,density|mass=±…: the vertex noise through the exact gradient of the
+// volume moments, the amount's (m and I scale with it, the COM does not) added in quadrature
+static void run_inertia_mesh_uncertainty(const std::string& file, const MeshInertiaOptions& opts,
+                                  const mesh::MassSpec& spec, const InertiaOutputOptions& out) {
+  require_uncertainty_output(out);
+  CLI_REQUIRE(!opts.fill_holes, "--tolerance cannot be used with --fill-holes: the noise of the "
+                                "filled patches' vertices is not modelled; close the mesh first");
+  const std::string amount = opts.mass ? "mass" : "density";
+  const double amount_value = opts.mass ? *opts.mass : opts.density.value_or(0.0);
+  double vertex_sigma = 0.0, amount_relative = 0.0;
+  std::vector<std::string> inputs;
+  for (const mass::Tolerance& t : mass::parse_tolerances(opts.tolerance)) {
+    if (t.name == "vertices") {
+      static const std::string kLengths[] = {"", "m", "cm", "mm", "um", "µm", "in"};
+      CLI_REQUIRE(!t.relative && std::find(std::begin(kLengths), std::end(kLengths), t.unit) != std::end(kLengths),
+                  "tolerance vertices must be a length (e.g. ±0.05mm), got '{}{}'", t.sigma, t.unit);
+      vertex_sigma = t.sigma;
+      inputs.push_back("vertices");
+    } else if (t.name == amount) {
+      amount_relative = t.relative ? t.sigma : t.sigma / amount_value;
+      inputs.push_back(amount);
+    } else {
+      CLI_THROW("unknown tolerance '{}' for a mesh; it takes vertices=±LENGTH and {}=±… (the amount "
+                "given), e.g. --tolerance vertices=±0.05mm,{}=±2%",
+                t.name, amount, amount);
+    }
+  }
+  mesh::TriangleMesh m = mesh::read_mesh(file, mesh::unit_scale(opts.units));
+  (void)mesh::repair_mesh(m);
+  const std::optional<Eigen::Vector3d> about = uncertainty_about(out);
+  const mesh::MeshUncertainty u = mesh::vertex_noise_uncertainty(m, spec, vertex_sigma, about);
+  for (const auto& w : u.nominal.warnings) warn(fmt::format("{}: {}", file, w));
+  Eigen::Matrix<double, 10, 1> scaled = u.value.cwiseAbs() * amount_relative;
+  scaled.segment<3>(1).setZero();
+  const Eigen::Matrix<double, 10, 1> sigma = (u.sigma.cwiseAbs2() + scaled.cwiseAbs2()).cwiseSqrt();
+  emit_uncertain(u.value, sigma, inputs, about ? *about : u.nominal.properties.com(), out);
+}
+
 void run_inertia_mesh(const std::string& file, const MeshInertiaOptions& opts,
                       const InertiaOutputOptions& out) {
   const mesh::MassSpec spec{opts.mass, opts.density, opts.shell, opts.thickness};
+  if (!opts.tolerance.empty()) {
+    run_inertia_mesh_uncertainty(file, opts, spec, out);
+    return;
+  }
   const mesh::MeshFileMass r =
       mesh::mesh_mass_from_file(file, mesh::unit_scale(opts.units), spec, {}, opts.fill_holes);
   std::fputs(fmt::format("rigid: {}: size {}\n", file,

@@ -27,6 +27,7 @@ struct MeshInertiaOptions {
   bool shell = false;               ///< thin shell instead of a solid
   std::optional<double> thickness;  ///< m, shell only
   bool fill_holes = false;          ///< close simple holes (mesh::fill_holes) first
+  std::string tolerance;            ///< "vertices=±0.05mm,density=±2%": values ± 1σ
 };
 
 /// True when `path` has a mesh extension (.stl, .obj, .ply, .off, any case).

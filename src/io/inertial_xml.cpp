@@ -1,5 +1,6 @@
 #include "rigid/io/inertial_xml.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -239,7 +240,8 @@ Eigen::Vector3d rpy_from_rotation(const Eigen::Matrix3d& R) {
 }
 
 std::string write_inertial_document(const MassProperties& mp, InertialFormat format,
-                                    const InertialWriteOptions& options) {
+                                    const InertialWriteOptions& options,
+                                    const std::optional<Eigen::Matrix3d>& inertial_frame) {
   RIGID_REQUIRE(!options.name.empty() &&
                     options.name.find_first_of("<>&\"'") == std::string::npos,
                 "name must be non-empty and free of XML special characters (<>&\"'), got '{}'",
@@ -247,7 +249,16 @@ std::string write_inertial_document(const MassProperties& mp, InertialFormat for
   const Eigen::Vector3d& c = mp.com();
   Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
   Eigen::Matrix3d I = mp.inertia_com();
-  if (options.principal) {
+  if (options.principal && inertial_frame) {
+    R = SO3d::from_matrix(*inertial_frame).matrix();  // checks it is a rotation
+    const Eigen::Matrix3d I_in = R.transpose() * mp.inertia_com() * R;
+    const double off = std::max({std::abs(I_in(0, 1)), std::abs(I_in(0, 2)), std::abs(I_in(1, 2))});
+    RIGID_REQUIRE(off <= MassProperties::kRelativeTolerance * I_in.trace(),
+                  "the given inertial frame is not a principal frame: the inertia expressed in it "
+                  "has an off-diagonal element of {} kg·m² (above {} · tr I = {} kg·m²)",
+                  off, MassProperties::kRelativeTolerance, MassProperties::kRelativeTolerance * I_in.trace());
+    I = I_in.diagonal().asDiagonal();
+  } else if (options.principal) {
     const PrincipalAxes pa = mp.principal_axes();
     R = pa.R_BP;
     I = pa.moments.asDiagonal();

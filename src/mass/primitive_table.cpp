@@ -202,6 +202,13 @@ const std::vector<PrimitiveEntry>& primitive_table() {
                  {size("radius", "radius")}, {}, A,
                  {"rho*pi*radius^2", {"0", "0", "0"}, diagonal("m*radius^2/4", "m*radius^2/4", "m*radius^2/2")},
                  &make_n<&thin_disk_with_mass, &thin_disk_with_density, 1>});
+    // a circle of matter (a wire hoop, a bicycle rim): the thin limit of the torus (minor radius
+    // → 0) and the ring of the textbooks; "ring" alone, not "torus", since the torus is solid
+    t.push_back({"thin_ring", {"hoop", "ring", "thin_hoop"},
+                 "thin ring (hoop) of the given radius in the xy-plane, axis z, centred (density in kg/m)",
+                 {size("radius", "radius of the circle")}, {}, "kg/m",
+                 {"rho*2*pi*radius", {"0", "0", "0"}, diagonal("m*radius^2/2", "m*radius^2/2", "m*radius^2")},
+                 &make_n<&thin_ring_with_mass, &thin_ring_with_density, 1>});
     t.push_back({"solid_tetrahedron", {"tetrahedron"},
                  "solid tetrahedron with the given vertices (coordinates kept)", {},
                  {{"v0", "vertex 0"}, {"v1", "vertex 1"}, {"v2", "vertex 2"}, {"v3", "vertex 3"}}, V,

@@ -220,6 +220,14 @@ UnitBody disk(const char* fn, double r) {
   return diagonal_body(pi * r * r, 0.25 * r * r, 0.25 * r * r, 0.5 * r * r);
 }
 
+// a circle of radius r in the xy-plane: every element is at distance r from the z axis, so
+// I_zz = ∫ r² dm = m r²; by symmetry I_xx = I_yy and, the ring being planar, I_xx + I_yy = I_zz
+// (perpendicular-axis theorem), so I_xx = I_yy = m r²/2; its length is 2πr
+UnitBody ring(const char* fn, double r) {
+  require_size(fn, "radius", r);
+  return diagonal_body(2.0 * pi * r, 0.5 * r * r, 0.5 * r * r, r * r);
+}
+
 UnitBody tetrahedron(const char* fn, const Eigen::Vector3d& v0, const Eigen::Vector3d& v1,
                      const Eigen::Vector3d& v2, const Eigen::Vector3d& v3) {
   const Eigen::Vector3d* v[] = {&v0, &v1, &v2, &v3};
@@ -289,6 +297,8 @@ MassProperties thin_rectangular_plate_with_mass(double m, double lx, double ly) 
 MassProperties thin_rectangular_plate_with_density(double sigma, double lx, double ly) { return with_density(__func__, kArealDensity, sigma, plate(__func__, lx, ly)); }
 MassProperties thin_disk_with_mass(double m, double r) { return with_mass(__func__, m, disk(__func__, r)); }
 MassProperties thin_disk_with_density(double sigma, double r) { return with_density(__func__, kArealDensity, sigma, disk(__func__, r)); }
+MassProperties thin_ring_with_mass(double m, double r) { return with_mass(__func__, m, ring(__func__, r)); }
+MassProperties thin_ring_with_density(double lambda, double r) { return with_density(__func__, kLinearDensity, lambda, ring(__func__, r)); }
 // clang-format on
 
 MassProperties solid_tetrahedron_with_mass(double m, const Eigen::Vector3d& v0,

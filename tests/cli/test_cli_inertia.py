@@ -106,9 +106,10 @@ def test_sdf_output_parses(run):
     (("sphere", "--radius", 1, "--mass", 1, "--about", "centre"), "--about must be 'com', 'origin' or a point 'x,y,z'"),
     (("tetrahedron", "--v0", "0,0,0", "--v1", "1,0,0", "--v2", "0,1,0", "--mass", 1), "tetrahedron needs --v3"),
     (("tetrahedron", "--v0", "0,0,0", "--v1", "1,0,0", "--v2", "0,1,0", "--v3", "1,1,0", "--mass", 1), "the tetrahedron is degenerate"),
-    (("sphere", "--radius", 1, "--mass", 1, "--format", "yaml"), "--format must be one of text, json, urdf, mjcf, sdf; got 'yaml'"),
+    (("sphere", "--radius", 1, "--mass", 1, "--format", "yaml"), "--format must be one of text, json, urdf, mjcf, sdf, pseudo, log-cholesky; got 'yaml'"),
     (("sphere", "--radius", 1, "--mass", 1, "--frame", "world"), "--frame must be 'body' or 'principal'"),
-    (("sphere", "--radius", 1, "--mass", 1, "--format", "urdf", "--about", "origin"), "urdf stores the inertia about the center of mass"),
+    (("sphere", "--radius", 1, "--mass", 1, "--format", "urdf", "--about", "0,0,1", "--frame", "principal"),
+     "urdf gives the principal axes of the inertia about the center of mass"),
 ])
 def test_bad_input_messages(run, args, message):
     proc = run("inertia", *args, check=False)

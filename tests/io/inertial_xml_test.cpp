@@ -1,6 +1,7 @@
 #include "rigid/io/inertial_xml.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 #include <Eigen/Geometry>
@@ -159,6 +160,43 @@ TEST(InertialXml, MalformedAndUnknownDocuments) {
                      "cannot open '/nonexistent/file.urdf' for reading");
   EXPECT_RIGID_ERROR((void)write_inertial_document(generic_body(), InertialFormat::urdf, {.name = "a<b"}),
                      "name must be non-empty and free of XML special characters");
+}
+
+// a placed shape written in its own frame (the given rotation) instead of an eigen-decomposition
+TEST(InertialXml, GivenInertialFrameWritesTheGivenRpyAndReadsBack) {
+  const Eigen::Vector3d rpy(0.1, 0.2, 0.3);
+  const Eigen::Matrix3d R = rotation_from_rpy(rpy);
+  const MassProperties own = mass::solid_cylinder_with_mass(2.0, 0.05, 0.4);
+  const MassProperties placed = own.transformed(R, Eigen::Vector3d(0.1, 0, 0));
+  for (const auto format : {InertialFormat::urdf, InertialFormat::sdf, InertialFormat::mjcf}) {
+    SCOPED_TRACE(to_string(format));
+    const std::string doc = write_inertial_document(placed, format, {.name = "l", .principal = true}, R);
+    if (format != InertialFormat::mjcf) {
+      // the rpy of the file is the given one to the round-off of R → quaternion → rpy (a few ε)
+      Eigen::Vector3d got, xyz;
+      if (format == InertialFormat::urdf) {
+        const auto at = doc.find("rpy=\"");
+        ASSERT_NE(at, std::string::npos) << doc;
+        ASSERT_EQ(std::sscanf(doc.c_str() + at + 5, "%lf %lf %lf", &got(0), &got(1), &got(2)), 3);
+      } else {
+        const auto at = doc.find("<pose>");
+        ASSERT_NE(at, std::string::npos) << doc;
+        ASSERT_EQ(std::sscanf(doc.c_str() + at + 6, "%lf %lf %lf %lf %lf %lf", &xyz(0), &xyz(1), &xyz(2),
+                              &got(0), &got(1), &got(2)), 6);
+      }
+      EXPECT_TRUE((got - rpy).cwiseAbs().maxCoeff() <= ulps(16)) << doc;
+    }
+    const auto entries = read_inertials(doc, "test");
+    ASSERT_EQ(entries.size(), 1u);
+    // in the shape's own frame the tensor read back is the diagonal one (m r²/2 about z)
+    const Eigen::Matrix3d I_own = R.transpose() * entries[0].inertia_com * R;
+    EXPECT_TRUE((I_own - own.inertia_com()).cwiseAbs().maxCoeff() <= ulps(64, own.inertia_com().trace())) << I_own;
+    expect_same(entries[0].mass_properties(), placed, ulps(64));
+  }
+  // a frame that does not diagonalise the tensor is refused
+  const MassProperties box = mass::solid_box_with_mass(1.0, 0.1, 0.2, 0.3);
+  EXPECT_RIGID_ERROR((void)write_inertial_document(box, InertialFormat::urdf, {.name = "l", .principal = true}, R),
+                     "the given inertial frame is not a principal frame");
 }
 
 }  // namespace

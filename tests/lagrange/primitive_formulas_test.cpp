@@ -60,7 +60,7 @@ TEST(PrimitiveFormulas, EvaluateToTheFactoriesNumbers) {
       ++checked;
     }
   }
-  EXPECT_EQ(checked, 20 * 16);  // every entry but the tetrahedron
+  EXPECT_EQ(checked, 20 * 17);  // every entry but the tetrahedron (17 with the thin ring)
 }
 
 TEST(PrimitiveFormulas, SubstituteWholeNamesOnly) {

@@ -326,6 +326,28 @@ TEST(Primitives, ThinRodPlateDisk) {
                            }}));
 }
 
+TEST(Primitives, ThinRingIsACircleOfMatter) {
+  // closed form: every element at distance r from z, I_zz = m r², I_xx = I_yy = m r²/2
+  const double lambda = 0.7;
+  const double r = 0.5;
+  const auto hoop = mass::thin_ring_with_density(lambda, r);
+  const double m = lambda * 2 * pi * r;
+  expect_closed_form(hoop, m, Eigen::Vector3d::Zero(), m * r * r * Eigen::Vector3d(0.5, 0.5, 1.0));
+  // the line integral ∫ λ (…) ds over the circle, by the reference quadrature
+  expect_matches_reference(hoop, reference_moments({[=](const Eigen::Vector3d& u) {
+                             const double th = 2 * pi * u(0);
+                             return MappedPoint{Eigen::Vector3d(r * std::cos(th), r * std::sin(th), 0),
+                                                lambda * 2 * pi * r};
+                           }}));
+  // the acceptance numbers of `rigid inertia hoop --radius 0.5 --mass 2`
+  expect_closed_form(mass::thin_ring_with_mass(2.0, 0.5), 2.0, Eigen::Vector3d::Zero(),
+                     Eigen::Vector3d(0.25, 0.25, 0.5));
+  // the thin limit of the solid torus: a → 0 gives the ring (relative difference 5a²/(4R²))
+  const auto torus = mass::solid_torus_with_mass(2.0, 0.5, 1e-4);
+  EXPECT_NEAR(torus.inertia_com()(2, 2), 0.5, 0.5 * 1e-7);  // 3a²/(4R²) = 3e-8
+  EXPECT_RIGID_ERROR((void)mass::thin_ring_with_mass(1.0, 0.0), "radius must be positive and finite, got 0 m");
+}
+
 TEST(Primitives, PerpendicularAxisTheoremForPlates) {
   // thin bodies in the xy-plane: I_zz = I_xx + I_yy exactly.
   for (const auto& mp : {mass::thin_rectangular_plate_with_mass(1.5, 0.3, 0.7),

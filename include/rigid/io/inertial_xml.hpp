@@ -42,8 +42,16 @@ struct InertialWriteOptions {
 /// A minimal complete document (robot/link, mujoco/worldbody/body, sdf/model/link) holding
 /// one inertial with the mass properties `mp` (expressed in the link/body frame), with
 /// shortest round-trip doubles.
-[[nodiscard]] std::string write_inertial_document(const MassProperties& mp, InertialFormat format,
-                                                  const InertialWriteOptions& options = {});
+/// @param inertial_frame with options.principal: the rotation R_LI of the inertial frame to
+///   write (columns: its axes in the link frame) instead of mp.principal_axes(), e.g. a placed
+///   primitive's own frame, which is a principal frame of every catalogue shape but the
+///   tetrahedron. The tensor is re-expressed in it (R_LIᵀ I R_LI) and written as its diagonal.
+/// @throws rigid::Error for a bad name, if inertial_frame is not a rotation within 1e-9, or if
+///   the re-expressed tensor has an off-diagonal element above
+///   MassProperties::kRelativeTolerance · tr I.
+[[nodiscard]] std::string write_inertial_document(
+    const MassProperties& mp, InertialFormat format, const InertialWriteOptions& options = {},
+    const std::optional<Eigen::Matrix3d>& inertial_frame = std::nullopt);
 
 /// One <inertial> read from a file.
 struct InertialEntry {

@@ -114,6 +114,13 @@ namespace rigid::mass {
 [[nodiscard]] MassProperties thin_disk_with_mass(double m, double r);
 [[nodiscard]] MassProperties thin_disk_with_density(double sigma, double r);
 
+/// Thin ring (hoop) of radius r in the xy-plane, centred on the z axis: a circle of matter.
+/// I_xx = I_yy = m r²/2, I_zz = m r²; m = λ 2πr.
+/// @param lambda linear density (kg/m); r radius of the circle (m).
+/// @throws rigid::Error if m (lambda) or r is not positive and finite.
+[[nodiscard]] MassProperties thin_ring_with_mass(double m, double r);
+[[nodiscard]] MassProperties thin_ring_with_density(double lambda, double r);
+
 /// Solid tetrahedron with vertices v0..v3 (any orientation), in the vertices' frame.
 /// With e_i = v_i − v0 and V = |det(e1, e2, e3)|/6, the second moment about v0 is
 /// S = ρ V/20 (Σ e_i e_iᵀ + (Σ e_i)(Σ e_i)ᵀ), the COM v0 + Σ e_i/4, and I = tr(S_C) 1 − S_C.
