@@ -399,7 +399,9 @@ void collect_links(const tinyxml2::XMLElement* e, InertialFormat format, const R
           add_sdf_geometry(g, files, link);
         }
       } catch (const GeometryProblem& p) {
-        link.errors.push_back(p.text);
+        const std::string label = fmt::format("<{}> (line {})", g->Name(), g->GetLineNum());
+        link.errors.push_back(p.text.starts_with(fmt::format("<{}>", g->Name()))
+                                  ? p.text : fmt::format("{}: {}", label, p.text));
       }
     }
     out.push_back(std::move(link));
@@ -585,6 +587,8 @@ InertialFixResult fix_inertials(const std::string& xml, const std::string& sourc
     }
     const bool has_geometry = !link.parts.empty();
     const bool old_valid = f.old && !f.old->problem;
+    // a stated mass worth keeping: positive and finite, even beside an invalid tensor
+    const bool mass_keepable = f.old && f.old->mass > 0 && std::isfinite(f.old->mass);
 
     // why the old inertial is replaced, or why it stays
     if (!f.old) {
@@ -629,7 +633,7 @@ InertialFixResult fix_inertials(const std::string& xml, const std::string& sourc
       MassProperties mp = combine(link.parts);
       if (!mjcf) {
         // parts are at density 1: their mass is their volume
-        if (options.keep_mass && old_valid && f.old->mass > 0) {
+        if (options.keep_mass && mass_keepable) {
           mp = scaled(mp, f.old->mass / mp.mass());
         } else {
           if (options.keep_mass) {
@@ -639,7 +643,7 @@ InertialFixResult fix_inertials(const std::string& xml, const std::string& sourc
           density_assumed = density_assumed || !options.density;
           mp = scaled(mp, density);
         }
-      } else if (options.keep_mass && old_valid && f.old->mass > 0) {
+      } else if (options.keep_mass && mass_keepable) {
         mp = scaled(mp, f.old->mass / mp.mass());
       }
       f.fixed = mp;
@@ -654,6 +658,8 @@ InertialFixResult fix_inertials(const std::string& xml, const std::string& sourc
         std::string unit = "  ";
         if (own && parent_indent && own->size() > parent_indent->size() && own->starts_with(*parent_indent)) {
           unit = own->substr(parent_indent->size());
+        } else if (own && own->find('\t') != std::string::npos) {
+          unit = "\t";
         }
         edits.push_back({old.begin, old.end - old.begin,
                          own ? inertial_text(mp, result.format, *own, unit, nl)
@@ -667,6 +673,8 @@ InertialFixResult fix_inertials(const std::string& xml, const std::string& sourc
         std::string unit = "  ";
         if (child_indent.size() > pi.size() && child_indent.starts_with(pi)) {
           unit = child_indent.substr(pi.size());
+        } else if (child_indent.find('\t') != std::string::npos) {
+          unit = "\t";
         }
         const std::string text = inertial_text(mp, result.format, child_indent, unit, nl);
         if (parent.self_closing) {

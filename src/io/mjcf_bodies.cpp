@@ -33,6 +33,7 @@ struct Compiler {
   std::string meshdir, assetdir;
   std::string inertiafromgeom = "auto";
   double group_min = 0, group_max = 5;  // inertiagrouprange
+  bool exact_mesh_inertia = false;       // exactmeshinertia
 };
 
 struct Defaults {
@@ -101,6 +102,7 @@ Compiler read_compiler(const tinyxml2::XMLElement* root, const std::string& sour
       }
       c.inertiafromgeom = a;
     }
+    if (const char* a = e->Attribute("exactmeshinertia")) c.exact_mesh_inertia = std::string_view(a) == "true";
     if (const char* a = e->Attribute("inertiagrouprange")) {
       try {
         const auto v = parse_numbers(a, 2, "<compiler> attribute 'inertiagrouprange'");
@@ -218,6 +220,20 @@ class GeomReader {
   // one geom of a body, measured in the body frame (nothing for a geom outside
   // inertiagrouprange or without mass)
   void add(const tinyxml2::XMLElement* g, const std::string& childclass, LinkGeometry& link) const {
+    std::string what = "geom";
+    if (const char* n = g->Attribute("name")) what = fmt::format("geom '{}'", n);
+    what += fmt::format(" (line {})", g->GetLineNum());
+    try {
+      measure(g, childclass, what, link);
+    } catch (const GeometryProblem& p) {
+      if (p.text.starts_with(what)) throw;
+      throw GeometryProblem{fmt::format("{}: {}", what, p.text)};
+    }
+  }
+
+ private:
+  void measure(const tinyxml2::XMLElement* g, const std::string& childclass,
+               const std::string& what, LinkGeometry& link) const {
     const char* own_class = g->Attribute("class");
     const std::string cls = own_class != nullptr ? own_class : childclass;
     const auto d = defaults_.geom.find(cls);
@@ -264,14 +280,23 @@ class GeomReader {
       }
       p = 0.5 * (a + b);
       R = z_to(axis);
-      // the half length along the segment replaces the geom's last size
-      size[type == "capsule" || type == "cylinder" ? 1 : 2] = 0.5 * axis.norm();
+      // the half length along the segment replaces the geom's last size; a box or ellipsoid
+      // along a segment has size[0] as its half size across it in both directions (what
+      // MuJoCo 2.2's compiler does: it reads no size[1] there)
+      if (type == "capsule" || type == "cylinder") {
+        size[1] = 0.5 * axis.norm();
+      } else {
+        if (size[1] != 0 && size[1] != size[0]) {
+          link.warnings.push_back(fmt::format(
+              "{}: a {} along fromto has size[0] = {} across it in both directions (MuJoCo's "
+              "rule); size[1] = {} is not used", what, type, size[0], size[1]));
+        }
+        size[1] = size[0];
+        size[2] = 0.5 * axis.norm();
+      }
     }
 
     // the shape in its own frame at density 1 (mass = volume), then its density or mass
-    std::string what = fmt::format("{} geom", type);
-    if (const char* n = g->Attribute("name")) what = fmt::format("{} geom '{}'", type, n);
-    what += fmt::format(" (line {})", g->GetLineNum());
     double volume = 0;
     std::optional<MassProperties> unit;
     if (type == "sphere") {
@@ -285,6 +310,10 @@ class GeomReader {
     } else if (type == "ellipsoid") {
       unit = catalogue_primitive("solid_ellipsoid", 1.0, {size[0], size[1], size[2]}, what);
     } else if (type == "mesh") {
+      if (const char* shell = attr("shellinertia"); shell != nullptr && std::string_view(shell) == "true") {
+        throw GeometryProblem{"shellinertia=\"true\" is not supported: the mesh is measured as a "
+                              "solid; give the body an <inertial> instead"};
+      }
       const char* mesh = attr("mesh");
       if (mesh == nullptr) throw GeometryProblem{fmt::format("{} has no 'mesh' attribute", what)};
       const auto m = meshes_.find(std::string_view(mesh));
@@ -293,6 +322,14 @@ class GeomReader {
       }
       double v = 0;
       unit = mesh_solid(m->second.file, m->second.scale, 1.0, what, v, link.warnings);
+      if (!compiler_.exact_mesh_inertia) {
+        // MuJoCo 2.x's default ("legacy") sums |volume| of pyramids from the surface centroid,
+        // which is not the solid's inertia unless every face sees that point from outside
+        link.warnings.push_back(fmt::format(
+            "{}: the exact solid inertia of mesh '{}' is written; MuJoCo's legacy mesh inertia "
+            "(the default without <compiler exactmeshinertia=\"true\">) can differ from it",
+            what, mesh));
+      }
     } else {
       throw GeometryProblem{fmt::format(
           "{}: type=\"{}\" has no volume to measure; expected sphere, capsule, cylinder, box, "
@@ -316,7 +353,6 @@ class GeomReader {
     link.parts.push_back(in_geom.transformed(R, p));
   }
 
- private:
   // the geom's own orientation attribute (at most one), else a quat from its class
   Eigen::Matrix3d orientation(const tinyxml2::XMLElement* g, const Attributes& def) const {
     const char* given = nullptr;

@@ -25,14 +25,14 @@ enum class GeometrySource { kCollision, kVisual };
 struct InertialFixOptions {
   /// Density of URDF/SDF geometry (kg/m³). nullopt: 1000 kg/m³ (water), with a warning that
   /// it was assumed. MJCF ignores it: each geom has its own density (default 1000) or mass.
-  std::optional<double> density;
+  std::optional<double> density{};
   /// Keep each link's stated (valid, positive) mass and distribute it by the geometry.
   bool keep_mass = false;
   GeometrySource from = GeometrySource::kCollision;
   /// Only these links/bodies (empty: all). A name that matches nothing is refused.
-  std::vector<std::string> only;
+  std::vector<std::string> only{};
   /// `package://NAME/...` resolves to DIR/... for each (NAME, DIR).
-  std::vector<std::pair<std::string, std::string>> package_paths;
+  std::vector<std::pair<std::string, std::string>> package_paths{};
 };
 
 /// What happened to one link/body.
