@@ -137,10 +137,13 @@ void refuse_unfollowed(const tinyxml2::XMLElement* e, const std::string& source)
     const std::string_view n = c->Name();
     if (n == "include") {
       refuse(source, c, "<include> is not supported: give the model as one file (MuJoCo's "
-                        "`compile` sample writes the merged model: compile model.xml merged.xml)");
+                        "compile sample writes the merged model: mujoco-compile model.xml "
+                        "merged.xml)");
     }
-    if (n == "frame" || n == "replicate" || n == "attach") {
-      refuse(source, c, fmt::format("<{}> is not supported; place its bodies and geoms directly", n));
+    if (n == "frame" || n == "replicate" || n == "attach" || n == "composite" || n == "flexcomp") {
+      refuse(source, c, fmt::format("<{}> is not supported: the bodies it makes are MuJoCo's "
+                                    "compiler's; give them as bodies and geoms (mujoco-compile "
+                                    "model.xml merged.xml writes them out)", n));
     }
     refuse_unfollowed(c, source);
   }

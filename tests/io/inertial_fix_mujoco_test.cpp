@@ -193,5 +193,33 @@ TEST(InertialFixMujoco, EveryGeomRuleMatchesMujocoCompiler) {
   fs::remove_all(dir);
 }
 
+// The mug is a mesh (a non-convex solid: a cup and a handle). With exactmeshinertia="true"
+// MuJoCo's compiler agrees with rigid to its float32 vertices (measured: mass 2.2e-8, COM
+// 3e-10 m, inertia 1.2e-8 of tr I). Its default ("legacy") sums |pyramid volumes| from the
+// surface centroid, which counts the cup's hollow: 0.508 kg instead of the solid's 0.263 kg.
+TEST(InertialFixMujoco, MugMeshMatchesMujocoExactMeshInertia) {
+  const fs::path original = kModels / "mug" / "mug.xml";
+  ASSERT_TRUE(fs::exists(original)) << "install libmujoco-samples (scripts/install-deps.sh)";
+  const fs::path dir = scratch("mug");
+  fs::copy(kModels / "mug", dir, fs::copy_options::recursive | fs::copy_options::overwrite_existing);
+  std::string text = read_text(dir / "mug.xml");
+  const std::size_t root = text.find("<mujoco");
+  ASSERT_NE(root, std::string::npos);
+  text.insert(text.find('>', root) + 1, "\n  <compiler exactmeshinertia=\"true\"/>");
+  write(dir / "exact.xml", text);
+  compare_with_mujoco(dir / "exact.xml", dir / "fixed.xml", 2,
+                      [](const std::string& body) { return body == "mug" ? kRelativeMesh : kRelative; });
+
+  // the legacy default: MuJoCo's mug is far from the solid's mass, and rigid says so
+  const Model legacy = load(original);
+  const InertialFixResult r = fix_inertials_file(original.string());
+  ASSERT_TRUE(legacy && r.ok() && r.links[0].fixed);
+  const int b = mj_name2id(legacy.get(), mjOBJ_BODY, "mug");
+  EXPECT_GT(legacy->body_mass[b], 1.5 * r.links[0].fixed->mass());
+  ASSERT_FALSE(r.links[0].warnings.empty());
+  EXPECT_NE(r.links[0].warnings.back().find("MuJoCo's legacy mesh inertia"), std::string::npos);
+  fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace rigid::io
