@@ -502,6 +502,20 @@ std::vector<std::string> InertialFixResult::errors() const {
   return out;
 }
 
+std::pair<std::string, std::string> parse_package_path(const std::string& text) {
+  const auto eq = text.find('=');
+  RIGID_REQUIRE(eq != std::string::npos && eq > 0 && eq + 1 < text.size(),
+                "{} expects NAME=DIR, got '{}'", setting("package_path", "NAME=DIR"), text);
+  return {text.substr(0, eq), text.substr(eq + 1)};
+}
+
+void InertialFixResult::require_ok() const {
+  if (ok()) return;
+  const auto list = errors();
+  RIGID_THROW("{} problem{} left inertials unfixed; nothing was written:\n  {}", list.size(),
+              list.size() == 1 ? "" : "s", fmt::join(list, "\n  "));
+}
+
 InertialFixResult fix_inertials(const std::string& xml, const std::string& source,
                                 const InertialFixOptions& options) {
   RIGID_REQUIRE(!options.density || (*options.density > 0 && std::isfinite(*options.density)),

@@ -64,7 +64,14 @@ struct InertialFixResult {
   [[nodiscard]] bool ok() const;
   /// Every error of every link, one "source:line: link 'x': ..." line each.
   [[nodiscard]] std::vector<std::string> errors() const;
+  /// @throws rigid::Error listing errors() unless ok(): what every front end says before it
+  /// writes nothing.
+  void require_ok() const;
 };
+
+/// "NAME=DIR" (the `package_path` setting) as (NAME, DIR).
+/// @throws rigid::Error if either side is empty or there is no '='.
+[[nodiscard]] std::pair<std::string, std::string> parse_package_path(const std::string& text);
 
 /// Recomputes the inertials of the document `xml` (URDF, SDF or MJCF, detected from the root)
 /// from its geometry. Relative mesh paths resolve against the directory of `source`.
