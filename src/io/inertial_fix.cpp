@@ -690,15 +690,10 @@ InertialFixResult fix_inertials(const std::string& xml, const std::string& sourc
         } else if (child_indent.find('\t') != std::string::npos) {
           unit = "\t";
         }
-        const std::string text = inertial_text(mp, result.format, child_indent, unit, nl);
-        if (parent.self_closing) {
-          // <link name="x"/> opens to hold the inertial
-          edits.push_back({parent.start_tag_end - 2, 2,
-                           fmt::format(">{}{}{}{}{}</{}>", nl, child_indent, text, nl, pi,
-                                       link.element->Name())});
-        } else {
-          edits.push_back({parent.start_tag_end, 0, nl + child_indent + text});
-        }
+        // a link with geometry has children: its start tag is not self-closing
+        RIGID_ASSERT(!parent.self_closing);
+        edits.push_back({parent.start_tag_end, 0,
+                         nl + child_indent + inertial_text(mp, result.format, child_indent, unit, nl)});
       }
     }
     result.links.push_back(std::move(f));
