@@ -118,3 +118,15 @@ def test_python_gives_the_same_answer_and_refusal(run, robot, tmp_path):
     # the same refusal, with the remedy in each surface's terms
     with pytest.raises(rigid.Error, match=r"give it with package_path=\"parts=DIR\""):
         rigid.mass.fix_inertials(str(robot))
+
+
+def test_only_the_named_links_change(run, robot, tmp_path):
+    out = tmp_path / "only.urdf"
+    proc = run("inertia", "fix", robot, "--density", 1000, "--only", "base", "--format", "json",
+               "-o", out, check=True)
+    assert [l["name"] for l in json.loads(proc.stdout)["links"]] == ["base"]
+    text = out.read_text()
+    # base's placeholder replaced (0.024 m³ of water: 24 kg), arm left without an inertial
+    assert '<mass value="24"/>' in text
+    assert text.count("<inertial>") == 1
+    assert text[text.index('<link name="arm">'):] == ROBOT[ROBOT.index('<link name="arm">'):]
