@@ -127,6 +127,32 @@ def inertials(out):
           '<iyy>2</iyy><izz>3</izz><ixy>0.1</ixy></inertia></inertial></link></model></sdf>\n')
 
 
+def inertial_fixes(out):
+    write(out, "inertial_fix", "robot.urdf",
+          '<robot name="r">\n  <link name="a">\n    <inertial><mass value="1"/>'
+          '<inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial>\n'
+          '    <collision><origin xyz="0.1 0 0" rpy="0 0.3 0"/><geometry><box size="0.1 0.2 0.3"/>'
+          '</geometry></collision>\n    <collision><geometry><cylinder radius="0.1" length="0.2"/>'
+          '</geometry></collision>\n  </link>\n  <link name="b"><collision><geometry>'
+          '<sphere radius="0.1"/></geometry></collision></link>\n  <link name="c"/>\n</robot>\n')
+    write(out, "inertial_fix", "model.xml",
+          '<mujoco>\n  <compiler angle="radian" eulerseq="zyx"/>\n  <default>\n'
+          '    <default class="c"><geom type="capsule" density="500"/></default>\n  </default>\n'
+          '  <worldbody>\n    <body name="a" childclass="c">\n'
+          '      <geom fromto="0 0 0 0.1 0.2 0.3" size="0.05"/>\n'
+          '      <geom type="box" size="0.1 0.2 0.3" euler="0.1 0.2 0.3" mass="2"/>\n'
+          '      <body name="b"><geom type="ellipsoid" size="0.1 0.2 0.3" xyaxes="0 1 0 -1 0 0"/>'
+          '<geom type="cylinder" size="0.1 0.2" zaxis="1 1 1"/></body>\n'
+          '      <body name="d"><inertial pos="0 0 0" mass="1" diaginertia="1 1 1"/></body>\n'
+          '    </body>\n  </worldbody>\n</mujoco>\n')
+    write(out, "inertial_fix", "model.sdf",
+          '<sdf version="1.9"><model name="m"><link name="l"><collision name="c">'
+          '<pose degrees="true">0 0 0.1 90 0 0</pose><geometry><capsule><radius>0.05</radius>'
+          '<length>0.2</length></capsule></geometry></collision><collision name="e"><geometry>'
+          '<ellipsoid><radii>0.1 0.2 0.3</radii></ellipsoid></geometry></collision></link>'
+          '</model></sdf>\n')
+
+
 def expressions(out):
     seeds = {
         "const": "0a*b + sin(pi/3)^2 - sqrt(abs(b)) / exp(1e-3)",
@@ -153,6 +179,7 @@ def main():
     out = sys.argv[1]
     meshes(out)
     inertials(out)
+    inertial_fixes(out)
     expressions(out)
     scenes(out)
     for target in sorted(os.listdir(out)):

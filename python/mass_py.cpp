@@ -1,5 +1,9 @@
 // Python bindings of the mass module (rigid.MassProperties, rigid.mass.*) and of the
 // inertial XML writers/readers.
+#include <optional>
+#include <string>
+#include <vector>
+
 #include <pybind11/eigen.h>
 #include <pybind11/functional.h>
 #include <pybind11/pybind11.h>
@@ -7,6 +11,9 @@
 
 #include "rigid/common/error.hpp"
 #include "rigid/common/format.hpp"
+#include "rigid/common/wording.hpp"
+#include "rigid/io/atomic_file.hpp"
+#include "rigid/io/inertial_fix.hpp"
 #include "rigid/io/inertial_xml.hpp"
 #include "rigid/mass.hpp"
 #include "rigid/mass/primitive_table.hpp"
@@ -379,4 +386,43 @@ void bind_mass(py::module_& m) {
       },
       py::arg("xml"), py::arg("source") = "<string>",
       "Every inertial of a URDF/MJCF/SDF document as dicts (link frame, rotation applied).");
+  mass.def(
+      "fix_inertials",
+      [](const std::string& path, const std::optional<std::string>& output,
+         std::optional<double> density, bool keep_mass, const std::string& geometry,
+         const std::vector<std::string>& only, const py::object& package_path) {
+        rigid::io::InertialFixOptions options;
+        options.density = density;
+        options.keep_mass = keep_mass;
+        if (geometry != "collision" && geometry != "visual") {
+          throw rigid::Error(fmt::format("geometry must be 'collision' or 'visual', got '{}'", geometry));
+        }
+        options.from = geometry == "visual" ? rigid::io::GeometrySource::kVisual
+                                            : rigid::io::GeometrySource::kCollision;
+        options.only = only;
+        // "NAME=DIR" or a list of them, as the command line's --package-path
+        if (py::isinstance<py::str>(package_path)) {
+          options.package_paths.push_back(rigid::io::parse_package_path(package_path.cast<std::string>()));
+        } else if (!package_path.is_none()) {
+          for (const auto& p : package_path) {
+            options.package_paths.push_back(rigid::io::parse_package_path(p.cast<std::string>()));
+          }
+        }
+        const auto result = rigid::io::fix_inertials_file(path, options);
+        // the report is the command line's JSON table, as a dict
+        py::dict report = py::module_::import("json").attr("loads")(
+            rigid::word_for(rigid::Surface::kPython, rigid::io::fix_table_json(result)));
+        result.require_ok();
+        if (output) rigid::io::write_file_atomically(*output, result.text);
+        report["text"] = result.text;
+        return report;
+      },
+      py::arg("path"), py::arg("output") = std::nullopt, py::arg("density") = std::nullopt,
+      py::arg("keep_mass") = false, py::arg("geometry") = "collision",
+      py::arg("only") = std::vector<std::string>{},
+      py::arg("package_path") = py::none(),
+      "Recompute the inertials of a URDF/SDF/MJCF model from its geometry (as `rigid inertia "
+      "fix`): the report of old vs new per link, with the rewritten document as 'text'; "
+      "writes it to `output` when given. Raises rigid.Error (and writes nothing) if a link "
+      "cannot be fixed.");
 }

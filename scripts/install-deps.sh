@@ -13,9 +13,10 @@ build_packages=(
   openmpi-bin libopenmpi-dev
   libcgal-demo assimp-testmodels
   libgtest-dev libgmock-dev libbenchmark-dev
+  libmujoco-dev libmujoco-samples
   pybind11-dev python3-dev python3-numpy python3-pytest python3-scipy python3-sympy
 )
-bench_packages=(libmujoco-dev libbullet-dev libode-dev)
+bench_packages=(libbullet-dev libode-dev)
 fuzz_packages=(clang)
 
 wanted=("${build_packages[@]}")

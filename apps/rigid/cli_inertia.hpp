@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "cmd_inertia.hpp"
+#include "cmd_inertia_fix.hpp"
 #include "rigid/mass/primitive_table.hpp"
 
 /// --about, --frame, --format, --name, --output (shared by every inertia source).
@@ -36,6 +37,30 @@ inline void add_placement_options(CLI::App* cmd, rigid::cli::InertiaPrimitiveOpt
   cmd->add_option("--origin", opts.origin,
                   "then put the shape's own origin (its centre; the cone's base centre) at x,y,z (m)")
       ->default_str("0,0,0");
+}
+
+/// `rigid inertia fix MODEL`: inertials recomputed from a URDF/SDF/MJCF model's geometry.
+inline void add_inertia_fix_command(CLI::App* inertia) {
+  auto fix = std::make_shared<rigid::cli::InertiaFixOptions>();
+  auto* cmd = inertia->add_subcommand(
+      "fix", "Recompute the inertials of a URDF, SDF or MJCF model from its geometry; only the "
+             "<inertial> elements change");
+  cmd->add_option("MODEL", fix->file, "URDF, SDF or MJCF file")->required();
+  cmd->add_option("-o,--output", fix->output,
+                  "write the fixed model here (nothing is written if a link cannot be fixed)");
+  cmd->add_option_function<double>(
+      "--density", [fix](double v) { fix->density = v; },
+      "URDF/SDF: density of the geometry (kg/m³; default 1000 with a warning)");
+  cmd->add_flag("--keep-mass", fix->keep_mass,
+                "keep each link's stated mass and distribute it by the geometry");
+  cmd->add_option("--from", fix->from, "URDF/SDF: collision or visual geometry")
+      ->default_str("collision");
+  cmd->add_option("--only", fix->only, "only these links/bodies")->expected(1, -1);
+  cmd->add_option("--package-path", fix->package_paths,
+                  "NAME=DIR: where package://NAME/ (and model://NAME/) meshes are")
+      ->expected(1, -1);
+  cmd->add_option("--format", fix->format, "table format: text or json")->default_str("text");
+  cmd->callback([fix] { rigid::cli::run_inertia_fix(*fix); });
 }
 
 inline void add_inertia_command(CLI::App& app) {
@@ -87,6 +112,7 @@ inline void add_inertia_command(CLI::App& app) {
       "check", "Validate every <inertial> of a URDF, MJCF or SDF file (exit 1 if any is invalid)");
   cmd->add_option("FILE", check->file, "URDF, MJCF or SDF file")->required();
   cmd->callback([check] { rigid::cli::run_inertia_check(*check); });
+  add_inertia_fix_command(inertia);
 
   // anything else: `rigid inertia SOURCE [options]` (mesh files plug in here)
   auto source = std::make_shared<rigid::cli::InertiaSourceOptions>();

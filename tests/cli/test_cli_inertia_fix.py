@@ -1,0 +1,132 @@
+"""`rigid inertia fix MODEL`: inertials recomputed from a model's geometry, through the command
+line and Python (the same answer and the same refusal)."""
+import json
+import math
+import os
+import re
+
+import pytest
+
+HUMANOID = "/usr/share/mujoco/model/humanoid/humanoid.xml"
+
+# a unit cube with a corner at the origin, outward faces
+CUBE_OBJ = ("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+            "f 1 4 3\nf 1 3 2\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\n"
+            "f 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n")
+
+ROBOT = """<?xml version="1.0"?>
+<!-- wrong inertials on purpose -->
+<robot name="r">
+  <link name="base">
+    <inertial>
+      <mass value="1"/>
+      <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>
+    </inertial>
+    <collision><geometry><box size="0.2 0.3 0.4"/></geometry></collision>
+  </link>
+  <link name="arm">
+    <collision>
+      <origin xyz="0 0 0.25" rpy="1.5707963267948966 0 0"/>
+      <geometry><cylinder radius="0.05" length="0.5"/></geometry>
+    </collision>
+    <collision>
+      <geometry><mesh filename="package://parts/cube.obj" scale="0.1 0.2 0.3"/></geometry>
+    </collision>
+  </link>
+</robot>
+"""
+
+
+def without_inertials(text):
+    """The text with every <inertial> element (and the blank line it sits on) removed."""
+    return re.sub(r"\n[ \t]*<inertial\b(?:[^>]*/>|.*?</inertial>)", "", text, flags=re.S)
+
+
+@pytest.fixture
+def robot(tmp_path):
+    (tmp_path / "parts").mkdir()
+    (tmp_path / "parts" / "cube.obj").write_text(CUBE_OBJ)
+    model = tmp_path / "robot.urdf"
+    model.write_text(ROBOT)
+    return model
+
+
+def test_humanoid_is_fixed_and_only_inertials_change(run, tmp_path):
+    out = tmp_path / "out.xml"
+    proc = run("inertia", "fix", HUMANOID, "-o", out, check=True)
+    rows = [l for l in proc.stdout.splitlines() if " missing " in l]
+    assert len(rows) == 16  # every body of the humanoid has geoms and no <inertial>
+    text = out.read_text()
+    assert text.count("<inertial ") == 16
+    assert without_inertials(text) == open(HUMANOID).read()
+
+
+def test_urdf_fixed_then_check_passes(run, robot, tmp_path):
+    out = tmp_path / "fixed.urdf"
+    proc = run("inertia", "fix", robot, "--density", 2700, "--package-path",
+               f"parts={tmp_path / 'parts'}", "--format", "json", "-o", out, check=True)
+    report = json.loads(proc.stdout)
+    assert [l["reason"] for l in report["links"]] == ["placeholder", "missing"]
+    # the box, 0.2 × 0.3 × 0.4 m at 2700 kg/m³: m = 64.8 kg, I_xx = m (0.3² + 0.4²)/12
+    base = report["links"][0]["new"]
+    assert base["mass"] == pytest.approx(2700 * 0.024, rel=1e-14)
+    assert base["inertia_com"][0][0] == pytest.approx(64.8 * 0.25 / 12, rel=1e-14)
+    # the arm: cylinder (ρ π r² l) + the cube scaled to 0.1 × 0.2 × 0.3 m (ρ · 0.006)
+    arm = report["links"][1]["new"]
+    assert arm["mass"] == pytest.approx(2700 * (math.pi * 0.05**2 * 0.5 + 0.006), rel=1e-13)
+    run("inertia", "check", out, check=True)
+    assert without_inertials(out.read_text()) == without_inertials(ROBOT)
+
+
+def test_assumed_density_is_said_in_cli_terms(run, robot, tmp_path):
+    proc = run("inertia", "fix", robot, "--package-path", f"parts={tmp_path / 'parts'}",
+               check=True)
+    assert "1000 kg/m³ (water) assumed" in proc.stdout
+    assert "--density RHO" in proc.stdout and "--keep-mass" in proc.stdout
+
+
+def test_unfixable_links_exit_1_and_write_nothing(run, tmp_path):
+    model = tmp_path / "bad.urdf"
+    model.write_text('<robot name="b">\n  <link name="l">\n    <collision><geometry>'
+                     '<mesh filename="missing.stl"/></geometry></collision>\n  </link>\n</robot>\n')
+    out = tmp_path / "out.urdf"
+    proc = run("inertia", "fix", model, "-o", out, check=False)
+    assert proc.returncode == 1
+    assert f"{model}:2: link 'l': <collision> mesh (line 3): mesh file" in proc.stderr
+    assert "does not exist" in proc.stderr and "nothing was written" in proc.stderr
+    assert "NOT FIXED" in proc.stdout
+    assert not out.exists()
+    assert os.listdir(tmp_path) == ["bad.urdf"]  # no temporary left behind either
+
+
+def test_unknown_package_names_the_cli_option(run, robot):
+    proc = run("inertia", "fix", robot, check=False)
+    assert proc.returncode == 1
+    assert "give it with --package-path parts=DIR" in proc.stderr
+
+
+def test_python_gives_the_same_answer_and_refusal(run, robot, tmp_path):
+    rigid = pytest.importorskip("rigid")
+    package = f"parts={tmp_path / 'parts'}"
+    out = tmp_path / "cli.urdf"
+    cli = json.loads(run("inertia", "fix", robot, "--density", 2700, "--package-path", package,
+                         "--format", "json", "-o", out, check=True).stdout)
+    py = rigid.mass.fix_inertials(str(robot), output=str(tmp_path / "py.urdf"), density=2700,
+                                  package_path=[package])
+    assert py["links"] == cli["links"]  # bit for bit: the same doubles through JSON
+    assert py["text"] == out.read_text() == (tmp_path / "py.urdf").read_text()
+    # the same refusal, with the remedy in each surface's terms
+    with pytest.raises(rigid.Error, match=r"give it with package_path=\"parts=DIR\""):
+        rigid.mass.fix_inertials(str(robot))
+
+
+def test_only_the_named_links_change(run, robot, tmp_path):
+    out = tmp_path / "only.urdf"
+    proc = run("inertia", "fix", robot, "--density", 1000, "--only", "base", "--format", "json",
+               "-o", out, check=True)
+    assert [l["name"] for l in json.loads(proc.stdout)["links"]] == ["base"]
+    text = out.read_text()
+    # base's placeholder replaced (0.024 m³ of water: 24 kg), arm left without an inertial
+    assert '<mass value="24"/>' in text
+    assert text.count("<inertial>") == 1
+    assert text[text.index('<link name="arm">'):] == ROBOT[ROBOT.index('<link name="arm">'):]
