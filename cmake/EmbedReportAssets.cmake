@@ -3,7 +3,7 @@
 # (one literal each: GCC and Clang take literals of any length). Without JS/CSS (RIGID_REPORT
 # off) both are empty. The bytes must not hold the raw string's delimiter or a carriage return
 # (a raw string would keep neither exactly), nor the text that ends their HTML element.
-set(_delim "rigid_report_asset")
+set(_delim "rigid_asset")
 function(_embed var file end_tag)
   if(NOT file)
     set(${var} "" PARENT_SCOPE)

@@ -208,12 +208,13 @@ Decimation decimate(std::size_t samples, std::size_t max_frames) {
   // n − 1 (then ⌊(n−1)/k⌋ < (n−1)/k ≤ M − 1); k = ⌈(n−1)/(M−1)⌉ keeps at most M
   d.stride = samples <= max_frames ? 1 : (samples - 1 + max_frames - 2) / (max_frames - 1);
   for (std::size_t r = 0; r < samples; r += d.stride) d.rows.push_back(r);
-  if (d.rows.back() != samples - 1) d.rows.push_back(samples - 1);
+  const bool last = d.rows.back() != samples - 1;
+  if (last) d.rows.push_back(samples - 1);
   if (d.stride == 1) {
     d.rule = fmt::format("every sample of {} (at most {} frames)", samples, max_frames);
   } else {
-    d.rule = fmt::format("every {} of {} samples, and the last (at most {} frames)", ordinal(d.stride), samples,
-                         max_frames);
+    d.rule = fmt::format("every {} of {} samples{} (at most {} frames)", ordinal(d.stride), samples,
+                         last ? ", and the last" : "", max_frames);
   }
   return d;
 }

@@ -119,13 +119,13 @@ BodyMass mass_of(const Body& b, const std::vector<lagrange::Parameter>& params,
       const double value = value_of(amount, params, ctx + (by_mass ? " mass" : " density"));
       const mass::Amount kind = by_mass ? mass::Amount::kMass : mass::Amount::kDensity;
       MassProperties numeric = at_location(m.where, ctx, [&] { return mass::make_primitive(m.primitive, kind, value, args); });
-      std::vector<std::pair<std::string, double>> sizes;
+      std::vector<std::pair<std::string, double>> evaluated;  // canonical names, catalogue order
       for (const mass::PrimitiveSize& size : entry.sizes) {
         for (const auto& [key, v] : args.sizes) {
-          if (entry.size_index(key) == entry.size_index(size.name)) sizes.emplace_back(size.name, v);
+          if (entry.size_index(key) == entry.size_index(size.name)) evaluated.emplace_back(size.name, v);
         }
       }
-      if (entry.formulas.mass.empty()) return {numeric, named_constants(b.name, numeric, params, derived), sizes};
+      if (entry.formulas.mass.empty()) return {numeric, named_constants(b.name, numeric, params, derived), evaluated};
       // the closed forms with the sizes as the file wrote them, in the entry's order
       std::vector<std::string> sizes(entry.sizes.size());
       for (const auto& [key, e] : m.dimensions) sizes[*entry.size_index(key)] = e.text;
@@ -134,7 +134,7 @@ BodyMass mass_of(const Body& b, const std::vector<lagrange::Parameter>& params,
       symbolic.mass = text[0];
       for (std::size_t k = 0; k < 3; ++k) symbolic.com[k] = text[1 + k];
       for (std::size_t k = 0; k < 6; ++k) symbolic.inertia[k] = text[4 + k];
-      return {numeric, symbolic, sizes};
+      return {numeric, symbolic, evaluated};
     }
     case MassSpec::Kind::kMesh: {
       mesh::MassSpec spec;
