@@ -29,9 +29,9 @@ export class Player {
     this.speed = kSpeeds.reduce((best, s) => (Math.abs(Math.log(span / 20 / s)) < Math.abs(Math.log(span / 20 / best)) ? s : best), 1);
     if (!(span > 0)) this.speed = 1;
 
-    this.button = el('button', { type: 'button', class: 'play', title: 'play / pause (space)', text: '▶' });
-    this.prev = el('button', { type: 'button', title: 'previous frame (←)', text: '⏮' });
-    this.next = el('button', { type: 'button', title: 'next frame (→)', text: '⏭' });
+    this.button = el('button', { type: 'button', class: 'play', title: 'play / pause (space)', text: 'play' });
+    this.prev = el('button', { type: 'button', title: 'previous frame (←)', text: '‹ frame' });
+    this.next = el('button', { type: 'button', title: 'next frame (→)', text: 'frame ›' });
     this.slider = el('input', { type: 'range', min: '0', max: String(ts.length - 1), step: '1', value: '0', class: 'time-slider', 'aria-label': 'time' });
     this.label = el('span', { class: 'time-label' });
     this.speedSelect = el('select', { title: 'speed (simulated seconds per second)', 'aria-label': 'speed' },
@@ -82,13 +82,13 @@ export class Player {
 
   pause() {
     this.playing = false;
-    this.button.textContent = '▶';
+    this.button.textContent = 'play';
   }
 
   play() {
     if (this.index >= this.ts.length - 1) this.setIndex(0);
     this.playing = true;
-    this.button.textContent = '⏸';
+    this.button.textContent = 'pause';
     let last = performance.now();
     const tick = (now) => {
       if (!this.playing) return;

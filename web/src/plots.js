@@ -44,7 +44,12 @@ export function buildPlots(report, ts, player, root) {
       width: width(section),
       height: 220,
       scales: { x: { time: false }, y: log ? { distr: 3 } : {} },
-      axes: [{ label: 't (s)' }, { label: units.join(', '), size: 70 }],
+      axes: [{ label: 't (s)' }, {
+        label: units.join(', '),
+        size: 70,
+        // a log axis labels its decades as 1e-14, not as rounded zeros
+        ...(log ? { values: (self, ticks) => ticks.map((v) => (v === null || v === undefined ? '' : v === 0 ? '0' : v.toExponential(0))) } : {}),
+      }],
       cursor: {
         drag: { x: true, y: false },
         points: { size: 6 },

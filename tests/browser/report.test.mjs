@@ -1,0 +1,141 @@
+// The report page in a real browser (Debian's chromium via playwright-core): it loads from
+// file:// with no console error and no network request, draws the bodies, follows the time
+// slider, and its plots show trajectory.csv's values at the cursor.
+import assert from 'node:assert/strict';
+import { readFileSync, statSync } from 'node:fs';
+import { join } from 'node:path';
+import { after, before, describe, test } from 'node:test';
+import { launch, openPage, pixelStats, readCsv, screenshotPath, writeReport } from './support.mjs';
+
+// float32 rounding to nearest: |f32(x) − x| ≤ 2⁻²⁴ |x| (half an ulp), plus the smallest
+// normal float32 for values that underflow
+const kF32Rel = 2 ** -24;
+const kF32Abs = 1.2e-38;
+
+function nearF32(got, want) {
+  return Math.abs(got - want) <= kF32Rel * Math.abs(want) + kF32Abs;
+}
+
+const cases = [
+  {
+    scene: 'examples/tennis_racket.toml',
+    name: 'tennis_racket',
+    // free body: ω in the velocities, energy and |L| errors on a log scale
+    expected: { velocities: ['racket.wx', 'racket.wy', 'racket.wz'] },
+    logPlots: ['energy_error', 'L_error'],
+    maxBytes: 2e6,
+  },
+  {
+    scene: 'examples/double_pendulum.toml',
+    name: 'double_pendulum',
+    expected: { coordinates: ['theta1', 'theta2'], velocities: ['theta1_dot', 'theta2_dot'] },
+    logPlots: ['energy_error'],
+    maxBytes: 2e6,
+  },
+];
+
+let browser;
+before(async () => { browser = await launch(); });
+after(async () => { await browser?.close(); });
+
+for (const c of cases) {
+  describe(c.name, () => {
+    let dir;
+    let html;
+    let page;
+    let problems;
+    before(async () => {
+      dir = writeReport(c.scene);
+      html = join(dir, 'report.html');
+      ({ page, problems } = await openPage(browser, html));
+    });
+    after(async () => { await page?.close(); });
+
+    test('is one small file that references nothing on the network', () => {
+      const bytes = statSync(html).size;
+      assert.ok(bytes <= c.maxBytes, `report.html is ${bytes} B, more than ${c.maxBytes} B`);
+      const text = readFileSync(html, 'utf8');
+      // namespace strings such as "http://www.w3.org/2000/svg" are not resources; these are
+      const resource = /(?:\bsrc|\bhref)\s*=\s*["']?\s*(?:https?:)?\/\/|url\(\s*["']?\s*(?:https?:)?\/\/|@import/i.exec(text);
+      assert.equal(resource, null, `report.html references a resource: ${resource?.[0]}`);
+    });
+
+    test('loads from file:// with no console error and no request', async () => {
+      await page.waitForTimeout(200);
+      assert.deepEqual(problems, []);
+      const title = await page.title();
+      assert.ok(title.startsWith('rigid — '), `title: ${title}`);
+    });
+
+    test('the 3D view is drawn and the time slider changes the frame', async () => {
+      const canvas = page.locator('canvas').first();
+      await page.evaluate(() => window.rigidReport.setTime(0));
+      await page.waitForTimeout(100);
+      const first = await canvas.screenshot();
+      const stats = await pixelStats(page, first);
+      // a blank canvas is one colour; the bodies, grid and arrows make many and cover > 1 %
+      assert.ok(stats.colours > 10 && stats.notBackground > 0.01, `canvas looks blank: ${JSON.stringify(stats)}`);
+
+      // a click at 60 % of the slider: a user moving it
+      const slider = page.locator('input.time-slider');
+      const box = await slider.boundingBox();
+      await page.mouse.click(box.x + 0.6 * box.width, box.y + box.height / 2);
+      await page.waitForTimeout(150);
+      const t = await page.evaluate(() => window.rigidReport.time());
+      assert.ok(t > 0, `time after moving the slider: ${t}`);
+      const second = await canvas.screenshot();
+      const diff = await pixelStats(page, first, second);
+      // the bodies moved: more than 0.2 % of the pixels changed
+      assert.ok(diff.changed > 0.002, `the frame did not change: ${JSON.stringify(diff)}`);
+      await page.screenshot({ path: screenshotPath(`${c.name}.png`), fullPage: true });
+      await canvas.screenshot({ path: screenshotPath(`${c.name}-3d.png`) });
+    });
+
+    test('each plot has its series and the cursor shows trajectory.csv at the time', async () => {
+      const csv = readCsv(join(dir, 'trajectory.csv'));
+      const tIndex = csv.columns.indexOf('t');
+      const info = await page.evaluate(() => {
+        const out = {};
+        for (const [group, u] of Object.entries(window.rigidReport.plots)) {
+          out[group] = { series: u.rigidSeries, labels: u.series.map((s) => s.label), log: u.scales.y.distr === 3 };
+        }
+        return out;
+      });
+      for (const [group, columns] of Object.entries(c.expected)) {
+        assert.ok(info[group], `no plot '${group}' (plots: ${Object.keys(info)})`);
+        const got = info[group].series.map((s) => s.column);
+        for (const col of columns) assert.ok(got.includes(col), `plot '${group}' lacks ${col} (has ${got})`);
+      }
+      for (const group of c.logPlots) {
+        assert.ok(info[group], `no plot '${group}' (plots: ${Object.keys(info)})`);
+        assert.ok(info[group].log, `plot '${group}' is not on a log scale`);
+        assert.ok(info[group].series.length >= 1);
+      }
+
+      // a frame about 37 % into the run: not the first, not a round time
+      const ts = await page.evaluate(() => window.rigidReport.plots[Object.keys(window.rigidReport.plots)[0]].data[0]);
+      const k = Math.floor(0.37 * (ts.length - 1));
+      await page.evaluate((t) => window.rigidReport.setTime(t), ts[k]);
+      await page.waitForTimeout(50);
+      assert.equal(await page.evaluate(() => window.rigidReport.time()), ts[k]);
+      // the csv row at that time: the one whose t rounds to the frame's float32 time
+      const row = csv.rows.reduce((best, r) => (Math.abs(r[tIndex] - ts[k]) < Math.abs(best[tIndex] - ts[k]) ? r : best));
+      assert.ok(nearF32(ts[k], row[tIndex]), `frame time ${ts[k]} is no row's t (nearest ${row[tIndex]})`);
+
+      let compared = 0;
+      const under = await page.evaluate(() => Object.fromEntries(Object.entries(window.rigidReport.plots).map(
+        ([g, u]) => [g, { idx: u.cursor.idx, values: u.series.map((s, i) => u.data[i][u.cursor.idx]) }])));
+      for (const [group, { idx, values }] of Object.entries(under)) {
+        assert.equal(idx, k, `plot '${group}': cursor at frame ${idx}, the page's time is frame ${k}`);
+        info[group].series.forEach((s, i) => {
+          const col = csv.columns.indexOf(s.column ?? '');
+          if (col < 0) return;  // a derived series (relative errors): no csv column
+          assert.ok(nearF32(values[i + 1], row[col]),
+            `plot '${group}', ${s.name} at t = ${ts[k]}: ${values[i + 1]}, trajectory.csv has ${row[col]}`);
+          compared += 1;
+        });
+      }
+      assert.ok(compared >= Object.values(c.expected).flat().length, `only ${compared} values compared`);
+    });
+  });
+}
