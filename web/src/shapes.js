@@ -69,7 +69,9 @@ function meshGeometry(mesh) {
  */
 export function shapeGeometry(body, meshes, meshCache) {
   const shape = body.shape ?? {};
-  const kind = kAliases[String(shape.kind ?? '').replace(/-/g, '_')];
+  const canonical = (name) => kAliases[String(name ?? '').replace(/-/g, '_')];
+  // a primitive the writer did not map onto a kind of its own (inertia_only) is still drawn
+  const kind = canonical(shape.kind) ?? canonical(shape.primitive);
   const s = shape.sizes ?? {};
   const r = size(s, 'radius', 'outer_radius', 'bottom_radius');
   const h = size(s, 'height', 'length');

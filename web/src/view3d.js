@@ -22,6 +22,17 @@ function maxNorm(v) {
   return m;
 }
 
+// L is constant in the world (a torque-free body, not a top about its pivot): every frame
+// within 1e-5 |L(0)| of the first, far above float32's 6e-8 and far below any torque's effect
+function constant(L) {
+  const n0 = Math.hypot(L[0], L[1], L[2]);
+  if (!(n0 > 0)) return false;
+  for (let i = 3; i < L.length; i += 3) {
+    if (Math.hypot(L[i] - L[0], L[i + 1] - L[1], L[i + 2] - L[2]) > 1e-5 * n0) return false;
+  }
+  return true;
+}
+
 export function buildView(report, player, root) {
   const section = el('section', { class: 'view' });
   const canvasBox = el('div', { class: 'canvas-box' });
@@ -127,7 +138,7 @@ export function buildView(report, player, root) {
 
   // the Poinsot construction, for a single free body with ω and L
   let poinsot = null;
-  if (bodies.length === 1 && bodies[0].info.free && bodies[0].omega && bodies[0].L) {
+  if (bodies.length === 1 && bodies[0].info.free && bodies[0].omega && bodies[0].L && constant(bodies[0].L)) {
     poinsot = buildPoinsot(bodies[0], n);
     scene.add(poinsot.group);
   }
