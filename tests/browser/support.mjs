@@ -1,7 +1,7 @@
 // Shared by the browser tests: writing a report page with rigid, launching Debian's chromium
 // through playwright-core (no browser download), and reading pixels of screenshots.
 import { execFileSync } from 'node:child_process';
-import { mkdirSync, mkdtempSync, readFileSync, existsSync } from 'node:fs';
+import { mkdirSync, mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -119,4 +119,37 @@ export function screenshotPath(name) {
   return join(screenshotDir, name);
 }
 
-export { existsSync };
+// A closed ellipsoid of 2·m·(n−1) triangles (pole fans and quads between the rings), outward
+// normals, as binary STL: m = 250, n = 201 gives 100 000.
+export function ellipsoidStl(path, m, n, [a, b, c]) {
+  const p = (i, j) => {
+    const th = (Math.PI * i) / n;
+    const ph = (2 * Math.PI * j) / m;
+    return [a * Math.sin(th) * Math.cos(ph), b * Math.sin(th) * Math.sin(ph), c * Math.cos(th)];
+  };
+  const tris = [];
+  for (let j = 0; j < m; j += 1) {
+    tris.push([[0, 0, c], p(1, j), p(1, j + 1)]);
+    tris.push([[0, 0, -c], p(n - 1, j + 1), p(n - 1, j)]);
+    for (let i = 1; i < n - 1; i += 1) {
+      tris.push([p(i, j), p(i + 1, j), p(i + 1, j + 1)]);
+      tris.push([p(i, j), p(i + 1, j + 1), p(i, j + 1)]);
+    }
+  }
+  const buf = Buffer.alloc(84 + 50 * tris.length);
+  buf.writeUInt32LE(tris.length, 80);
+  tris.forEach((t, k) => {
+    const o = 84 + 50 * k;
+    // outward: the normal points away from the centre, so (v1 − v0) × (v2 − v0) · v0 > 0
+    const u = t[1].map((x, d) => x - t[0][d]);
+    const v = t[2].map((x, d) => x - t[0][d]);
+    const nrm = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]];
+    const s = nrm[0] * t[0][0] + nrm[1] * t[0][1] + nrm[2] * t[0][2] + nrm[0] * t[1][0] + nrm[1] * t[1][1] + nrm[2] * t[1][2];
+    const tt = s < 0 ? [t[0], t[2], t[1]] : t;
+    nrm.forEach((x, d) => buf.writeFloatLE(s < 0 ? -x : x, o + 4 * d));
+    tt.forEach((vert, q) => vert.forEach((x, d) => buf.writeFloatLE(x, o + 12 + 12 * q + 4 * d)));
+  });
+  writeFileSync(path, buf);
+  return tris.length;
+}
+
