@@ -17,6 +17,15 @@ const kGroups = [
 
 const kColours = ['#1f77b4', '#d62728', '#2ca02c', '#ff7f0e', '#9467bd', '#8c564b', '#e377c2', '#17becf', '#7f7f7f', '#bcbd22'];
 
+const decade = (v) => (v === null || v === undefined ? '' : v === 0 ? '0' : v.toExponential(0));
+// uPlot's own labels round small ticks to 0 (1e-5 J shows as "0"): 3 significant digits instead
+const tick = (v) => {
+  if (v === null || v === undefined) return '';
+  const a = Math.abs(v);
+  if (a === 0) return '0';
+  return a < 1e-3 || a >= 1e5 ? v.toExponential(1) : String(Number(v.toPrecision(3)));
+};
+
 function width(box) {
   return Math.max(320, Math.floor(box.getBoundingClientRect().width || 800) - 4);
 }
@@ -48,7 +57,7 @@ export function buildPlots(report, ts, player, root) {
         label: units.join(', '),
         size: 70,
         // a log axis labels its decades as 1e-14, not as rounded zeros
-        ...(log ? { values: (self, ticks) => ticks.map((v) => (v === null || v === undefined ? '' : v === 0 ? '0' : v.toExponential(0))) } : {}),
+        values: (self, ticks) => ticks.map(log ? decade : tick),
       }],
       cursor: {
         drag: { x: true, y: false },

@@ -97,7 +97,7 @@ export function buildView(report, player, root) {
       group.add(e);
     } else {
       // a point mass
-      b.radius = 0.03 * extent;
+      b.radius = 0.045 * extent;
       group.add(new THREE.Mesh(new THREE.SphereGeometry(b.radius, 24, 12), material));
     }
     const axes = new THREE.AxesHelper(1.4 * b.radius);
@@ -148,7 +148,7 @@ export function buildView(report, player, root) {
   const target = centre.clone();
   if (poinsot) target.add(poinsot.offset.clone().multiplyScalar(0.5));
   const reach = poinsot ? extent + poinsot.offset.length() : extent;
-  camera.position.copy(target).add(new THREE.Vector3(1.0, -1.6, 0.9).normalize().multiplyScalar(1.9 * reach));
+  camera.position.copy(target).add(new THREE.Vector3(0.5, -1.6, 0.6).normalize().multiplyScalar(1.6 * reach));
   const controls = new OrbitControls(camera, renderer.domElement);
   controls.target.copy(target);
 
