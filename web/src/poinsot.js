@@ -40,11 +40,12 @@ export function buildPoinsot(body, n) {
   const s = (0.9 * body.radius) / Math.max(...semi);
 
   const group = new THREE.Group();
-  // beside the body, on the side away from L so the plane does not cross it
+  // beside the body along world x (its part ⟂ L, so the plane does not cross the body), to
+  // the right of the front camera
   const Lhat = Lw.clone().normalize();
-  const side = Math.abs(Lhat.z) < 0.9 ? new THREE.Vector3(0, 0, 1) : new THREE.Vector3(1, 0, 0);
-  const offset = side.clone().cross(Lhat).normalize().multiplyScalar(2.6 * body.radius);
-  if (offset.y > 0) offset.negate();
+  let across = new THREE.Vector3(1, 0, 0).addScaledVector(Lhat, -Lhat.x);
+  if (across.length() < 0.3) across = new THREE.Vector3(0, 1, 0).addScaledVector(Lhat, -Lhat.y);
+  const offset = across.normalize().multiplyScalar(2.6 * body.radius);
 
   const turning = new THREE.Group();
   const ellipsoid = new THREE.Mesh(new THREE.SphereGeometry(1, 48, 24),

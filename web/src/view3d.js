@@ -13,6 +13,12 @@ const kBodyColours = [0x4e79a7, 0xf28e2b, 0x59a14f, 0xe15759, 0x76b7b2, 0xedc948
 function arrow(colour) {
   const a = new THREE.ArrowHelper(new THREE.Vector3(0, 0, 1), new THREE.Vector3(), 1, colour);
   a.visible = false;
+  // drawn over the bodies: an arrow starts at the COM, inside its body
+  a.line.material.depthTest = false;
+  a.cone.material.depthTest = false;
+  a.renderOrder = 10;
+  a.line.renderOrder = 10;
+  a.cone.renderOrder = 10;
   return a;
 }
 
@@ -148,9 +154,10 @@ export function buildView(report, player, root) {
   const target = centre.clone();
   if (poinsot) target.add(poinsot.offset.clone().multiplyScalar(0.5));
   const reach = poinsot ? extent + poinsot.offset.length() : extent;
-  camera.position.copy(target).add(new THREE.Vector3(0.5, -1.6, 0.6).normalize().multiplyScalar(1.6 * reach));
+  camera.position.copy(target).add(new THREE.Vector3(0.15, -1.6, 0.6).normalize().multiplyScalar(1.2 * reach));
   const controls = new OrbitControls(camera, renderer.domElement);
   controls.target.copy(target);
+  controls.update();
 
   let pending = false;
   const render = () => {
