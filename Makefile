@@ -51,12 +51,15 @@ asan: test-asan
 
 # The report page in a real browser: tests/browser/*.test.mjs drive Debian's chromium through
 # playwright-core (no browser download) on pages written by this build's rigid; screenshots go
-# to $(BUILD)/browser-screenshots/. web-deps runs `npm ci` only when web/package-lock.json
-# differs from the copy kept beside the last install.
-WEB_STAMP := web/node_modules/.package-lock.installed
-web-deps:
-	@cmp -s web/package-lock.json $(WEB_STAMP) || \
-	  (cd web && PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD=1 npm ci --no-audit --no-fund && cp package-lock.json $(CURDIR)/$(WEB_STAMP))
+# to $(BUILD)/browser-screenshots/. `npm ci` runs only when web/package-lock.json (or
+# package.json) is newer than npm's own record of the last install, the same stamp as the
+# CMake build's (src/report/CMakeLists.txt), so the two never install twice.
+WEB_STAMP := web/node_modules/.package-lock.json
+$(WEB_STAMP): web/package-lock.json web/package.json
+	cd web && PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD=1 npm ci --no-audit --no-fund
+	@touch $@
+
+web-deps: $(WEB_STAMP)
 
 test-browser: build web-deps
 	RIGID_EXE=$(CURDIR)/$(BUILD)/bin/rigid RIGID_SCREENSHOT_DIR=$(CURDIR)/$(BUILD)/browser-screenshots \
