@@ -65,6 +65,16 @@ for (const c of cases) {
       assert.deepEqual(problems, []);
       const title = await page.title();
       assert.ok(title.startsWith('rigid — '), `title: ${title}`);
+      // the equations, when the run has them, are typeset: KaTeX output and no fallback source
+      const eq = await page.evaluate(() => ({
+        latex: JSON.parse(document.getElementById('rigid-report-data').textContent).equations_latex,
+        typeset: document.querySelectorAll('.equations .katex').length,
+        failed: [...document.querySelectorAll('.equations .note')].map((e) => e.textContent),
+      }));
+      if (eq.latex) {
+        assert.ok(eq.typeset >= 1, 'the equations were not typeset');
+        assert.deepEqual(eq.failed, []);
+      }
     });
 
     test('the 3D view is drawn and the time slider changes the frame', async () => {

@@ -15,14 +15,46 @@ function diagnosticUnit(name) {
   return '';
 }
 
+// rigid's LaTeX (`rigid eom --format latex`) is a list of blocks: a `% caption` line, then
+// either one \begin{…}…\end{…} environment or one equation per line. Each block is typeset
+// on its own under its caption.
+export function latexBlocks(latex) {
+  const blocks = [];
+  let block = null;
+  let env = null;
+  const open = (caption) => { block = { caption, formulas: [] }; blocks.push(block); };
+  for (const raw of latex.split('\n')) {
+    const line = raw.trim();
+    if (env !== null) {
+      env.push(raw);
+      if (/^\\end\{/.test(line)) { block.formulas.push(env.join('\n')); env = null; }
+      continue;
+    }
+    if (!line) continue;
+    if (line.startsWith('%')) { open(line.slice(1).trim()); continue; }
+    if (!block) open('');
+    if (/^\\begin\{/.test(line) && !/\\end\{[^}]*\}\s*$/.test(line)) env = [raw];
+    else block.formulas.push(line);
+  }
+  if (env !== null) block.formulas.push(env.join('\n'));
+  return blocks;
+}
+
 function equations(latex) {
   const box = el('div', { class: 'equations' });
-  try {
-    katex.render(latex, box, { displayMode: true, throwOnError: true, output: 'html' });
-  } catch (e) {
-    // a formula KaTeX cannot typeset is shown as its source, with the reason
-    box.append(el('p', { class: 'note', text: `KaTeX could not typeset the equations: ${e.message}` }),
-      el('pre', { text: latex }));
+  for (const { caption, formulas } of latexBlocks(latex)) {
+    if (caption) box.append(el('p', { class: 'caption', text: caption }));
+    for (const f of formulas) {
+      const math = el('div', { class: 'formula' });
+      try {
+        katex.render(f, math, { displayMode: true, throwOnError: true, output: 'html' });
+      } catch (e) {
+        // a formula KaTeX cannot typeset is shown as its source, with the reason
+        math.append(el('p', { class: 'note', text: `KaTeX could not typeset this formula: ${e.message}` }),
+          el('pre', { text: f }));
+      }
+      box.append(math);
+    }
   }
   return box;
 }
@@ -85,9 +117,10 @@ export function buildHeader(report, root) {
 
   const f = report.frames ?? {};
   const size = report.size ?? {};
+  const rule = f.rule ?? '';
+  const note = size.bytes_note ?? '';
   h.append(el('p', { class: 'size-rule' },
-    `Data: ${f.count} frames, ${f.rule ?? ''}; ${size.bytes_note ?? ''}` +
-    (size.max_frames ? ` (at most ${size.max_frames} frames).` : '.') +
-    ` Page: ${num(document.documentElement.outerHTML.length / 1e6, 3)} MB.`));
+    `Data: ${f.count} frames, ${rule}` + (note && !note.includes(rule) ? `; ${note}` : note ? ` (${note})` : '') +
+    `. Page: ${num(document.documentElement.outerHTML.length / 1e6, 3)} MB.`));
   root.append(h);
 }
