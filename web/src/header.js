@@ -120,7 +120,8 @@ export function buildHeader(report, root) {
   const rule = f.rule ?? '';
   const note = size.bytes_note ?? '';
   h.append(el('p', { class: 'size-rule' },
-    `Data: ${f.count} frames, ${rule}` + (note && !note.includes(rule) ? `; ${note}` : note ? ` (${note})` : '') +
+    // the writer's note may already state the rule: then it is said once
+    `Data: ${f.count} frames; ` + (note.includes(rule) ? note : [rule, note].filter((x) => x).join('; ')) +
     `. Page: ${num(document.documentElement.outerHTML.length / 1e6, 3)} MB.`));
   root.append(h);
 }
