@@ -97,6 +97,26 @@ for (const c of cases) {
       const diff = await pixelStats(page, first, second);
       // the bodies moved: more than 0.2 % of the pixels changed
       assert.ok(diff.changed > 0.002, `the frame did not change: ${JSON.stringify(diff)}`);
+
+      // keys: → and ← step one frame (the slider has the focus: it must not step twice)
+      const frame = () => page.evaluate(() => {
+        const ts = Object.values(window.rigidReport.plots)[0].data[0];
+        return ts.indexOf(window.rigidReport.time());
+      });
+      const k0 = await frame();
+      await page.keyboard.press('ArrowRight');
+      assert.equal(await frame(), k0 + 1, '→ steps one frame');
+      await page.keyboard.press('ArrowLeft');
+      await page.keyboard.press('ArrowLeft');
+      assert.equal(await frame(), k0 - 1, '← steps one frame');
+      // space plays and pauses
+      await page.keyboard.press(' ');
+      await page.waitForTimeout(400);
+      await page.keyboard.press(' ');
+      const k1 = await frame();
+      assert.ok(k1 > k0 - 1, `space did not play (frame ${k1})`);
+      await page.waitForTimeout(200);
+      assert.equal(await frame(), k1, 'space did not pause');
       await page.screenshot({ path: screenshotPath(`${c.name}.png`), fullPage: true });
       await canvas.screenshot({ path: screenshotPath(`${c.name}-3d.png`) });
     });
@@ -168,6 +188,16 @@ for (const c of cases) {
         });
       }
       assert.ok(compared >= Object.values(c.expected).flat().length, `only ${compared} values compared`);
+
+      // a click on a legend entry hides its series, a second shows it again
+      const group = Object.keys(c.expected)[0];
+      const entry = page.locator(`.plot[data-group="${group}"] .u-legend .u-series`).nth(1);
+      const shown = () => page.evaluate((g) => window.rigidReport.plots[g].series[1].show, group);
+      assert.equal(await shown(), true);
+      await entry.click();
+      assert.equal(await shown(), false, 'the legend click did not hide the series');
+      await entry.click();
+      assert.equal(await shown(), true);
     });
   });
 }
