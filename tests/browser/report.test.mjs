@@ -174,10 +174,11 @@ for (const c of cases) {
         return x0 === 0 ? Math.abs(x - x0) : Math.abs(x - x0) / Math.abs(x0);
       };
       let compared = 0;
+      // under the cursor: each series' own index (uPlot's cursor.idxs, what its legend shows)
       const under = await page.evaluate(() => Object.fromEntries(Object.entries(window.rigidReport.plots).map(
-        ([g, u]) => [g, { idx: u.cursor.idx, values: u.series.map((s, i) => u.data[i][u.cursor.idx]) }])));
-      for (const [group, { idx, values }] of Object.entries(under)) {
-        assert.equal(idx, k, `plot '${group}': cursor at frame ${idx}, the page's time is frame ${k}`);
+        ([g, u]) => [g, { idxs: [...u.cursor.idxs], values: u.series.map((s, i) => u.data[i][u.cursor.idxs[i]]) }])));
+      for (const [group, { idxs, values }] of Object.entries(under)) {
+        idxs.forEach((idx, i) => assert.equal(idx, k, `plot '${group}', series ${i}: cursor at frame ${idx}, the page's time is frame ${k}`));
         info[group].series.forEach((s, i) => {
           const want = s.column ? expected(group, s.column) : undefined;
           if (want === undefined) return;  // a series with no source in trajectory.csv
