@@ -43,10 +43,16 @@ async function main() {
     legalComments: 'none',
     write: false,
     logLevel: 'warning',
-    // the page is one inline <script>: it must never contain the text that closes it
-    charset: 'utf8',
+    // ASCII only (the default, said here because it matters): every other character is
+    // escaped, so the bundle embeds in a C++ raw string with no bidirectional control character
+    // (GCC's -Werror=bidi-chars) or carriage return, and reads the same in any encoding
+    charset: 'ascii',
   });
   let code = js.outputFiles[0].text;
+  // esbuild escapes non-ASCII characters in strings but keeps them in regular expression
+  // literals (KaTeX has /[\u00ee…]/): each UTF-16 unit written as \uXXXX means the same there,
+  // in strings and in identifiers
+  code = code.replace(/[^\x00-\x7e]/g, (c) => `\\u${c.charCodeAt(0).toString(16).padStart(4, '0')}`);
   code = code.replace(/<\/(script)/gi, '<\\/$1');
 
   const css = [
@@ -54,8 +60,13 @@ async function main() {
     katexCss(),
     readFileSync(join(here, 'src', 'report.css'), 'utf8'),
   ].join('\n');
-  const cssMin = await esbuild.transform(css, { loader: 'css', minify: true, legalComments: 'none' });
+  const cssMin = await esbuild.transform(css, { loader: 'css', minify: true, legalComments: 'none', charset: 'ascii' });
   const cssText = cssMin.code.replace(/<\/(style)/gi, '<\\/$1');
+  // the page is one inline <script> and one <style>: neither may hold the text that closes it
+  for (const [name, text] of [['report.js', code], ['report.css', cssText]]) {
+    const bad = /[^\x20-\x7e\n\t]/.exec(text);
+    if (bad) throw new Error(`${name}: character U+${bad[0].codePointAt(0).toString(16)} at ${bad.index}; the bundle must be printable ASCII`);
+  }
 
   writeFileSync(join(outDir, 'report.js'), code);
   writeFileSync(join(outDir, 'report.css'), cssText);

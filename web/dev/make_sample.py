@@ -108,9 +108,10 @@ def main():
             wb = np.stack([col[f'{n}.w{k}'] for k in 'xyz'], 1)[idx]
             fb['omega'] = f32(rotate(q, wb))
             fb['L'] = f32(np.stack([col[f'{n}.L{k}'] for k in 'xyz'], 1)[idx])
-            Ln = np.linalg.norm(np.stack([col[f'{n}.L{k}'] for k in 'xyz'], 1), axis=1)
-            series.append({'group': 'L_error', 'name': f'{n} |L| rel. error', 'unit': '', 'column': None,
-                           'values': f32(np.abs(Ln - Ln[0])[idx] / max(Ln[0], 1e-300))})
+            Lx, Ly, Lz = (col[f'{n}.L{k}'] for k in 'xyz')
+            Ln = np.sqrt(Lx * Lx + Ly * Ly + Lz * Lz)
+            series.append({'group': 'L_error', 'name': f'{n} ||L| − |L(0)|| / |L(0)|', 'unit': '', 'column': f'{n}.L',
+                           'values': f32(np.abs(Ln - Ln[0])[idx] / (Ln[0] if Ln[0] != 0 else 1.0))})
         frames_bodies.append(fb)
 
     units = {'x': 'm', 'y': 'm', 'z': 'm', 'vx': 'm/s', 'vy': 'm/s', 'vz': 'm/s',
@@ -124,9 +125,9 @@ def main():
         elif c.endswith('_dot') and c[:-4] in coords:
             g, u = 'velocities', ''
         elif head in names and tail in units:
-            if summary['kind'] == 'coordinates':
-                continue  # poses computed from the coordinates: in frames, not plotted
-            g = 'coordinates' if tail[0] in 'xq' or tail in ('y', 'z') else 'velocities'
+            if tail in ('x', 'y', 'z', 'qw', 'qx', 'qy', 'qz'):
+                continue  # poses: in frames, not plotted (as rigid writes it)
+            g = 'other' if tail[0] == 'L' else 'velocities'
             u = units[tail]
         elif c.startswith('lambda_') or c.startswith('mu_'):
             g, u = 'multipliers', ''
@@ -134,9 +135,10 @@ def main():
             g, u = 'residuals', ''
         elif c in ('energy', 'jacobi'):
             e = col[c]
-            scale = abs(e[0]) if abs(e[0]) > 0 else 1.0
-            series.append({'group': 'energy_error', 'name': f'{c} rel. error', 'unit': '', 'column': None,
-                           'values': f32(np.abs(e - e[0])[idx] / scale)})
+            if c == 'energy':  # relative, or absolute when E(0) = 0 (as rigid writes it)
+                scale = abs(e[0]) if e[0] != 0 else 1.0
+                series.append({'group': 'energy_error', 'name': '|E − E(0)| / |E(0)|', 'unit': '', 'column': c,
+                               'values': f32(np.abs(e - e[0])[idx] / scale)})
             g, u = 'other', 'J'
         else:
             g, u = 'other', ''

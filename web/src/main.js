@@ -1,13 +1,39 @@
 // Entry of the report page: reads the run's data from the JSON script element and builds the
-// page (header, 3D view, plots) into document.body.
-import { readReport } from './data.js';
+// page (header, 3D view, plots) into document.body. For tests and scripts it exposes
+// window.rigidReport = {setTime(t), time(), ready, plots: {group: uPlot}}.
+import { decodeArray, readReport } from './data.js';
+import { el } from './format.js';
+import { buildHeader } from './header.js';
+import { Player } from './player.js';
+import { buildPlots } from './plots.js';
+import { buildView } from './view3d.js';
 
 function main() {
-  const el = document.getElementById('rigid-report-data');
-  const report = readReport(el ? el.textContent : null);
-  const h1 = document.createElement('h1');
-  h1.textContent = `rigid — ${report.scene.name}`;
-  document.body.appendChild(h1);
+  const api = { plots: {} };
+  let resolveReady;
+  let rejectReady;
+  api.ready = new Promise((res, rej) => { resolveReady = res; rejectReady = rej; });
+  window.rigidReport = api;
+  try {
+    const data = document.getElementById('rigid-report-data');
+    const report = readReport(data ? data.textContent : null);
+    const ts = decodeArray(report.frames.t);
+    const page = el('main', { class: 'rigid-report' });
+    document.body.append(page);
+    buildHeader(report, page);
+    const stage = el('section', { class: 'stage' }, el('h2', { text: 'Motion' }));
+    page.append(stage);
+    const player = new Player(ts, stage);
+    api.setTime = (t) => player.setTime(t);
+    api.time = () => player.time();
+    api.view = buildView(report, player, stage);
+    api.plots = buildPlots(report, ts, player, page);
+    requestAnimationFrame(() => requestAnimationFrame(() => resolveReady()));
+  } catch (e) {
+    document.body.append(el('pre', { class: 'fatal', text: `rigid report: ${e.message}` }));
+    rejectReady(e);
+    throw e;
+  }
 }
 
 main();
