@@ -3,6 +3,10 @@
 # (one literal each: GCC and Clang take literals of any length). Without JS/CSS (RIGID_REPORT
 # off) both are empty. The bytes must not hold the raw string's delimiter or a carriage return
 # (a raw string would keep neither exactly), nor the text that ends their HTML element.
+# The page names no http:// or https:// address: the libraries' namespace strings (SVG, MathML,
+# XHTML: identifiers, never fetched) are written "http:\/\/…" in the script, the same string
+# in JavaScript (`\/` is `/` in string, template and regular-expression literals, where a
+# minified bundle without comments holds all its URLs); a URL left in the style fails the build.
 set(_delim "rigid_asset")
 function(_embed var file end_tag)
   if(NOT file)
@@ -19,6 +23,16 @@ function(_embed var file end_tag)
   string(FIND "${_lower}" "${end_tag}" _end)
   if(NOT _end EQUAL -1)
     message(FATAL_ERROR "${file}: holds '${end_tag}', which would end its element in the page")
+  endif()
+  if(end_tag STREQUAL "</script")
+    string(REPLACE "http://" "http:\\/\\/" _text "${_text}")
+    string(REPLACE "https://" "https:\\/\\/" _text "${_text}")
+  else()
+    string(FIND "${_lower}" "http://" _http)
+    string(FIND "${_lower}" "https://" _https)
+    if(NOT _http EQUAL -1 OR NOT _https EQUAL -1)
+      message(FATAL_ERROR "${file}: names an http(s):// address; the page must load nothing (inline it as a data: URL)")
+    endif()
   endif()
   set(${var} "R\"${_delim}(${_text})${_delim}\"" PARENT_SCOPE)
 endfunction()
