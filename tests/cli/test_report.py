@@ -205,3 +205,13 @@ def test_demo_writes_a_report_and_says_where(run, tmp_path):
     assert d["scene"]["name"] == "tennis_racket"
     run("demo", "--no-report", check=True, cwd=tmp_path / "rigid-demo" / "..")
     assert not page.exists()
+
+
+def test_a_scene_that_drops_the_poses_has_no_report(run, tmp_path):
+    scene = tmp_path / "racket.toml"
+    scene.write_text(RACKET.read_text() + '\n[output]\nquantities = ["racket.w*"]\n')
+    p = run("run", scene, "--report", "-o", tmp_path / "out", check=False)
+    assert p.returncode == 1
+    assert "the report needs the trajectory column 'racket.x'" in p.stderr
+    assert "[output] quantities leaves it out" in p.stderr
+    assert not (tmp_path / "out").exists()  # nothing of the run is written
