@@ -83,7 +83,9 @@ export function buildHeader(report, root) {
     ['method', it.method],
     ['dt', it.dt ? `${num(it.dt)} s` : null],
     ['tolerance', it.tolerance ? num(it.tolerance) : null],
+    ['t_end', it.t_end !== undefined ? `${num(it.t_end)} s` : null],
     ['steps', it.steps],
+    ['samples', it.samples],
     ['rhs evaluations', it.rhs_evaluations || null],
     ['wall time', it.wall_time_s !== undefined ? `${num(it.wall_time_s, 3)} s` : null],
   ].filter(([, v]) => v !== null && v !== undefined);
@@ -103,6 +105,11 @@ export function buildHeader(report, root) {
         diag.map(([k, v]) => [k, typeof v === 'number' ? num(v, 4) : String(v), diagnosticUnit(k) || '—']))));
   }
   h.append(cards);
+  const warnings = report.warnings ?? [];
+  if (warnings.length) {
+    h.append(el('section', { class: 'warnings' }, el('h2', { text: 'Warnings' }),
+      el('ul', {}, ...warnings.map((w) => el('li', { text: String(w) })))));
+  }
 
   if (report.equations_latex) {
     h.append(el('section', {}, el('h2', { text: 'Equations of motion' }), equations(report.equations_latex)));
