@@ -165,10 +165,29 @@ export function buildView(report, player, root) {
 
   const camera = new THREE.PerspectiveCamera(40, 1, extent / 1000, extent * 100);
   camera.up.set(0, 0, 1);
-  const target = centre.clone();
-  if (poinsot) target.add(poinsot.offset.clone().multiplyScalar(0.5));
-  const reach = poinsot ? extent + poinsot.offset.length() : extent;
-  camera.position.copy(target).add(new THREE.Vector3(0.15, -1.6, 0.6).normalize().multiplyScalar(1.2 * reach));
+  // what the camera frames: the motion's box grown by the largest body, and the Poinsot
+  // construction beside it
+  const frame = box.isEmpty() ? new THREE.Box3(centre.clone(), centre.clone()) : box.clone();
+  // (point masses got their marker's radius above), and by the ω and L arrows (≤ 1.8 radii)
+  const arrows = bodies.some((b) => b.omega || b.L) ? 1.8 : 1;
+  frame.expandByScalar(arrows * Math.max(maxRadius, ...bodies.map((b) => b.radius)));
+  if (poinsot) {
+    const c = centre.clone().add(poinsot.offset);
+    frame.union(new THREE.Box3().setFromCenterAndSize(c, new THREE.Vector3(1, 1, 1).multiplyScalar(3.2 * maxRadius)));
+  }
+  const target = frame.getCenter(new THREE.Vector3());
+  const span = frame.getSize(new THREE.Vector3());
+  const kView = new THREE.Vector3(0.15, -1.6, 0.6).normalize();
+  let cameraMoved = false;
+  // the camera looks along about +y: x spans the width, z the height, y the depth; the
+  // distance fits both in the view with a 10 % margin
+  const placeCamera = () => {
+    const tanV = Math.tan(THREE.MathUtils.degToRad(camera.fov / 2));
+    const tanH = tanV * camera.aspect;
+    const dist = 1.1 * (Math.max(span.z / 2 / tanV, span.x / 2 / tanH) + span.y / 2);
+    camera.position.copy(target).addScaledVector(kView, Math.max(dist, 1e-6));
+  };
+  placeCamera();
   // a light from the camera, so no face the user looks at is left dark
   const headlight = new THREE.DirectionalLight(0xffffff, 0.9);
   camera.add(headlight);
@@ -186,6 +205,7 @@ export function buildView(report, player, root) {
     if (!pending) { pending = true; requestAnimationFrame(render); }
   };
   controls.addEventListener('change', requestRender);
+  controls.addEventListener('start', () => { cameraMoved = true; });
 
   const q = new THREE.Quaternion();
   const v = new THREE.Vector3();
@@ -217,6 +237,10 @@ export function buildView(report, player, root) {
     renderer.setSize(w, h);
     camera.aspect = w / h;
     camera.updateProjectionMatrix();
+    if (!cameraMoved) {
+      placeCamera();
+      controls.update();
+    }
     requestRender();
   };
   window.addEventListener('resize', resize);
