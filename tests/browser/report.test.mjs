@@ -202,3 +202,25 @@ for (const c of cases) {
     });
   });
 }
+
+test('without WebGL the page says why the 3D view is missing and keeps the header and plots', async () => {
+  const dir = writeReport('examples/double_pendulum.toml');
+  const page = await browser.newPage();
+  // a browser with no WebGL: every webgl/webgl2 context request fails, as with --disable-webgl
+  await page.addInitScript(() => {
+    const get = HTMLCanvasElement.prototype.getContext;
+    HTMLCanvasElement.prototype.getContext = function (type, ...rest) {
+      return /webgl/i.test(type) ? null : get.call(this, type, ...rest);
+    };
+  });
+  const errors = [];
+  page.on('pageerror', (e) => errors.push(e.message));
+  await page.goto(`file://${join(dir, 'report.html')}`);
+  await page.evaluate(() => window.rigidReport.ready);
+  const note = await page.evaluate(() => document.querySelector('.stage .fatal')?.textContent ?? '');
+  assert.match(note, /^The 3D view could not start: .*WebGL/);
+  assert.deepEqual(await page.evaluate(() => Object.keys(window.rigidReport.plots)),
+    ['coordinates', 'velocities', 'energy_error', 'other']);
+  assert.deepEqual(errors, []);
+  await page.close();
+});

@@ -54,8 +54,8 @@ export async function launch() {
  * Opens the page from file:// and records every console error, page error and request whose URL
  * is neither the page itself nor a data: URL (those are aborted: the page must load nothing).
  */
-export async function openPage(browser, htmlPath) {
-  const page = await browser.newPage({ viewport: { width: 1200, height: 900 } });
+export async function openPage(browser, htmlPath, viewport = { width: 1200, height: 900 }) {
+  const page = await browser.newPage({ viewport });
   const problems = [];
   const pageUrl = `file://${htmlPath}`;
   page.on('console', (m) => { if (m.type() === 'error') problems.push(`console error: ${m.text()}`); });

@@ -1,5 +1,7 @@
 // Decoding of the report's JSON (schema version 1): "f32:BASE64" and "u32:BASE64" arrays are
 // little-endian float32 / uint32; plain arrays are kept as they are.
+const kLittleEndian = new Uint8Array(new Uint32Array([1]).buffer)[0] === 1;
+
 export function decodeArray(v) {
   if (v === null || v === undefined) return null;
   if (Array.isArray(v)) return v;
@@ -8,12 +10,14 @@ export function decodeArray(v) {
   const tag = v.slice(0, colon);
   if (tag !== 'f32' && tag !== 'u32') throw new Error(`unknown array encoding "${tag}"`);
   const bin = atob(v.slice(colon + 1));
+  const n = bin.length / 4;
+  if (!Number.isInteger(n)) throw new Error(`${tag} array of ${bin.length} bytes (not a multiple of 4)`);
   const bytes = new Uint8Array(bin.length);
   for (let i = 0; i < bin.length; i += 1) bytes[i] = bin.charCodeAt(i);
-  if (bytes.length % 4 !== 0) throw new Error(`${tag} array of ${bytes.length} bytes (not a multiple of 4)`);
-  // copy into an aligned buffer; DataView keeps the little-endian reading explicit
+  // the data are little-endian: on a little-endian machine (every browser's in practice) the
+  // bytes are the array; otherwise each value is read through a DataView
+  if (kLittleEndian) return tag === 'f32' ? new Float32Array(bytes.buffer) : new Uint32Array(bytes.buffer);
   const dv = new DataView(bytes.buffer);
-  const n = bytes.length / 4;
   const out = tag === 'f32' ? new Float32Array(n) : new Uint32Array(n);
   for (let i = 0; i < n; i += 1) out[i] = tag === 'f32' ? dv.getFloat32(4 * i, true) : dv.getUint32(4 * i, true);
   return out;

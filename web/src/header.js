@@ -63,6 +63,14 @@ function inertiaMatrix(I) {
   return el('span', { class: 'matrix' }, ...I.map((row) => el('span', { text: row.map((x) => num(x)).join('  ') })));
 }
 
+// the page's size from its three big parts (data, script, style): serialising the whole page
+// (outerHTML) to measure it takes seconds for a large one
+function pageLength() {
+  let n = 0;
+  for (const e of document.querySelectorAll('script, style')) n += e.textContent.length;
+  return n;
+}
+
 export function buildHeader(report, root) {
   const h = el('header', { class: 'report-header' });
   const s = report.scene ?? {};
@@ -75,7 +83,9 @@ export function buildHeader(report, root) {
     ['method', it.method],
     ['dt', it.dt ? `${num(it.dt)} s` : null],
     ['tolerance', it.tolerance ? num(it.tolerance) : null],
+    ['t_end', it.t_end !== undefined ? `${num(it.t_end)} s` : null],
     ['steps', it.steps],
+    ['samples', it.samples],
     ['rhs evaluations', it.rhs_evaluations || null],
     ['wall time', it.wall_time_s !== undefined ? `${num(it.wall_time_s, 3)} s` : null],
   ].filter(([, v]) => v !== null && v !== undefined);
@@ -95,6 +105,11 @@ export function buildHeader(report, root) {
         diag.map(([k, v]) => [k, typeof v === 'number' ? num(v, 4) : String(v), diagnosticUnit(k) || '—']))));
   }
   h.append(cards);
+  const warnings = report.warnings ?? [];
+  if (warnings.length) {
+    h.append(el('section', { class: 'warnings' }, el('h2', { text: 'Warnings' }),
+      el('ul', {}, ...warnings.map((w) => el('li', { text: String(w) })))));
+  }
 
   if (report.equations_latex) {
     h.append(el('section', {}, el('h2', { text: 'Equations of motion' }), equations(report.equations_latex)));
@@ -122,6 +137,6 @@ export function buildHeader(report, root) {
   h.append(el('p', { class: 'size-rule' },
     // the writer's note may already state the rule: then it is said once
     `Data: ${f.count} frames; ` + (note.includes(rule) ? note : [rule, note].filter((x) => x).join('; ')) +
-    `. Page: ${num(document.documentElement.outerHTML.length / 1e6, 3)} MB.`));
+    `. Page: about ${num(pageLength() / 1e6, 3)} MB.`));
   root.append(h);
 }

@@ -26,7 +26,12 @@ function main() {
     const player = new Player(ts, stage);
     api.setTime = (t) => player.setTime(t);
     api.time = () => player.time();
-    api.view = buildView(report, player, stage);
+    try {
+      api.view = buildView(report, player, stage);
+    } catch (e) {
+      // without WebGL (disabled, or no GPU and no software fallback) the rest of the page stands
+      stage.append(el('p', { class: 'fatal', text: `The 3D view could not start: ${String(e.message).replace(/\.+$/, "")}. The header and the plots below are complete; open the page in a browser with WebGL to see the motion.` }));
+    }
     api.plots = buildPlots(report, ts, player, page);
     requestAnimationFrame(() => requestAnimationFrame(() => resolveReady()));
   } catch (e) {

@@ -8,8 +8,9 @@ import { el } from './format.js';
 const kGroups = [
   ['coordinates', 'Coordinates', false],
   ['velocities', 'Velocities', false],
-  ['energy_error', 'Relative energy error |E(t) − E(0)| / |E(0)|', true],
-  ['L_error', 'Relative |L| error |L(t) − L(0)| / |L(0)|', true],
+  // the series' names say relative or absolute (the latter when the initial value is 0)
+  ['energy_error', 'Energy error (log scale)', true],
+  ['L_error', '|L| error (log scale)', true],
   ['multipliers', 'Multipliers (constraint forces)', false],
   ['residuals', 'Constraint residuals', false],
   ['other', 'Other', false],

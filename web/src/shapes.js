@@ -130,7 +130,7 @@ export function shapeGeometry(body, meshes, meshCache) {
 /** Radius of a sphere about the COM that holds the body's drawing (m), for scales. */
 export function bodyRadius(geometry, body) {
   if (geometry) {
-    geometry.computeBoundingSphere();
+    if (!geometry.boundingSphere) geometry.computeBoundingSphere();
     const c = new THREE.Vector3(...body.com);
     const bs = geometry.boundingSphere;
     return bs.radius + bs.center.distanceTo(c);

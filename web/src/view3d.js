@@ -83,7 +83,7 @@ export function buildView(report, player, root) {
   const motion = box.isEmpty() ? 0 : box.getSize(new THREE.Vector3()).length();
   const extent = Math.max(motion, 2 * maxRadius, 1e-6);
 
-  const layers = { frames: [], omega: [], L: [], ellipsoids: [] };
+  const layers = { frames: [], omega: [], L: [], ellipsoids: [], paths: [] };
   for (const b of bodies) {
     // the group is at the COM, turned by R_WB; the shape sits at −com in it (body frame origin)
     const group = new THREE.Group();
@@ -122,6 +122,20 @@ export function buildView(report, player, root) {
     }
     scene.add(group);
     b.group = group;
+    // the path of the COM, traced up to the current frame (only for a body that moves)
+    const moves = box.isEmpty() ? false : (() => {
+      const p = b.position;
+      for (let k = 3; k < p.length; k += 3) if (p[k] !== p[0] || p[k + 1] !== p[1] || p[k + 2] !== p[2]) return true;
+      return false;
+    })();
+    if (moves) {
+      const g = new THREE.BufferGeometry();
+      g.setAttribute('position', new THREE.BufferAttribute(b.position instanceof Float32Array ? b.position : Float32Array.from(b.position), 3));
+      g.setDrawRange(0, 1);
+      b.path = new THREE.Line(g, new THREE.LineBasicMaterial({ color: b.colour, transparent: true, opacity: 0.6 }));
+      scene.add(b.path);
+      layers.paths.push(b.path);
+    }
     if (b.omega) {
       b.omegaArrow = arrow(0xd62728);
       b.omegaScale = (1.5 * b.radius) / Math.max(maxNorm(b.omega), 1e-300);
@@ -151,10 +165,33 @@ export function buildView(report, player, root) {
 
   const camera = new THREE.PerspectiveCamera(40, 1, extent / 1000, extent * 100);
   camera.up.set(0, 0, 1);
-  const target = centre.clone();
-  if (poinsot) target.add(poinsot.offset.clone().multiplyScalar(0.5));
-  const reach = poinsot ? extent + poinsot.offset.length() : extent;
-  camera.position.copy(target).add(new THREE.Vector3(0.15, -1.6, 0.6).normalize().multiplyScalar(1.2 * reach));
+  // what the camera frames: the motion's box grown by the largest body, and the Poinsot
+  // construction beside it
+  const frame = box.isEmpty() ? new THREE.Box3(centre.clone(), centre.clone()) : box.clone();
+  // (point masses got their marker's radius above), and by the ω and L arrows (≤ 1.8 radii)
+  const arrows = bodies.some((b) => b.omega || b.L) ? 1.8 : 1;
+  frame.expandByScalar(arrows * Math.max(maxRadius, ...bodies.map((b) => b.radius)));
+  if (poinsot) {
+    const c = centre.clone().add(poinsot.offset);
+    frame.union(new THREE.Box3().setFromCenterAndSize(c, new THREE.Vector3(1, 1, 1).multiplyScalar(3.2 * maxRadius)));
+  }
+  const target = frame.getCenter(new THREE.Vector3());
+  const span = frame.getSize(new THREE.Vector3());
+  const kView = new THREE.Vector3(0.15, -1.6, 0.6).normalize();
+  let cameraMoved = false;
+  // the camera looks along about +y: x spans the width, z the height, y the depth; the
+  // distance fits both in the view with a 10 % margin
+  const placeCamera = () => {
+    const tanV = Math.tan(THREE.MathUtils.degToRad(camera.fov / 2));
+    const tanH = tanV * camera.aspect;
+    const dist = 1.1 * (Math.max(span.z / 2 / tanV, span.x / 2 / tanH) + span.y / 2);
+    camera.position.copy(target).addScaledVector(kView, Math.max(dist, 1e-6));
+  };
+  placeCamera();
+  // a light from the camera, so no face the user looks at is left dark
+  const headlight = new THREE.DirectionalLight(0xffffff, 0.9);
+  camera.add(headlight);
+  scene.add(camera);
   const controls = new OrbitControls(camera, renderer.domElement);
   controls.target.copy(target);
   controls.update();
@@ -168,12 +205,14 @@ export function buildView(report, player, root) {
     if (!pending) { pending = true; requestAnimationFrame(render); }
   };
   controls.addEventListener('change', requestRender);
+  controls.addEventListener('start', () => { cameraMoved = true; });
 
   const q = new THREE.Quaternion();
   const v = new THREE.Vector3();
   const setFrame = (k) => {
     for (const b of bodies) {
       const p = b.position;
+      if (b.path) b.path.geometry.setDrawRange(0, k + 1);
       b.group.position.set(p[3 * k], p[3 * k + 1], p[3 * k + 2]);
       const w = b.quaternion;
       b.group.quaternion.set(w[4 * k + 1], w[4 * k + 2], w[4 * k + 3], w[4 * k]);
@@ -198,6 +237,10 @@ export function buildView(report, player, root) {
     renderer.setSize(w, h);
     camera.aspect = w / h;
     camera.updateProjectionMatrix();
+    if (!cameraMoved) {
+      placeCamera();
+      controls.update();
+    }
     requestRender();
   };
   window.addEventListener('resize', resize);
@@ -220,6 +263,7 @@ export function buildView(report, player, root) {
   toggle('L', layers.L, true, 'angular momentum about the COM, in the world (green): constant for a free body');
   toggle('inertia ellipsoids', layers.ellipsoids, false, 'the uniform solid ellipsoid with the body’s mass and principal moments');
   if (poinsot) toggle('Poinsot construction', [poinsot.group], true, poinsot.note);
+  toggle('paths', layers.paths, true, 'the path of each body’s COM up to the current time');
   toggle('grid', [grid], true);
 
   resize();
