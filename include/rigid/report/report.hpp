@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "rigid/io/run_output.hpp"
 #include "rigid/scene/model.hpp"
