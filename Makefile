@@ -4,7 +4,7 @@ PRESET ?= ci
 BUILD  := build/$(PRESET)
 PYTHON := /usr/bin/python3
 
-.PHONY: all deps configure build test test-cpp test-python test-asan test-tsan demo bench asan fuzz clean
+.PHONY: all deps configure build test test-cpp test-python test-asan test-tsan test-browser web-deps demo bench asan fuzz clean
 
 all: build
 
@@ -17,7 +17,7 @@ configure: deps
 build: configure
 	cmake --build --preset $(PRESET)
 
-test: build test-asan test-tsan
+test: build test-asan test-tsan test-browser
 	ctest --preset $(PRESET)
 	RIGID_PYTHON_DIR=$(CURDIR)/$(BUILD)/python RIGID_EXE=$(CURDIR)/$(BUILD)/bin/rigid \
 	  $(PYTHON) -m pytest -q python/tests tests/cli
@@ -48,6 +48,22 @@ test-tsan: deps
 	TSAN_OPTIONS=halt_on_error=1 build/tsan/bin/rigid_scene_tests --gtest_brief=1 --gtest_filter='ModelThreads.*'
 
 asan: test-asan
+
+# The report page in a real browser: tests/browser/*.test.mjs drive Debian's chromium through
+# playwright-core (no browser download) on pages written by this build's rigid; screenshots go
+# to $(BUILD)/browser-screenshots/. `npm ci` runs only when web/package-lock.json (or
+# package.json) is newer than npm's own record of the last install, the same stamp as the
+# CMake build's (src/report/CMakeLists.txt), so the two never install twice.
+WEB_STAMP := web/node_modules/.package-lock.json
+$(WEB_STAMP): web/package-lock.json web/package.json
+	cd web && PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD=1 npm ci --no-audit --no-fund
+	@touch $@
+
+web-deps: $(WEB_STAMP)
+
+test-browser: build web-deps
+	RIGID_EXE=$(CURDIR)/$(BUILD)/bin/rigid RIGID_SCREENSHOT_DIR=$(CURDIR)/$(BUILD)/browser-screenshots \
+	  node --test tests/browser/
 
 # Every fuzz target (fuzz/: mesh readers, scenes, URDF/MJCF/SDF inertials, expressions) for
 # SECONDS seconds each, built with clang, libFuzzer, ASan and UBSan in build/fuzz. Findings go

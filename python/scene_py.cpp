@@ -14,7 +14,9 @@
 #include <pybind11/stl/filesystem.h>
 
 #include "interrupt.hpp"
+#include "rigid/io/atomic_file.hpp"
 #include "rigid/io/run_output.hpp"
+#include "rigid/report/report.hpp"
 #include "rigid/scene/export.hpp"
 #include "rigid/scene/model.hpp"
 #include "rigid/scene/scene.hpp"
@@ -79,8 +81,54 @@ std::optional<std::uint64_t> memory_of(const py::object& value) {
   throw rigid::Error("max_memory must be a number of bytes or a size such as \"512MiB\"");
 }
 
+// report=: None or False (no page), True (report.html in `output`, with the run's files) or a
+// path (the page alone, written there).
+struct ReportRequest {
+  bool in_output = false;
+  std::optional<std::filesystem::path> path;
+  rigid::report::ReportOptions options;
+};
+
+std::optional<ReportRequest> report_of(const py::object& value, const py::object& frames, bool has_output) {
+  if (value.is_none() || (py::isinstance<py::bool_>(value) && !value.cast<bool>())) {
+    if (!frames.is_none()) throw rigid::Error("report_frames sets the frames of the report: give report= with it");
+    return std::nullopt;
+  }
+  if (!rigid::report::available()) {
+    throw rigid::Error("this rigid module was built without the report page (CMake option RIGID_REPORT=OFF, "
+                       "a build without node): rebuild with the ci or release preset to write reports");
+  }
+  ReportRequest r;
+  if (py::isinstance<py::bool_>(value)) {
+    if (!has_output) {
+      throw rigid::Error("report=True writes report.html into the output directory: give output= too, or "
+                         "report=PATH for the page alone");
+    }
+    r.in_output = true;
+  } else if (py::isinstance<py::str>(value) || py::isinstance(value, py::module_::import("pathlib").attr("PurePath"))) {
+    r.path = value.cast<std::filesystem::path>();
+  } else {
+    throw rigid::Error("report must be True (report.html in output) or the path of the page");
+  }
+  if (!frames.is_none()) {
+    if (!py::isinstance<py::int_>(frames) || py::isinstance<py::bool_>(frames)) {
+      throw rigid::Error("report_frames must be a whole number of frames");
+    }
+    const auto n = frames.cast<long long>();
+    if (n < static_cast<long long>(rigid::report::kMinMaxFrames) ||
+        n > static_cast<long long>(rigid::report::kMaxMaxFrames)) {
+      throw rigid::Error(fmt::format("report_frames = {}: expected a number of frames from {} to {}", n,
+                                     rigid::report::kMinMaxFrames, rigid::report::kMaxMaxFrames));
+    }
+    r.options.max_frames = static_cast<std::size_t>(n);
+  }
+  return r;
+}
+
 py::dict run(const Model& model, const std::string& integrator, std::optional<std::filesystem::path> output,
-             const std::vector<std::string>& formats, const py::object& max_memory) {
+             const std::vector<std::string>& formats, const py::object& max_memory, const py::object& report,
+             const py::object& report_frames) {
+  const std::optional<ReportRequest> page = report_of(report, report_frames, output.has_value());
   rigid::python::Interruptible interrupt;
   rigid::scene::RunOptions options;
   options.integrator = integrator;
@@ -96,7 +144,16 @@ py::dict run(const Model& model, const std::string& integrator, std::optional<st
     // a Model is immutable and each run has its own state: other Python threads run meanwhile
     py::gil_scoped_release release;
     r = model.run(options);
-    if (output) paths = rigid::io::write_run(*output, r, chosen);
+    std::vector<rigid::io::ExtraFile> extra;
+    if (page) {
+      std::string html = rigid::report::report_page(model, r, page->options);
+      if (page->in_output) {
+        extra.push_back({std::string(rigid::io::kReportFileName), std::move(html)});
+      } else {
+        rigid::io::write_file_atomically(*page->path, html);
+      }
+    }
+    if (output) paths = rigid::io::write_run(*output, r, chosen, extra);
   }
   py::dict out = to_python(r);
   if (output) {
@@ -104,6 +161,7 @@ py::dict run(const Model& model, const std::string& integrator, std::optional<st
     for (const auto& p : paths) written.append(py::str(p.string()));
     out["written"] = written;
   }
+  if (page) out["report"] = py::str((page->in_output ? *output / rigid::io::kReportFileName : *page->path).string());
   return out;
 }
 
@@ -163,6 +221,7 @@ void bind_scene(py::module_& m) {
            "memory against max_memory) without integrating.")
       .def("run", &run, py::arg("integrator") = std::string{}, py::arg("output") = py::none(),
            py::arg("formats") = std::vector<std::string>{}, py::arg("max_memory") = py::none(),
+           py::arg("report") = py::none(), py::arg("report_frames") = py::none(),
            "Simulates to t_end: {'columns': {name: numpy array}, 'summary': {...}} with the columns "
            "of docs/scene-format.md; summary['metrics'] holds the scene's [[output.metrics]] as "
            "{name: {'value', 'unit', 'note'}} (value NaN, with a note, when the event did not happen). "
@@ -172,5 +231,8 @@ void bind_scene(py::module_& m) {
            "replaces the directory, only after the run succeeded; the paths are under 'written'. "
            "`max_memory` (bytes or a size such as \"512MiB\"; default: the scene's [output] "
            "max_memory, else 2 GiB) caps the trajectory, checked before the run. Ctrl-C raises "
-           "KeyboardInterrupt and writes nothing.");
+           "KeyboardInterrupt and writes nothing. `report=True` adds report.html to the files in "
+           "`output` (one self-contained page: 3D motion, plots, equations; docs/report.md), "
+           "`report=PATH` writes the page alone; its path is under 'report'. `report_frames` (default "
+           "2000) caps the frames the page keeps.");
 }

@@ -3,7 +3,25 @@
 # Idempotent and quick when everything is present: one `dpkg -s` per package.
 # Usage: scripts/install-deps.sh [build|bench|fuzz]   (default: build)
 # fuzz adds clang (libFuzzer and its sanitizer runtimes), needed by `make fuzz` only.
+# build also needs Node 20 and npm (the report page is bundled from web/ at build time; the
+# browser tests drive Debian's chromium with playwright-core): they are checked, not installed
+# (Debian 12's nodejs is 18), and a missing or old node stops here with the remedy.
 set -euo pipefail
+
+check_node() {
+  local remedy="install Node 20 or newer with npm (e.g. from nodejs.org or NodeSource), or configure with -DRIGID_REPORT=OFF to build without the report page"
+  if ! command -v node >/dev/null 2>&1 || ! command -v npm >/dev/null 2>&1; then
+    echo "rigid: error: node and npm are needed to bundle the report page (web/); $remedy" >&2
+    exit 1
+  fi
+  local major
+  major=$(node -p 'process.versions.node.split(".")[0]' 2>/dev/null || echo 0)
+  if [[ "$major" -lt 20 ]]; then
+    echo "rigid: error: node $(node --version 2>/dev/null) is too old for the report page (web/ needs Node 20); $remedy" >&2
+    exit 1
+  fi
+}
+if [[ "${1:-build}" == "build" ]]; then check_node; fi
 
 build_packages=(
   g++ cmake ninja-build pkg-config make
@@ -15,6 +33,7 @@ build_packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libmujoco-dev libmujoco-samples
   pybind11-dev python3-dev python3-numpy python3-pytest python3-scipy python3-sympy
+  chromium
 )
 bench_packages=(libbullet-dev libode-dev)
 fuzz_packages=(clang)

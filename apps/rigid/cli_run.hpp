@@ -39,7 +39,22 @@ inline void add_run_command(CLI::App& app) {
   cmd->add_option("--format", run->formats, "output files: csv, npy, json (repeatable; default: "
                   "the scene's [output] formats, else csv and json)");
   cmd->add_flag("-q,--quiet", run->quiet, "print nothing on success (no summary, no progress bar)");
+  cmd->add_flag("--report", run->report, "also write report.html: one self-contained page with the "
+                "3D motion, plots and equations (docs/report.md)");
+  cmd->add_option("--report-frames", run->report_frames, "most frames the report keeps (every k-th "
+                  "row and the last; default 2000)")
+      ->type_name("N");
   cmd->callback([run] { rigid::cli::run_run(*run); });
+
+  auto report = std::make_shared<rigid::cli::ReportOptions>();
+  auto* r = app.add_subcommand("report", "Write the report page of an earlier run from its output "
+                                         "directory (trajectory.csv, summary.json and the scene file)");
+  r->add_option("DIR", report->directory, "the output directory of a `rigid run`")->required();
+  r->add_option("-o,--output", report->output, "the page to write (default: DIR/report.html)")
+      ->type_name("FILE");
+  r->add_option("--report-frames", report->report_frames, "most frames the report keeps (default 2000)")
+      ->type_name("N");
+  r->callback([report] { rigid::cli::run_report(*report); });
 
   auto check = std::make_shared<rigid::cli::SceneOptions>();
   auto* c = app.add_subcommand("check", "Validate a scene (file, expressions, bodies, initial "

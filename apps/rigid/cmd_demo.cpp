@@ -14,6 +14,7 @@
 #include "rigid/io/atomic_file.hpp"
 #include "rigid/io/run_output.hpp"
 #include "rigid/io/table.hpp"
+#include "rigid/report/report.hpp"
 #include "rigid/scene/model.hpp"
 #include "rigid/scene/scene.hpp"
 #include "scene_output.hpp"
@@ -66,7 +67,7 @@ double diagnostic(const scene::RunSummary& s, const std::string& name) {
 
 // Runs the embedded racket scene into ./rigid-demo/ and says what to look at: the flips
 // against the exact elliptic-function solution, and the conserved quantities.
-void tennis_racket_scene() {
+void tennis_racket_scene(bool report) {
   const std::filesystem::path dir = "rigid-demo";
   std::filesystem::create_directories(dir);
   const std::filesystem::path scene_file = dir / "tennis_racket.toml";
@@ -74,7 +75,11 @@ void tennis_racket_scene() {
   const scene::Model model(scene::parse_scene(kRacketScene, scene_file));
   const scene::RunResult result = model.run();
   const io::OutputFormat formats[] = {io::OutputFormat::kCsv, io::OutputFormat::kNpy, io::OutputFormat::kJson};
-  const auto written = io::write_run(dir, result, formats);
+  // the page of the run (when this build has it), in the same set as the other files
+  std::vector<io::ExtraFile> extra;
+  const bool page = report && report::available();
+  if (page) extra.push_back({std::string(io::kReportFileName), report::report_page(model, result)});
+  const auto written = io::write_run(dir, result, formats, extra);
 
   const io::Table& tr = result.trajectory;
   const std::size_t ct = tr.column("t");
@@ -114,6 +119,12 @@ void tennis_racket_scene() {
   std::vector<std::string> names;
   for (const auto& p : written) names.push_back(p.string());
   fmt::print("  wrote {}\n", fmt::join(names, ", "));
+  if (page) {
+    fmt::print("  report: {} (open it in a browser: the racket turning, the plots, the equations)\n",
+               (std::filesystem::absolute(dir) / io::kReportFileName).string());
+  } else if (report) {
+    fmt::print("  (no report page: this rigid was built without it, RIGID_REPORT=OFF)\n");
+  }
   fmt::print("  look at: racket.wy (flips sign every half period), racket.Lx/Ly/Lz (the world\n"
              "  angular momentum: constant), energy (constant), racket.qw..qz (the orientation:\n"
              "  a half turn at each flip)\n");
@@ -121,11 +132,11 @@ void tennis_racket_scene() {
 
 }  // namespace
 
-void run_demo() {
+void run_demo(bool report) {
   using std::numbers::pi;
   fmt::print("rigid {}: a short tour (every number below is computed now).\n\n",
              RIGID_VERSION_STRING);
-  tennis_racket_scene();
+  tennis_racket_scene(report);
   fmt::print("\nRotations:\n");
 
   const SO3d Rz = SO3d::from_axis_angle(Eigen::Vector3d(0, 0, 1), pi / 2);

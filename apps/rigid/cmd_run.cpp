@@ -8,12 +8,15 @@
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 
 #include <fmt/format.h>
 
 #include "rigid/common/error.hpp"
 #include "rigid/common/wording.hpp"
 #include "rigid/io/run_output.hpp"
+#include "rigid/io/atomic_file.hpp"
+#include "rigid/report/report.hpp"
 #include "rigid/scene/model.hpp"
 #include "progress.hpp"
 #include "scene_output.hpp"
@@ -58,6 +61,22 @@ class Progress {
   ProgressBar bar_;
 };
 
+// The report's options from --report-frames (0: the default), refused before any work when
+// this build has no page.
+report::ReportOptions report_options(std::size_t frames) {
+  if (!report::available()) {
+    throw Error("this rigid was built without the report page (CMake option RIGID_REPORT=OFF, a "
+                "build without node): rebuild with the ci or release preset to write reports");
+  }
+  report::ReportOptions o;
+  if (frames != 0) o.max_frames = frames;
+  if (o.max_frames < report::kMinMaxFrames || o.max_frames > report::kMaxMaxFrames) {
+    throw Error(fmt::format("--report-frames {}: expected a number of frames from {} to {}", frames,
+                            report::kMinMaxFrames, report::kMaxMaxFrames));
+  }
+  return o;
+}
+
 }  // namespace
 
 void run_run(const RunOptions& opts) {
@@ -74,6 +93,12 @@ void run_run(const RunOptions& opts) {
   // a run that cannot be written, or would not fit in memory, is refused before it runs
   io::check_output_directory(dir);
   scene::RunOptions ro = run_options(opts.scene);
+  std::optional<report::ReportOptions> report_opts;
+  if (opts.report) {
+    report_opts = report_options(opts.report_frames);
+  } else if (opts.report_frames != 0) {
+    throw Error("--report-frames sets the frames of the report: give --report with it");
+  }
 
   g_interrupted = false;
   const auto previous = std::signal(SIGINT, on_interrupt);
@@ -92,12 +117,33 @@ void run_run(const RunOptions& opts) {
   }
   std::signal(SIGINT, previous);
 
-  const std::vector<fs::path> written = io::write_run(dir, result, formats);
+  std::vector<io::ExtraFile> extra;
+  if (report_opts) extra.push_back({std::string(io::kReportFileName), report::report_page(model, result, *report_opts)});
+  const std::vector<fs::path> written = io::write_run(dir, result, formats, extra);
   if (opts.quiet) return;
   fmt::print("{}", describe_run(opts.scene.scene, model, result));
   std::vector<std::string> names;
   for (const auto& p : written) names.push_back(p.string());
   fmt::print("wrote {}\n", fmt::join(names, ", "));
+}
+
+void run_report(const ReportOptions& opts) {
+  const report::ReportOptions ro = report_options(opts.report_frames);
+  const fs::path dir = opts.directory;
+  io::RunResult result = report::read_run(dir);
+  const fs::path scene_file = report::scene_of_run(dir);
+  // the run's own parameter values (a run made with --set): those of the scene's parameters
+  scene::Scene sc = scene::load_scene(scene_file);
+  std::vector<std::string> set;
+  for (const auto& [name, value] : result.summary.parameters) {
+    for (const scene::Parameter& p : sc.parameters) {
+      if (p.name == name) set.push_back(fmt::format("{}={}", name, value));
+    }
+  }
+  const scene::Model model = load_scene(scene_file.string(), set);
+  const fs::path out = opts.output.empty() ? dir / io::kReportFileName : fs::path(opts.output);
+  io::write_file_atomically(out, report::report_page(model, result, ro));
+  fmt::print("wrote {}\n", out.string());
 }
 
 void run_check(const SceneOptions& opts) {

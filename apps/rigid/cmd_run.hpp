@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -19,7 +20,20 @@ struct RunOptions {
   std::string output_dir;             ///< overrides [output] directory
   std::vector<std::string> formats;   ///< overrides [output] formats: csv, npy, json
   bool quiet = false;                 ///< no summary and no progress bar
+  bool report = false;                ///< also write report.html (docs/report.md)
+  std::size_t report_frames = 0;      ///< most frames of the report; 0: the default (2000)
 };
+
+/// Options of `rigid report DIR`.
+struct ReportOptions {
+  std::string directory;              ///< an earlier run's output directory
+  std::string output;                 ///< the page; empty: DIR/report.html
+  std::size_t report_frames = 0;      ///< most frames; 0: the default (2000)
+};
+
+/// `rigid report DIR`: the report page of an earlier run, from its trajectory.csv, its
+/// summary.json and the scene file summary.json names.
+void run_report(const ReportOptions& opts);
 
 /// `rigid run SCENE`: simulates and writes trajectory.csv / trajectory.npy / summary.json
 /// (each atomically, and only after the run succeeded), then prints a short summary.

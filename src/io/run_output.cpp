@@ -220,6 +220,7 @@ void sync_directory(const fs::path& dir) {
 }
 
 bool is_run_file(const std::string& name) {
+  if (name == kReportFileName) return true;
   for (const auto& [f, _] : kFormats) {
     if (name == file_name(f)) return true;
   }
@@ -265,8 +266,11 @@ void check_output_directory(const fs::path& directory) {
 }
 
 std::vector<fs::path> write_run(const fs::path& directory, const RunResult& result,
-                                std::span<const OutputFormat> formats) {
+                                std::span<const OutputFormat> formats, std::span<const ExtraFile> extra) {
   if (formats.empty()) throw Error("no output format selected; expected csv, npy or json");
+  for (const ExtraFile& e : extra) {
+    RIGID_ASSERT(!e.name.empty() && e.name.find('/') == std::string::npos && e.name != "." && e.name != "..");
+  }
   check_output_directory(directory);
   const fs::path target = resolved(directory);
   const fs::path parent = target.parent_path();
@@ -334,6 +338,10 @@ std::vector<fs::path> write_run(const fs::path& directory, const RunResult& resu
       case OutputFormat::kJson: write_file(path, summary_json(result)); break;
     }
     written.push_back(directory / file_name(f));
+  }
+  for (const ExtraFile& e : extra) {
+    write_file(temporary / e.name, e.contents);
+    written.push_back(directory / e.name);
   }
   sync_directory(temporary);
 

@@ -70,6 +70,7 @@ lagrange::Vector3Expression expressions_of(const std::array<Expression, 3>& e) {
 struct BodyMass {
   MassProperties numeric;
   lagrange::BodyMass symbolic;
+  std::vector<std::pair<std::string, double>> sizes{};  // a primitive's, canonical names
 };
 
 // (text) × (text) etc. for the point-mass sums; every operand in parentheses
@@ -119,7 +120,13 @@ BodyMass mass_of(const Body& b, const std::vector<lagrange::Parameter>& params,
       const double value = value_of(amount, params, ctx + (by_mass ? " mass" : " density"));
       const mass::Amount kind = by_mass ? mass::Amount::kMass : mass::Amount::kDensity;
       MassProperties numeric = at_location(m.where, ctx, [&] { return mass::make_primitive(m.primitive, kind, value, args); });
-      if (entry.formulas.mass.empty()) return {numeric, named_constants(b.name, numeric, params, derived)};
+      std::vector<std::pair<std::string, double>> evaluated;  // canonical names, catalogue order
+      for (const mass::PrimitiveSize& size : entry.sizes) {
+        for (const auto& [key, v] : args.sizes) {
+          if (entry.size_index(key) == entry.size_index(size.name)) evaluated.emplace_back(size.name, v);
+        }
+      }
+      if (entry.formulas.mass.empty()) return {numeric, named_constants(b.name, numeric, params, derived), evaluated};
       // the closed forms with the sizes as the file wrote them, in the entry's order
       std::vector<std::string> sizes(entry.sizes.size());
       for (const auto& [key, e] : m.dimensions) sizes[*entry.size_index(key)] = e.text;
@@ -128,7 +135,7 @@ BodyMass mass_of(const Body& b, const std::vector<lagrange::Parameter>& params,
       symbolic.mass = text[0];
       for (std::size_t k = 0; k < 3; ++k) symbolic.com[k] = text[1 + k];
       for (std::size_t k = 0; k < 6; ++k) symbolic.inertia[k] = text[4 + k];
-      return {numeric, symbolic};
+      return {numeric, symbolic, evaluated};
     }
     case MassSpec::Kind::kMesh: {
       mesh::MassSpec spec;
@@ -142,7 +149,7 @@ BodyMass mass_of(const Body& b, const std::vector<lagrange::Parameter>& params,
         for (const auto& w : r.warnings()) warnings.push_back(fmt::format("{}: {}", ctx, word_for(Surface::kScene, w)));
         return r.mass.properties;
       });
-      return {numeric, named_constants(b.name, numeric, params, derived)};
+      return {numeric, named_constants(b.name, numeric, params, derived), {}};
     }
     case MassSpec::Kind::kExplicit: {
       const double mass = value_of(*m.mass, params, ctx + " inertia mass");
@@ -157,7 +164,7 @@ BodyMass mass_of(const Body& b, const std::vector<lagrange::Parameter>& params,
       symbolic.mass = to_lagrange(*m.mass);
       symbolic.com = expressions_of(m.com);
       for (std::size_t i = 0; i < 6; ++i) symbolic.inertia[i] = to_lagrange(m.inertia[i]);
-      return {numeric, symbolic};
+      return {numeric, symbolic, {}};
     }
     case MassSpec::Kind::kPointMasses: {
       std::vector<double> masses;
@@ -197,7 +204,7 @@ BodyMass mass_of(const Body& b, const std::vector<lagrange::Parameter>& params,
         }
         symbolic.inertia[k] = sum;
       }
-      return {numeric, symbolic};
+      return {numeric, symbolic, {}};
     }
   }
   RIGID_THROW("unreachable mass kind");
@@ -574,7 +581,7 @@ Model::Model(const Scene& scene) : impl_(std::make_unique<Impl>()) {
   std::vector<lagrange::BodyMass> masses;
   for (const Body& b : scene.bodies) {
     BodyMass bm = mass_of(b, m.params, derived, m.warnings);
-    m.bodies.push_back({b.name, bm.numeric, b.free});
+    m.bodies.push_back({b.name, bm.numeric, b.free, bm.sizes});
     masses.push_back(std::move(bm.symbolic));
   }
   m.params.insert(m.params.end(), derived.begin(), derived.end());

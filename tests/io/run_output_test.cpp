@@ -145,6 +145,23 @@ TEST(RunOutput, ANewSetReplacesTheOldOneWhole) {
   fs::remove_all(root);
 }
 
+// An extra file (the report page) is part of the set: written with the others, and an older
+// run's copy is not carried into a set that does not write one (it would describe another run).
+TEST(RunOutput, AnExtraFileIsPartOfTheSet) {
+  const fs::path root = fs::temp_directory_path() / "rigid_run_extra_test";
+  fs::remove_all(root);
+  const fs::path dir = root / "run";
+  const OutputFormat csv[] = {OutputFormat::kCsv};
+  const ExtraFile page[] = {{std::string(kReportFileName), "<!doctype html>page"}};
+  const auto written = write_run(dir, sample_run(), csv, page);
+  EXPECT_EQ(written, (std::vector<fs::path>{dir / "trajectory.csv", dir / "report.html"}));
+  EXPECT_EQ(read(dir / "report.html"), "<!doctype html>page");
+  (void)write_run(dir, other_run(), csv);
+  EXPECT_EQ(entries(dir), std::vector<std::string>{"trajectory.csv"});
+  EXPECT_EQ(entries(root), std::vector<std::string>{"run"});
+  fs::remove_all(root);
+}
+
 // trajectory.npy has no column names: summary.json (which lists them) comes with it.
 TEST(RunOutput, NpyComesWithItsColumnNames) {
   const fs::path dir = fs::temp_directory_path() / "rigid_run_npy_test";

@@ -90,19 +90,31 @@ void check_trajectory_memory(std::size_t rows, std::size_t columns, std::uint64_
 /// @throws rigid::Error naming the path and the problem (a file of that name, no permission).
 void check_output_directory(const std::filesystem::path& directory);
 
-/// Writes the files of `formats` into `directory` as one set: the files are written (and
+/// A file written with a run's set that is not one of its formats (the report page,
+/// "report.html"): its name in the run's directory (no separator) and its bytes.
+struct ExtraFile {
+  std::string name;
+  std::string contents;
+};
+
+/// The report page's name in a run's directory; like the formats' files, an older run's copy
+/// is not carried into a new set.
+inline constexpr std::string_view kReportFileName = "report.html";
+
+/// Writes the files of `formats` (and `extra`) into `directory` as one set: the files are written (and
 /// flushed) into a new temporary directory beside it, `.NAME.rigid-tmp-PID-XXXXXXXX`, which then
 /// takes the place of `directory` in one rename (an exchange when it exists). A reader sees the
 /// whole old set or the whole new set, never a mix; an interruption leaves the old set. Other
 /// files a user kept in `directory` stay (they are linked into the new set); files of an older
 /// run that are not in this set are gone with it. Temporaries left by runs that were killed are
 /// removed. trajectory.npy holds no column names, so summary.json (which lists them) is always
-/// written with it. Returns the paths written.
+/// written with it. Returns the paths written (the extra files last).
 /// @throws rigid::Error if `directory` cannot be written (check_output_directory), holds a
 ///   subdirectory of its own (a run's directory holds files only), or a file cannot be written
 ///   (the disk is full): then the old set is left as it was.
 std::vector<std::filesystem::path> write_run(const std::filesystem::path& directory,
                                              const RunResult& result,
-                                             std::span<const OutputFormat> formats);
+                                             std::span<const OutputFormat> formats,
+                                             std::span<const ExtraFile> extra = {});
 
 }  // namespace rigid::io

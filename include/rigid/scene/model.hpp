@@ -51,6 +51,9 @@ struct ModelBody {
   std::string name;
   MassProperties mass;
   bool free = false;
+  /// A primitive's sizes (m) by their canonical names in the catalogue (rigid::mass::
+  /// primitive_table), in the catalogue's order; empty for other bodies.
+  std::vector<std::pair<std::string, double>> sizes{};
 };
 
 class Model {
