@@ -160,10 +160,15 @@ std::pair<std::string, std::string> group_of(const std::string& column, const sc
   return {"other", ""};
 }
 
-// |x − x0| / |x0| (or |x − x0| when x0 = 0, then `absolute` is set).
+// |x − x0| / |x0|, or |x − x0| (then `absolute` is set) when |x0| is not larger than the
+// largest change: a relative change of 1 or more says nothing, and such an x0 is the round-off
+// of a zero (a double pendulum released from rest at the potential's zero has E(0) ≈ −2e-15 J).
+// The drift metrics (src/scene/model.cpp) use the same rule.
 std::vector<double> relative_change(const std::vector<double>& x, bool& absolute) {
   const double x0 = x.front();
-  absolute = x0 == 0.0;
+  double largest = 0.0;
+  for (const double v : x) largest = std::max(largest, std::abs(v - x0));
+  absolute = std::abs(x0) <= largest;
   std::vector<double> out(x.size());
   for (std::size_t i = 0; i < x.size(); ++i) out[i] = std::abs(x[i] - x0) / (absolute ? 1.0 : std::abs(x0));
   return out;

@@ -538,7 +538,9 @@ struct Model::Impl {
   }
 
   // The metrics of a run from the recorder, with their units, and the drifts from the samples:
-  // max |x_k − x_0| / |x_0| (the absolute change, with a note, when x_0 = 0).
+  // max |x_k − x_0| / |x_0|, or the absolute change with a note when |x_0| is not larger than
+  // that change (a relative drift of 1 or more says nothing, and such an x_0 is the round-off of
+  // a zero; the report page's error plots use the same rule).
   [[nodiscard]] std::vector<io::Metric> metrics_of(MetricRecorder& recorder,
                                                    const std::vector<std::pair<std::string, std::vector<double>>>& drift) const {
     std::vector<io::Metric> out = recorder.finish();
@@ -551,12 +553,13 @@ struct Model::Impl {
       for (const auto& [name, x] : drift) {
         if (name != m.column || x.empty()) continue;
         const double change = max_change(x);
-        if (x.front() != 0) {
+        if (std::abs(x.front()) > change) {
           out[i].value = change / std::abs(x.front());
         } else {
           out[i].value = change;
           out[i].unit = m.column == "energy" || m.column == "jacobi" ? "J" : "kg·m²/s";
-          out[i].note = fmt::format("{} is 0 at t = 0: the absolute change", m.column);
+          out[i].note = fmt::format("{} at t = 0 ({:.3g}) is not larger than its change: the absolute change",
+                                    m.column, x.front());
         }
       }
     }
