@@ -34,7 +34,7 @@ struct QuaternionOrder {
 QuaternionOrder parse_order(std::string_view function, const std::string& order) {
   if (order == "wxyz") return {false};
   if (order == "xyzw") return {true};
-  throw rigid::Error(fmt::format("{}(): order is '{}', expected 'wxyz' or 'xyzw'", function, order));
+  throw rigid::Error(fmt::format("{}(): order is '{}', expected wxyz or xyzw", function, order));
 }
 
 // The rotation of a stored quaternion, normalised as SO3.from_quaternion does (refused if a

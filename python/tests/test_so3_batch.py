@@ -167,7 +167,7 @@ def test_quaternions_are_normalised_like_from_quaternion():
      r"so3.from_euler\(\): argument 'angles' row 1: Euler angles \[1, 2, nan\] have a non-finite component"),
     (lambda: rigid.so3.from_euler([[0, 0, 0]], "XXY"),
      r"unknown Euler sequence 'XXY', expected one of XYZ, XZY, YXZ, YZX, ZXY, ZYX, XYX, XZX, YXY, YZY, ZXZ, ZYZ"),
-    (lambda: rigid.so3.log([[1, 0, 0, 0]], order="wzyx"), r"so3.log\(\): order is 'wzyx', expected 'wxyz' or 'xyzw'"),
+    (lambda: rigid.so3.log([[1, 0, 0, 0]], order="wzyx"), r"so3.log\(\): order is 'wzyx', expected wxyz or xyzw"),
     (lambda: rigid.so3.exp([[0, 0, 1]], output="euler"), r"output is 'euler', expected 'quaternion' or 'matrix'"),
 ])
 def test_bad_input_names_the_argument(call, message):
