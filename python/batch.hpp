@@ -41,12 +41,12 @@ inline std::string shape_text(const pybind11::array& a) {
 /// `single` is true when the argument was one element (shape `element`, no leading N): the
 /// result then drops its leading axis too.
 struct BatchArray {
-  pybind11::array_t<double, pybind11::array::c_style> array;
+  pybind11::array_t<double, pybind11::array::c_style> array;  // keeps the data alive
+  const double* data = nullptr;
+  py::ssize_t row_size = 0;  // doubles per element: 3, 4 or 9
   py::ssize_t n = 0;
   bool single = false;
-  [[nodiscard]] const double* row(py::ssize_t i) const {
-    return array.data() + i * (array.size() / std::max<py::ssize_t>(n, 1));
-  }
+  [[nodiscard]] const double* row(py::ssize_t i) const { return data + i * row_size; }
 };
 
 /// The argument `name` of `function` as a float64 batch of elements of shape `element`:
@@ -89,6 +89,9 @@ inline BatchArray batch_argument(const pybind11::handle& obj, std::string_view f
   if (!b.array) throw py::error_already_set();
   b.single = lead == 0;
   b.n = b.single ? 1 : a.shape(0);
+  b.data = b.array.data();
+  b.row_size = 1;
+  for (py::ssize_t k : element) b.row_size *= k;
   return b;
 }
 
