@@ -26,10 +26,9 @@ import warnings
 
 import numpy as np
 import pytest
+from scipy.spatial.transform import Rotation  # python3-scipy: missing fails, never skips
 
 import rigid
-
-Rotation = pytest.importorskip("scipy.spatial.transform").Rotation
 
 N = 10_000
 TOL = 1e-13
