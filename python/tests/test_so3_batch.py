@@ -213,3 +213,33 @@ def test_refusal_in_a_threaded_batch_names_the_first_bad_row():
     w[199_999, 0] = np.inf
     with pytest.raises(rigid.Error, match=r"argument 'omega' row 150000: rotation vector \[0, nan, 0\]"):
         rigid.so3.exp(w)
+
+
+def test_large_batches_release_the_gil():
+    # A thread reads a counter, runs a large batch, reads it again; the main thread counts
+    # meanwhile. With the switch interval at 1 s the interpreter does not hand the GIL over by
+    # itself during the call (~0.1 s), so the main thread can only have counted if the batch
+    # released the GIL.
+    import sys
+    import threading
+
+    w = np.random.default_rng(1).normal(size=(2_000_000, 3))
+    counter = [0]
+    seen = {}
+
+    def worker():
+        seen["before"] = counter[0]
+        rigid.so3.exp(w)
+        seen["after"] = counter[0]
+
+    old = sys.getswitchinterval()
+    sys.setswitchinterval(1.0)
+    try:
+        t = threading.Thread(target=worker)
+        t.start()
+        while t.is_alive():
+            counter[0] += 1
+        t.join()
+    finally:
+        sys.setswitchinterval(old)
+    assert seen["after"] - seen["before"] > 100
