@@ -43,8 +43,8 @@ QuaternionOrder parse_order(std::string_view function, const std::string& order)
 // computed as one, or printed with 9 digits or more) is normalised by one Newton step,
 // q (3 − |q|²)/2, which leaves O(δ²) ≤ 1e-16 and needs no square root or division
 // (SO3d::from_integrated_quaternion); the result is within an ulp of SO3.from_quaternion's
-// q / |q|, at half the cost of the whole batch operation. Any other nonzero quaternion is
-// normalised exactly; one with a non-finite component or norm below 1e-12 is refused with
+// q / |q|. Any other nonzero quaternion is multiplied by 1/|q| (to rounding, as
+// from_quaternion); one with a non-finite component or norm below 1e-12 is refused with
 // SO3.from_quaternion's message; one whose |q|² overflows is scaled by its largest component
 // first.
 SO3d read_rotation(const double* q, QuaternionOrder o) {
