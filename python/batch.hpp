@@ -2,6 +2,10 @@
 // Batch arguments for the rigid.so3 functions: numpy arrays of shape (N, k…) or one (k…)
 // element, checked once with messages that name the function and the argument, then looped
 // over in C++ (without the GIL for large N, on several threads for very large N).
+#include <fmt/format.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
 #include <algorithm>
 #include <array>
 #include <cstdint>
@@ -11,10 +15,6 @@
 #include <string_view>
 #include <thread>
 #include <vector>
-
-#include <fmt/format.h>
-#include <pybind11/numpy.h>
-#include <pybind11/pybind11.h>
 
 #include "rigid/common/error.hpp"
 #include "rigid/common/wording.hpp"
@@ -54,24 +54,26 @@ struct BatchArray {
 /// read-only arrays are copied or read in place) is taken; another dtype or shape raises
 /// rigid::Error: "so3.exp(): argument 'omega' must have shape (N, 3) or (3,); got (5, 4)".
 inline BatchArray batch_argument(const pybind11::handle& obj, std::string_view function,
-                                 std::string_view name, std::initializer_list<py::ssize_t> element) {
+                                 std::string_view name,
+                                 std::initializer_list<py::ssize_t> element) {
   namespace py = pybind11;
   std::string one = "(";
   for (py::ssize_t k : element) one += fmt::format("{}{}", one.size() > 1 ? ", " : "", k);
-  const std::string expected = fmt::format("{} or {}", batch_shape_text(element),
-                                           one + (element.size() == 1 ? ",)" : ")"));
+  const std::string expected =
+      fmt::format("{} or {}", batch_shape_text(element), one + (element.size() == 1 ? ",)" : ")"));
   py::array a = py::array::ensure(obj);
   if (!a) {
-    throw rigid::Error(fmt::format("{}(): argument '{}' must be an array of shape {}; got a {} that numpy "
-                                   "cannot turn into an array of numbers",
-                                   function, name, expected, py::str(py::type::of(obj).attr("__name__"))
-                                                                  .cast<std::string>()));
+    throw rigid::Error(fmt::format(
+        "{}(): argument '{}' must be an array of shape {}; got a {} that numpy "
+        "cannot turn into an array of numbers",
+        function, name, expected, py::str(py::type::of(obj).attr("__name__")).cast<std::string>()));
   }
   const char kind = a.dtype().kind();
   if (kind != 'f' && kind != 'i' && kind != 'u') {
-    throw rigid::Error(fmt::format("{}(): argument '{}' must be real numbers (float64, or a type that "
-                                   "converts to it exactly enough: float32, integers); got dtype {}",
-                                   function, name, py::str(a.dtype()).cast<std::string>()));
+    throw rigid::Error(
+        fmt::format("{}(): argument '{}' must be real numbers (float64, or a type that "
+                    "converts to it exactly enough: float32, integers); got dtype {}",
+                    function, name, py::str(a.dtype()).cast<std::string>()));
   }
   const auto dims = static_cast<py::ssize_t>(element.size());
   bool ok = a.ndim() == dims || a.ndim() == dims + 1;
@@ -97,12 +99,14 @@ inline BatchArray batch_argument(const pybind11::handle& obj, std::string_view f
 
 /// N of a result from arguments that are each N long or single (broadcast), or rigid::Error
 /// naming both lengths.
-inline py::ssize_t broadcast_rows(std::string_view function, std::string_view name_a, const BatchArray& a,
-                                  std::string_view name_b, const BatchArray& b) {
+inline py::ssize_t broadcast_rows(std::string_view function, std::string_view name_a,
+                                  const BatchArray& a, std::string_view name_b,
+                                  const BatchArray& b) {
   if (a.single || b.single || a.n == b.n) return a.single ? b.n : a.n;
-  throw rigid::Error(fmt::format("{}(): arguments '{}' and '{}' must have the same number of rows N (or "
-                                 "one of them a single element); got {} and {}",
-                                 function, name_a, name_b, a.n, b.n));
+  throw rigid::Error(
+      fmt::format("{}(): arguments '{}' and '{}' must have the same number of rows N (or "
+                  "one of them a single element); got {} and {}",
+                  function, name_a, name_b, a.n, b.n));
 }
 
 /// A result array of shape (n, element…), or (element…) when `single`.
@@ -129,8 +133,8 @@ struct RowError {
 /// kThreadRows rows on, split over the hardware threads (at most 8), each row's result being
 /// independent of the split.
 template <class Kernel>
-void for_each_row(py::ssize_t n, bool single, std::string_view function, std::string_view first_argument,
-                  const Kernel& kernel) {
+void for_each_row(py::ssize_t n, bool single, std::string_view function,
+                  std::string_view first_argument, const Kernel& kernel) {
   constexpr py::ssize_t kReleaseGil = 4096;
   constexpr py::ssize_t kThreadRows = 32768;
   struct Failure {
@@ -161,7 +165,8 @@ void for_each_row(py::ssize_t n, bool single, std::string_view function, std::st
   } else {
     pybind11::gil_scoped_release release;
     const auto hw = static_cast<py::ssize_t>(std::max(1u, std::thread::hardware_concurrency()));
-    const py::ssize_t threads = n < kThreadRows ? 1 : std::clamp<py::ssize_t>(std::min(hw, n / (kThreadRows / 2)), 1, 8);
+    const py::ssize_t threads =
+        n < kThreadRows ? 1 : std::clamp<py::ssize_t>(std::min(hw, n / (kThreadRows / 2)), 1, 8);
     failures.resize(static_cast<std::size_t>(threads));
     std::vector<std::thread> pool;
     const py::ssize_t chunk = (n + threads - 1) / threads;
@@ -174,8 +179,10 @@ void for_each_row(py::ssize_t n, bool single, std::string_view function, std::st
   }
   for (const Failure& f : failures) {  // chunks in row order: the first refusal is the first found
     if (f.row >= 0) {
-      if (single) throw rigid::Error(fmt::format("{}(): argument '{}': {}", function, f.argument, f.message));
-      throw rigid::Error(fmt::format("{}(): argument '{}' row {}: {}", function, f.argument, f.row, f.message));
+      if (single)
+        throw rigid::Error(fmt::format("{}(): argument '{}': {}", function, f.argument, f.message));
+      throw rigid::Error(
+          fmt::format("{}(): argument '{}' row {}: {}", function, f.argument, f.row, f.message));
     }
   }
 }

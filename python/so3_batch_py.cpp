@@ -3,12 +3,12 @@
 // the same SO3d function as the scalar rigid.SO3 method: the numbers are the same bit for bit,
 // or within an ulp where an input quaternion is normalised (read_rotation below;
 // python/tests/test_so3_batch.py).
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
 #include <cmath>
 #include <string>
 #include <string_view>
-
-#include <pybind11/numpy.h>
-#include <pybind11/pybind11.h>
 
 #include "batch.hpp"
 #include "rigid/common/error.hpp"
@@ -51,7 +51,8 @@ SO3d read_rotation(const double* q, QuaternionOrder o) {
   const Eigen::Vector4d wxyz = o.scalar_last ? Eigen::Vector4d(q[3], q[0], q[1], q[2])
                                              : Eigen::Vector4d(q[0], q[1], q[2], q[3]);
   const double n2 = wxyz.squaredNorm();
-  if (std::isfinite(n2) && n2 >= 1e-24) [[likely]] return SO3d::from_integrated_quaternion(wxyz);
+  if (std::isfinite(n2) && n2 >= 1e-24) [[likely]]
+    return SO3d::from_integrated_quaternion(wxyz);
   if (wxyz.allFinite() && !std::isfinite(n2)) {
     const Eigen::Vector4d scaled = wxyz / wxyz.cwiseAbs().maxCoeff();
     return SO3d::from_quaternion(scaled(0), scaled(1), scaled(2), scaled(3));
@@ -82,24 +83,29 @@ struct RotationArgument {
   const BatchArray* batch;
   SO3d single = SO3d::identity();
   QuaternionOrder order;
-  [[nodiscard]] SO3d at(py::ssize_t i) const { return batch->single ? single : read_rotation(batch->row(i), order); }
+  [[nodiscard]] SO3d at(py::ssize_t i) const {
+    return batch->single ? single : read_rotation(batch->row(i), order);
+  }
 };
 
-RotationArgument rotation_argument(const BatchArray& b, QuaternionOrder o, std::string_view function,
-                                   std::string_view name) {
+RotationArgument rotation_argument(const BatchArray& b, QuaternionOrder o,
+                                   std::string_view function, std::string_view name) {
   RotationArgument r{&b, SO3d::identity(), o};
   if (b.single) {
     try {
       r.single = read_rotation(b.row(0), o);
     } catch (const rigid::Error& e) {
-      throw rigid::Error(fmt::format("{}(): argument '{}': {}", function, name, rigid::strip_function_names(e.what())));
+      throw rigid::Error(fmt::format("{}(): argument '{}': {}", function, name,
+                                     rigid::strip_function_names(e.what())));
     }
   }
   return r;
 }
 
 void require_finite_vector(const V3& v, std::string_view what) {
-  if (!v.allFinite()) throw rigid::Error(fmt::format("{} {} has a non-finite component", what, rigid::to_string(v.transpose())));
+  if (!v.allFinite())
+    throw rigid::Error(
+        fmt::format("{} {} has a non-finite component", what, rigid::to_string(v.transpose())));
 }
 
 }  // namespace
@@ -107,15 +113,18 @@ void require_finite_vector(const V3& v, std::string_view what) {
 void bind_so3_batch(py::module_& m) {
   auto so3 = m.def_submodule(
       "so3",
-      "SO(3) on arrays of N rotations, looped in C++ (no Python loop; the GIL is released from 4096 "
+      "SO(3) on arrays of N rotations, looped in C++ (no Python loop; the GIL is released from "
+      "4096 "
       "rows on and the rows are split over the cores from 32768 on).\n\n"
       "Rotations are unit quaternions of shape (N, 4) in the order given by the keyword `order` "
       "('wxyz', the default, or 'xyzw' as SciPy); any nonzero quaternion is normalised (as "
-      "SO3.from_quaternion, to within an ulp). Rotation vectors and Euler angles are (N, 3) in rad, matrices "
+      "SO3.from_quaternion, to within an ulp). Rotation vectors and Euler angles are (N, 3) in "
+      "rad, matrices "
       "(N, 3, 3) with R @ v rotating v. A single element ((4,), (3,), (3, 3)) gives a single "
       "result; in compose and act a single element is combined with every row of the other "
       "argument. Each element is computed by the same code as the rigid.SO3 method: the same "
-      "numbers, to an ulp where a quaternion is normalised. Bad input (shape, dtype, a non-finite or zero quaternion, a "
+      "numbers, to an ulp where a quaternion is normalised. Bad input (shape, dtype, a non-finite "
+      "or zero quaternion, a "
       "matrix that is not a rotation) raises rigid.Error naming the argument and the row.");
 
   so3.def(
@@ -124,18 +133,21 @@ void bind_so3_batch(py::module_& m) {
         constexpr std::string_view fn = "so3.exp";
         const QuaternionOrder o = parse_order(fn, order);
         if (output != "quaternion" && output != "matrix") {
-          throw rigid::Error(fmt::format("so3.exp(): output is '{}', expected 'quaternion' or 'matrix'", output));
+          throw rigid::Error(
+              fmt::format("so3.exp(): output is '{}', expected 'quaternion' or 'matrix'", output));
         }
         const BatchArray w = batch_argument(omega, fn, "omega", {3});
         const bool as_matrix = output == "matrix";
-        auto out = as_matrix ? batch_result(w.n, w.single, {3, 3}) : batch_result(w.n, w.single, {4});
+        auto out =
+            as_matrix ? batch_result(w.n, w.single, {3, 3}) : batch_result(w.n, w.single, {4});
         double* dst = out.mutable_data();
         for_each_row(w.n, w.single, fn, "omega", [&](py::ssize_t i) {
           const V3 v = read_vector(w.row(i));
           require_finite_vector(v, "rotation vector");
           const SO3d R = SO3d::exp(v);
           if (!R.quaternion().allFinite()) {
-            throw rigid::Error(fmt::format("rotation vector {} is too long: |ω|² overflows", rigid::to_string(v.transpose())));
+            throw rigid::Error(fmt::format("rotation vector {} is too long: |ω|² overflows",
+                                           rigid::to_string(v.transpose())));
           }
           if (as_matrix) {
             write_matrix(R, dst + 9 * i);
@@ -210,7 +222,9 @@ void bind_so3_batch(py::module_& m) {
         for_each_row(n, Q.single && Vs.single, fn, "q", [&](py::ssize_t i) {
           const SO3d R = rq.at(i);
           const V3 x = read_vector(Vs.row(Vs.single ? 0 : i));
-          if (!x.allFinite()) throw RowError{"v", fmt::format("vector {} has a non-finite component", rigid::to_string(x.transpose()))};
+          if (!x.allFinite())
+            throw RowError{"v", fmt::format("vector {} has a non-finite component",
+                                            rigid::to_string(x.transpose()))};
           const V3 y = R * x;
           dst[3 * i] = y(0), dst[3 * i + 1] = y(1), dst[3 * i + 2] = y(2);
         });
@@ -228,8 +242,9 @@ void bind_so3_batch(py::module_& m) {
         const BatchArray a = batch_argument(q, fn, "q", {4});
         auto out = batch_result(a.n, a.single, {4});
         double* dst = out.mutable_data();
-        for_each_row(a.n, a.single, fn, "q",
-                     [&](py::ssize_t i) { write_rotation(read_rotation(a.row(i), o).inverse(), dst + 4 * i, o); });
+        for_each_row(a.n, a.single, fn, "q", [&](py::ssize_t i) {
+          write_rotation(read_rotation(a.row(i), o).inverse(), dst + 4 * i, o);
+        });
         return out;
       },
       py::arg("q"), py::kw_only(), py::arg("order") = "wxyz",
@@ -243,7 +258,8 @@ void bind_so3_batch(py::module_& m) {
         const BatchArray a = batch_argument(q, fn, "q", {4});
         auto out = batch_result(a.n, a.single, {3, 3});
         double* dst = out.mutable_data();
-        for_each_row(a.n, a.single, fn, "q", [&](py::ssize_t i) { write_matrix(read_rotation(a.row(i), o), dst + 9 * i); });
+        for_each_row(a.n, a.single, fn, "q",
+                     [&](py::ssize_t i) { write_matrix(read_rotation(a.row(i), o), dst + 9 * i); });
         return out;
       },
       py::arg("q"), py::kw_only(), py::arg("order") = "wxyz",
@@ -254,7 +270,9 @@ void bind_so3_batch(py::module_& m) {
       [](const py::object& R, double tol, const std::string& order) {
         constexpr std::string_view fn = "so3.from_matrix";
         const QuaternionOrder o = parse_order(fn, order);
-        if (!(tol >= 0.0)) throw rigid::Error(fmt::format("so3.from_matrix(): tol is {}, expected a tolerance >= 0", tol));
+        if (!(tol >= 0.0))
+          throw rigid::Error(
+              fmt::format("so3.from_matrix(): tol is {}, expected a tolerance >= 0", tol));
         const BatchArray a = batch_argument(R, fn, "R", {3, 3});
         auto out = batch_result(a.n, a.single, {4});
         double* dst = out.mutable_data();
@@ -271,15 +289,17 @@ void bind_so3_batch(py::module_& m) {
 
   so3.def(
       "from_euler",
-      [](const py::object& angles, const std::string& sequence, bool intrinsic, const std::string& order) {
+      [](const py::object& angles, const std::string& sequence, bool intrinsic,
+         const std::string& order) {
         constexpr std::string_view fn = "so3.from_euler";
         const QuaternionOrder o = parse_order(fn, order);
         const rigid::EulerConvention conv = rigid::EulerConvention::parse(sequence, intrinsic);
         const BatchArray a = batch_argument(angles, fn, "angles", {3});
         auto out = batch_result(a.n, a.single, {4});
         double* dst = out.mutable_data();
-        for_each_row(a.n, a.single, fn, "angles",
-                     [&](py::ssize_t i) { write_rotation(rigid::from_euler(read_vector(a.row(i)), conv), dst + 4 * i, o); });
+        for_each_row(a.n, a.single, fn, "angles", [&](py::ssize_t i) {
+          write_rotation(rigid::from_euler(read_vector(a.row(i)), conv), dst + 4 * i, o);
+        });
         return out;
       },
       py::arg("angles"), py::arg("sequence") = "ZYX", py::kw_only(), py::arg("intrinsic") = true,
@@ -292,7 +312,8 @@ void bind_so3_batch(py::module_& m) {
 
   so3.def(
       "to_euler",
-      [](const py::object& q, const std::string& sequence, bool intrinsic, const std::string& order) {
+      [](const py::object& q, const std::string& sequence, bool intrinsic,
+         const std::string& order) {
         constexpr std::string_view fn = "so3.to_euler";
         const QuaternionOrder o = parse_order(fn, order);
         const rigid::EulerConvention conv = rigid::EulerConvention::parse(sequence, intrinsic);
