@@ -71,8 +71,8 @@ inline BatchArray batch_argument(const pybind11::handle& obj, std::string_view f
   const char kind = a.dtype().kind();
   if (kind != 'f' && kind != 'i' && kind != 'u') {
     throw rigid::Error(
-        fmt::format("{}(): argument '{}' must be real numbers (float64, or a type that "
-                    "converts to it exactly enough: float32, integers); got dtype {}",
+        fmt::format("{}(): argument '{}' must be real numbers (float64; float32 and integers "
+                    "are converted to it); got dtype {}",
                     function, name, py::str(a.dtype()).cast<std::string>()));
   }
   const auto dims = static_cast<py::ssize_t>(element.size());
