@@ -8,11 +8,14 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
+#include <chrono>
 #include <cstdint>
 #include <exception>
 #include <functional>
 #include <string>
 #include <string_view>
+#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -131,52 +134,83 @@ struct RowError {
 /// "row <i>" when the arguments were single elements).
 /// Without the GIL from kReleaseGil rows on (the kernel must not touch Python objects); from
 /// kThreadRows rows on, split over the hardware threads (at most 8), each row's result being
-/// independent of the split.
+/// independent of the split. Without the GIL the call stays interruptible: every kBlock rows
+/// the calling thread asks Python, at most every 50 ms, whether a signal came
+/// (PyErr_CheckSignals, as python/interrupt.hpp does for runs); Ctrl-C stops every thread at
+/// its next block and the call raises KeyboardInterrupt (rigid::Cancelled), returning nothing.
 template <class Kernel>
 void for_each_row(py::ssize_t n, bool single, std::string_view function,
                   std::string_view first_argument, const Kernel& kernel) {
   constexpr py::ssize_t kReleaseGil = 4096;
   constexpr py::ssize_t kThreadRows = 32768;
+  constexpr py::ssize_t kBlock = 4096;
   struct Failure {
     py::ssize_t row = -1;
     std::string_view argument;
     std::string message;
   };
-  const auto run = [&](py::ssize_t begin, py::ssize_t end, Failure& f) {
-    for (py::ssize_t i = begin; i < end; ++i) {
-      try {
-        kernel(i);
-      } catch (const RowError& e) {
-        f = Failure{i, e.argument, e.message};
-        return;
-      } catch (const rigid::Error& e) {
-        f = Failure{i, first_argument, rigid::strip_function_names(e.what())};
-        return;
-      } catch (const std::exception& e) {  // bad_alloc: reported, never lost in a thread
-        f = Failure{i, first_argument, e.what()};
-        return;
+  std::atomic<bool> cancel{false};
+  auto last_poll = std::chrono::steady_clock::now();
+  const auto poll = [&] {
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last_poll < std::chrono::milliseconds(50)) return;
+    last_poll = now;
+    pybind11::gil_scoped_acquire gil;
+    if (PyErr_CheckSignals() != 0) {
+      PyErr_Clear();  // raised again as KeyboardInterrupt from rigid::Cancelled
+      cancel = true;
+    }
+  };
+  // rows [begin, end) in blocks; `polls`: the calling thread, which alone may ask Python
+  const auto run = [&](py::ssize_t begin, py::ssize_t end, Failure& f, bool polls) {
+    for (py::ssize_t b = begin; b < end; b += kBlock) {
+      if (cancel.load(std::memory_order_relaxed)) return;
+      const py::ssize_t block_end = std::min(end, b + kBlock);
+      for (py::ssize_t i = b; i < block_end; ++i) {
+        try {
+          kernel(i);
+        } catch (const RowError& e) {
+          f = Failure{i, e.argument, e.message};
+          return;
+        } catch (const rigid::Error& e) {
+          f = Failure{i, first_argument, rigid::strip_function_names(e.what())};
+          return;
+        } catch (const std::exception& e) {  // bad_alloc: reported, never lost in a thread
+          f = Failure{i, first_argument, e.what()};
+          return;
+        }
       }
+      if (polls) poll();
     }
   };
   std::vector<Failure> failures;
   if (n < kReleaseGil) {
     failures.resize(1);
-    run(0, n, failures[0]);
+    run(0, n, failures[0], false);
   } else {
     pybind11::gil_scoped_release release;
     const auto hw = static_cast<py::ssize_t>(std::max(1u, std::thread::hardware_concurrency()));
     const py::ssize_t threads =
         n < kThreadRows ? 1 : std::clamp<py::ssize_t>(std::min(hw, n / (kThreadRows / 2)), 1, 8);
     failures.resize(static_cast<std::size_t>(threads));
-    std::vector<std::thread> pool;
     const py::ssize_t chunk = (n + threads - 1) / threads;
-    for (py::ssize_t t = 1; t < threads; ++t) {
-      pool.emplace_back(run, std::min(n, t * chunk), std::min(n, (t + 1) * chunk),
-                        std::ref(failures[static_cast<std::size_t>(t)]));
+    const auto begin_of = [&](py::ssize_t t) { return std::min(n, t * chunk); };
+    std::vector<std::thread> pool;
+    py::ssize_t started = 1;  // chunk 0 runs on this thread
+    try {
+      for (; started < threads; ++started) {
+        pool.emplace_back(run, begin_of(started), begin_of(started + 1),
+                          std::ref(failures[static_cast<std::size_t>(started)]), false);
+      }
+    } catch (const std::system_error&) {  // no more threads: this one does the rest
     }
-    run(0, std::min(n, chunk), failures[0]);
+    run(0, begin_of(1), failures[0], true);
+    for (py::ssize_t t = started; t < threads; ++t) {
+      run(begin_of(t), begin_of(t + 1), failures[static_cast<std::size_t>(t)], true);
+    }
     for (auto& th : pool) th.join();
   }
+  if (cancel) throw rigid::Cancelled(fmt::format("{}(): interrupted", function));
   for (const Failure& f : failures) {  // chunks in row order: the first refusal is the first found
     if (f.row >= 0) {
       if (single)
