@@ -114,8 +114,8 @@ void bind_so3_batch(py::module_& m) {
   auto so3 = m.def_submodule(
       "so3",
       "SO(3) on arrays of N rotations, looped in C++ (no Python loop; the GIL is released from "
-      "4096 "
-      "rows on and the rows are split over the cores from 32768 on; Ctrl-C interrupts).\n\n"
+      "4096 rows on and the rows are split over the cores from 32768 on; Ctrl-C "
+      "interrupts).\n\n"
       "Rotations are unit quaternions of shape (N, 4) in the order given by the keyword `order` "
       "('wxyz', the default, or 'xyzw' as SciPy); any nonzero quaternion is normalised (as "
       "SO3.from_quaternion, to within an ulp). Rotation vectors and Euler angles are (N, 3) in "
