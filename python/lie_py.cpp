@@ -12,6 +12,8 @@
 
 namespace py = pybind11;
 
+void bind_so3_batch(py::module_& m);  // so3_batch_py.cpp: rigid.so3
+
 void bind_lie(py::module_& m) {
   using rigid::SE2d;
   using rigid::SE3d;
@@ -236,4 +238,5 @@ void bind_lie(py::module_& m) {
   m.def("check_orthogonal", &rigid::check_orthogonal, py::arg("M"), py::arg("tol") = 1e-9,
         "O(n) membership: max|MᵀM − I| and det M");
   m.def("nearest_rotation", &rigid::nearest_rotation, py::arg("M"), "closest SO(n) matrix (SVD)");
+  bind_so3_batch(m);
 }

@@ -32,7 +32,7 @@ build_packages=(
   libcgal-demo assimp-testmodels
   libgtest-dev libgmock-dev libbenchmark-dev
   libmujoco-dev libmujoco-samples
-  pybind11-dev python3-dev python3-numpy python3-pytest python3-scipy python3-sympy
+  pybind11-dev python3-dev python3-numpy python3-pytest python3-scipy python3-sympy python3-meshio
   chromium
 )
 bench_packages=(libbullet-dev libode-dev)

@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
 # Runs every benchmark executable of a build tree: scripts/run-benchmarks.sh build/bench
+# [Google Benchmark flags], then the Python benchmarks against the module of that tree
+# (bench/so3_batch_bench.py: rigid.so3 vs SciPy), when the tree has the module.
 set -euo pipefail
 dir="${1:-build/bench}"
 shopt -s nullglob
@@ -12,3 +14,11 @@ for exe in "${exes[@]}"; do
   echo "== $(basename "$exe")"
   "$exe" --benchmark_min_time=0.2 "${@:2}"
 done
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+modules=("$dir"/python/rigid*.so "$dir"/python/rigid/_rigid*.so)
+if [[ ${#modules[@]} -gt 0 ]]; then
+  echo "== so3_batch_bench.py"
+  RIGID_PYTHON_DIR="$dir/python" /usr/bin/python3 "$root/bench/so3_batch_bench.py"
+else
+  echo "run-benchmarks: no Python module in $dir/python: bench/so3_batch_bench.py not run" >&2
+fi

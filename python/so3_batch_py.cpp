@@ -1,0 +1,341 @@
+// rigid.so3: SO(3) operations on arrays of N rotations (quaternions (N, 4), rotation vectors
+// (N, 3), matrices (N, 3, 3), Euler angles (N, 3)), looped in C++. Each element goes through
+// the same SO3d function as the scalar rigid.SO3 method: the numbers are the same bit for bit,
+// or within an ulp where an input quaternion is normalised (read_rotation below;
+// python/tests/test_so3_batch.py).
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include <cmath>
+#include <string>
+#include <string_view>
+
+#include "batch.hpp"
+#include "rigid/common/error.hpp"
+#include "rigid/common/format.hpp"
+#include "rigid/lie.hpp"
+
+namespace py = pybind11;
+
+namespace {
+
+using rigid::SO3d;
+using rigid::python::batch_argument;
+using rigid::python::batch_result;
+using rigid::python::BatchArray;
+using rigid::python::broadcast_rows;
+using rigid::python::for_each_row;
+using rigid::python::RowError;
+using V3 = Eigen::Vector3d;
+
+// Where w sits in a stored quaternion: wxyz (rigid's order) or xyzw (SciPy's, ROS's).
+struct QuaternionOrder {
+  bool scalar_last = false;
+};
+
+QuaternionOrder parse_order(std::string_view function, const std::string& order) {
+  if (order == "wxyz") return {false};
+  if (order == "xyzw") return {true};
+  throw rigid::Error(fmt::format("{}(): order is '{}', expected wxyz or xyzw", function, order));
+}
+
+// The rotation of a stored quaternion. A quaternion that is unit to |q|² − 1 ≤ 1e-8 (anything
+// computed as one, or printed with 9 digits or more) is normalised by one Newton step,
+// q (3 − |q|²)/2, which leaves O(δ²) ≤ 1e-16 and needs no square root or division
+// (SO3d::from_integrated_quaternion); the result is within an ulp of SO3.from_quaternion's
+// q / |q|. Any other nonzero quaternion is multiplied by 1/|q| (to rounding, as
+// from_quaternion); one with a non-finite component or norm below 1e-12 is refused with
+// SO3.from_quaternion's message; one whose |q|² overflows is scaled by its largest component
+// first.
+SO3d read_rotation(const double* q, QuaternionOrder o) {
+  const Eigen::Vector4d wxyz = o.scalar_last ? Eigen::Vector4d(q[3], q[0], q[1], q[2])
+                                             : Eigen::Vector4d(q[0], q[1], q[2], q[3]);
+  const double n2 = wxyz.squaredNorm();
+  if (std::isfinite(n2) && n2 >= 1e-24) [[likely]]
+    return SO3d::from_integrated_quaternion(wxyz);
+  if (wxyz.allFinite() && !std::isfinite(n2)) {
+    const Eigen::Vector4d scaled = wxyz / wxyz.cwiseAbs().maxCoeff();
+    return SO3d::from_quaternion(scaled(0), scaled(1), scaled(2), scaled(3));
+  }
+  return SO3d::from_quaternion(wxyz(0), wxyz(1), wxyz(2), wxyz(3));  // throws its message
+}
+
+void write_rotation(const SO3d& R, double* out, QuaternionOrder o) {
+  const Eigen::Vector4d q = R.quaternion();  // (w, x, y, z)
+  if (o.scalar_last) {
+    out[0] = q(1), out[1] = q(2), out[2] = q(3), out[3] = q(0);
+  } else {
+    out[0] = q(0), out[1] = q(1), out[2] = q(2), out[3] = q(3);
+  }
+}
+
+void write_matrix(const SO3d& R, double* out) {
+  const Eigen::Matrix3d M = R.matrix();
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) out[3 * i + j] = M(i, j);  // row-major, as numpy stores it
+}
+
+V3 read_vector(const double* p) { return {p[0], p[1], p[2]}; }
+
+// A single rotation argument broadcast over the rows of the other: read once, so that a
+// refusal names the argument without a row.
+struct RotationArgument {
+  const BatchArray* batch;
+  SO3d single = SO3d::identity();
+  QuaternionOrder order;
+  [[nodiscard]] SO3d at(py::ssize_t i) const {
+    return batch->single ? single : read_rotation(batch->row(i), order);
+  }
+};
+
+RotationArgument rotation_argument(const BatchArray& b, QuaternionOrder o,
+                                   std::string_view function, std::string_view name) {
+  RotationArgument r{&b, SO3d::identity(), o};
+  if (b.single) {
+    try {
+      r.single = read_rotation(b.row(0), o);
+    } catch (const rigid::Error& e) {
+      throw rigid::Error(fmt::format("{}(): argument '{}': {}", function, name,
+                                     rigid::strip_function_names(e.what())));
+    }
+  }
+  return r;
+}
+
+void require_finite_vector(const V3& v, std::string_view what) {
+  if (!v.allFinite())
+    throw rigid::Error(
+        fmt::format("{} {} has a non-finite component", what, rigid::to_string(v.transpose())));
+}
+
+}  // namespace
+
+void bind_so3_batch(py::module_& m) {
+  auto so3 = m.def_submodule(
+      "so3",
+      "SO(3) on arrays of N rotations, looped in C++ (no Python loop; the GIL is released from "
+      "4096 rows on and the rows are split over the cores from 32768 on; Ctrl-C "
+      "interrupts).\n\n"
+      "Rotations are unit quaternions of shape (N, 4) in the order given by the keyword `order` "
+      "('wxyz', the default, or 'xyzw' as SciPy); any nonzero quaternion is normalised (as "
+      "SO3.from_quaternion, to within an ulp). Rotation vectors and Euler angles are (N, 3) in "
+      "rad, matrices "
+      "(N, 3, 3) with R @ v rotating v. A single element ((4,), (3,), (3, 3)) gives a single "
+      "result; in compose and act a single element is combined with every row of the other "
+      "argument. Each element is computed by the same code as the rigid.SO3 method: the same "
+      "numbers, to an ulp where a quaternion is normalised. Bad input (shape, dtype, a non-finite "
+      "or zero quaternion, a "
+      "matrix that is not a rotation) raises rigid.Error naming the argument and the row.");
+
+  so3.def(
+      "exp",
+      [](const py::object& omega, const std::string& output, const std::string& order) {
+        constexpr std::string_view fn = "so3.exp";
+        const QuaternionOrder o = parse_order(fn, order);
+        if (output != "quaternion" && output != "matrix") {
+          throw rigid::Error(
+              fmt::format("so3.exp(): output is '{}', expected 'quaternion' or 'matrix'", output));
+        }
+        const BatchArray w = batch_argument(omega, fn, "omega", {3});
+        const bool as_matrix = output == "matrix";
+        auto out =
+            as_matrix ? batch_result(w.n, w.single, {3, 3}) : batch_result(w.n, w.single, {4});
+        double* dst = out.mutable_data();
+        for_each_row(w.n, w.single, fn, "omega", [&](py::ssize_t i) {
+          const V3 v = read_vector(w.row(i));
+          require_finite_vector(v, "rotation vector");
+          const SO3d R = SO3d::exp(v);
+          if (!R.quaternion().allFinite()) {
+            throw rigid::Error(fmt::format("rotation vector {} is too long: |ω|² overflows",
+                                           rigid::to_string(v.transpose())));
+          }
+          if (as_matrix) {
+            write_matrix(R, dst + 9 * i);
+          } else {
+            write_rotation(R, dst + 4 * i, o);
+          }
+        });
+        return out;
+      },
+      py::arg("omega"), py::kw_only(), py::arg("output") = "quaternion", py::arg("order") = "wxyz",
+      "Exponential map: rotation vectors omega (N, 3), axis times angle in rad (right hand), to "
+      "rotations: quaternions (N, 4) (output='quaternion') or matrices (N, 3, 3) "
+      "(output='matrix'). As SO3.exp(omega[i]). Refuses a non-finite omega.");
+
+  so3.def(
+      "log",
+      [](const py::object& q, const std::string& order) {
+        constexpr std::string_view fn = "so3.log";
+        const QuaternionOrder o = parse_order(fn, order);
+        const BatchArray a = batch_argument(q, fn, "q", {4});
+        auto out = batch_result(a.n, a.single, {3});
+        double* dst = out.mutable_data();
+        for_each_row(a.n, a.single, fn, "q", [&](py::ssize_t i) {
+          const V3 w = read_rotation(a.row(i), o).log();
+          dst[3 * i] = w(0), dst[3 * i + 1] = w(1), dst[3 * i + 2] = w(2);
+        });
+        return out;
+      },
+      py::arg("q"), py::kw_only(), py::arg("order") = "wxyz",
+      "Logarithm: quaternions (N, 4) to rotation vectors (N, 3) in rad with angle in [0, π] "
+      "(accurate near 0 and π). As SO3.from_quaternion(*q[i]).log().");
+
+  so3.def(
+      "compose",
+      [](const py::object& a, const py::object& b, const std::string& order) {
+        constexpr std::string_view fn = "so3.compose";
+        const QuaternionOrder o = parse_order(fn, order);
+        const BatchArray A = batch_argument(a, fn, "a", {4});
+        const BatchArray B = batch_argument(b, fn, "b", {4});
+        const py::ssize_t n = broadcast_rows(fn, "a", A, "b", B);
+        const RotationArgument ra = rotation_argument(A, o, fn, "a");
+        const RotationArgument rb = rotation_argument(B, o, fn, "b");
+        auto out = batch_result(n, A.single && B.single, {4});
+        double* dst = out.mutable_data();
+        for_each_row(n, A.single && B.single, fn, "a", [&](py::ssize_t i) {
+          const SO3d Ra = ra.at(i);
+          SO3d Rb = SO3d::identity();
+          try {
+            Rb = rb.at(i);
+          } catch (const rigid::Error& e) {
+            throw RowError{"b", rigid::strip_function_names(e.what())};
+          }
+          write_rotation(Ra * Rb, dst + 4 * i, o);
+        });
+        return out;
+      },
+      py::arg("a"), py::arg("b"), py::kw_only(), py::arg("order") = "wxyz",
+      "Composition a[i] * b[i] (apply b first, then a: R_AC = R_AB * R_BC) of quaternions (N, 4); "
+      "either may be a single (4,) quaternion. As SO3 * SO3.");
+
+  so3.def(
+      "act",
+      [](const py::object& q, const py::object& v, const std::string& order) {
+        constexpr std::string_view fn = "so3.act";
+        const QuaternionOrder o = parse_order(fn, order);
+        const BatchArray Q = batch_argument(q, fn, "q", {4});
+        const BatchArray Vs = batch_argument(v, fn, "v", {3});
+        const py::ssize_t n = broadcast_rows(fn, "q", Q, "v", Vs);
+        const RotationArgument rq = rotation_argument(Q, o, fn, "q");
+        auto out = batch_result(n, Q.single && Vs.single, {3});
+        double* dst = out.mutable_data();
+        for_each_row(n, Q.single && Vs.single, fn, "q", [&](py::ssize_t i) {
+          const SO3d R = rq.at(i);
+          const V3 x = read_vector(Vs.row(Vs.single ? 0 : i));
+          if (!x.allFinite())
+            throw RowError{"v", fmt::format("vector {} has a non-finite component",
+                                            rigid::to_string(x.transpose()))};
+          const V3 y = R * x;
+          dst[3 * i] = y(0), dst[3 * i + 1] = y(1), dst[3 * i + 2] = y(2);
+        });
+        return out;
+      },
+      py::arg("q"), py::arg("v"), py::kw_only(), py::arg("order") = "wxyz",
+      "Rotated vectors q[i] * v[i] (N, 3) (active rotation: v_A = R_AB v_B); either argument may "
+      "be a single element. As SO3 * vector.");
+
+  so3.def(
+      "inverse",
+      [](const py::object& q, const std::string& order) {
+        constexpr std::string_view fn = "so3.inverse";
+        const QuaternionOrder o = parse_order(fn, order);
+        const BatchArray a = batch_argument(q, fn, "q", {4});
+        auto out = batch_result(a.n, a.single, {4});
+        double* dst = out.mutable_data();
+        for_each_row(a.n, a.single, fn, "q", [&](py::ssize_t i) {
+          write_rotation(read_rotation(a.row(i), o).inverse(), dst + 4 * i, o);
+        });
+        return out;
+      },
+      py::arg("q"), py::kw_only(), py::arg("order") = "wxyz",
+      "Inverse rotations (conjugate quaternions, normalised) (N, 4). As SO3.inverse().");
+
+  so3.def(
+      "to_matrix",
+      [](const py::object& q, const std::string& order) {
+        constexpr std::string_view fn = "so3.to_matrix";
+        const QuaternionOrder o = parse_order(fn, order);
+        const BatchArray a = batch_argument(q, fn, "q", {4});
+        auto out = batch_result(a.n, a.single, {3, 3});
+        double* dst = out.mutable_data();
+        for_each_row(a.n, a.single, fn, "q",
+                     [&](py::ssize_t i) { write_matrix(read_rotation(a.row(i), o), dst + 9 * i); });
+        return out;
+      },
+      py::arg("q"), py::kw_only(), py::arg("order") = "wxyz",
+      "Rotation matrices (N, 3, 3) of quaternions (N, 4). As SO3.matrix().");
+
+  so3.def(
+      "from_matrix",
+      [](const py::object& R, double tol, const std::string& order) {
+        constexpr std::string_view fn = "so3.from_matrix";
+        const QuaternionOrder o = parse_order(fn, order);
+        if (!(tol >= 0.0))
+          throw rigid::Error(
+              fmt::format("so3.from_matrix(): tol is {}, expected a tolerance >= 0", tol));
+        const BatchArray a = batch_argument(R, fn, "R", {3, 3});
+        auto out = batch_result(a.n, a.single, {4});
+        double* dst = out.mutable_data();
+        for_each_row(a.n, a.single, fn, "R", [&](py::ssize_t i) {
+          const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> M(a.row(i));
+          write_rotation(SO3d::from_matrix(M, tol), dst + 4 * i, o);
+        });
+        return out;
+      },
+      py::arg("R"), py::kw_only(), py::arg("tol") = 1e-9, py::arg("order") = "wxyz",
+      "Quaternions (N, 4) of rotation matrices (N, 3, 3). As SO3.from_matrix(R[i], tol): refuses a "
+      "matrix with max|RᵀR − I| > tol or det R < 0 (use rigid.nearest_rotation first for a "
+      "matrix that is only roughly orthonormal).");
+
+  so3.def(
+      "from_euler",
+      [](const py::object& angles, const std::string& sequence, bool intrinsic,
+         const std::string& order) {
+        constexpr std::string_view fn = "so3.from_euler";
+        const QuaternionOrder o = parse_order(fn, order);
+        const rigid::EulerConvention conv = rigid::EulerConvention::parse(sequence, intrinsic);
+        const BatchArray a = batch_argument(angles, fn, "angles", {3});
+        auto out = batch_result(a.n, a.single, {4});
+        double* dst = out.mutable_data();
+        for_each_row(a.n, a.single, fn, "angles", [&](py::ssize_t i) {
+          write_rotation(rigid::from_euler(read_vector(a.row(i)), conv), dst + 4 * i, o);
+        });
+        return out;
+      },
+      py::arg("angles"), py::arg("sequence") = "ZYX", py::kw_only(), py::arg("intrinsic") = true,
+      py::arg("order") = "wxyz",
+      "Quaternions (N, 4) of Euler angles (N, 3) in rad. sequence: one of XYZ XZY YXZ YZX ZXY ZYX "
+      "XYX XZX YXY YZY ZXZ ZYZ (either case); intrinsic=True: axes moving with the body, "
+      "R = R_1(a) R_2(b) R_3(c); intrinsic=False: fixed axes, R = R_3(c) R_2(b) R_1(a). SciPy "
+      "spells intrinsic with upper case ('ZYX') and extrinsic with lower case ('zyx'). As "
+      "SO3.from_euler(angles[i], sequence, intrinsic).");
+
+  so3.def(
+      "to_euler",
+      [](const py::object& q, const std::string& sequence, bool intrinsic,
+         const std::string& order) {
+        constexpr std::string_view fn = "so3.to_euler";
+        const QuaternionOrder o = parse_order(fn, order);
+        const rigid::EulerConvention conv = rigid::EulerConvention::parse(sequence, intrinsic);
+        const BatchArray a = batch_argument(q, fn, "q", {4});
+        auto out = batch_result(a.n, a.single, {3});
+        double* dst = out.mutable_data();
+        for_each_row(a.n, a.single, fn, "q", [&](py::ssize_t i) {
+          const V3 e = rigid::to_euler(read_rotation(a.row(i), o), conv);
+          dst[3 * i] = e(0), dst[3 * i + 1] = e(1), dst[3 * i + 2] = e(2);
+        });
+        return out;
+      },
+      py::arg("q"), py::arg("sequence") = "ZYX", py::kw_only(), py::arg("intrinsic") = true,
+      py::arg("order") = "wxyz",
+      "Euler angles (N, 3) in rad of quaternions (N, 4), for the sequence and intrinsic/extrinsic "
+      "as in from_euler. Middle angle in [−π/2, π/2] (Tait–Bryan) or [0, π] (proper Euler), the "
+      "others in (−π, π]. At gimbal lock the third intrinsic angle (the first extrinsic one) is "
+      "0. As SO3.to_euler(sequence, intrinsic).");
+
+  so3.attr("sequences") = [] {
+    py::list l;
+    for (std::string_view s : rigid::euler_sequences()) l.append(std::string(s));
+    return py::tuple(l);
+  }();
+}
