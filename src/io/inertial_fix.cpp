@@ -19,6 +19,7 @@
 #include <tinyxml2.h>
 
 #include "detail/fix_geometry.hpp"
+#include "detail/xml_numbers.hpp"
 #include "rigid/common/error.hpp"
 #include "rigid/common/wording.hpp"
 #include "rigid/mass/primitive_table.hpp"
@@ -28,30 +29,9 @@ namespace rigid::io {
 namespace detail {
 
 std::vector<double> parse_numbers(const char* text, std::size_t expected, const std::string& what) {
-  std::vector<double> out;
-  const std::string_view s = text == nullptr ? std::string_view{} : std::string_view(text);
-  std::size_t i = 0;
-  while (i < s.size()) {
-    while (i < s.size() && std::isspace(static_cast<unsigned char>(s[i]))) ++i;
-    if (i >= s.size()) break;
-    std::size_t j = i;
-    while (j < s.size() && !std::isspace(static_cast<unsigned char>(s[j]))) ++j;
-    const std::string_view token = s.substr(i, j - i);
-    const char* first = token.data();
-    if (token.front() == '+') ++first;
-    double v = 0.0;
-    const auto [ptr, ec] = std::from_chars(first, token.data() + token.size(), v);
-    if (ec != std::errc() || ptr != token.data() + token.size() || !std::isfinite(v)) {
-      throw GeometryProblem{fmt::format("{}: expected a finite number, got '{}'", what, token)};
-    }
-    out.push_back(v);
-    i = j;
-  }
-  if (expected != 0 && out.size() != expected) {
-    throw GeometryProblem{fmt::format("{}: expected {} number{}, got {} ('{}')", what, expected,
-                                      expected == 1 ? "" : "s", out.size(), s)};
-  }
-  return out;
+  XmlNumbers n = read_xml_numbers(text, expected, what, true);
+  if (!n.problem.empty()) throw GeometryProblem{std::move(n.problem)};
+  return std::move(n.values);
 }
 
 MassProperties catalogue_primitive(const char* name, double rho, std::vector<double> sizes,
@@ -258,6 +238,17 @@ std::string what_of(const tinyxml2::XMLElement* geometry_owner, const char* shap
 }
 
 // URDF <collision>/<visual>: <origin xyz rpy/> and <geometry> with box/cylinder/sphere/mesh
+// The shape element of a <collision>/<visual>'s <geometry> (URDF and SDF nest it the same way).
+const tinyxml2::XMLElement* geometry_shape(const tinyxml2::XMLElement* c) {
+  const auto* g = c->FirstChildElement("geometry");
+  const auto* shape = g == nullptr ? nullptr : g->FirstChildElement();
+  if (shape == nullptr) {
+    throw GeometryProblem{fmt::format("<{}> (line {}) has no <geometry> shape", c->Name(),
+                                      c->GetLineNum())};
+  }
+  return shape;
+}
+
 void add_urdf_geometry(const tinyxml2::XMLElement* c, const Resolver& files, LinkGeometry& link) {
   Eigen::Vector3d xyz = Eigen::Vector3d::Zero(), rpy = Eigen::Vector3d::Zero();
   if (const auto* o = c->FirstChildElement("origin")) {
@@ -270,12 +261,7 @@ void add_urdf_geometry(const tinyxml2::XMLElement* c, const Resolver& files, Lin
       rpy = Eigen::Vector3d(v[0], v[1], v[2]);
     }
   }
-  const auto* g = c->FirstChildElement("geometry");
-  const auto* shape = g == nullptr ? nullptr : g->FirstChildElement();
-  if (shape == nullptr) {
-    throw GeometryProblem{fmt::format("<{}> (line {}) has no <geometry> shape", c->Name(),
-                                      c->GetLineNum())};
-  }
+  const tinyxml2::XMLElement* shape = geometry_shape(c);
   const std::string type = shape->Name();
   const std::string what = what_of(c, type.c_str());
   auto attr = [&](const char* key, std::size_t count) {
@@ -331,12 +317,7 @@ void add_sdf_geometry(const tinyxml2::XMLElement* c, const Resolver& files, Link
     xyz = Eigen::Vector3d(v[0], v[1], v[2]);
     rpy = k * Eigen::Vector3d(v[3], v[4], v[5]);
   }
-  const auto* g = c->FirstChildElement("geometry");
-  const auto* shape = g == nullptr ? nullptr : g->FirstChildElement();
-  if (shape == nullptr) {
-    throw GeometryProblem{fmt::format("<{}> (line {}) has no <geometry> shape", c->Name(),
-                                      c->GetLineNum())};
-  }
+  const tinyxml2::XMLElement* shape = geometry_shape(c);
   const std::string type = shape->Name();
   const std::string what = what_of(c, type.c_str());
   auto child = [&](const char* key, std::size_t count) {

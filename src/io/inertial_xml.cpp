@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 #include <tinyxml2.h>
 
+#include "detail/xml_numbers.hpp"
 #include "rigid/common/error.hpp"
 #include "rigid/lie/euler.hpp"
 #include "rigid/lie/so3.hpp"
@@ -24,31 +25,11 @@ struct EntryProblem {
   std::string text;
 };
 
+// expected = 0 is not used here: every attribute has its count
 std::vector<double> parse_numbers(const char* text, std::size_t expected, const std::string& what) {
-  std::vector<double> out;
-  std::string_view s = text == nullptr ? std::string_view{} : std::string_view(text);
-  std::size_t i = 0;
-  while (i < s.size()) {
-    while (i < s.size() && std::isspace(static_cast<unsigned char>(s[i]))) ++i;
-    if (i >= s.size()) break;
-    std::size_t j = i;
-    while (j < s.size() && !std::isspace(static_cast<unsigned char>(s[j]))) ++j;
-    const std::string_view token = s.substr(i, j - i);
-    double v = 0.0;
-    const char* first = token.data();
-    if (!token.empty() && token.front() == '+') ++first;
-    const auto [ptr, ec] = std::from_chars(first, token.data() + token.size(), v);
-    if (ec != std::errc() || ptr != token.data() + token.size()) {
-      throw EntryProblem{fmt::format("{}: expected a number, got '{}'", what, token)};
-    }
-    out.push_back(v);
-    i = j;
-  }
-  if (out.size() != expected) {
-    throw EntryProblem{fmt::format("{}: expected {} number{}, got {} ('{}')", what, expected,
-                                   expected == 1 ? "" : "s", out.size(), s)};
-  }
-  return out;
+  detail::XmlNumbers n = detail::read_xml_numbers(text, expected, what, false);
+  if (!n.problem.empty()) throw EntryProblem{std::move(n.problem)};
+  return std::move(n.values);
 }
 
 Eigen::Vector3d vec3(const std::vector<double>& v, std::size_t offset = 0) {
@@ -191,12 +172,12 @@ void collect(const tinyxml2::XMLElement* e, InertialFormat format,
 const tinyxml2::XMLElement* parse_root(tinyxml2::XMLDocument& doc, const std::string& xml,
                                        const std::string& source) {
   if (doc.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS) {
-    detail::throw_error_at(SourceLocation{source, doc.ErrorLineNum(), 0},
+    rigid::detail::throw_error_at(SourceLocation{source, doc.ErrorLineNum(), 0},
                            fmt::format("malformed XML: {}", doc.ErrorStr()));
   }
   const auto* root = doc.RootElement();
   if (root == nullptr) {
-    detail::throw_error_at(SourceLocation{source, 0, 0}, "the document has no root element");
+    rigid::detail::throw_error_at(SourceLocation{source, 0, 0}, "the document has no root element");
   }
   return root;
 }
@@ -206,7 +187,7 @@ InertialFormat format_of(const tinyxml2::XMLElement* root, const std::string& so
   if (name == "robot") return InertialFormat::urdf;
   if (name == "mujoco") return InertialFormat::mjcf;
   if (name == "sdf") return InertialFormat::sdf;
-  detail::throw_error_at(SourceLocation{source, root->GetLineNum(), 0},
+  rigid::detail::throw_error_at(SourceLocation{source, root->GetLineNum(), 0},
                          fmt::format("unknown root element <{}>; expected <robot> (URDF), "
                                      "<mujoco> (MJCF) or <sdf> (SDF)",
                                      name));
