@@ -5,11 +5,13 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include "convert.hpp"
 #include "rigid/common/error.hpp"
 #include "rigid/common/wording.hpp"
 #include "rigid/mesh.hpp"
 
 namespace py = pybind11;
+namespace cv = rigid::python::convert;
 
 namespace {
 // the library's remedies (`shell = true`) in Python's terms (shell=True)
@@ -40,17 +42,38 @@ namespace {
 
 using rigid::mesh::TriangleMesh;
 
-TriangleMesh from_arrays(const py::array_t<double, py::array::c_style | py::array::forcecast>& v,
-                         const py::array_t<long long, py::array::c_style | py::array::forcecast>& f) {
-  RIGID_REQUIRE(v.ndim() == 2 && v.shape(1) == 3, "vertices: expected an (n, 3) array, got {} dimensions", v.ndim());
-  RIGID_REQUIRE(f.ndim() == 2 && f.shape(1) == 3, "triangles: expected an (m, 3) array, got {} dimensions", f.ndim());
-  TriangleMesh m;
-  const auto vv = v.unchecked<2>();
-  for (py::ssize_t i = 0; i < vv.shape(0); ++i) {
-    m.vertices.emplace_back(vv(i, 0), vv(i, 1), vv(i, 2));
-    RIGID_REQUIRE(m.vertices.back().allFinite(), "vertex {} is not finite", i);
+TriangleMesh from_arrays(const py::object& vertices, const py::object& triangles) {
+  const char* f = "rigid.mesh.TriangleMesh";
+  const Eigen::Matrix3Xd v = cv::points(vertices, {f, "vertices"});
+  // vertex indices: integers only (a float array would be truncated silently)
+  py::array a;
+  try {
+    a = py::module_::import("numpy").attr("asarray")(triangles);
+  } catch (const py::error_already_set&) {
+    throw rigid::Error(fmt::format("{}(): argument 'triangles' must be an integer array of shape (m, 3); "
+                                   "got a sequence that is not rectangular", f));
   }
-  const auto ff = f.unchecked<2>();
+  const char kind = a.dtype().kind();
+  if (a.ndim() == 0 && kind != 'i' && kind != 'u' && kind != 'f') {
+    throw py::type_error(fmt::format("{}(): argument 'triangles' must be an integer array of shape (m, 3); got {}",
+                                     f, py::str(py::type::handle_of(triangles).attr("__name__")).cast<std::string>()));
+  }
+  // an empty list has dtype float64: no index to truncate
+  if (kind != 'i' && kind != 'u' && !(a.size() == 0 && kind == 'f')) {
+    throw rigid::Error(fmt::format("{}(): argument 'triangles' must hold integer vertex indices; got dtype {}",
+                                   f, py::str(a.dtype()).cast<std::string>()));
+  }
+  if (a.ndim() != 2 || a.shape(1) != 3) {
+    std::string shape = "(";
+    for (py::ssize_t k = 0; k < a.ndim(); ++k) shape += fmt::format("{}{}", k ? ", " : "", a.shape(k));
+    shape += a.ndim() == 1 ? ",)" : ")";
+    throw rigid::Error(fmt::format("{}(): argument 'triangles' must have shape (m, 3); got {}", f, shape));
+  }
+  const auto idx = py::array_t<long long, py::array::c_style | py::array::forcecast>::ensure(a);
+  TriangleMesh m;
+  m.vertices.reserve(static_cast<std::size_t>(v.cols()));
+  for (Eigen::Index i = 0; i < v.cols(); ++i) m.vertices.emplace_back(v.col(i));
+  const auto ff = idx.unchecked<2>();
   for (py::ssize_t i = 0; i < ff.shape(0); ++i) {
     std::array<std::uint32_t, 3> t{};
     for (int k = 0; k < 3; ++k) {
@@ -71,7 +94,11 @@ void bind_mesh(py::module_& m) {
   auto mesh = m.def_submodule("mesh", "Triangle meshes: readers, repair, exact mass properties.");
 
   py::class_<TriangleMesh>(mesh, "TriangleMesh", "Indexed triangle mesh (vertices in m).")
-      .def(py::init(&from_arrays), py::arg("vertices"), py::arg("triangles"))
+      .def(py::init(&from_arrays), py::arg("vertices"), py::arg("triangles"),
+           "A mesh from vertices (shape (n, 3), m, one vertex per row, any real dtype) and "
+           "triangles (shape (m, 3), integer indices into the vertices; counter-clockwise seen "
+           "from outside once oriented). Nothing is checked or repaired here: "
+           "mass_properties refuses a mesh that is open or inconsistently wound.")
       .def_property_readonly("vertices",
                              [](const TriangleMesh& t) {
                                py::array_t<double> a({static_cast<py::ssize_t>(t.vertices.size()), py::ssize_t{3}});
@@ -125,8 +152,15 @@ void bind_mesh(py::module_& m) {
       py::arg("mesh"),
            "Close every hole whose border is a simple loop (in place; run repair first and "
            "again after); a planar hole is closed exactly. Returns the report.");
-  mesh.def("read", &rm::read_mesh, py::arg("path"), py::arg("scale") = 1.0,
-           "Read an STL/OBJ/PLY/OFF file; coordinates multiplied by scale (m per file unit).");
+  mesh.def("read",
+           [](const py::object& path, double scale) {
+             const std::string file = cv::path(path, {"rigid.mesh.read", "path"});
+             py::gil_scoped_release release;
+             return rm::read_mesh(file, scale);
+           },
+           py::arg("path"), py::arg("scale") = 1.0,
+           "Read an STL/OBJ/PLY/OFF file (a str or pathlib.Path; the format from the extension); "
+           "coordinates multiplied by scale (m per file unit). Errors start with the file name.");
   mesh.def("unit_scale", &rm::unit_scale, py::arg("unit"), "Metres per unit: m, cm, mm or in.");
   mesh.def(
       "repair",
@@ -140,19 +174,32 @@ void bind_mesh(py::module_& m) {
   mesh.def(
       "mass_properties",
       [](const TriangleMesh& t, std::optional<double> mass, std::optional<double> density,
-         bool shell, std::optional<double> thickness) {
-        // a mesh that has not been through repair: refused unless closed and consistently
-        // oriented (the library checks), with the remedy rigid.mesh.repair(mesh)
-        auto r = with_repair_worded(
-            [&] { return rm::mesh_mass_properties(t, {mass, density, shell, thickness}); });
-        return py::make_tuple(r.properties, worded(r.warnings));
+         bool shell, std::optional<double> thickness, bool repair) {
+        const rm::MassSpec spec{mass, density, shell, thickness};
+        if (!repair) {
+          // a mesh that has not been through repair: refused unless closed and consistently
+          // oriented (the library checks), with the remedy rigid.mesh.repair(mesh)
+          auto r = with_repair_worded([&] { return rm::mesh_mass_properties(t, spec); });
+          return py::make_tuple(r.properties, worded(r.warnings));
+        }
+        // repair=True: a repaired copy is measured (the caller's mesh is unchanged) and what
+        // repair changed comes first among the warnings, as `rigid inertia FILE` prints it
+        TriangleMesh copy = t;
+        const rm::RepairReport report = rm::repair_mesh(copy);
+        auto r = rm::mesh_mass_properties(copy, spec, report);
+        std::vector<std::string> warnings = report.warnings;
+        warnings.insert(warnings.end(), r.warnings.begin(), r.warnings.end());
+        return py::make_tuple(r.properties, worded(warnings));
       },
       py::arg("mesh"), py::kw_only(), py::arg("mass") = py::none(),
       py::arg("density") = py::none(), py::arg("shell") = false,
-      py::arg("thickness") = py::none(),
-      "(rigid.MassProperties, warnings) of a solid or thin shell; exactly one of mass, density. "
-      "A solid must be closed and consistently oriented (run rigid.mesh.repair(mesh) first): "
-      "otherwise rigid.Error.");
+      py::arg("thickness") = py::none(), py::arg("repair") = false,
+      "(rigid.MassProperties, warnings) of a solid or thin shell in the mesh frame (COM in m, "
+      "inertia about the COM in kg·m²); exactly one of mass (kg) and density (kg/m³; kg/m² for a "
+      "shell, or kg/m³ with thickness= in m). A solid must be closed and consistently oriented: "
+      "otherwise rigid.Error (never a wrong volume), with the remedy rigid.mesh.repair(mesh). "
+      "repair=True measures a repaired copy instead (weld, drop degenerate triangles, orient "
+      "outward; the mesh passed is unchanged), and the warnings say what repair changed.");
   mesh.def(
       "mass_from_file",
       [](const std::filesystem::path& path, std::optional<double> mass, std::optional<double> density,
@@ -174,7 +221,9 @@ void bind_mesh(py::module_& m) {
   mesh.def(
       "vertex_noise_uncertainty",
       [](const TriangleMesh& t, double sigma, std::optional<double> mass, std::optional<double> density,
-         std::optional<Eigen::Vector3d> about) {
+         const py::object& about_arg) {
+        std::optional<Eigen::Vector3d> about;
+        if (!about_arg.is_none()) about = cv::vector3(about_arg, {"rigid.mesh.vertex_noise_uncertainty", "about"});
         const auto u = with_repair_worded([&] {
           return rm::vertex_noise_uncertainty(t, {mass, density, false, std::nullopt}, sigma, about);
         });
