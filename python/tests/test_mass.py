@@ -44,7 +44,7 @@ def test_principal_axes_right_handed_and_rotation_invariant():
 
 
 def test_combine_point_masses_and_numpy_shapes():
-    pts = np.array([[1.0, -1.0], [0.0, 0.0], [0.0, 0.0]])
+    pts = np.array([[1.0, 0.0, 0.0], [-1.0, 0.0, 0.0]])  # one point per row
     mp = rigid.mass.point_masses([1.0, 1.0], pts)
     np.testing.assert_allclose(mp.inertia_com, np.diag([0.0, 2.0, 2.0]), atol=8 * EPS)
     both = rigid.combine([mp, rigid.mass.point_mass(2.0, [0.0, 0.0, 1.0])])
@@ -53,12 +53,12 @@ def test_combine_point_masses_and_numpy_shapes():
 
 
 def test_second_moments_and_laminae():
-    ball = rigid.mass.n_ball_with_mass(4, 1.0, 1.0)
+    ball = rigid.mass.n_ball_with_mass(1.0, 1.0, 4)
     np.testing.assert_allclose(ball.J_com, np.eye(4) / 6, rtol=1e-15)
     Omega = np.zeros((4, 4))
     Omega[0, 1], Omega[1, 0] = 1.0, -1.0
     np.testing.assert_allclose(ball.apply(Omega), Omega / 3, rtol=1e-15)
-    sq = rigid.mass.polygon_lamina_with_mass(1.0, np.array([[0, 1, 1, 0], [0, 0, 1, 1.0]]))
+    sq = rigid.mass.polygon_lamina_with_mass(1.0, np.array([[0, 0], [1, 0], [1, 1], [0, 1.0]]))
     assert sq.moment_com == pytest.approx(1 / 6, rel=1e-14)  # m (a² + b²)/12
 
 
@@ -76,7 +76,7 @@ def test_xml_round_trip_with_rotated_frame():
     mp = rigid.mass.solid_box_with_mass(2.0, 0.3, 0.5, 0.7).transformed(R, np.array([0.1, 0.2, 0.3]))
     for fmt in ("urdf", "mjcf", "sdf"):
         doc = rigid.mass.write_inertial_document(mp, fmt, name="link", principal=True)
-        (entry,) = rigid.mass.read_inertials(doc)
+        (entry,) = rigid.mass.read_inertials(text=doc)
         assert entry["name"] == "link" and entry["problem"] is None
         np.testing.assert_allclose(entry["inertia_com"], mp.inertia_com, rtol=0, atol=1e-15)
 
