@@ -13,6 +13,7 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include "convert.hpp"
 #include "interrupt.hpp"
 #include "rigid/io/atomic_file.hpp"
 #include "rigid/io/run_output.hpp"
@@ -22,6 +23,7 @@
 #include "rigid/scene/scene.hpp"
 
 namespace py = pybind11;
+namespace cv = rigid::python::convert;
 
 namespace {
 
@@ -171,11 +173,35 @@ void bind_scene(py::module_& m) {
   py::class_<Model>(m, "Scene",
                     "A scene file turned into a model (parameters evaluated, mass properties and "
                     "equations built). Errors are rigid.Error with file:line:col.")
-      .def(py::init([](const std::filesystem::path& path, const std::vector<std::string>& set) {
-             return rigid::scene::load_model(path, set);
+      .def(py::init([](const py::object& path, const std::vector<std::string>& set) {
+             const std::string file = cv::path(path, {"rigid.Scene", "path"});
+             // a str is always a file name: scene text is refused with the remedy, never parsed
+             if (file.find('\n') != std::string::npos || file.find('[') != std::string::npos) {
+               if (!std::filesystem::exists(file)) {
+                 throw rigid::Error("rigid.Scene(): the path looks like TOML text: load a scene given as "
+                                    "text with rigid.Scene.from_string(text)");
+               }
+             }
+             return rigid::scene::load_model(file, set);
            }),
            py::arg("path"), py::arg("set") = std::vector<std::string>{},
-           "Loads a TOML scene (a str or pathlib.Path); `set` holds 'name=value' overrides: parameters, simulation.<key>, <coordinate>.initial/.velocity, <body>.omega (docs/scene-format.md).")
+           "Loads a TOML scene file (a str or pathlib.Path; mesh paths are relative to its "
+           "directory; errors start with file:line:col); `set` holds 'name=value' overrides: "
+           "parameters, simulation.<key>, <coordinate>.initial/.velocity, <body>.omega "
+           "(docs/scene-format.md). Text is loaded by Scene.from_string.")
+      .def_static(
+          "from_string",
+          [](const std::string& text, const std::vector<std::string>& set, const py::object& name) {
+            // messages name `name`; mesh paths resolve against its directory (the current one by default)
+            const std::string file = name.is_none() ? std::string("<string>") : cv::path(name, {"rigid.Scene.from_string", "name"});
+            rigid::scene::Scene scene = rigid::scene::parse_scene(text, file);
+            rigid::scene::apply_overrides(scene, set);
+            return Model(scene);
+          },
+          py::arg("text"), py::arg("set") = std::vector<std::string>{}, py::arg("name") = py::none(),
+          "A scene from TOML text (what a scene file holds): errors start with name:line:col "
+          "(name default '<string>'), and mesh paths are relative to name's directory (the "
+          "current directory by default); `set` as in rigid.Scene(path, set).")
       .def_property_readonly("kind", [](const Model& mo) {
         return mo.kind() == rigid::scene::SceneKind::kCoordinates ? "coordinates" : "free_bodies";
       })
