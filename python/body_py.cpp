@@ -28,8 +28,13 @@ namespace {
 
 using rigid::SO3d;
 
-// q_wxyz arguments must be unit quaternions (within 1e-9, as a scene's initial_quaternion)
+// q_wxyz arguments must be unit quaternions (within 1e-9, as a scene's initial_quaternion).
+// One that is unit to 1e-12 (what a step returned) is taken as it is, not normalised again, so
+// that steps chained from Python give the library's trajectory bit for bit.
 SO3d rotation_of(const Eigen::Vector4d& q_wxyz) {
+  if (std::abs(q_wxyz.norm() - 1.0) <= 1e-12) {
+    return SO3d::from_unit_quaternion(q_wxyz(0), q_wxyz(1), q_wxyz(2), q_wxyz(3));
+  }
   return SO3d::from_unit_quaternion(q_wxyz(0), q_wxyz(1), q_wxyz(2), q_wxyz(3), 1e-9);
 }
 
