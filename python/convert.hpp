@@ -17,6 +17,8 @@
 // keeps dotted Python names.
 #include <cmath>
 #include <cstddef>
+#include <filesystem>
+#include <system_error>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -194,6 +196,30 @@ inline std::string path(const py::handle& value, const Arg& arg) {
                                      arg.function, arg.name));
   }
   return p.cast<std::string>();
+}
+
+/// A path as messages show it: at most 80 characters (a document passed as a file name can
+/// be long).
+inline std::string shown(const std::string& file) {
+  return file.size() <= 80 ? file : file.substr(0, 77) + "...";
+}
+
+/// Whether `file` is an existing regular file; false (never an exception) for a name the
+/// system refuses (too long, a NUL byte).
+inline bool is_file(const std::string& file) {
+  std::error_code ec;
+  return std::filesystem::is_regular_file(file, ec);
+}
+
+/// f() for a call that reads `file`: a file-system exception (a name too long for the system)
+/// becomes rigid.Error naming the function and the file.
+template <class F>
+auto reading(std::string_view function, const std::string& file, F&& f) -> decltype(f()) {
+  try {
+    return f();
+  } catch (const std::filesystem::filesystem_error& e) {
+    throw rigid::Error(fmt::format("{}(): cannot read '{}': {}", function, shown(file), e.code().message()));
+  }
 }
 
 }  // namespace rigid::python::convert

@@ -520,14 +520,15 @@ void bind_mass(py::module_& m) {
         if (!path.is_none()) {
           const std::string file = cv::path(path, {f, "path"});
           // a str is a file name, never XML: a document passed as the path is refused with the remedy
-          if (!std::filesystem::is_regular_file(file)) {
+          if (!cv::is_file(file)) {
             const bool looks_like_xml = file.find('<') != std::string::npos;
+            std::error_code ec;
             throw rigid::Error(fmt::format(
                 "{}(): {}", f,
                 looks_like_xml ? std::string("the path looks like XML text: pass a document as "
                                              "read_inertials(text=...)")
-                               : fmt::format("'{}' is not a file{}", file,
-                                             std::filesystem::exists(file) ? "" : " (no such file)")));
+                               : fmt::format("'{}' is not a file{}", cv::shown(file),
+                                             std::filesystem::exists(file, ec) ? "" : " (no such file)")));
           }
           if (source) {
             throw rigid::Error(fmt::format("{}(): source= names a document given as text=; a file's "
@@ -583,7 +584,7 @@ void bind_mass(py::module_& m) {
             options.package_paths.push_back(rigid::io::parse_package_path(p.cast<std::string>()));
           }
         }
-        const auto result = rigid::io::fix_inertials_file(path, options);
+        const auto result = cv::reading("rigid.mass.fix_inertials", path, [&] { return rigid::io::fix_inertials_file(path, options); });
         // the report is the command line's JSON table, as a dict
         py::dict report = py::module_::import("json").attr("loads")(
             rigid::word_for(rigid::Surface::kPython, rigid::io::fix_table_json(result)));

@@ -156,7 +156,7 @@ void bind_mesh(py::module_& m) {
            [](const py::object& path, double scale) {
              const std::string file = cv::path(path, {"rigid.mesh.read", "path"});
              py::gil_scoped_release release;
-             return rm::read_mesh(file, scale);
+             return cv::reading("rigid.mesh.read", file, [&] { return rm::read_mesh(file, scale); });
            },
            py::arg("path"), py::arg("scale") = 1.0,
            "Read an STL/OBJ/PLY/OFF file (a str or pathlib.Path; the format from the extension); "
@@ -202,20 +202,23 @@ void bind_mesh(py::module_& m) {
       "outward; the mesh passed is unchanged), and the warnings say what repair changed.");
   mesh.def(
       "mass_from_file",
-      [](const std::filesystem::path& path, std::optional<double> mass, std::optional<double> density,
+      [](const py::object& path, std::optional<double> mass, std::optional<double> density,
          const std::string& units, bool shell, std::optional<double> thickness, bool fill_holes) {
+        const std::string file = cv::path(path, {"rigid.mesh.mass_from_file", "path"});
         std::optional<rm::MeshFileMass> r;
         {
           py::gil_scoped_release release;
-          r.emplace(rm::mesh_mass_from_file(path.string(), rm::unit_scale(units), {mass, density, shell, thickness},
-                                            {}, fill_holes));
+          cv::reading("rigid.mesh.mass_from_file", file, [&] {
+            r.emplace(rm::mesh_mass_from_file(file, rm::unit_scale(units), {mass, density, shell, thickness}, {},
+                                              fill_holes));
+          });
         }
         return py::make_tuple(r->mass.properties, worded(r->warnings()));
       },
       py::arg("path"), py::kw_only(), py::arg("mass") = py::none(), py::arg("density") = py::none(),
       py::arg("units") = "m", py::arg("shell") = false, py::arg("thickness") = py::none(),
       py::arg("fill_holes") = false,
-      "(rigid.MassProperties, warnings) of a mesh file read, repaired (holes filled with "
+      "(rigid.MassProperties, warnings) of a mesh file (a str or pathlib.Path) read, repaired (holes filled with "
       "fill_holes=True) and integrated: what `rigid inertia FILE` prints. Exactly one of mass, "
       "density; units m, cm, mm or in.");
   mesh.def(

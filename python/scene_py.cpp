@@ -176,13 +176,11 @@ void bind_scene(py::module_& m) {
       .def(py::init([](const py::object& path, const std::vector<std::string>& set) {
              const std::string file = cv::path(path, {"rigid.Scene", "path"});
              // a str is always a file name: scene text is refused with the remedy, never parsed
-             if (file.find('\n') != std::string::npos || file.find('[') != std::string::npos) {
-               if (!std::filesystem::exists(file)) {
-                 throw rigid::Error("rigid.Scene(): the path looks like TOML text: load a scene given as "
-                                    "text with rigid.Scene.from_string(text)");
-               }
+             if ((file.find('\n') != std::string::npos || file.find('[') != std::string::npos) && !cv::is_file(file)) {
+               throw rigid::Error("rigid.Scene(): the path looks like TOML text: load a scene given as "
+                                  "text with rigid.Scene.from_string(text)");
              }
-             return rigid::scene::load_model(file, set);
+             return cv::reading("rigid.Scene", file, [&] { return rigid::scene::load_model(file, set); });
            }),
            py::arg("path"), py::arg("set") = std::vector<std::string>{},
            "Loads a TOML scene file (a str or pathlib.Path; mesh paths are relative to its "
