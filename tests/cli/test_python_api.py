@@ -134,3 +134,25 @@ def test_a_mesh_measured_by_the_cli_and_by_python_with_repair(run, tmp_path):
     assert cli["mass"] == mp.mass
     assert warnings == ["flipped 1 triangles whose winding disagreed with their neighbours"]
     assert f"{off}: {warnings[0]}" in proc.stderr
+
+
+def test_a_python_sweep_writes_what_rigid_sweep_writes(run, tmp_path):
+    from scipy.special import ellipk
+    pendulum = EXAMPLES / "physical_pendulum.toml"
+    run("sweep", pendulum, "--grid", "L=0.5:2:4", "-o", tmp_path / "cli", "-q", check=True)
+    out = rigid.sweep(pendulum, grid=["L=0.5:2:4"], threads=2, output=tmp_path / "py")
+    for name in ("runs.csv", "runs.npy", "summary.json"):
+        assert (tmp_path / "cli" / name).read_bytes() == (tmp_path / "py" / name).read_bytes(), name
+    cols = out["columns"]
+    np.testing.assert_array_equal(cols["L"], [0.5, 1.0, 1.5, 2.0])
+    assert out["errors"] == [""] * 4
+    # the period metric against the closed form of the rod swinging from one end (amplitude of
+    # the scene's theta.initial): T = 4 K(sin²(θ₀/2)) √(2L/(3g)); dopri5's tolerance: 1e-8
+    theta0 = rigid.Scene(pendulum).system.initial_q[0]
+    for L, T in zip(cols["L"], cols["period"]):
+        assert T == pytest.approx(4 * ellipk(math.sin(theta0 / 2) ** 2) * math.sqrt(2 * L / (3 * 9.81)), rel=1e-8)
+    assert out["summary"] == json.loads((tmp_path / "cli" / "summary.json").read_text())
+    with pytest.raises(rigid.Error, match=r"rigid\.sweep\(\): grid: .*L=0\.5:2"):
+        rigid.sweep(pendulum, grid=["L=0.5:2"])
+    with pytest.raises(rigid.Error, match="did you mean 'L'"):
+        rigid.sweep(pendulum, grid=["LL=0.5:2:2"])
