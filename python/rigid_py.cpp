@@ -16,6 +16,7 @@ void bind_mesh(py::module_& m);
 void bind_scene(py::module_& m);
 void bind_modes(py::module_& m);
 void bind_spring(py::module_& m);
+void bind_integrate(py::module_& m);
 
 PYBIND11_MODULE(rigid, m) {
   m.doc() = "rigid: rigid-body mechanics from isometries and inertia tensors to Euler's equations";
@@ -40,4 +41,5 @@ PYBIND11_MODULE(rigid, m) {
   bind_scene(m);
   bind_modes(m);
   bind_spring(m);
+  bind_integrate(m);
 }
