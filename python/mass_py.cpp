@@ -153,6 +153,18 @@ void bind_mass(py::module_& m) {
              return mp.moment_about(cv::vector(p, {"MassProperties2.moment_about", "p_OQ_B"}, 2));
            },
            py::arg("p_OQ_B"), "Polar moment (kg·m²) about the point Q at p_OQ_B (shape (2,), m).")
+      .def("shifted",
+           [](const MassProperties2& mp, const py::object& d) {
+             return mp.shifted(cv::vector(d, {"MassProperties2.shifted", "d_B"}, 2));
+           },
+           py::arg("d_B"), "The same lamina moved by d_B (shape (2,), m): COM + d_B, moment unchanged.")
+      .def("rotated", &MassProperties2::rotated, py::arg("angle"),
+           "The same lamina with its coordinates rotated by angle (rad, counter-clockwise); the "
+           "moment about the COM is unchanged.")
+      .def_static("combine", [](const MassProperties2& a, const MassProperties2& b) { return rigid::combine(a, b); },
+                  py::arg("a"), py::arg("b"),
+                  "The union of two laminae in one frame: masses add, moments are shifted to the common "
+                  "COM and added.")
       .def("__repr__", [](const MassProperties2& mp) { return fmt::format("{}", mp); });
 
   py::class_<SecondMoments>(m, "SecondMoments",
@@ -428,6 +440,42 @@ void bind_mass(py::module_& m) {
       py::arg("masses"), py::arg("points"),
       "Point masses masses[i] (kg, shape (n,)) at points[i] (shape (n, 3), m, one point per row), "
       "combined into one body in the points' frame.");
+
+  mass.def(
+      "point_set_second_moments",
+      [](const py::object& masses, const py::object& points) {
+        const char* f = "rigid.mass.point_set_second_moments";
+        const std::vector<double> mk = cv::values(masses, {f, "masses"});
+        const py::array shape_of = py::module_::import("numpy").attr("asarray")(points);
+        const Eigen::Index d = shape_of.ndim() == 2 ? shape_of.shape(1) : 3;
+        const Eigen::MatrixXd p = cv::points(points, {f, "points"}, d);
+        if (static_cast<Eigen::Index>(mk.size()) != p.cols()) {
+          throw rigid::Error(fmt::format("{}(): {} masses and {} points; expected one mass per point (row)", f,
+                                         mk.size(), p.cols()));
+        }
+        return rm::point_set_second_moments(mk, p);
+      },
+      py::arg("masses"), py::arg("points"),
+      "n-D second moments (rigid.SecondMoments) of point masses masses[i] (kg, shape (k,)) at "
+      "points[i] (shape (k, n), m, one point per row): J_C = Σ m (p − c)(p − c)ᵀ about the COM c.");
+  mass.def(
+      "polygon_moments",
+      [](const py::object& vertices) {
+        const auto pm = rm::polygon_moments(cv::points(vertices, {"rigid.mass.polygon_moments", "vertices"}, 2));
+        return py::make_tuple(pm.area, pm.centroid, pm.J_C);
+      },
+      py::arg("vertices"),
+      "(area m², centroid (2,) m, J_C (2, 2) m⁴ per unit areal density) of a simple polygon, "
+      "vertices shape (n, 2) in order (either direction).");
+  mass.def("check_rotational_moments",
+           [](const py::object& moments) {
+             return rigid::check_rotational_moments(cv::vector3(moments, {"rigid.mass.check_rotational_moments", "moments"},
+                                                                cv::Finite::kAllowed));
+           },
+           py::arg("moments"),
+           "Why principal moments (kg·m², shape (3,), any order) cannot be those of a body that "
+           "turns (not finite, negative, I_i > I_j + I_k, or a zero moment), or None: the check the "
+           "dynamics (rigid.body, rigid.spring) make.");
 
   py::class_<rm::DensityIntegration>(mass, "DensityIntegration")
       .def_readonly("mass_properties", &rm::DensityIntegration::mass_properties)

@@ -115,7 +115,31 @@ void bind_mesh(py::module_& m) {
                                  for (int k = 0; k < 3; ++k) w(static_cast<py::ssize_t>(i), k) = t.triangles[i][static_cast<std::size_t>(k)];
                                return a;
                              })
-      .def("__len__", &TriangleMesh::size);
+      .def("__len__", &TriangleMesh::size)
+      .def_property_readonly("bounding_box",
+                             [](const TriangleMesh& t) {
+                               const auto b = t.bounding_box();
+                               return py::make_tuple(b[0], b[1]);
+                             },
+                             "(min corner, max corner) of the vertices (m); zeros when empty.")
+      .def("scale", &TriangleMesh::scale, py::arg("factor"),
+           "Multiplies every vertex by factor (in place; e.g. 1e-3 for millimetres).")
+      .def(
+          "translate",
+          [](TriangleMesh& t, const py::object& d) { t.translate(cv::vector3(d, {"TriangleMesh.translate", "d_M"})); },
+          py::arg("d_M"), "Moves every vertex by d_M (shape (3,), m; in place).")
+      .def("reverse_winding", &TriangleMesh::reverse_winding,
+           "Reverses the winding of every triangle (flips all normals; in place).");
+
+  py::class_<rm::EdgeCounts>(mesh, "EdgeCounts", "Edges by how many triangles use them.")
+      .def_readonly("boundary", &rm::EdgeCounts::boundary, "edges used by one triangle")
+      .def_readonly("non_manifold", &rm::EdgeCounts::non_manifold, "edges used by three or more")
+      .def_readonly("misoriented", &rm::EdgeCounts::misoriented,
+                    "edges two triangles traverse in the same direction (inconsistent winding)")
+      .def("__repr__", [](const rm::EdgeCounts& e) {
+        return fmt::format("EdgeCounts(boundary={}, non_manifold={}, misoriented={})", e.boundary, e.non_manifold,
+                           e.misoriented);
+      });
 
   py::class_<rm::ComponentReport>(mesh, "ComponentReport")
       .def_readonly("triangles", &rm::ComponentReport::triangles)
@@ -161,6 +185,38 @@ void bind_mesh(py::module_& m) {
            py::arg("path"), py::arg("scale") = 1.0,
            "Read an STL/OBJ/PLY/OFF file (a str or pathlib.Path; the format from the extension); "
            "coordinates multiplied by scale (m per file unit). Errors start with the file name.");
+  mesh.def("count_edges", &rm::count_edges, py::arg("mesh"),
+           "Boundary, non-manifold and misoriented edges of the mesh as it is (vertices compared by "
+           "index; nothing is welded): a solid's mass properties need all three zero.");
+  for (const bool solid : {true, false}) {
+    mesh.def(
+        solid ? "volume_moments" : "surface_moments",
+        [solid](const TriangleMesh& t, const py::object& about) {
+          std::optional<Eigen::Vector3d> p;
+          if (!about.is_none()) p = cv::vector3(about, {solid ? "rigid.mesh.volume_moments" : "rigid.mesh.surface_moments", "about"});
+          const rm::MeshMoments mm = solid ? rm::volume_moments(t, p) : rm::surface_moments(t, p);
+          py::dict d;
+          d["about"] = mm.p_OR_M;
+          d["measure"] = mm.measure;
+          d["first"] = mm.first;
+          d["second"] = mm.second;
+          return d;
+        },
+        py::arg("mesh"), py::arg("about") = py::none(),
+        solid ? "Exact moments of the enclosed volume about the point `about` (m, mesh frame; the "
+                "bounding-box centre when None): measure ∫1 (m³), first ∫r (m⁴), second ∫r rᵀ (m⁵), "
+                "r = p − about; by the divergence theorem, signed by the winding (no check here)."
+              : "Exact moments of the surface about `about` (the bounding-box centre when None): "
+                "measure area (m²), first ∫r (m³), second ∫r rᵀ (m⁴).");
+  }
+  mesh.def(
+      "write_stl",
+      [](const TriangleMesh& t, const py::object& path) {
+        const std::string file = cv::path(path, {"rigid.mesh.write_stl", "path"});
+        cv::reading("rigid.mesh.write_stl", file, [&] { rm::write_stl_binary(t, file); });
+      },
+      py::arg("mesh"), py::arg("path"),
+      "Writes a binary STL (float32 coordinates, m) to path (a str or pathlib.Path).");
   mesh.def("unit_scale", &rm::unit_scale, py::arg("unit"), "Metres per unit: m, cm, mm or in.");
   mesh.def(
       "repair",

@@ -156,3 +156,29 @@ def test_point_masses_take_one_point_per_row():
     I_C = sum(mi * (ri @ ri * np.eye(3) - np.outer(ri, ri)) for mi, ri in zip(m, r))
     np.testing.assert_allclose(mp.com, com, rtol=0, atol=8 * EPS)
     np.testing.assert_allclose(mp.inertia_com, I_C, rtol=0, atol=64 * EPS * np.trace(I_C))
+
+
+def test_laminae_point_sets_and_polygon_moments():
+    # a unit square lamina of 1 kg: moment about the COM m (a² + b²)/12 = 1/6 (closed form)
+    sq = rigid.mass.polygon_lamina_with_mass(1.0, [[0, 0], [1, 0], [1, 1], [0, 1]])
+    moved = sq.shifted([2.0, 0.0])
+    np.testing.assert_array_equal(moved.com, [2.5, 0.5])
+    assert moved.moment_com == sq.moment_com
+    turned = sq.rotated(math.pi / 2)
+    np.testing.assert_allclose(turned.com, [-0.5, 0.5], rtol=0, atol=4 * EPS)
+    two = rigid.MassProperties2.combine(sq, moved)
+    # parallel axis: 2 · 1/6 + 2 · 1 · 1² (each COM 1 m from the common one)
+    assert two.moment_com == pytest.approx(2 / 6 + 2.0, rel=8 * EPS)
+    area, centroid, J = rigid.mass.polygon_moments([[0, 0], [2, 0], [2, 1], [0, 1]])
+    assert area == 2.0
+    np.testing.assert_array_equal(centroid, [1.0, 0.5])
+    np.testing.assert_allclose(J, np.diag([2 * 4 / 12, 2 * 1 / 12]), rtol=8 * EPS)  # ∫x² = A a²/12
+    # 4-D point set: J_C = Σ m (p − c)(p − c)ᵀ, from the definition
+    pts = np.array([[1.0, 0, 0, 0], [-1.0, 0, 0, 2.0]])
+    J4 = rigid.mass.point_set_second_moments([1.0, 1.0], pts)
+    c = pts.mean(axis=0)
+    np.testing.assert_allclose(J4.J_com, sum(np.outer(p - c, p - c) for p in pts), rtol=0, atol=8 * EPS)
+    assert J4.dimension == 4
+    assert rigid.mass.check_rotational_moments([1.0, 2.0, 2.5]) is None
+    assert "violate" in rigid.mass.check_rotational_moments([1.0, 2.0, 4.0])
+    assert rigid.mass.check_rotational_moments([0.0, 1.0, 1.0]) is not None  # a thin rod does not turn

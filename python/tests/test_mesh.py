@@ -132,3 +132,37 @@ def test_read_takes_a_pathlib_path_and_names_the_file(tmp_path):
     with pytest.raises(TypeError, match=r"rigid\.mesh\.read\(\): argument 'path' must be a path \(str or "
                                         r"pathlib\.Path\); got int"):
         rigid.mesh.read(3)
+
+
+def test_edge_counts_moments_and_stl_round_trip(tmp_path):
+    a, b, c = 1.0, 2.0, 3.0
+    v, f = box(a, b, c)
+    mesh = rigid.mesh.TriangleMesh(v, f)
+    e = rigid.mesh.count_edges(mesh)
+    assert (e.boundary, e.non_manifold, e.misoriented) == (0, 0, 0)
+    flipped = f.copy()
+    flipped[4] = flipped[4][[0, 2, 1]]
+    assert rigid.mesh.count_edges(rigid.mesh.TriangleMesh(v, flipped)).misoriented == 3  # its three edges
+    # moments of the box about its corner (closed forms): V = abc, ∫x = a²bc/2, ∫x² = a³bc/3, ∫xy = a²b²c/4
+    vm = rigid.mesh.volume_moments(mesh, about=[0, 0, 0])
+    assert vm["measure"] == pytest.approx(a * b * c, rel=1e-14)
+    np.testing.assert_allclose(vm["first"], [a * a * b * c / 2, a * b * b * c / 2, a * b * c * c / 2], rtol=1e-14)
+    assert vm["second"][0, 0] == pytest.approx(a**3 * b * c / 3, rel=1e-14)
+    assert vm["second"][0, 1] == pytest.approx(a * a * b * b * c / 4, rel=1e-14)
+    sm = rigid.mesh.surface_moments(mesh)
+    assert sm["measure"] == pytest.approx(2 * (a * b + b * c + a * c), rel=1e-14)
+    np.testing.assert_array_equal(sm["about"], [a / 2, b / 2, c / 2])  # the bounding-box centre
+    # in-place transforms: scale, translate, reverse (the volume's sign follows the winding)
+    mesh.scale(0.5)
+    mesh.translate([10.0, 0, 0])
+    lo, hi = mesh.bounding_box
+    np.testing.assert_array_equal(lo, [10.0, 0, 0])
+    np.testing.assert_array_equal(hi, [10.5, 1.0, 1.5])
+    mesh.reverse_winding()
+    assert rigid.mesh.volume_moments(mesh)["measure"] == pytest.approx(-a * b * c / 8, rel=1e-14)
+    # STL holds float32: coordinates that are exact in float32 come back exactly
+    stl = tmp_path / "box.stl"
+    rigid.mesh.write_stl(mesh, stl)
+    back = rigid.mesh.read(stl)
+    assert len(back) == 12
+    np.testing.assert_array_equal(np.sort(back.vertices, axis=0), np.sort(mesh.vertices, axis=0))
