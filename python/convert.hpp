@@ -182,6 +182,25 @@ inline Eigen::MatrixXd points(const py::handle& value, const Arg& arg, Eigen::In
   return m;
 }
 
+/// A number argument given by keyword (a catalogue size, mass=, density=): a float or int (or a
+/// numpy scalar or 0-d array of one), not a bool; NaN passes (the library names it with its unit).
+inline double number(const py::handle& value, const Arg& arg) {
+  if (!py::isinstance<py::bool_>(value)) {
+    const RealArray a = [&] {
+      try {
+        return real_array(value, arg, "() (a number)", Finite::kAllowed);
+      } catch (const rigid::Error&) {
+        return RealArray();
+      } catch (const py::type_error&) {
+        return RealArray();
+      }
+    }();
+    if (a && a.ndim() == 0) return a.data()[0];
+  }
+  throw py::type_error(fmt::format("{}(): argument '{}' must be a number; got {}", arg.function, arg.name,
+                                   py::repr(value).cast<std::string>()));
+}
+
 /// A path argument: a str or an os.PathLike (pathlib.Path), as text. Refuses other types with
 /// TypeError naming the argument.
 inline std::string path(const py::handle& value, const Arg& arg) {

@@ -279,13 +279,13 @@ void bind_mass(py::module_& m) {
       } else if (key == "rpy") {
         call.placement.rpy = vector3_from_python(item.second, "rpy", "(roll, pitch, yaw) in rad");
       } else if (key == "mass") {
-        amount_mass = item.second.cast<double>();
+        amount_mass = cv::number(item.second, {"rigid.mass." + name, key});
       } else if (key == "density") {
-        amount_density = item.second.cast<double>();
+        amount_density = cv::number(item.second, {"rigid.mass." + name, key});
       } else if (e.point_index(key)) {
         call.args.points.emplace_back(key, cv::vector3(item.second, {"rigid.mass." + name, key}));
       } else {
-        call.args.sizes.emplace_back(key, item.second.cast<double>());
+        call.args.sizes.emplace_back(key, cv::number(item.second, {"rigid.mass." + name, key}));
       }
     }
     if (amount_mass.has_value() == amount_density.has_value()) {

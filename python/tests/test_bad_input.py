@@ -238,3 +238,13 @@ def test_a_quaternion_that_is_not_unit_is_named():
     with pytest.raises(rigid.Error, match=r"rigid\.body\.step_free_body\(\): argument 'q_wxyz': quaternion "
                                           r"\(w, x, y, z\) = \(2, 0, 0, 0\) has norm 2; expected a unit quaternion"):
         rigid.body.step_free_body("splitting2", I3, [2.0, 0, 0, 0], W, 0.01)
+
+
+@pytest.mark.parametrize("bad", ["a", True, [1.0, 2.0], None, 1j])
+def test_catalogue_keywords_must_be_numbers(bad):
+    with pytest.raises(TypeError, match=re.escape("rigid.mass.cylinder(): argument 'mass' must be a number; got ")):
+        rigid.mass.cylinder(mass=bad, radius=0.1, height=0.5)
+    with pytest.raises(TypeError, match=re.escape("rigid.mass.solid_box(): argument 'lx' must be a number")):
+        rigid.mass.solid_box(density=1.0, lx=bad, ly=1.0, lz=1.0)
+    # numpy scalars are numbers
+    assert rigid.mass.cylinder(mass=np.float32(2.0), radius=np.int64(1), height=0.5).mass == 2.0
