@@ -156,3 +156,22 @@ def test_a_python_sweep_writes_what_rigid_sweep_writes(run, tmp_path):
         rigid.sweep(pendulum, grid=["L=0.5:2"])
     with pytest.raises(rigid.Error, match="did you mean 'L'"):
         rigid.sweep(pendulum, grid=["LL=0.5:2:2"])
+
+
+def test_docs_python_examples_run_and_its_table_names_exist(monkeypatch):
+    import pathlib
+    import re as _re
+    root = EXAMPLES.parent
+    text = (root / "docs" / "python.md").read_text()
+    monkeypatch.chdir(root)
+    for block in _re.findall(r"```python\n(.*?)```", text, flags=_re.S):
+        exec(compile(block, "docs/python.md", "exec"), {"__name__": "docs"})
+    # every Python name of the table "What is reachable" exists
+    table = text[text.index("## What is reachable"):text.index("Left out")]
+    rows = [r for r in table.splitlines()[3:] if r.startswith("| ")]
+    assert len(rows) > 20
+    for row in rows:
+        for name in _re.findall(r"`(rigid\.[A-Za-z0-9_.]+)", row.split("|")[2]):
+            obj = rigid
+            for part in name.rstrip(".").split(".")[1:]:
+                obj = getattr(obj, part)
