@@ -399,12 +399,11 @@ void bind_mass(py::module_& m) {
       },
       "The primitive catalogue: every shape with its name, aliases, sizes (name, help, unit, "
       "aliases), vertices and density unit.");
-  // mass first, as every factory: n_ball_with_mass(m, r, n)
-  mass.def("n_ball_with_mass", [](double m_kg, double r, int n) { return rm::n_ball_with_mass(n, m_kg, r); },
+  mass.def("n_ball_with_mass", &rm::n_ball_with_mass,
            py::arg("m"), py::arg("r"), py::arg("n"),
            "Uniform n-ball of mass m (kg) and radius r (m) in n ≥ 1 dimensions, centred: "
            "J = m r²/(n + 2) · 1 (kg·m²).");
-  mass.def("n_ball_with_density", [](double rho, double r, int n) { return rm::n_ball_with_density(n, rho, r); },
+  mass.def("n_ball_with_density", &rm::n_ball_with_density,
            py::arg("rho"), py::arg("r"), py::arg("n"),
            "Uniform n-ball of density rho (kg/mⁿ) and radius r (m) in n ≥ 1 dimensions, centred; "
            "volume π^{n/2} rⁿ / Γ(n/2 + 1).");
