@@ -72,7 +72,14 @@ inline RealArray real_array(const py::handle& value, const Arg& arg, std::string
                             Finite finite = Finite::kRequired) {
   py::array a;
   try {
-    a = py::module_::import("numpy").attr("asarray")(value);
+    if (py::isinstance<py::array>(value)) {
+      a = py::reinterpret_borrow<py::array>(value);  // the common case: no conversion call
+    } else {
+      // numpy.asarray, looked up once (kept for the life of the process, never destroyed after
+      // the interpreter is gone)
+      static const auto* asarray = new py::object(py::module_::import("numpy").attr("asarray"));
+      a = (*asarray)(value);
+    }
   } catch (const py::error_already_set&) {
     // numpy refuses ragged nested sequences ("inhomogeneous shape")
     detail::refuse(arg, fmt::format("must be an array of numbers of shape {}; got a {} that is not "

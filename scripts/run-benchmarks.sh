@@ -12,3 +12,8 @@ for exe in "${exes[@]}"; do
   echo "== $(basename "$exe")"
   "$exe" --benchmark_min_time=0.2 "${@:2}"
 done
+# the Python module's per-call cost of array arguments (python/convert.hpp)
+if [[ -d "$dir/python" ]]; then
+  echo "== python_args_bench.py"
+  PYTHONPATH="$dir/python" /usr/bin/python3 "$(dirname "$0")/../bench/python_args_bench.py"
+fi
