@@ -259,3 +259,27 @@ def test_step_arguments_are_checked():
     with pytest.raises(rigid.Error, match=r"rigid\.body\.euler_arnold_rk4_step\(\): step h must be positive"):
         rigid.body.euler_arnold_rk4_step([1.0, 2, 3], np.zeros((3, 3)), 0.0)
     assert rigid.body.method_order("splitting4") == 4
+
+
+def test_a_load_that_returns_garbage_is_named():
+    box = rigid.mass.solid_box_with_mass(2.0, 0.3, 0.5, 0.7)
+    args = ("splitting2", [1, 0, 0, 0], [0, 0, 1.0], [0, 0, 0], [0, 0, 0], 0.01, [0.1])
+    body = rigid.body.RigidBody(box)
+    body.add_load(lambda t, s: [1.0, 2.0, 3.0])
+    with pytest.raises(rigid.Error, match=r"RigidBody\.add_load\(\): the wrench function must return \(force, "
+                                          r"torque\), two 3-vectors; got \[1\.0, 2\.0, 3\.0\] at t = 0 s"):
+        body.simulate(*args)
+    body = rigid.body.RigidBody(box)
+    body.add_load(lambda t, s: ([1.0, 2.0], [0, 0, 0]))
+    with pytest.raises(rigid.Error, match=r"argument 'force \(returned by wrench\)' must have shape \(3,\); got \(2,\)"):
+        body.simulate(*args)
+    body = rigid.body.RigidBody(box)
+    body.add_load(lambda t, s: ([np.nan, 0, 0], [0, 0, 0]))
+    with pytest.raises(rigid.Error, match=r"load 0"):  # the library names the load and t
+        body.simulate(*args)
+    # a load that works: a constant world force F on the COM gives a = F/m exactly (splitting2's
+    # kick is exact for a load that does not depend on the velocity)
+    body = rigid.body.RigidBody(box)
+    body.add_load(lambda t, s: ([2.0, 0, 0], [0, 0, 0]))
+    out = body.simulate(*args)
+    np.testing.assert_allclose(out["p_world"][-1], [0.5 * 1.0 * 0.1**2, 0, 0], rtol=1e-13)
