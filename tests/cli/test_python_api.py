@@ -162,10 +162,10 @@ def test_docs_python_examples_run_and_its_table_names_exist(monkeypatch):
     import pathlib
     import re as _re
     root = EXAMPLES.parent
-    text = (root / "docs" / "python.md").read_text()
+    text = (root / "docs" / "python-api.md").read_text()
     monkeypatch.chdir(root)
     for block in _re.findall(r"```python\n(.*?)```", text, flags=_re.S):
-        exec(compile(block, "docs/python.md", "exec"), {"__name__": "docs"})
+        exec(compile(block, "docs/python-api.md", "exec"), {"__name__": "docs"})
     # every Python name of the table "What is reachable" exists
     table = text[text.index("## What is reachable"):text.index("Left out")]
     rows = [r for r in table.splitlines()[3:] if r.startswith("| ")]
