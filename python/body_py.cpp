@@ -351,6 +351,10 @@ void bind_heavy_top(py::module_& body) {
 void bind_euler_arnold(py::module_& body) {
   auto args = [](std::string_view f, const py::object& J, const py::object& M) {
     const Eigen::VectorXd j = cv::vector(J, {f, "J"});
+    if (j.size() < 2) {
+      throw rigid::Error(fmt::format("{}(): argument 'J' must have n ≥ 2 entries (the body turns in SO(n)); "
+                                     "got {}", f, j.size()));
+    }
     return std::make_pair(j, cv::matrix(M, {f, "M"}, j.size(), j.size()));
   };
   body.def(

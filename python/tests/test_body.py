@@ -259,6 +259,8 @@ def test_step_arguments_are_checked():
     with pytest.raises(rigid.Error, match=r"rigid\.body\.euler_arnold_rk4_step\(\): step h must be positive"):
         rigid.body.euler_arnold_rk4_step([1.0, 2, 3], np.zeros((3, 3)), 0.0)
     assert rigid.body.method_order("splitting4") == 4
+    with pytest.raises(rigid.Error, match=r"rigid\.body\.euler_arnold_rhs\(\): argument 'J' must have n ≥ 2 entries"):
+        rigid.body.euler_arnold_rhs([1.0], [[0.0]])
 
 
 def test_a_load_that_returns_garbage_is_named():
