@@ -15,18 +15,18 @@
 // The function is named as Python users call it (rigid.mass.point_masses): the module's
 // exception translator strips bare C++ names ("point_masses(): ") from library messages, but
 // keeps dotted Python names.
-#include <cmath>
-#include <cstddef>
-#include <filesystem>
-#include <system_error>
-#include <string>
-#include <string_view>
-#include <vector>
-
-#include <Eigen/Core>
 #include <fmt/format.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
+
+#include <Eigen/Core>
+#include <cmath>
+#include <cstddef>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <system_error>
+#include <vector>
 
 #include "rigid/common/error.hpp"
 
@@ -83,17 +83,21 @@ inline RealArray real_array(const py::handle& value, const Arg& arg, std::string
   } catch (const py::error_already_set&) {
     // numpy refuses ragged nested sequences ("inhomogeneous shape")
     detail::refuse(arg, fmt::format("must be an array of numbers of shape {}; got a {} that is not "
-                                    "rectangular", expected, detail::type_name(value)));
+                                    "rectangular",
+                                    expected, detail::type_name(value)));
   }
   const char kind = a.dtype().kind();
   if (a.ndim() == 0 && kind != 'f' && kind != 'i' && kind != 'u' && kind != 'c' && kind != 'b') {
     // None, a dict, a str: not an array at all
-    throw py::type_error(fmt::format("{}(): argument '{}' must be an array of numbers of shape {}; got {}",
-                                     arg.function, arg.name, expected, detail::type_name(value)));
+    throw py::type_error(
+        fmt::format("{}(): argument '{}' must be an array of numbers of shape {}; got {}",
+                    arg.function, arg.name, expected, detail::type_name(value)));
   }
   if (kind != 'f' && kind != 'i' && kind != 'u') {
-    detail::refuse(arg, fmt::format("must hold real numbers (a float or integer dtype) of shape {}; "
-                                    "got dtype {}", expected, py::str(a.dtype()).cast<std::string>()));
+    detail::refuse(arg,
+                   fmt::format("must hold real numbers (a float or integer dtype) of shape {}; "
+                               "got dtype {}",
+                               expected, py::str(a.dtype()).cast<std::string>()));
   }
   RealArray out = RealArray::ensure(a);
   if (!out) {
@@ -112,7 +116,8 @@ inline RealArray real_array(const py::handle& value, const Arg& arg, std::string
           ix[static_cast<std::size_t>(dim)] = rest % out.shape(dim);
           rest /= out.shape(dim);
         }
-        for (std::size_t j = 0; j < ix.size(); ++j) index += fmt::format("{}{}", j ? ", " : "", ix[j]);
+        for (std::size_t j = 0; j < ix.size(); ++j)
+          index += fmt::format("{}{}", j ? ", " : "", ix[j]);
         detail::refuse(arg, fmt::format("must be finite; got {} at [{}]", d[k], index));
       }
     }
@@ -122,9 +127,9 @@ inline RealArray real_array(const py::handle& value, const Arg& arg, std::string
 
 /// A matrix of shape (rows, cols); -1 is any size, named by `rows_name`/`cols_name` in messages
 /// ("n"). Row-major as numpy prints it: a[i, j] is row i.
-inline Eigen::MatrixXd matrix(const py::handle& value, const Arg& arg, Eigen::Index rows, Eigen::Index cols,
-                              Finite finite = Finite::kRequired, std::string_view rows_name = "n",
-                              std::string_view cols_name = "m") {
+inline Eigen::MatrixXd matrix(const py::handle& value, const Arg& arg, Eigen::Index rows,
+                              Eigen::Index cols, Finite finite = Finite::kRequired,
+                              std::string_view rows_name = "n", std::string_view cols_name = "m") {
   const std::string expected =
       fmt::format("({}, {})", rows < 0 ? std::string(rows_name) : std::to_string(rows),
                   cols < 0 ? std::string(cols_name) : std::to_string(cols));
@@ -142,7 +147,8 @@ inline Eigen::MatrixXd matrix(const py::handle& value, const Arg& arg, Eigen::In
 /// A vector of shape (n,) (n = -1: any length, named `n_name`).
 inline Eigen::VectorXd vector(const py::handle& value, const Arg& arg, Eigen::Index n = -1,
                               Finite finite = Finite::kRequired, std::string_view n_name = "n") {
-  const std::string expected = fmt::format("({},)", n < 0 ? std::string(n_name) : std::to_string(n));
+  const std::string expected =
+      fmt::format("({},)", n < 0 ? std::string(n_name) : std::to_string(n));
   const RealArray a = real_array(value, arg, expected, finite);
   if (a.ndim() != 1 || (n >= 0 && a.shape(0) != n)) {
     detail::refuse(arg, fmt::format("must have shape {}; got {}", expected, detail::shape_text(a)));
@@ -152,20 +158,24 @@ inline Eigen::VectorXd vector(const py::handle& value, const Arg& arg, Eigen::In
   return v;
 }
 
-inline Eigen::Vector3d vector3(const py::handle& value, const Arg& arg, Finite finite = Finite::kRequired) {
+inline Eigen::Vector3d vector3(const py::handle& value, const Arg& arg,
+                               Finite finite = Finite::kRequired) {
   return vector(value, arg, 3, finite);
 }
 
-inline Eigen::Vector4d vector4(const py::handle& value, const Arg& arg, Finite finite = Finite::kRequired) {
+inline Eigen::Vector4d vector4(const py::handle& value, const Arg& arg,
+                               Finite finite = Finite::kRequired) {
   return vector(value, arg, 4, finite);
 }
 
-inline Eigen::Matrix3d matrix3(const py::handle& value, const Arg& arg, Finite finite = Finite::kRequired) {
+inline Eigen::Matrix3d matrix3(const py::handle& value, const Arg& arg,
+                               Finite finite = Finite::kRequired) {
   return matrix(value, arg, 3, 3, finite);
 }
 
 /// A list of numbers of shape (n,), as std::vector (masses, output times).
-inline std::vector<double> values(const py::handle& value, const Arg& arg, Finite finite = Finite::kRequired) {
+inline std::vector<double> values(const py::handle& value, const Arg& arg,
+                                  Finite finite = Finite::kRequired) {
   const Eigen::VectorXd v = vector(value, arg, -1, finite);
   return {v.data(), v.data() + v.size()};
 }
@@ -179,8 +189,10 @@ inline Eigen::MatrixXd points(const py::handle& value, const Arg& arg, Eigen::In
   const RealArray a = real_array(value, arg, expected, finite);
   if (a.ndim() != 2 || a.shape(1) != d) {
     std::string hint;
-    if (a.ndim() == 2 && a.shape(0) == d) hint = fmt::format(" (one point per row: pass {}.T for points as columns)", arg.name);
-    detail::refuse(arg, fmt::format("must have shape {}; got {}{}", expected, detail::shape_text(a), hint));
+    if (a.ndim() == 2 && a.shape(0) == d)
+      hint = fmt::format(" (one point per row: pass {}.T for points as columns)", arg.name);
+    detail::refuse(
+        arg, fmt::format("must have shape {}; got {}{}", expected, detail::shape_text(a), hint));
   }
   Eigen::MatrixXd m(d, a.shape(0));
   const auto v = a.unchecked<2>();
@@ -204,8 +216,8 @@ inline double number(const py::handle& value, const Arg& arg) {
     }();
     if (a && a.ndim() == 0) return a.data()[0];
   }
-  throw py::type_error(fmt::format("{}(): argument '{}' must be a number; got {}", arg.function, arg.name,
-                                   py::repr(value).cast<std::string>()));
+  throw py::type_error(fmt::format("{}(): argument '{}' must be a number; got {}", arg.function,
+                                   arg.name, py::repr(value).cast<std::string>()));
 }
 
 /// A path argument: a str or an os.PathLike (pathlib.Path), as text. Refuses other types with
@@ -213,8 +225,9 @@ inline double number(const py::handle& value, const Arg& arg) {
 inline std::string path(const py::handle& value, const Arg& arg) {
   const py::object os = py::module_::import("os");
   if (!py::isinstance<py::str>(value) && !py::isinstance(value, os.attr("PathLike"))) {
-    throw py::type_error(fmt::format("{}(): argument '{}' must be a path (str or pathlib.Path); got {}",
-                                     arg.function, arg.name, detail::type_name(value)));
+    throw py::type_error(
+        fmt::format("{}(): argument '{}' must be a path (str or pathlib.Path); got {}",
+                    arg.function, arg.name, detail::type_name(value)));
   }
   const py::object p = os.attr("fspath")(value);
   if (!py::isinstance<py::str>(p)) {
@@ -244,7 +257,8 @@ auto reading(std::string_view function, const std::string& file, F&& f) -> declt
   try {
     return f();
   } catch (const std::filesystem::filesystem_error& e) {
-    throw rigid::Error(fmt::format("{}(): cannot read '{}': {}", function, shown(file), e.code().message()));
+    throw rigid::Error(
+        fmt::format("{}(): cannot read '{}': {}", function, shown(file), e.code().message()));
   }
 }
 
