@@ -145,4 +145,6 @@ def test_run_carries_the_scene_metrics():
     assert metrics["first_flip"]["unit"] == "s"
     # the run's order-4 steps and its event interpolation: agreement to 1e-8 of the time
     assert metrics["first_flip"]["value"] == pytest.approx(flip, rel=1e-8)
-    assert abs(metrics["energy_drift"]["value"]) < 1e-6
+    # the relative energy drift of a free body under splitting4: each sub-flow is an exact
+    # rotation that keeps its axis' share of the energy, so only round-off remains (~1e-14)
+    assert abs(metrics["energy_drift"]["value"]) < 1e-12
