@@ -4,15 +4,23 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include "convert.hpp"
 #include "interrupt.hpp"
 #include "rigid/lagrange/export.hpp"
 #include "rigid/lagrange/system.hpp"
 
 namespace py = pybind11;
+namespace cv = rigid::python::convert;
 
 namespace {
 
 using rigid::lagrange::AxisRotation;
+
+// q or q_dot of a system: shape (n,) with n its number of coordinates, finite.
+Eigen::VectorXd coordinates_arg(const rigid::lagrange::System& s, const py::handle& value, std::string_view function,
+                                std::string_view name) {
+  return cv::vector(value, {function, name}, s.num_coordinates());
+}
 using rigid::lagrange::Body;
 using rigid::lagrange::NamedExpression;
 using rigid::lagrange::System;
@@ -46,9 +54,8 @@ Body body_from_dict(const py::dict& d, std::size_t index) {
     for (int k = 0; k < 3; ++k) b.position[static_cast<std::size_t>(k)] = p[static_cast<std::size_t>(k)];
   }
   if (d.contains("rotations")) {
-    for (const auto& [axis, angle] :
-         d["rotations"].cast<std::vector<std::pair<Eigen::Vector3d, std::string>>>()) {
-      b.rotations.push_back(AxisRotation{axis, angle});
+    for (const auto& [axis, angle] : d["rotations"].cast<std::vector<std::pair<py::object, std::string>>>()) {
+      b.rotations.push_back(AxisRotation{cv::vector3(axis, {"rigid.lagrange.System", "bodies[].rotations[].axis"}), angle});
     }
   }
   return b;
@@ -59,9 +66,9 @@ rigid::lagrange::Spring spring_from_dict(const py::dict& d) {
   for (auto item : d) {
     const auto key = item.first.cast<std::string>();
     if (key == "body_a") sp.body_a = item.second.cast<std::string>();
-    else if (key == "point_a") sp.point_a_B = item.second.cast<Eigen::Vector3d>();
+    else if (key == "point_a") sp.point_a_B = cv::vector3(item.second, {"rigid.lagrange.System", "springs[].point_a"});
     else if (key == "body_b") sp.body_b = item.second.cast<std::string>();
-    else if (key == "point_b") sp.point_b_B = item.second.cast<Eigen::Vector3d>();
+    else if (key == "point_b") sp.point_b_B = cv::vector3(item.second, {"rigid.lagrange.System", "springs[].point_b"});
     else if (key == "stiffness") sp.stiffness = py::str(item.second).cast<std::string>();
     else if (key == "rest_length") sp.rest_length = py::str(item.second).cast<std::string>();
     else {
@@ -177,7 +184,7 @@ void bind_lagrange(py::module_& root) {
       .def(py::init([](const std::vector<std::tuple<std::string, double, double>>& coordinates,
                        const py::dict& parameters,
                        const std::string& lagrangian, const std::vector<py::dict>& bodies,
-                       const Eigen::Vector3d& gravity,
+                       const py::object& gravity,
                        const std::vector<std::pair<std::string, std::string>>& potentials,
                        const std::vector<std::pair<std::string, std::string>>& forces,
                        const std::vector<std::pair<std::string, std::string>>& constraints,
@@ -193,7 +200,7 @@ void bind_lagrange(py::module_& root) {
              for (std::size_t i = 0; i < bodies.size(); ++i) {
                spec.bodies.push_back(body_from_dict(bodies[i], i));
              }
-             spec.gravity_W = rigid::lagrange::Vector3Expression(gravity);
+             spec.gravity_W = rigid::lagrange::Vector3Expression(cv::vector3(gravity, {"rigid.lagrange.System", "gravity"}));
              spec.potentials = named(potentials);
              spec.forces = named(forces);
              spec.constraints = named(constraints);
@@ -205,7 +212,7 @@ void bind_lagrange(py::module_& root) {
            }),
            py::arg("coordinates"), py::arg("parameters") = py::dict(),
            py::arg("lagrangian") = "", py::arg("bodies") = std::vector<py::dict>{},
-           py::arg("gravity") = Eigen::Vector3d::Zero(),
+           py::arg("gravity") = py::make_tuple(0.0, 0.0, 0.0),
            py::arg("potentials") = std::vector<std::pair<std::string, std::string>>{},
            py::arg("forces") = std::vector<std::pair<std::string, std::string>>{},
            py::arg("constraints") = std::vector<std::pair<std::string, std::string>>{},
@@ -221,8 +228,60 @@ void bind_lagrange(py::module_& root) {
       .def_property_readonly("constraint_names", &System::constraint_names)
       .def_property_readonly("cyclic_coordinates", &System::cyclic_coordinates)
       .def_property_readonly("velocity_constraint_names", &System::velocity_constraint_names)
-      .def("velocity_constraint_residual", &System::velocity_constraint_residual, py::arg("t"),
-           py::arg("q"), py::arg("q_dot"), "A(q, t) q̇ + a(q, t), one entry per velocity constraint.")
+      .def("velocity_constraint_residual",
+           [](const System& s, double t, const py::object& q, const py::object& q_dot) {
+             const char* f = "System.velocity_constraint_residual";
+             return s.velocity_constraint_residual(t, coordinates_arg(s, q, f, "q"), coordinates_arg(s, q_dot, f, "q_dot"));
+           },
+           py::arg("t"), py::arg("q"), py::arg("q_dot"),
+           "A(q, t) q̇ + a(q, t) at time t (s), q and q̇ of shape (n,): one entry per velocity constraint.")
+      .def_property_readonly("body_names", &System::body_names, "Names of the bodies, in order.")
+      .def_property_readonly("initial_q", &System::initial_q, "q(0) from the coordinates' declarations, shape (n,).")
+      .def_property_readonly("initial_q_dot", &System::initial_q_dot, "q̇(0), shape (n,).")
+      .def_property_readonly("parameters",
+                             [](const System& s) {
+                               py::dict d;
+                               for (const auto& p : s.parameters()) d[py::str(p.name)] = p.value;
+                               return d;
+                             },
+                             "{name: value} of the parameters, in declaration order.")
+      .def(
+          "energy",
+          [](const System& s, double t, const py::object& q, const py::object& q_dot) {
+            const char* f = "System.energy";
+            return s.energy(t, coordinates_arg(s, q, f, "q"), coordinates_arg(s, q_dot, f, "q_dot"));
+          },
+          py::arg("t"), py::arg("q"), py::arg("q_dot"), "T + V (J) at time t (s) and (q, q̇), each shape (n,).")
+      .def(
+          "jacobi_integral",
+          [](const System& s, double t, const py::object& q, const py::object& q_dot) {
+            const char* f = "System.jacobi_integral";
+            return s.jacobi_integral(t, coordinates_arg(s, q, f, "q"), coordinates_arg(s, q_dot, f, "q_dot"));
+          },
+          py::arg("t"), py::arg("q"), py::arg("q_dot"),
+          "The Jacobi integral h = Σ q̇ ∂L/∂q̇ − L (J) at (t, q, q̇); conserved when L does not depend on t.")
+      .def(
+          "constraint_residual",
+          [](const System& s, double t, const py::object& q) {
+            return s.constraint_residual(t, coordinates_arg(s, q, "System.constraint_residual", "q"));
+          },
+          py::arg("t"), py::arg("q"), "g(q, t) of the holonomic constraints (one entry each).")
+      .def(
+          "body_poses",
+          [](const System& s, double t, const py::object& q) {
+            py::dict out;
+            const auto poses = s.body_poses(t, coordinates_arg(s, q, "System.body_poses", "q"));
+            for (std::size_t i = 0; i < poses.size(); ++i) {
+              py::dict d;
+              d["p_world"] = poses[i].p_WB;
+              d["q_wxyz"] = Eigen::Vector4d(poses[i].R_WB.quaternion());
+              d["R_WB"] = Eigen::Matrix3d(poses[i].R_WB.matrix());
+              out[py::str(s.body_names()[i])] = d;
+            }
+            return out;
+          },
+          py::arg("t"), py::arg("q"),
+          "{body: {'p_world': origin of B in W (m), 'q_wxyz': R_WB, 'R_WB': (3, 3)}} at (t, q).")
       .def_property_readonly("tape_size", &System::tape_size)
       .def("set_parameter", &System::set_parameter, py::arg("name"), py::arg("value"))
       .def("equations", &System::equations,
@@ -230,7 +289,9 @@ void bind_lagrange(py::module_& root) {
            "rigid.lagrange.Equations with each quantity as text and LaTeX.")
       .def(
           "mass_matrix_and_forces",
-          [](const System& s, double t, const Eigen::VectorXd& q, const Eigen::VectorXd& q_dot) {
+          [](const System& s, double t, const py::object& q_arg, const py::object& q_dot_arg) {
+            const Eigen::VectorXd q = coordinates_arg(s, q_arg, "System.mass_matrix_and_forces", "q");
+            const Eigen::VectorXd q_dot = coordinates_arg(s, q_dot_arg, "System.mass_matrix_and_forces", "q_dot");
             Eigen::MatrixXd M;
             Eigen::VectorXd f;
             s.mass_matrix_and_forces(t, q, q_dot, M, f);
@@ -239,7 +300,9 @@ void bind_lagrange(py::module_& root) {
           py::arg("t"), py::arg("q"), py::arg("q_dot"), "(M, f) at (t, q, q̇).")
       .def(
           "constraint_terms",
-          [](const System& s, double t, const Eigen::VectorXd& q, const Eigen::VectorXd& q_dot) {
+          [](const System& s, double t, const py::object& q_arg, const py::object& q_dot_arg) {
+            const Eigen::VectorXd q = coordinates_arg(s, q_arg, "System.constraint_terms", "q");
+            const Eigen::VectorXd q_dot = coordinates_arg(s, q_dot_arg, "System.constraint_terms", "q_dot");
             Eigen::MatrixXd G;
             Eigen::VectorXd gamma;
             rigid::lagrange::Workspace w = s.make_workspace();
@@ -261,7 +324,9 @@ void bind_lagrange(py::module_& root) {
           "parameters are named arguments with the current values as defaults.")
       .def(
           "accelerations",
-          [](const System& s, double t, const Eigen::VectorXd& q, const Eigen::VectorXd& q_dot) {
+          [](const System& s, double t, const py::object& q_arg, const py::object& q_dot_arg) {
+            const Eigen::VectorXd q = coordinates_arg(s, q_arg, "System.accelerations", "q");
+            const Eigen::VectorXd q_dot = coordinates_arg(s, q_dot_arg, "System.accelerations", "q_dot");
             Eigen::VectorXd qdd, lambda;
             s.accelerations(t, q, q_dot, qdd, lambda);
             return py::make_tuple(qdd, lambda);
@@ -273,14 +338,15 @@ void bind_lagrange(py::module_& root) {
           "simulate",
           [](const System& s, double t_end, const std::string& method, double dt,
              double tolerance, double output_dt, double stabilization, bool project_initial,
-             std::optional<Eigen::VectorXd> q0, std::optional<Eigen::VectorXd> q_dot0) {
+             const py::object& q0, const py::object& q_dot0) {
             rigid::python::Interruptible interrupt;
             rigid::lagrange::SimulationOptions o{
                 .t_end = t_end, .method = rigid::integrate::parse_method(method), .dt = dt,
                 .tolerance = tolerance, .output_dt = output_dt, .stabilization = stabilization,
                 .project_initial = project_initial, .parameters = {}, .control = interrupt.control()};
-            const Eigen::VectorXd q_start = q0 ? *q0 : s.initial_q();
-            const Eigen::VectorXd qd_start = q_dot0 ? *q_dot0 : s.initial_q_dot();
+            const Eigen::VectorXd q_start = q0.is_none() ? s.initial_q() : coordinates_arg(s, q0, "System.simulate", "q0");
+            const Eigen::VectorXd qd_start =
+                q_dot0.is_none() ? s.initial_q_dot() : coordinates_arg(s, q_dot0, "System.simulate", "q_dot0");
             // a System is immutable and each run has its own workspace: other Python threads
             // may run while this one integrates
             rigid::lagrange::Trajectory tr;

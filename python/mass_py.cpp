@@ -1,5 +1,6 @@
 // Python bindings of the mass module (rigid.MassProperties, rigid.mass.*) and of the
 // inertial XML writers/readers.
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
@@ -9,6 +10,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include "convert.hpp"
 #include "rigid/common/error.hpp"
 #include "rigid/common/format.hpp"
 #include "rigid/common/wording.hpp"
@@ -19,6 +21,7 @@
 #include "rigid/mass/primitive_table.hpp"
 
 namespace py = pybind11;
+namespace cv = rigid::python::convert;
 
 namespace {
 
@@ -61,25 +64,54 @@ void bind_mass(py::module_& m) {
   py::class_<MassProperties>(m, "MassProperties",
                              "Mass (kg), center of mass p_OC_B (m) and inertia about the COM "
                              "I_C_B (kg·m²) of a 3D body, validated when built.")
-      .def(py::init<double, const Eigen::Vector3d&, const Eigen::Matrix3d&>(), py::arg("mass"),
-           py::arg("p_OC_B"), py::arg("I_C_B"))
-      .def_property_readonly("mass", &MassProperties::mass)
-      .def_property_readonly("com", &MassProperties::com)
-      .def_property_readonly("inertia_com", &MassProperties::inertia_com)
-      .def("inertia_about", &MassProperties::inertia_about, py::arg("p_OQ_B"),
-           "Inertia about the point Q, expressed in B (parallel-axis theorem).")
-      .def("inertia_about_axis", &MassProperties::inertia_about_axis, py::arg("p_OQ_B"),
-           py::arg("unit_B"), "Moment of inertia about the line through Q along unit_B.")
-      .def("shifted", &MassProperties::shifted, py::arg("d_B"), "The same body moved by d_B.")
+      .def(py::init([](double mass, const py::object& p_OC_B, const py::object& I_C_B) {
+             const cv::Arg f{"rigid.MassProperties", ""};
+             return MassProperties(mass, cv::vector3(p_OC_B, {f.function, "p_OC_B"}),
+                                   cv::matrix3(I_C_B, {f.function, "I_C_B"}));
+           }),
+           py::arg("mass"), py::arg("p_OC_B"), py::arg("I_C_B"),
+           "Validated mass properties: mass (kg), COM p_OC_B from the frame origin O in B (shape "
+           "(3,), m), inertia about the COM I_C_B in B (shape (3, 3), kg·m², the physical tensor: "
+           "off-diagonal −∫ρxy dV). Raises rigid.Error naming the failed condition and its margin.")
+      .def_property_readonly("mass", &MassProperties::mass, "Mass (kg).")
+      .def_property_readonly("com", &MassProperties::com, "Centre of mass p_OC_B (m), shape (3,).")
+      .def_property_readonly("inertia_com", &MassProperties::inertia_com,
+                             "Inertia about the COM expressed in B (kg·m²), shape (3, 3).")
+      .def("inertia_about",
+           [](const MassProperties& mp, const py::object& p) {
+             return mp.inertia_about(cv::vector3(p, {"MassProperties.inertia_about", "p_OQ_B"}));
+           },
+           py::arg("p_OQ_B"),
+           "Inertia (kg·m²) about the point Q at p_OQ_B (m, in B), expressed in B: the "
+           "parallel-axis theorem I_Q = I_C + m (|d|² 1 − d dᵀ), d = p_OC − p_OQ.")
+      .def("inertia_about_axis",
+           [](const MassProperties& mp, const py::object& p, const py::object& u) {
+             const char* f = "MassProperties.inertia_about_axis";
+             return mp.inertia_about_axis(cv::vector3(p, {f, "p_OQ_B"}), cv::vector3(u, {f, "unit_B"}));
+           },
+           py::arg("p_OQ_B"), py::arg("unit_B"),
+           "Moment of inertia uᵀ I_Q u (kg·m²) about the line through Q (p_OQ_B, m, in B) along "
+           "the unit vector unit_B (in B; |u| within 1e-12 of 1).")
+      .def("shifted",
+           [](const MassProperties& mp, const py::object& d) {
+             return mp.shifted(cv::vector3(d, {"MassProperties.shifted", "d_B"}));
+           },
+           py::arg("d_B"), "The same body moved by d_B (m, in B): COM + d_B, inertia unchanged.")
       .def("rotated",
-           py::overload_cast<const Eigen::Matrix3d&>(&MassProperties::rotated, py::const_),
+           [](const MassProperties& mp, const py::object& R) {
+             return mp.rotated(cv::matrix3(R, {"MassProperties.rotated", "R_AB"}));
+           },
            py::arg("R_AB"),
-           "The same body re-expressed in frame A.")
+           "The same body re-expressed in frame A (common origin): p_OC_A = R_AB p_OC_B, "
+           "I_C_A = R_AB I_C_B R_ABᵀ; R_AB (3, 3) must be a rotation within 1e-9.")
       .def("transformed",
-           py::overload_cast<const Eigen::Matrix3d&, const Eigen::Vector3d&>(
-               &MassProperties::transformed, py::const_),
+           [](const MassProperties& mp, const py::object& R, const py::object& p) {
+             const char* f = "MassProperties.transformed";
+             return mp.transformed(cv::matrix3(R, {f, "R_AB"}), cv::vector3(p, {f, "p_AB_A"}));
+           },
            py::arg("R_AB"), py::arg("p_AB_A"),
-           "The same body expressed in frame A, given the pose of B in A.")
+           "The same body expressed in frame A, given the pose of B in A: rotation R_AB (3, 3) "
+           "and position p_AB_A (m) of B's origin in A.")
       .def(
           "principal_axes",
           [](const MassProperties& mp) {
@@ -88,8 +120,16 @@ void bind_mass(py::module_& m) {
           },
           "(ascending principal moments, R_BP with the principal axes as columns, det +1).")
       .def("invalidity_report", &MassProperties::invalidity_report)
-      .def_static("check", &MassProperties::check, py::arg("mass"), py::arg("p_OC_B"),
-                  py::arg("I_C_B"), "Why (mass, com, inertia) is not physical, or None.")
+      .def_static("check",
+                  [](double mass, const py::object& p, const py::object& I) {
+                    const char* f = "rigid.MassProperties.check";
+                    // NaN is reported by check itself, as a reason, not refused here
+                    return MassProperties::check(mass, cv::vector3(p, {f, "p_OC_B"}, cv::Finite::kAllowed),
+                                                 cv::matrix3(I, {f, "I_C_B"}, cv::Finite::kAllowed));
+                  },
+                  py::arg("mass"), py::arg("p_OC_B"), py::arg("I_C_B"),
+                  "Why (mass kg, COM p_OC_B m, inertia about the COM I_C_B kg·m²) is not a "
+                  "physical body, or None when it is.")
       .def("__repr__", [](const MassProperties& mp) { return fmt::format("{}", mp); });
 
   m.def(
@@ -100,24 +140,59 @@ void bind_mass(py::module_& m) {
         "The body with a hole removed; refuses non-physical results.");
 
   py::class_<MassProperties2>(m, "MassProperties2", "Planar mass, COM and moment about the COM.")
-      .def(py::init<double, const Eigen::Vector2d&, double>(), py::arg("mass"), py::arg("p_OC_B"),
-           py::arg("moment_com"))
+      .def(py::init([](double mass, const py::object& p, double moment_com) {
+             return MassProperties2(mass, cv::vector(p, {"rigid.MassProperties2", "p_OC_B"}, 2), moment_com);
+           }),
+           py::arg("mass"), py::arg("p_OC_B"), py::arg("moment_com"),
+           "Mass (kg), COM p_OC_B (shape (2,), m) and moment about the COM (kg·m²) of a lamina.")
       .def_property_readonly("mass", &MassProperties2::mass)
       .def_property_readonly("com", &MassProperties2::com)
       .def_property_readonly("moment_com", &MassProperties2::moment_com)
-      .def("moment_about", &MassProperties2::moment_about, py::arg("p_OQ_B"))
+      .def("moment_about",
+           [](const MassProperties2& mp, const py::object& p) {
+             return mp.moment_about(cv::vector(p, {"MassProperties2.moment_about", "p_OQ_B"}, 2));
+           },
+           py::arg("p_OQ_B"), "Polar moment (kg·m²) about the point Q at p_OQ_B (shape (2,), m).")
+      .def("shifted",
+           [](const MassProperties2& mp, const py::object& d) {
+             return mp.shifted(cv::vector(d, {"MassProperties2.shifted", "d_B"}, 2));
+           },
+           py::arg("d_B"), "The same lamina moved by d_B (shape (2,), m): COM + d_B, moment unchanged.")
+      .def("rotated", &MassProperties2::rotated, py::arg("angle"),
+           "The same lamina with its coordinates rotated by angle (rad, counter-clockwise); the "
+           "moment about the COM is unchanged.")
+      .def_static("combine", [](const MassProperties2& a, const MassProperties2& b) { return rigid::combine(a, b); },
+                  py::arg("a"), py::arg("b"),
+                  "The union of two laminae in one frame: masses add, moments are shifted to the common "
+                  "COM and added.")
       .def("__repr__", [](const MassProperties2& mp) { return fmt::format("{}", mp); });
 
   py::class_<SecondMoments>(m, "SecondMoments",
                             "n-D mass, COM and second-moment matrix J about the COM.")
-      .def(py::init<double, const Eigen::VectorXd&, const Eigen::MatrixXd&>(), py::arg("mass"),
-           py::arg("com"), py::arg("J_com"))
+      .def(py::init([](double mass, const py::object& com, const py::object& J) {
+             const char* f = "rigid.SecondMoments";
+             const Eigen::VectorXd c = cv::vector(com, {f, "com"});
+             return rigid::SecondMoments(mass, c, cv::matrix(J, {f, "J_com"}, c.size(), c.size()));
+           }),
+           py::arg("mass"), py::arg("com"), py::arg("J_com"),
+           "Mass (kg), COM (shape (n,), m) and second-moment matrix J = ∫ρ r rᵀ about the COM "
+           "(shape (n, n), kg·m²) of an n-dimensional body.")
       .def_property_readonly("mass", &SecondMoments::mass)
       .def_property_readonly("com", &SecondMoments::com)
       .def_property_readonly("J_com", &SecondMoments::J_com)
       .def_property_readonly("dimension", &SecondMoments::dimension)
-      .def("J_about", &SecondMoments::J_about, py::arg("q"))
-      .def("apply", &SecondMoments::apply, py::arg("Omega"), "M = J Ω + Ω J for Ω in so(n).")
+      .def("J_about",
+           [](const SecondMoments& J, const py::object& q) {
+             return J.J_about(cv::vector(q, {"SecondMoments.J_about", "q"}, J.dimension()));
+           },
+           py::arg("q"), "Second moments about the point q (shape (n,), m): J_C + m d dᵀ, d = c − q.")
+      .def("apply",
+           [](const SecondMoments& J, const py::object& Omega) {
+             return J.apply(cv::matrix(Omega, {"SecondMoments.apply", "Omega"}, J.dimension(), J.dimension()));
+           },
+           py::arg("Omega"),
+           "Body angular momentum M = J Ω + Ω J (kg·m²/s) of the angular velocity Ω ∈ so(n) "
+           "(n × n skew, rad/s).")
       .def("to_mass_properties", &SecondMoments::to_mass_properties)
       .def_static("from_mass_properties", &SecondMoments::from_mass_properties, py::arg("mp"));
 
@@ -147,12 +222,40 @@ void bind_mass(py::module_& m) {
   RIGID_BIND_PRIMITIVE(thin_rectangular_plate, py::arg("lx"), py::arg("ly"));
   RIGID_BIND_PRIMITIVE(thin_disk, py::arg("r"));
   RIGID_BIND_PRIMITIVE(thin_ring, py::arg("r"));
-  RIGID_BIND_PRIMITIVE(solid_tetrahedron, py::arg("v0"), py::arg("v1"), py::arg("v2"), py::arg("v3"));
   RIGID_BIND_PRIMITIVE(disk_lamina, py::arg("r"));
   RIGID_BIND_PRIMITIVE(annulus_lamina, py::arg("r_inner"), py::arg("r_outer"));
   RIGID_BIND_PRIMITIVE(rectangle_lamina, py::arg("lx"), py::arg("ly"));
-  RIGID_BIND_PRIMITIVE(polygon_lamina, py::arg("vertices"));
 #undef RIGID_BIND_PRIMITIVE
+  for (const bool with_mass : {true, false}) {
+    const std::string name = with_mass ? "solid_tetrahedron_with_mass" : "solid_tetrahedron_with_density";
+    mass.def(
+        name.c_str(),
+        [with_mass, name](double amount, const py::object& v0, const py::object& v1, const py::object& v2,
+                          const py::object& v3) {
+          const std::string f = "rigid.mass." + name;
+          const Eigen::Vector3d a = cv::vector3(v0, {f, "v0"}), b = cv::vector3(v1, {f, "v1"}),
+                                c = cv::vector3(v2, {f, "v2"}), d = cv::vector3(v3, {f, "v3"});
+          return with_mass ? rm::solid_tetrahedron_with_mass(amount, a, b, c, d)
+                           : rm::solid_tetrahedron_with_density(amount, a, b, c, d);
+        },
+        py::arg(with_mass ? "m" : "rho"), py::arg("v0"), py::arg("v1"), py::arg("v2"), py::arg("v3"),
+        with_mass ? "Uniform solid tetrahedron of mass m (kg) with vertices v0..v3 (each shape (3,), m), "
+                    "in the vertices' frame (frame and formula: docs/mass.md)."
+                  : "Uniform solid tetrahedron of density rho (kg/m³) with vertices v0..v3 (each shape "
+                    "(3,), m), in the vertices' frame.");
+    const std::string polygon = with_mass ? "polygon_lamina_with_mass" : "polygon_lamina_with_density";
+    mass.def(
+        polygon.c_str(),
+        [with_mass, polygon](double amount, const py::object& vertices) {
+          const Eigen::Matrix2Xd v = cv::points(vertices, {"rigid.mass." + polygon, "vertices"}, 2);
+          return with_mass ? rm::polygon_lamina_with_mass(amount, v) : rm::polygon_lamina_with_density(amount, v);
+        },
+        py::arg(with_mass ? "m" : "sigma"), py::arg("vertices"),
+        with_mass ? "Uniform polygonal lamina of mass m (kg); vertices shape (n, 2) in m, one per row, "
+                    "in order around a simple polygon; in the vertices' plane frame."
+                  : "Uniform polygonal lamina of areal density sigma (kg/m²); vertices shape (n, 2) in m, "
+                    "one per row, in order around a simple polygon.");
+  }
   // the primitive catalogue: one factory per name and alias (rigid.mass.solid_cylinder,
   // rigid.mass.cylinder, ...), taking mass= or density= and the sizes by name
   // the keyword arguments of a catalogue factory: mass= or density=, the sizes and points by
@@ -176,13 +279,13 @@ void bind_mass(py::module_& m) {
       } else if (key == "rpy") {
         call.placement.rpy = vector3_from_python(item.second, "rpy", "(roll, pitch, yaw) in rad");
       } else if (key == "mass") {
-        amount_mass = item.second.cast<double>();
+        amount_mass = cv::number(item.second, {"rigid.mass." + name, key});
       } else if (key == "density") {
-        amount_density = item.second.cast<double>();
+        amount_density = cv::number(item.second, {"rigid.mass." + name, key});
       } else if (e.point_index(key)) {
-        call.args.points.emplace_back(key, item.second.cast<Eigen::Vector3d>());
+        call.args.points.emplace_back(key, cv::vector3(item.second, {"rigid.mass." + name, key}));
       } else {
-        call.args.sizes.emplace_back(key, item.second.cast<double>());
+        call.args.sizes.emplace_back(key, cv::number(item.second, {"rigid.mass." + name, key}));
       }
     }
     if (amount_mass.has_value() == amount_density.has_value()) {
@@ -230,21 +333,25 @@ void bind_mass(py::module_& m) {
       "keywords (axis=, origin=, rpy= too); ± is one standard deviation.");
   mass.def(
       "place",
-      [](const MassProperties& body, const py::object& axis, const Eigen::Vector3d& origin,
-         const Eigen::Vector3d& rpy) {
-        return rm::place(body, rm::Placement{.axis = axis_from_python(axis), .rpy = rpy, .origin = origin});
+      [](const MassProperties& body, const py::object& axis, const py::object& origin,
+         const py::object& rpy) {
+        return rm::place(body, rm::Placement{.axis = axis_from_python(axis),
+                                             .rpy = cv::vector3(rpy, {"rigid.mass.place", "rpy"}),
+                                             .origin = cv::vector3(origin, {"rigid.mass.place", "origin"})});
       },
-      py::arg("body"), py::arg("axis") = "z", py::arg("origin") = Eigen::Vector3d::Zero().eval(),
-      py::arg("rpy") = Eigen::Vector3d::Zero().eval(),
+      py::arg("body"), py::arg("axis") = "z", py::arg("origin") = py::make_tuple(0.0, 0.0, 0.0),
+      py::arg("rpy") = py::make_tuple(0.0, 0.0, 0.0),
       "The body (given in a shape's own frame) placed in the link frame: its z axis turned along "
       "axis ('x', 'y', 'z', '-x', '-y', '-z' or a vector), then rotated by rpy (rad, URDF: "
       "Rz(yaw) Ry(pitch) Rx(roll)), then its origin moved to origin (m). Every catalogue "
       "factory takes the same axis=, origin=, rpy=.");
   mass.def("placement_rotation",
-           [](const py::object& axis, const Eigen::Vector3d& rpy) {
-             return rm::placement_rotation(rm::Placement{.axis = axis_from_python(axis), .rpy = rpy, .origin = Eigen::Vector3d::Zero()});
+           [](const py::object& axis, const py::object& rpy) {
+             return rm::placement_rotation(rm::Placement{.axis = axis_from_python(axis),
+                                                         .rpy = cv::vector3(rpy, {"rigid.mass.placement_rotation", "rpy"}),
+                                                         .origin = Eigen::Vector3d::Zero()});
            },
-           py::arg("axis") = "z", py::arg("rpy") = Eigen::Vector3d::Zero().eval(),
+           py::arg("axis") = "z", py::arg("rpy") = py::make_tuple(0.0, 0.0, 0.0),
            "R_LS of a placement: Rz(yaw) Ry(pitch) Rx(roll) · (shortest rotation from z to axis).");
   mass.def(
       "primitive", [make](const std::string& name, const py::kwargs& kwargs) { return make(name, kwargs); },
@@ -292,17 +399,82 @@ void bind_mass(py::module_& m) {
       },
       "The primitive catalogue: every shape with its name, aliases, sizes (name, help, unit, "
       "aliases), vertices and density unit.");
-  mass.def("n_ball_with_mass", &rm::n_ball_with_mass, py::arg("n"), py::arg("m"), py::arg("r"));
-  mass.def("n_ball_with_density", &rm::n_ball_with_density, py::arg("n"), py::arg("rho"), py::arg("r"));
-  mass.def("n_box_with_mass", &rm::n_box_with_mass, py::arg("m"), py::arg("sizes"));
-  mass.def("n_box_with_density", &rm::n_box_with_density, py::arg("rho"), py::arg("sizes"));
-  mass.def("point_mass", &rm::point_mass, py::arg("m"), py::arg("p"));
+  mass.def("n_ball_with_mass", &rm::n_ball_with_mass,
+           py::arg("m"), py::arg("r"), py::arg("n"),
+           "Uniform n-ball of mass m (kg) and radius r (m) in n ≥ 1 dimensions, centred: "
+           "J = m r²/(n + 2) · 1 (kg·m²).");
+  mass.def("n_ball_with_density", &rm::n_ball_with_density,
+           py::arg("rho"), py::arg("r"), py::arg("n"),
+           "Uniform n-ball of density rho (kg/mⁿ) and radius r (m) in n ≥ 1 dimensions, centred; "
+           "volume π^{n/2} rⁿ / Γ(n/2 + 1).");
+  mass.def("n_box_with_mass",
+           [](double m_kg, const py::object& sizes) {
+             return rm::n_box_with_mass(m_kg, cv::vector(sizes, {"rigid.mass.n_box_with_mass", "sizes"}));
+           },
+           py::arg("m"), py::arg("sizes"),
+           "Uniform n-box of mass m (kg) with edge lengths `sizes` (shape (n,), m), centred: "
+           "J = m diag(l_i²/12).");
+  mass.def("n_box_with_density",
+           [](double rho, const py::object& sizes) {
+             return rm::n_box_with_density(rho, cv::vector(sizes, {"rigid.mass.n_box_with_density", "sizes"}));
+           },
+           py::arg("rho"), py::arg("sizes"),
+           "Uniform n-box of density rho (kg/mⁿ) with edge lengths `sizes` (shape (n,), m), centred.");
+  mass.def("point_mass",
+           [](double m_kg, const py::object& p) { return rm::point_mass(m_kg, cv::vector3(p, {"rigid.mass.point_mass", "p"})); },
+           py::arg("m"), py::arg("p"),
+           "A point mass m (kg) at p (shape (3,), m): COM p, zero inertia about it.");
   mass.def(
       "point_masses",
-      [](const std::vector<double>& masses, const Eigen::Matrix3Xd& points) {
-        return rm::point_masses(masses, points);
+      [](const py::object& masses, const py::object& points) {
+        const char* f = "rigid.mass.point_masses";
+        const std::vector<double> mk = cv::values(masses, {f, "masses"});
+        const Eigen::Matrix3Xd p = cv::points(points, {f, "points"});
+        if (static_cast<Eigen::Index>(mk.size()) != p.cols()) {
+          throw rigid::Error(fmt::format("{}(): {} masses and {} points; expected one mass per point (row)",
+                                         f, mk.size(), p.cols()));
+        }
+        return rm::point_masses(mk, p);
       },
-      py::arg("masses"), py::arg("points"), "Point masses at the columns of a 3 × n array.");
+      py::arg("masses"), py::arg("points"),
+      "Point masses masses[i] (kg, shape (n,)) at points[i] (shape (n, 3), m, one point per row), "
+      "combined into one body in the points' frame.");
+
+  mass.def(
+      "point_set_second_moments",
+      [](const py::object& masses, const py::object& points) {
+        const char* f = "rigid.mass.point_set_second_moments";
+        const std::vector<double> mk = cv::values(masses, {f, "masses"});
+        const py::array shape_of = py::module_::import("numpy").attr("asarray")(points);
+        const Eigen::Index d = shape_of.ndim() == 2 ? shape_of.shape(1) : 3;
+        const Eigen::MatrixXd p = cv::points(points, {f, "points"}, d);
+        if (static_cast<Eigen::Index>(mk.size()) != p.cols()) {
+          throw rigid::Error(fmt::format("{}(): {} masses and {} points; expected one mass per point (row)", f,
+                                         mk.size(), p.cols()));
+        }
+        return rm::point_set_second_moments(mk, p);
+      },
+      py::arg("masses"), py::arg("points"),
+      "n-D second moments (rigid.SecondMoments) of point masses masses[i] (kg, shape (k,)) at "
+      "points[i] (shape (k, n), m, one point per row): J_C = Σ m (p − c)(p − c)ᵀ about the COM c.");
+  mass.def(
+      "polygon_moments",
+      [](const py::object& vertices) {
+        const auto pm = rm::polygon_moments(cv::points(vertices, {"rigid.mass.polygon_moments", "vertices"}, 2));
+        return py::make_tuple(pm.area, pm.centroid, pm.J_C);
+      },
+      py::arg("vertices"),
+      "(area m², centroid (2,) m, J_C (2, 2) m⁴ per unit areal density) of a simple polygon, "
+      "vertices shape (n, 2) in order (either direction).");
+  mass.def("check_rotational_moments",
+           [](const py::object& moments) {
+             return rigid::check_rotational_moments(cv::vector3(moments, {"rigid.mass.check_rotational_moments", "moments"},
+                                                                cv::Finite::kAllowed));
+           },
+           py::arg("moments"),
+           "Why principal moments (kg·m², shape (3,), any order) cannot be those of a body that "
+           "turns (not finite, negative, I_i > I_j + I_k, or a zero moment), or None: the check the "
+           "dynamics (rigid.body, rigid.spring) make.");
 
   py::class_<rm::DensityIntegration>(mass, "DensityIntegration")
       .def_readonly("mass_properties", &rm::DensityIntegration::mass_properties)
@@ -347,9 +519,13 @@ void bind_mass(py::module_& m) {
   mass.def(
       "write_inertial_document",
       [parse_format](const MassProperties& mp, const std::string& format, const std::string& name,
-                     bool principal, const std::optional<Eigen::Matrix3d>& inertial_frame) {
+                     bool principal, const py::object& inertial_frame) {
+        std::optional<Eigen::Matrix3d> frame;
+        if (!inertial_frame.is_none()) {
+          frame = cv::matrix3(inertial_frame, {"rigid.mass.write_inertial_document", "inertial_frame"});
+        }
         return rigid::io::write_inertial_document(mp, parse_format(format),
-                                                  {.name = name, .principal = principal}, inertial_frame);
+                                                  {.name = name, .principal = principal}, frame);
       },
       py::arg("mp"), py::arg("format"), py::arg("name") = "body", py::arg("principal") = false,
       py::arg("inertial_frame") = py::none(),
@@ -358,21 +534,59 @@ void bind_mass(py::module_& m) {
   mass.def("pseudo_inertia", &rm::pseudo_inertia, py::arg("mp"),
            "The 4×4 pseudo-inertia J = [[Σ, h], [hᵀ, m]] about the frame origin: Σ = ½ tr(I_O) 1 − I_O, "
            "h = m c [Wensing2017].");
-  mass.def("from_pseudo_inertia", &rm::from_pseudo_inertia, py::arg("J"),
+  mass.def("from_pseudo_inertia",
+           [](const py::object& J) { return rm::from_pseudo_inertia(cv::matrix(J, {"rigid.mass.from_pseudo_inertia", "J"}, 4, 4)); },
+           py::arg("J"),
            "The body of a pseudo-inertia J; raises rigid.Error naming the failed condition (mass, "
            "triangle inequality) when J is not positive semidefinite.");
   mass.def("log_cholesky", &rm::log_cholesky, py::arg("mp"),
            "The 10 log-Cholesky parameters (alpha, d1, d2, d3, s12, s23, s13, t1, t2, t3) of the body "
            "about the frame origin [Rucker2022]; J = U Uᵀ, m = exp(2 alpha).");
-  mass.def("from_log_cholesky", &rm::from_log_cholesky, py::arg("theta"),
+  mass.def("from_log_cholesky",
+           [](const py::object& theta) {
+             return rm::from_log_cholesky(cv::vector(theta, {"rigid.mass.from_log_cholesky", "theta"}, 10));
+           },
+           py::arg("theta"),
            "The body of 10 log-Cholesky parameters (any finite vector is a physical body).");
-  mass.def("pseudo_inertia_from_log_cholesky", &rm::pseudo_inertia_from_log_cholesky, py::arg("theta"),
+  mass.def("pseudo_inertia_from_log_cholesky",
+           [](const py::object& theta) {
+             return rm::pseudo_inertia_from_log_cholesky(
+                 cv::vector(theta, {"rigid.mass.pseudo_inertia_from_log_cholesky", "theta"}, 10));
+           },
+           py::arg("theta"),
            "J = U Uᵀ of 10 log-Cholesky parameters.");
   mass.def(
       "read_inertials",
-      [](const std::string& xml, const std::string& source) {
+      [](const py::object& path, const py::object& text, const std::optional<std::string>& source) {
+        const char* f = "rigid.mass.read_inertials";
+        std::vector<rigid::io::InertialEntry> entries;
+        if (path.is_none() == text.is_none()) {
+          throw rigid::Error(fmt::format("{}(): give exactly one of path (a file) and text= (the XML "
+                                         "itself), got {}", f, path.is_none() ? "neither" : "both"));
+        }
+        if (!path.is_none()) {
+          const std::string file = cv::path(path, {f, "path"});
+          // a str is a file name, never XML: a document passed as the path is refused with the remedy
+          if (!cv::is_file(file)) {
+            const bool looks_like_xml = file.find('<') != std::string::npos;
+            std::error_code ec;
+            throw rigid::Error(fmt::format(
+                "{}(): {}", f,
+                looks_like_xml ? std::string("the path looks like XML text: pass a document as "
+                                             "read_inertials(text=...)")
+                               : fmt::format("'{}' is not a file{}", cv::shown(file),
+                                             std::filesystem::exists(file, ec) ? "" : " (no such file)")));
+          }
+          if (source) {
+            throw rigid::Error(fmt::format("{}(): source= names a document given as text=; a file's "
+                                           "messages name the file", f));
+          }
+          entries = rigid::io::read_inertials_file(file);
+        } else {
+          entries = rigid::io::read_inertials(text.cast<std::string>(), source.value_or("<string>"));
+        }
         py::list out;
-        for (const auto& e : rigid::io::read_inertials(xml, source)) {
+        for (const auto& e : entries) {
           py::dict d;
           d["name"] = e.name;
           d["line"] = e.line;
@@ -384,13 +598,22 @@ void bind_mass(py::module_& m) {
         }
         return out;
       },
-      py::arg("xml"), py::arg("source") = "<string>",
-      "Every inertial of a URDF/MJCF/SDF document as dicts (link frame, rotation applied).");
+      py::arg("path") = py::none(), py::kw_only(), py::arg("text") = py::none(),
+      py::arg("source") = py::none(),
+      "Every inertial of a URDF/MJCF/SDF document, in document order, as dicts: name, line, mass "
+      "(kg), com (m), inertia_com (kg·m², about the COM), all in the link/body frame (the "
+      "inertial's own rotation applied), and problem (why it is not physical, or None). "
+      "read_inertials(path) reads a file (a str or pathlib.Path; messages start with its name); "
+      "read_inertials(text=xml) parses a document in memory (messages name `source`, default "
+      "'<string>'). A str is always a path, never XML.");
   mass.def(
       "fix_inertials",
-      [](const std::string& path, const std::optional<std::string>& output,
+      [](const py::object& path_arg, const py::object& output_arg,
          std::optional<double> density, bool keep_mass, const std::string& geometry,
          const std::vector<std::string>& only, const py::object& package_path) {
+        const std::string path = cv::path(path_arg, {"rigid.mass.fix_inertials", "path"});
+        std::optional<std::string> output;
+        if (!output_arg.is_none()) output = cv::path(output_arg, {"rigid.mass.fix_inertials", "output"});
         rigid::io::InertialFixOptions options;
         options.density = density;
         options.keep_mass = keep_mass;
@@ -408,7 +631,7 @@ void bind_mass(py::module_& m) {
             options.package_paths.push_back(rigid::io::parse_package_path(p.cast<std::string>()));
           }
         }
-        const auto result = rigid::io::fix_inertials_file(path, options);
+        const auto result = cv::reading("rigid.mass.fix_inertials", path, [&] { return rigid::io::fix_inertials_file(path, options); });
         // the report is the command line's JSON table, as a dict
         py::dict report = py::module_::import("json").attr("loads")(
             rigid::word_for(rigid::Surface::kPython, rigid::io::fix_table_json(result)));
@@ -417,7 +640,7 @@ void bind_mass(py::module_& m) {
         report["text"] = result.text;
         return report;
       },
-      py::arg("path"), py::arg("output") = std::nullopt, py::arg("density") = std::nullopt,
+      py::arg("path"), py::arg("output") = py::none(), py::arg("density") = std::nullopt,
       py::arg("keep_mass") = false, py::arg("geometry") = "collision",
       py::arg("only") = std::vector<std::string>{},
       py::arg("package_path") = py::none(),

@@ -5,11 +5,13 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include "convert.hpp"
 #include "rigid/common/error.hpp"
 #include "rigid/common/wording.hpp"
 #include "rigid/mesh.hpp"
 
 namespace py = pybind11;
+namespace cv = rigid::python::convert;
 
 namespace {
 // the library's remedies (`shell = true`) in Python's terms (shell=True)
@@ -40,17 +42,38 @@ namespace {
 
 using rigid::mesh::TriangleMesh;
 
-TriangleMesh from_arrays(const py::array_t<double, py::array::c_style | py::array::forcecast>& v,
-                         const py::array_t<long long, py::array::c_style | py::array::forcecast>& f) {
-  RIGID_REQUIRE(v.ndim() == 2 && v.shape(1) == 3, "vertices: expected an (n, 3) array, got {} dimensions", v.ndim());
-  RIGID_REQUIRE(f.ndim() == 2 && f.shape(1) == 3, "triangles: expected an (m, 3) array, got {} dimensions", f.ndim());
-  TriangleMesh m;
-  const auto vv = v.unchecked<2>();
-  for (py::ssize_t i = 0; i < vv.shape(0); ++i) {
-    m.vertices.emplace_back(vv(i, 0), vv(i, 1), vv(i, 2));
-    RIGID_REQUIRE(m.vertices.back().allFinite(), "vertex {} is not finite", i);
+TriangleMesh from_arrays(const py::object& vertices, const py::object& triangles) {
+  const char* f = "rigid.mesh.TriangleMesh";
+  const Eigen::Matrix3Xd v = cv::points(vertices, {f, "vertices"});
+  // vertex indices: integers only (a float array would be truncated silently)
+  py::array a;
+  try {
+    a = py::module_::import("numpy").attr("asarray")(triangles);
+  } catch (const py::error_already_set&) {
+    throw rigid::Error(fmt::format("{}(): argument 'triangles' must be an integer array of shape (m, 3); "
+                                   "got a sequence that is not rectangular", f));
   }
-  const auto ff = f.unchecked<2>();
+  const char kind = a.dtype().kind();
+  if (a.ndim() == 0 && kind != 'i' && kind != 'u' && kind != 'f') {
+    throw py::type_error(fmt::format("{}(): argument 'triangles' must be an integer array of shape (m, 3); got {}",
+                                     f, py::str(py::type::handle_of(triangles).attr("__name__")).cast<std::string>()));
+  }
+  // an empty list has dtype float64: no index to truncate
+  if (kind != 'i' && kind != 'u' && !(a.size() == 0 && kind == 'f')) {
+    throw rigid::Error(fmt::format("{}(): argument 'triangles' must hold integer vertex indices; got dtype {}",
+                                   f, py::str(a.dtype()).cast<std::string>()));
+  }
+  if (a.ndim() != 2 || a.shape(1) != 3) {
+    std::string shape = "(";
+    for (py::ssize_t k = 0; k < a.ndim(); ++k) shape += fmt::format("{}{}", k ? ", " : "", a.shape(k));
+    shape += a.ndim() == 1 ? ",)" : ")";
+    throw rigid::Error(fmt::format("{}(): argument 'triangles' must have shape (m, 3); got {}", f, shape));
+  }
+  const auto idx = py::array_t<long long, py::array::c_style | py::array::forcecast>::ensure(a);
+  TriangleMesh m;
+  m.vertices.reserve(static_cast<std::size_t>(v.cols()));
+  for (Eigen::Index i = 0; i < v.cols(); ++i) m.vertices.emplace_back(v.col(i));
+  const auto ff = idx.unchecked<2>();
   for (py::ssize_t i = 0; i < ff.shape(0); ++i) {
     std::array<std::uint32_t, 3> t{};
     for (int k = 0; k < 3; ++k) {
@@ -71,7 +94,11 @@ void bind_mesh(py::module_& m) {
   auto mesh = m.def_submodule("mesh", "Triangle meshes: readers, repair, exact mass properties.");
 
   py::class_<TriangleMesh>(mesh, "TriangleMesh", "Indexed triangle mesh (vertices in m).")
-      .def(py::init(&from_arrays), py::arg("vertices"), py::arg("triangles"))
+      .def(py::init(&from_arrays), py::arg("vertices"), py::arg("triangles"),
+           "A mesh from vertices (shape (n, 3), m, one vertex per row, any real dtype) and "
+           "triangles (shape (m, 3), integer indices into the vertices; counter-clockwise seen "
+           "from outside once oriented). Nothing is checked or repaired here: "
+           "mass_properties refuses a mesh that is open or inconsistently wound.")
       .def_property_readonly("vertices",
                              [](const TriangleMesh& t) {
                                py::array_t<double> a({static_cast<py::ssize_t>(t.vertices.size()), py::ssize_t{3}});
@@ -88,7 +115,31 @@ void bind_mesh(py::module_& m) {
                                  for (int k = 0; k < 3; ++k) w(static_cast<py::ssize_t>(i), k) = t.triangles[i][static_cast<std::size_t>(k)];
                                return a;
                              })
-      .def("__len__", &TriangleMesh::size);
+      .def("__len__", &TriangleMesh::size)
+      .def_property_readonly("bounding_box",
+                             [](const TriangleMesh& t) {
+                               const auto b = t.bounding_box();
+                               return py::make_tuple(b[0], b[1]);
+                             },
+                             "(min corner, max corner) of the vertices (m); zeros when empty.")
+      .def("scale", &TriangleMesh::scale, py::arg("factor"),
+           "Multiplies every vertex by factor (in place; e.g. 1e-3 for millimetres).")
+      .def(
+          "translate",
+          [](TriangleMesh& t, const py::object& d) { t.translate(cv::vector3(d, {"TriangleMesh.translate", "d_M"})); },
+          py::arg("d_M"), "Moves every vertex by d_M (shape (3,), m; in place).")
+      .def("reverse_winding", &TriangleMesh::reverse_winding,
+           "Reverses the winding of every triangle (flips all normals; in place).");
+
+  py::class_<rm::EdgeCounts>(mesh, "EdgeCounts", "Edges by how many triangles use them.")
+      .def_readonly("boundary", &rm::EdgeCounts::boundary, "edges used by one triangle")
+      .def_readonly("non_manifold", &rm::EdgeCounts::non_manifold, "edges used by three or more")
+      .def_readonly("misoriented", &rm::EdgeCounts::misoriented,
+                    "edges two triangles traverse in the same direction (inconsistent winding)")
+      .def("__repr__", [](const rm::EdgeCounts& e) {
+        return fmt::format("EdgeCounts(boundary={}, non_manifold={}, misoriented={})", e.boundary, e.non_manifold,
+                           e.misoriented);
+      });
 
   py::class_<rm::ComponentReport>(mesh, "ComponentReport")
       .def_readonly("triangles", &rm::ComponentReport::triangles)
@@ -125,8 +176,47 @@ void bind_mesh(py::module_& m) {
       py::arg("mesh"),
            "Close every hole whose border is a simple loop (in place; run repair first and "
            "again after); a planar hole is closed exactly. Returns the report.");
-  mesh.def("read", &rm::read_mesh, py::arg("path"), py::arg("scale") = 1.0,
-           "Read an STL/OBJ/PLY/OFF file; coordinates multiplied by scale (m per file unit).");
+  mesh.def("read",
+           [](const py::object& path, double scale) {
+             const std::string file = cv::path(path, {"rigid.mesh.read", "path"});
+             py::gil_scoped_release release;
+             return cv::reading("rigid.mesh.read", file, [&] { return rm::read_mesh(file, scale); });
+           },
+           py::arg("path"), py::arg("scale") = 1.0,
+           "Read an STL/OBJ/PLY/OFF file (a str or pathlib.Path; the format from the extension); "
+           "coordinates multiplied by scale (m per file unit). Errors start with the file name.");
+  mesh.def("count_edges", &rm::count_edges, py::arg("mesh"),
+           "Boundary, non-manifold and misoriented edges of the mesh as it is (vertices compared by "
+           "index; nothing is welded): a solid's mass properties need all three zero.");
+  for (const bool solid : {true, false}) {
+    mesh.def(
+        solid ? "volume_moments" : "surface_moments",
+        [solid](const TriangleMesh& t, const py::object& about) {
+          std::optional<Eigen::Vector3d> p;
+          if (!about.is_none()) p = cv::vector3(about, {solid ? "rigid.mesh.volume_moments" : "rigid.mesh.surface_moments", "about"});
+          const rm::MeshMoments mm = solid ? rm::volume_moments(t, p) : rm::surface_moments(t, p);
+          py::dict d;
+          d["about"] = mm.p_OR_M;
+          d["measure"] = mm.measure;
+          d["first"] = mm.first;
+          d["second"] = mm.second;
+          return d;
+        },
+        py::arg("mesh"), py::arg("about") = py::none(),
+        solid ? "Exact moments of the enclosed volume about the point `about` (m, mesh frame; the "
+                "bounding-box centre when None): measure ∫1 (m³), first ∫r (m⁴), second ∫r rᵀ (m⁵), "
+                "r = p − about; by the divergence theorem, signed by the winding (no check here)."
+              : "Exact moments of the surface about `about` (the bounding-box centre when None): "
+                "measure area (m²), first ∫r (m³), second ∫r rᵀ (m⁴).");
+  }
+  mesh.def(
+      "write_stl",
+      [](const TriangleMesh& t, const py::object& path) {
+        const std::string file = cv::path(path, {"rigid.mesh.write_stl", "path"});
+        cv::reading("rigid.mesh.write_stl", file, [&] { rm::write_stl_binary(t, file); });
+      },
+      py::arg("mesh"), py::arg("path"),
+      "Writes a binary STL (float32 coordinates, m) to path (a str or pathlib.Path).");
   mesh.def("unit_scale", &rm::unit_scale, py::arg("unit"), "Metres per unit: m, cm, mm or in.");
   mesh.def(
       "repair",
@@ -140,41 +230,59 @@ void bind_mesh(py::module_& m) {
   mesh.def(
       "mass_properties",
       [](const TriangleMesh& t, std::optional<double> mass, std::optional<double> density,
-         bool shell, std::optional<double> thickness) {
-        // a mesh that has not been through repair: refused unless closed and consistently
-        // oriented (the library checks), with the remedy rigid.mesh.repair(mesh)
-        auto r = with_repair_worded(
-            [&] { return rm::mesh_mass_properties(t, {mass, density, shell, thickness}); });
-        return py::make_tuple(r.properties, worded(r.warnings));
+         bool shell, std::optional<double> thickness, bool repair) {
+        const rm::MassSpec spec{mass, density, shell, thickness};
+        if (!repair) {
+          // a mesh that has not been through repair: refused unless closed and consistently
+          // oriented (the library checks), with the remedy rigid.mesh.repair(mesh)
+          auto r = with_repair_worded([&] { return rm::mesh_mass_properties(t, spec); });
+          return py::make_tuple(r.properties, worded(r.warnings));
+        }
+        // repair=True: a repaired copy is measured (the caller's mesh is unchanged) and what
+        // repair changed comes first among the warnings, as `rigid inertia FILE` prints it
+        TriangleMesh copy = t;
+        const rm::RepairReport report = rm::repair_mesh(copy);
+        auto r = rm::mesh_mass_properties(copy, spec, report);
+        std::vector<std::string> warnings = report.warnings;
+        warnings.insert(warnings.end(), r.warnings.begin(), r.warnings.end());
+        return py::make_tuple(r.properties, worded(warnings));
       },
       py::arg("mesh"), py::kw_only(), py::arg("mass") = py::none(),
       py::arg("density") = py::none(), py::arg("shell") = false,
-      py::arg("thickness") = py::none(),
-      "(rigid.MassProperties, warnings) of a solid or thin shell; exactly one of mass, density. "
-      "A solid must be closed and consistently oriented (run rigid.mesh.repair(mesh) first): "
-      "otherwise rigid.Error.");
+      py::arg("thickness") = py::none(), py::arg("repair") = false,
+      "(rigid.MassProperties, warnings) of a solid or thin shell in the mesh frame (COM in m, "
+      "inertia about the COM in kg·m²); exactly one of mass (kg) and density (kg/m³; kg/m² for a "
+      "shell, or kg/m³ with thickness= in m). A solid must be closed and consistently oriented: "
+      "otherwise rigid.Error (never a wrong volume), with the remedy rigid.mesh.repair(mesh). "
+      "repair=True measures a repaired copy instead (weld, drop degenerate triangles, orient "
+      "outward; the mesh passed is unchanged), and the warnings say what repair changed.");
   mesh.def(
       "mass_from_file",
-      [](const std::filesystem::path& path, std::optional<double> mass, std::optional<double> density,
+      [](const py::object& path, std::optional<double> mass, std::optional<double> density,
          const std::string& units, bool shell, std::optional<double> thickness, bool fill_holes) {
+        const std::string file = cv::path(path, {"rigid.mesh.mass_from_file", "path"});
         std::optional<rm::MeshFileMass> r;
         {
           py::gil_scoped_release release;
-          r.emplace(rm::mesh_mass_from_file(path.string(), rm::unit_scale(units), {mass, density, shell, thickness},
-                                            {}, fill_holes));
+          cv::reading("rigid.mesh.mass_from_file", file, [&] {
+            r.emplace(rm::mesh_mass_from_file(file, rm::unit_scale(units), {mass, density, shell, thickness}, {},
+                                              fill_holes));
+          });
         }
         return py::make_tuple(r->mass.properties, worded(r->warnings()));
       },
       py::arg("path"), py::kw_only(), py::arg("mass") = py::none(), py::arg("density") = py::none(),
       py::arg("units") = "m", py::arg("shell") = false, py::arg("thickness") = py::none(),
       py::arg("fill_holes") = false,
-      "(rigid.MassProperties, warnings) of a mesh file read, repaired (holes filled with "
+      "(rigid.MassProperties, warnings) of a mesh file (a str or pathlib.Path) read, repaired (holes filled with "
       "fill_holes=True) and integrated: what `rigid inertia FILE` prints. Exactly one of mass, "
       "density; units m, cm, mm or in.");
   mesh.def(
       "vertex_noise_uncertainty",
       [](const TriangleMesh& t, double sigma, std::optional<double> mass, std::optional<double> density,
-         std::optional<Eigen::Vector3d> about) {
+         const py::object& about_arg) {
+        std::optional<Eigen::Vector3d> about;
+        if (!about_arg.is_none()) about = cv::vector3(about_arg, {"rigid.mesh.vertex_noise_uncertainty", "about"});
         const auto u = with_repair_worded([&] {
           return rm::vertex_noise_uncertainty(t, {mass, density, false, std::nullopt}, sigma, about);
         });

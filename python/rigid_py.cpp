@@ -15,6 +15,8 @@ void bind_body(py::module_& m);
 void bind_mesh(py::module_& m);
 void bind_scene(py::module_& m);
 void bind_modes(py::module_& m);
+void bind_spring(py::module_& m);
+void bind_integrate(py::module_& m);
 
 PYBIND11_MODULE(rigid, m) {
   m.doc() = "rigid: rigid-body mechanics from isometries and inertia tensors to Euler's equations";
@@ -38,4 +40,6 @@ PYBIND11_MODULE(rigid, m) {
   bind_mesh(m);
   bind_scene(m);
   bind_modes(m);
+  bind_spring(m);
+  bind_integrate(m);
 }

@@ -2,7 +2,9 @@
 // scene (docs/scene-format.md); .run() returns the trajectory as a dict of numpy columns and
 // the summary as a dict — the same numbers `rigid run` writes — and, given an output
 // directory, writes the same files. A run releases the GIL and stops on Ctrl-C.
+#include <atomic>
 #include <cstdint>
+#include <numeric>
 #include <filesystem>
 #include <optional>
 
@@ -13,6 +15,7 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include "convert.hpp"
 #include "interrupt.hpp"
 #include "rigid/io/atomic_file.hpp"
 #include "rigid/io/run_output.hpp"
@@ -20,8 +23,11 @@
 #include "rigid/scene/export.hpp"
 #include "rigid/scene/model.hpp"
 #include "rigid/scene/scene.hpp"
+#include "rigid/scene/sweep.hpp"
+#include "rigid/common/wording.hpp"
 
 namespace py = pybind11;
+namespace cv = rigid::python::convert;
 
 namespace {
 
@@ -165,17 +171,138 @@ py::dict run(const Model& model, const std::string& integrator, std::optional<st
   return out;
 }
 
+// rigid.sweep: the runs of `rigid sweep` (no journal: a Python sweep is not resumed), rows as
+// numpy columns, the summary as a dict; Ctrl-C stops it (KeyboardInterrupt) after the runs in
+// flight.
+py::dict sweep(const py::object& scene_arg, const std::vector<std::string>& grid, const std::vector<std::string>& sample,
+               std::size_t samples, std::uint64_t seed, const std::vector<std::string>& set,
+               const std::string& integrator, std::size_t threads, const py::object& output_arg) {
+  namespace sc = rigid::scene;
+  const char* f = "rigid.sweep";
+  const std::string file = cv::path(scene_arg, {f, "scene"});
+  std::optional<std::filesystem::path> output;
+  if (!output_arg.is_none()) output = cv::path(output_arg, {f, "output"});
+  sc::SweepSpec spec;
+  for (const auto& g : grid) {
+    try {
+      spec.grid.push_back(sc::parse_grid_axis(g));
+    } catch (const rigid::Error& e) {
+      throw rigid::Error(fmt::format("{}(): grid: {}", f, rigid::strip_function_names(e.what())));
+    }
+  }
+  for (const auto& a : sample) {
+    try {
+      spec.sample.push_back(sc::parse_sample_axis(a));
+    } catch (const rigid::Error& e) {
+      throw rigid::Error(fmt::format("{}(): sample: {}", f, rigid::strip_function_names(e.what())));
+    }
+  }
+  spec.samples = samples;
+  spec.seed = seed;
+  if (spec.grid.empty() == spec.sample.empty()) {
+    throw rigid::Error(fmt::format("{}(): give the runs as grid=['NAME=START:STOP:COUNT', ...] or "
+                                   "sample=['NAME=DIST(A,B)', ...] with samples=N (one of them)", f));
+  }
+  if (!spec.sample.empty() && samples == 0) throw rigid::Error(fmt::format("{}(): sample= needs samples=N, the number of runs", f));
+  if (!spec.grid.empty() && samples > 0) throw rigid::Error(fmt::format("{}(): samples= is for sample=; a grid axis has its own count", f));
+  if (threads == 0) throw rigid::Error(fmt::format("{}(): threads must be at least 1", f));
+  sc::check_spec(spec);
+  const sc::SweepIdentity id{.scene = file, .set = set, .integrator = integrator, .spec = spec};
+  cv::reading(f, file, [&] {
+    sc::Scene parsed = sc::load_scene(file);
+    sc::apply_overrides(parsed, set);
+    sc::check_overrides(id);
+  });
+  if (output) rigid::io::check_output_directory(*output);
+  const std::size_t runs = sc::run_count(spec);
+  std::vector<std::size_t> indices(runs);
+  std::iota(indices.begin(), indices.end(), std::size_t{0});
+  std::atomic<bool> cancel{false};
+  sc::SweepRunOptions options;
+  options.threads = threads;
+  options.wording = rigid::Surface::kPython;
+  options.cancel = &cancel;
+  options.on_row = [&cancel](const sc::SweepRow&) {
+    py::gil_scoped_acquire gil;
+    if (PyErr_CheckSignals() != 0) {
+      PyErr_Clear();  // raised again as KeyboardInterrupt from rigid::Cancelled
+      cancel = true;
+    }
+  };
+  std::vector<sc::SweepRow> rows;
+  {
+    py::gil_scoped_release release;
+    rows = sc::run_sweep(id, indices, options);
+  }
+  const sc::SweepOutputs outputs = sc::make_outputs(sc::swept_names(spec), runs, std::move(rows));
+  py::dict columns;
+  const rigid::io::Table& t = outputs.numbers;
+  for (std::size_t c = 0; c < t.columns().size(); ++c) {
+    py::array_t<double> a(static_cast<py::ssize_t>(t.rows()));
+    auto v = a.mutable_unchecked<1>();
+    for (std::size_t k = 0; k < t.rows(); ++k) v(static_cast<py::ssize_t>(k)) = t(k, c);
+    columns[py::str(t.columns()[c])] = a;
+  }
+  py::dict out;
+  out["columns"] = columns;
+  out["errors"] = outputs.errors;
+  out["summary"] = py::module_::import("json").attr("loads")(outputs.summary_json);
+  if (output) {
+    py::list written;
+    std::filesystem::create_directories(*output);
+    for (const auto& p : sc::write_outputs(*output, outputs)) written.append(py::str(p.string()));
+    out["written"] = written;
+  }
+  return out;
+}
+
 }  // namespace
 
 void bind_scene(py::module_& m) {
+  m.def("sweep", &sweep, py::arg("scene"), py::kw_only(), py::arg("grid") = std::vector<std::string>{},
+        py::arg("sample") = std::vector<std::string>{}, py::arg("samples") = 0, py::arg("seed") = 0,
+        py::arg("set") = std::vector<std::string>{}, py::arg("integrator") = std::string{},
+        py::arg("threads") = 1, py::arg("output") = py::none(),
+        "Runs one scene file many times, as `rigid sweep`: over a grid (grid=['L=0.5:2:4', ...], "
+        "every combination, the first axis slowest) or a Monte Carlo sample "
+        "(sample=['m=uniform(1,2)', 'k=normal(10,1)', 'c=loguniform(1e-3,1)'], samples=N, seed=S; "
+        "reproducible whatever the threads). Each run gets `set` then its own values as overrides. "
+        "Returns {'columns': {run, the swept names, each run's metrics and diagnostics: numpy "
+        "arrays, NaN for a failed run}, 'errors': [text per run, '' when it succeeded], 'summary': "
+        "statistics per column as summary.json}; with `output` (a directory) also writes runs.csv, "
+        "runs.npy and summary.json, byte for byte what `rigid sweep` writes. Runs on `threads` "
+        "threads with the GIL released; Ctrl-C raises KeyboardInterrupt.");
+
   py::class_<Model>(m, "Scene",
                     "A scene file turned into a model (parameters evaluated, mass properties and "
                     "equations built). Errors are rigid.Error with file:line:col.")
-      .def(py::init([](const std::filesystem::path& path, const std::vector<std::string>& set) {
-             return rigid::scene::load_model(path, set);
+      .def(py::init([](const py::object& path, const std::vector<std::string>& set) {
+             const std::string file = cv::path(path, {"rigid.Scene", "path"});
+             // a str is always a file name: scene text is refused with the remedy, never parsed
+             if ((file.find('\n') != std::string::npos || file.find('[') != std::string::npos) && !cv::is_file(file)) {
+               throw rigid::Error("rigid.Scene(): the path looks like TOML text: load a scene given as "
+                                  "text with rigid.Scene.from_string(text)");
+             }
+             return cv::reading("rigid.Scene", file, [&] { return rigid::scene::load_model(file, set); });
            }),
            py::arg("path"), py::arg("set") = std::vector<std::string>{},
-           "Loads a TOML scene (a str or pathlib.Path); `set` holds 'name=value' overrides: parameters, simulation.<key>, <coordinate>.initial/.velocity, <body>.omega (docs/scene-format.md).")
+           "Loads a TOML scene file (a str or pathlib.Path; mesh paths are relative to its "
+           "directory; errors start with file:line:col); `set` holds 'name=value' overrides: "
+           "parameters, simulation.<key>, <coordinate>.initial/.velocity, <body>.omega "
+           "(docs/scene-format.md). Text is loaded by Scene.from_string.")
+      .def_static(
+          "from_string",
+          [](const std::string& text, const std::vector<std::string>& set, const py::object& name) {
+            // messages name `name`; mesh paths resolve against its directory (the current one by default)
+            const std::string file = name.is_none() ? std::string("<string>") : cv::path(name, {"rigid.Scene.from_string", "name"});
+            rigid::scene::Scene scene = rigid::scene::parse_scene(text, file);
+            rigid::scene::apply_overrides(scene, set);
+            return Model(scene);
+          },
+          py::arg("text"), py::arg("set") = std::vector<std::string>{}, py::arg("name") = py::none(),
+          "A scene from TOML text (what a scene file holds): errors start with name:line:col "
+          "(name default '<string>'), and mesh paths are relative to name's directory (the "
+          "current directory by default); `set` as in rigid.Scene(path, set).")
       .def_property_readonly("kind", [](const Model& mo) {
         return mo.kind() == rigid::scene::SceneKind::kCoordinates ? "coordinates" : "free_bodies";
       })

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Runs every benchmark executable of a build tree: scripts/run-benchmarks.sh build/bench
 # [Google Benchmark flags], then the Python benchmarks against the module of that tree
-# (bench/so3_batch_bench.py: rigid.so3 vs SciPy), when the tree has the module.
+# (bench/so3_batch_bench.py: rigid.so3 vs SciPy; bench/python_args_bench.py: the cost of an
+# array argument), when the tree has the module.
 set -euo pipefail
 dir="${1:-build/bench}"
 shopt -s nullglob
@@ -16,9 +17,13 @@ for exe in "${exes[@]}"; do
 done
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 modules=("$dir"/python/rigid*.so "$dir"/python/rigid/_rigid*.so)
+shopt -u nullglob
 if [[ ${#modules[@]} -gt 0 ]]; then
   echo "== so3_batch_bench.py"
   RIGID_PYTHON_DIR="$dir/python" /usr/bin/python3 "$root/bench/so3_batch_bench.py"
+  # the per-call cost of array arguments (python/convert.hpp)
+  echo "== python_args_bench.py"
+  PYTHONPATH="$dir/python" /usr/bin/python3 "$root/bench/python_args_bench.py"
 else
-  echo "run-benchmarks: no Python module in $dir/python: bench/so3_batch_bench.py not run" >&2
+  echo "run-benchmarks: no Python module in $dir/python: the Python benchmarks (bench/*.py) not run" >&2
 fi

@@ -99,3 +99,30 @@ def test_errors_are_rigid_errors_with_positions():
         pendulum().simulate(1.0, method="euler")
     with pytest.raises(rigid.Error, match="unknown body key 'masss'"):
         rigid.lagrange.System(coordinates=[("x", 0, 0)], bodies=[{"masss": 1}])
+
+
+def test_energy_poses_and_constraints_at_a_state():
+    # a bob of 2 kg on a 0.5 m rod: T = ½ m l² θ̇², V = −m g l cos θ (closed forms)
+    bob = rigid.mass.point_mass(2.0, [0.0, 0.0, 0.0])
+    s = rigid.lagrange.System(
+        coordinates=[("theta", 0.3, 0.0), ("x", 0.0, 0.0)],
+        parameters={"l": 0.5},
+        bodies=[{"name": "bob", "mass": bob, "position": ["l*sin(theta)", "0", "-l*cos(theta)"]}],
+        gravity=[0, 0, -G],
+        lagrangian="x_dot^2/2",
+        constraints=[("tie", "x - theta")],
+    )
+    q, qd = np.array([0.3, 0.3]), np.array([1.5, 1.5])
+    T = 0.5 * 2.0 * 0.25 * 1.5**2 + 0.5 * 1.5**2
+    V = -2.0 * G * 0.5 * math.cos(0.3)
+    assert s.energy(0.0, q, qd) == pytest.approx(T + V, rel=1e-14)
+    assert s.jacobi_integral(0.0, q, qd) == pytest.approx(T + V, rel=1e-14)  # L has no t: h = T + V
+    pose = s.body_poses(0.0, q)["bob"]
+    np.testing.assert_allclose(pose["p_world"], [0.5 * math.sin(0.3), 0, -0.5 * math.cos(0.3)], rtol=0, atol=1e-16)
+    np.testing.assert_array_equal(pose["q_wxyz"], [1.0, 0, 0, 0])
+    np.testing.assert_allclose(s.constraint_residual(0.0, [0.3, 0.5]), [0.2], rtol=1e-15)
+    assert s.body_names == ["bob"] and s.parameters == {"l": 0.5}
+    np.testing.assert_array_equal(s.initial_q, [0.3, 0.0])
+    # q of the wrong length is named, not read past its end
+    with pytest.raises(rigid.Error, match=r"System\.energy\(\): argument 'q' must have shape \(2,\); got \(3,\)"):
+        s.energy(0.0, [0.3, 0.3, 0.3], qd)

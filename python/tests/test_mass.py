@@ -44,7 +44,7 @@ def test_principal_axes_right_handed_and_rotation_invariant():
 
 
 def test_combine_point_masses_and_numpy_shapes():
-    pts = np.array([[1.0, -1.0], [0.0, 0.0], [0.0, 0.0]])
+    pts = np.array([[1.0, 0.0, 0.0], [-1.0, 0.0, 0.0]])  # one point per row
     mp = rigid.mass.point_masses([1.0, 1.0], pts)
     np.testing.assert_allclose(mp.inertia_com, np.diag([0.0, 2.0, 2.0]), atol=8 * EPS)
     both = rigid.combine([mp, rigid.mass.point_mass(2.0, [0.0, 0.0, 1.0])])
@@ -53,12 +53,12 @@ def test_combine_point_masses_and_numpy_shapes():
 
 
 def test_second_moments_and_laminae():
-    ball = rigid.mass.n_ball_with_mass(4, 1.0, 1.0)
+    ball = rigid.mass.n_ball_with_mass(1.0, 1.0, 4)
     np.testing.assert_allclose(ball.J_com, np.eye(4) / 6, rtol=1e-15)
     Omega = np.zeros((4, 4))
     Omega[0, 1], Omega[1, 0] = 1.0, -1.0
     np.testing.assert_allclose(ball.apply(Omega), Omega / 3, rtol=1e-15)
-    sq = rigid.mass.polygon_lamina_with_mass(1.0, np.array([[0, 1, 1, 0], [0, 0, 1, 1.0]]))
+    sq = rigid.mass.polygon_lamina_with_mass(1.0, np.array([[0, 0], [1, 0], [1, 1], [0, 1.0]]))
     assert sq.moment_com == pytest.approx(1 / 6, rel=1e-14)  # m (a² + b²)/12
 
 
@@ -76,7 +76,7 @@ def test_xml_round_trip_with_rotated_frame():
     mp = rigid.mass.solid_box_with_mass(2.0, 0.3, 0.5, 0.7).transformed(R, np.array([0.1, 0.2, 0.3]))
     for fmt in ("urdf", "mjcf", "sdf"):
         doc = rigid.mass.write_inertial_document(mp, fmt, name="link", principal=True)
-        (entry,) = rigid.mass.read_inertials(doc)
+        (entry,) = rigid.mass.read_inertials(text=doc)
         assert entry["name"] == "link" and entry["problem"] is None
         np.testing.assert_allclose(entry["inertia_com"], mp.inertia_com, rtol=0, atol=1e-15)
 
@@ -104,3 +104,81 @@ def test_catalogue_factories_take_mass_first_and_sizes_by_name():
     assert {"solid_cylinder", "thin_rod", "solid_tetrahedron"} <= names
     with pytest.raises(rigid.Error, match="give exactly one of mass= .* and density="):
         rigid.mass.rod(length=1.0)
+
+
+def test_read_inertials_takes_a_path_or_text_never_a_file_name_as_xml(tmp_path):
+    mp = rigid.mass.solid_box_with_mass(2.0, 0.3, 0.5, 0.7)
+    doc = rigid.mass.write_inertial_document(mp, "urdf", name="link")
+    urdf = tmp_path / "robot.urdf"
+    urdf.write_text(doc)
+    for entries in (rigid.mass.read_inertials(urdf), rigid.mass.read_inertials(str(urdf)),
+                    rigid.mass.read_inertials(text=doc)):
+        (entry,) = entries
+        assert entry["name"] == "link" and entry["mass"] == 2.0
+        np.testing.assert_array_equal(entry["inertia_com"], mp.inertia_com)
+    # a file name that does not exist is reported as a missing file, never parsed as XML
+    with pytest.raises(rigid.Error, match=r"^rigid\.mass\.read_inertials\(\): 'nope\.urdf' is not a file \(no such file\)"):
+        rigid.mass.read_inertials("nope.urdf")
+    with pytest.raises(rigid.Error, match=r"looks like XML text: pass a document as read_inertials\(text=\.\.\.\)"):
+        rigid.mass.read_inertials(doc)
+    with pytest.raises(rigid.Error, match="give exactly one of path"):
+        rigid.mass.read_inertials(urdf, text=doc)
+    # errors inside a file name the file and the line; text names `source`
+    bad = tmp_path / "bad.urdf"
+    bad.write_text("<robot>\n<link>\n</robot>\n")
+    with pytest.raises(rigid.Error, match=r"bad\.urdf:\d+"):
+        rigid.mass.read_inertials(bad)
+    with pytest.raises(rigid.Error, match=r"mine\.urdf:\d+"):
+        rigid.mass.read_inertials(text="<robot>\n<link>\n</robot>\n", source="mine.urdf")
+
+
+def test_factories_take_the_mass_first():
+    # n-ball: J = m r²/(n + 2) · 1, here m = 2 kg, r = 0.5 m, n = 4 (closed form)
+    ball = rigid.mass.n_ball_with_mass(2.0, 0.5, 4)
+    np.testing.assert_allclose(ball.J_com, np.eye(4) * 2.0 * 0.25 / 6, rtol=4 * EPS)
+    assert rigid.mass.n_ball_with_mass(m=2.0, r=0.5, n=4).mass == 2.0
+    # ρ π^{n/2} rⁿ / Γ(n/2 + 1) for n = 2: a disk of mass ρ π r²
+    assert rigid.mass.n_ball_with_density(3.0, 0.5, 2).mass == pytest.approx(3.0 * math.pi * 0.25, rel=4 * EPS)
+    for name in dir(rigid.mass):
+        if name.endswith("_with_mass") or name.endswith("_with_density"):
+            doc = getattr(rigid.mass, name).__doc__
+            first = doc.split("(", 2)[1].split(":")[0].split(",")[0].strip()
+            assert first in ("m", "rho", "sigma", "lambda"), (name, doc.splitlines()[0])
+
+
+def test_point_masses_take_one_point_per_row():
+    pts = np.array([[1.0, 0, 0], [0, 2.0, 0], [0, 0, 3.0], [-1.0, -2.0, -3.0]])
+    m = np.array([1.0, 2.0, 3.0, 4.0])
+    mp = rigid.mass.point_masses(m, pts)
+    # the definition: COM Σ m p / Σ m, inertia Σ m (|r|² 1 − r rᵀ) about it
+    com = (m[:, None] * pts).sum(axis=0) / m.sum()
+    r = pts - com
+    I_C = sum(mi * (ri @ ri * np.eye(3) - np.outer(ri, ri)) for mi, ri in zip(m, r))
+    np.testing.assert_allclose(mp.com, com, rtol=0, atol=8 * EPS)
+    np.testing.assert_allclose(mp.inertia_com, I_C, rtol=0, atol=64 * EPS * np.trace(I_C))
+
+
+def test_laminae_point_sets_and_polygon_moments():
+    # a unit square lamina of 1 kg: moment about the COM m (a² + b²)/12 = 1/6 (closed form)
+    sq = rigid.mass.polygon_lamina_with_mass(1.0, [[0, 0], [1, 0], [1, 1], [0, 1]])
+    moved = sq.shifted([2.0, 0.0])
+    np.testing.assert_array_equal(moved.com, [2.5, 0.5])
+    assert moved.moment_com == sq.moment_com
+    turned = sq.rotated(math.pi / 2)
+    np.testing.assert_allclose(turned.com, [-0.5, 0.5], rtol=0, atol=4 * EPS)
+    two = rigid.MassProperties2.combine(sq, moved)
+    # parallel axis: 2 · 1/6 + 2 · 1 · 1² (each COM 1 m from the common one)
+    assert two.moment_com == pytest.approx(2 / 6 + 2.0, rel=8 * EPS)
+    area, centroid, J = rigid.mass.polygon_moments([[0, 0], [2, 0], [2, 1], [0, 1]])
+    assert area == 2.0
+    np.testing.assert_array_equal(centroid, [1.0, 0.5])
+    np.testing.assert_allclose(J, np.diag([2 * 4 / 12, 2 * 1 / 12]), rtol=8 * EPS)  # ∫x² = A a²/12
+    # 4-D point set: J_C = Σ m (p − c)(p − c)ᵀ, from the definition
+    pts = np.array([[1.0, 0, 0, 0], [-1.0, 0, 0, 2.0]])
+    J4 = rigid.mass.point_set_second_moments([1.0, 1.0], pts)
+    c = pts.mean(axis=0)
+    np.testing.assert_allclose(J4.J_com, sum(np.outer(p - c, p - c) for p in pts), rtol=0, atol=8 * EPS)
+    assert J4.dimension == 4
+    assert rigid.mass.check_rotational_moments([1.0, 2.0, 2.5]) is None
+    assert "violate" in rigid.mass.check_rotational_moments([1.0, 2.0, 4.0])
+    assert rigid.mass.check_rotational_moments([0.0, 1.0, 1.0]) is not None  # a thin rod does not turn

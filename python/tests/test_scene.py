@@ -107,3 +107,44 @@ def test_ctrl_c_stops_a_run_with_keyboard_interrupt_and_writes_nothing(tmp_path)
     finally:
         timer.cancel()
     assert not out.exists()
+
+
+def test_a_scene_from_text_and_a_path_that_is_never_parsed(tmp_path):
+    text = (EXAMPLES / "atwood.toml").read_text()
+    from_file = rigid.Scene(EXAMPLES / "atwood.toml").run()
+    from_text = rigid.Scene.from_string(text).run()
+    for name, column in from_file["columns"].items():
+        np.testing.assert_array_equal(from_text["columns"][name], column)
+    # overrides and errors: messages start with the name given (default <string>)
+    assert rigid.Scene.from_string(text, set=["m2=3"]).parameters["m2"] == 3.0
+    with pytest.raises(rigid.Error, match=r"^mine\.toml:1:"):
+        rigid.Scene.from_string("[[coordinates]\n", name="mine.toml")
+    with pytest.raises(rigid.Error, match=r"^<string>:1:"):
+        rigid.Scene.from_string("[[coordinates]\n")
+    # a str is a path: text passed as a path is refused with the remedy, not parsed
+    with pytest.raises(rigid.Error, match=r"looks like TOML text: .*rigid\.Scene\.from_string\(text\)"):
+        rigid.Scene(text)
+    with pytest.raises(rigid.Error, match="missing.toml"):
+        rigid.Scene(tmp_path / "missing.toml")
+    with pytest.raises(TypeError, match=r"rigid\.Scene\(\): argument 'path' must be a path"):
+        rigid.Scene(12)
+
+
+def test_run_carries_the_scene_metrics():
+    # [[output.metrics]] of tennis_racket.toml: the first zero crossing of ω_y (the flip) and the
+    # energy drift. The flip from the closed form (rigid.body.FreeBodyExact, Jacobi elliptic
+    # functions) by SciPy's brentq: independent of the run's splitting4 steps
+    from scipy.optimize import brentq
+    out = rigid.Scene(EXAMPLES / "tennis_racket.toml").run()
+    metrics = out["summary"]["metrics"]
+    assert set(metrics) == {"first_flip", "energy_drift"}
+    exact = rigid.body.FreeBodyExact([1.0, 2.0, 3.0], [0.01, 1.0, 0.01])
+    ts = np.linspace(0, 20, 2001)
+    k = int(np.argmax([exact.omega_body(t)[1] < 0 for t in ts]))
+    flip = brentq(lambda t: exact.omega_body(t)[1], ts[k - 1], ts[k], xtol=1e-14)
+    assert metrics["first_flip"]["unit"] == "s"
+    # the run's order-4 steps and its event interpolation: agreement to 1e-8 of the time
+    assert metrics["first_flip"]["value"] == pytest.approx(flip, rel=1e-8)
+    # the relative energy drift of a free body under splitting4: each sub-flow is an exact
+    # rotation that keeps its axis' share of the energy, so only round-off remains (~1e-14)
+    assert abs(metrics["energy_drift"]["value"]) < 1e-12

@@ -96,17 +96,17 @@ void check_positive(const char* fn, const char* what, const char* unit, double v
 
 }  // namespace
 
-SecondMoments n_ball_with_mass(int n, double m, double r) {
+SecondMoments n_ball_with_mass(double m, double r, int n) {
   check_ball(__func__, n, r);
   check_positive(__func__, "mass", "kg", m);
   return SecondMoments(m, Eigen::VectorXd::Zero(n),
                        m * r * r / (n + 2.0) * Eigen::MatrixXd::Identity(n, n));
 }
 
-SecondMoments n_ball_with_density(int n, double rho, double r) {
+SecondMoments n_ball_with_density(double rho, double r, int n) {
   check_ball(__func__, n, r);
   check_positive(__func__, "density", "kg/mⁿ", rho);
-  return n_ball_with_mass(n, rho * n_ball_volume(n, r), r);
+  return n_ball_with_mass(rho * n_ball_volume(n, r), r, n);
 }
 
 SecondMoments n_box_with_mass(double m, const Eigen::VectorXd& sizes) {

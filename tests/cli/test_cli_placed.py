@@ -67,7 +67,7 @@ def test_rpy_round_trip_through_the_robot_formats(run, tmp_path, fmt):
         assert [float(v) for v in origin.get("rpy").split()] == pytest.approx(rpy, abs=1e-15)
     # read back: `rigid inertia check` accepts it and read_inertials gives the placed body
     assert "0 invalid" in run("inertia", "check", out, check=True).stdout
-    (entry,) = rigid.mass.read_inertials(text)
+    (entry,) = rigid.mass.read_inertials(text=text)
     placed = rigid.mass.cylinder(mass=2.0, radius=0.05, height=0.4, rpy=rpy, origin=(0.1, 0, 0.05))
     assert entry["com"] == pytest.approx(placed.com, rel=REL)
     # the principal frame goes through rpy/quaternion and back: a few hundred ε of tr I
@@ -90,7 +90,7 @@ def test_about_a_point_in_the_robot_formats_moves_the_link_origin(run):
                        check=True).stdout)
     for fmt in ("urdf", "sdf", "mjcf"):
         text = run(*CYL, "--axis", "y", "--about", "0.2,-0.1,0.3", "--format", fmt, check=True).stdout
-        (entry,) = rigid.mass.read_inertials(text)
+        (entry,) = rigid.mass.read_inertials(text=text)
         c = np.array(entry["com"])
         assert c == pytest.approx(-p, rel=REL)
         # parallel axis from the file's numbers to its link origin

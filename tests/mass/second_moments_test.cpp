@@ -17,7 +17,7 @@ using test::ulps;
 
 TEST(SecondMoments, ThreeDRelationToInertia) {
   // n-ball in 3D: J = m r²/5 · 1, so I = tr(J) − J = 2/5 m r² (the solid sphere)
-  const auto ball = mass::n_ball_with_mass(3, 2.0, 0.5);
+  const auto ball = mass::n_ball_with_mass(2.0, 0.5, 3);
   const auto mp = ball.to_mass_properties();
   EXPECT_NEAR(mp.inertia_com()(0, 0), 0.4 * 2.0 * 0.25, ulps(4));
   // n-box in 3D equals the solid box; J ↔ I round trip
@@ -35,12 +35,12 @@ TEST(SecondMoments, ThreeDRelationToInertia) {
 TEST(SecondMoments, NBallVolumes) {
   // unit-density unit balls: V₁ = 2, V₂ = π, V₄ = π²/2, V₅ = 8π²/15
   const double pi = std::numbers::pi;
-  EXPECT_NEAR(mass::n_ball_with_density(1, 1.0, 1.0).mass(), 2.0, ulps(8));
-  EXPECT_NEAR(mass::n_ball_with_density(2, 1.0, 1.0).mass(), pi, ulps(8, pi));
-  EXPECT_NEAR(mass::n_ball_with_density(4, 1.0, 1.0).mass(), pi * pi / 2, ulps(16, 5));
-  EXPECT_NEAR(mass::n_ball_with_density(5, 1.0, 1.0).mass(), 8 * pi * pi / 15, ulps(16, 5));
+  EXPECT_NEAR(mass::n_ball_with_density(1.0, 1.0, 1).mass(), 2.0, ulps(8));
+  EXPECT_NEAR(mass::n_ball_with_density(1.0, 1.0, 2).mass(), pi, ulps(8, pi));
+  EXPECT_NEAR(mass::n_ball_with_density(1.0, 1.0, 4).mass(), pi * pi / 2, ulps(16, 5));
+  EXPECT_NEAR(mass::n_ball_with_density(1.0, 1.0, 5).mass(), 8 * pi * pi / 15, ulps(16, 5));
   // 1D ball = rod of length 2r: J = m r²/3 = m (2r)²/12
-  EXPECT_NEAR(mass::n_ball_with_mass(1, 3.0, 0.5).J_com()(0, 0), 3.0 * 1.0 / 12, ulps(4));
+  EXPECT_NEAR(mass::n_ball_with_mass(3.0, 0.5, 1).J_com()(0, 0), 3.0 * 1.0 / 12, ulps(4));
 }
 
 TEST(SecondMoments, NBallMonteCarloIn4D) {
@@ -58,7 +58,7 @@ TEST(SecondMoments, NBallMonteCarloIn4D) {
       ++n;
     }
   }
-  const double expected = mass::n_ball_with_mass(4, 1.0, 1.0).J_com()(0, 0);
+  const double expected = mass::n_ball_with_mass(1.0, 1.0, 4).J_com()(0, 0);
   EXPECT_NEAR(sum / n, expected, 2e-3);
   EXPECT_NEAR(expected, 1.0 / 6.0, ulps(4));
 }
@@ -104,8 +104,8 @@ TEST(SecondMoments, PointSet) {
 }
 
 TEST(SecondMoments, BadInput) {
-  EXPECT_RIGID_ERROR((void)mass::n_ball_with_mass(0, 1.0, 1.0), "dimension must be at least 1, got 0");
-  EXPECT_RIGID_ERROR((void)mass::n_ball_with_mass(3, 1.0, -1.0), "radius must be positive and finite, got -1 m");
+  EXPECT_RIGID_ERROR((void)mass::n_ball_with_mass(1.0, 1.0, 0), "dimension must be at least 1, got 0");
+  EXPECT_RIGID_ERROR((void)mass::n_ball_with_mass(1.0, -1.0, 3), "radius must be positive and finite, got -1 m");
   Eigen::VectorXd sizes(2);
   sizes << 1.0, 0.0;
   EXPECT_RIGID_ERROR((void)mass::n_box_with_mass(1.0, sizes), "edge length 1 must be positive and finite, got 0 m");

@@ -50,9 +50,11 @@ class SecondMoments {
 namespace rigid::mass {
 
 /// Uniform n-ball of radius r in n ≥ 1 dimensions: J = m r²/(n + 2) · 1;
-/// volume π^{n/2} rⁿ / Γ(n/2 + 1).
-[[nodiscard]] SecondMoments n_ball_with_mass(int n, double m, double r);
-[[nodiscard]] SecondMoments n_ball_with_density(int n, double rho, double r);
+/// volume π^{n/2} rⁿ / Γ(n/2 + 1). Mass (or density, kg/mⁿ) first, as every factory.
+/// @param m mass (kg); r radius (m); n dimension.
+/// @throws rigid::Error if m (rho) or r is not positive and finite, or n < 1.
+[[nodiscard]] SecondMoments n_ball_with_mass(double m, double r, int n);
+[[nodiscard]] SecondMoments n_ball_with_density(double rho, double r, int n);
 
 /// Uniform n-box with edge lengths `sizes` (n = sizes.size() ≥ 1), centred:
 /// J = m diag(l_i²/12); volume Π l_i.
