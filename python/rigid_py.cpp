@@ -1,5 +1,5 @@
-// The Python module `rigid`: numpy arrays in and out, rigid::Error raised as rigid.Error
-// (a subclass of ValueError).
+// The extension module `rigid._rigid` behind the package `rigid` (python/rigid/__init__.py
+// re-exports it): numpy arrays in and out, rigid::Error raised as rigid.Error (a ValueError).
 #include <pybind11/pybind11.h>
 
 #include "rigid/common/error.hpp"
@@ -16,7 +16,7 @@ void bind_mesh(py::module_& m);
 void bind_scene(py::module_& m);
 void bind_modes(py::module_& m);
 
-PYBIND11_MODULE(rigid, m) {
+PYBIND11_MODULE(_rigid, m) {
   m.doc() = "rigid: rigid-body mechanics from isometries and inertia tensors to Euler's equations";
   m.attr("__version__") = RIGID_VERSION_STRING;
   // rigid.Error (a ValueError) with the remedy worded for Python (`shell=True`, not --shell);
