@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include <pybind11/eigen.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -12,6 +14,7 @@
 #include "rigid/body.hpp"
 #include "rigid/body/rigid_body.hpp"
 #include "rigid/common/error.hpp"
+#include "rigid/common/format.hpp"
 
 namespace py = pybind11;
 
@@ -59,9 +62,13 @@ void bind_rigid_body(py::module_& body) {
                         "or mass in kg and the inertia about the COM in kg·m², any symmetric "
                         "tensor), uniform gravity (m/s²) and applied loads. The state follows the COM.")
       .def(py::init<const rigid::MassProperties&, const Eigen::Vector3d&>(), py::arg("mass_properties"),
-           py::arg("gravity") = Eigen::Vector3d::Zero())
+           py::arg("gravity") = Eigen::Vector3d::Zero(),
+           "From mass properties in the body frame B (any origin; the state follows the COM) and "
+           "uniform gravity in the world frame (m/s²).")
       .def(py::init<double, const Eigen::Matrix3d&, const Eigen::Vector3d&>(), py::arg("mass"),
-           py::arg("inertia"), py::arg("gravity") = Eigen::Vector3d::Zero())
+           py::arg("inertia"), py::arg("gravity") = Eigen::Vector3d::Zero(),
+           "From the mass (kg) and the inertia about the COM in the body frame (kg·m², any symmetric "
+           "physical tensor), and uniform gravity in the world frame (m/s²).")
       .def(
           "add_load",
           [](RigidBody& b, py::function fn, const std::string& frame, const Eigen::Vector3d& point) {
@@ -88,9 +95,10 @@ void bind_rigid_body(py::module_& body) {
           "Adds a load: wrench(t, state) -> (force N, torque N·m) in `frame` ('world' or 'body'); "
           "the force acts at the body point `point` (from the COM, body frame, m). `state` is a "
           "dict with q_wxyz, omega_body, p_world, v_world.")
-      .def_property_readonly("mass", &RigidBody::mass)
+      .def_property_readonly("mass", &RigidBody::mass, "Mass (kg).")
       .def_property_readonly("com", &RigidBody::com, "COM in the body frame (m).")
-      .def_property_readonly("principal_moments", &RigidBody::principal_moments)
+      .def_property_readonly("principal_moments", &RigidBody::principal_moments,
+                             "Principal moments of inertia about the COM, ascending (kg·m²).")
       .def(
           "simulate",
           [](const RigidBody& b, const std::string& method, const Eigen::Vector4d& q_wxyz,
@@ -139,7 +147,11 @@ void bind_rigid_body(py::module_& body) {
           py::arg("method"), py::arg("q_wxyz"), py::arg("omega_body"), py::arg("p_world"),
           py::arg("v_world"), py::arg("h_max"), py::arg("times"), py::arg("free_method") = "splitting2",
           "Integrates from t = 0 (method: splitting2 or rk4) and samples at `times`; returns a dict "
-          "of arrays (angular momentum about the world origin).");
+          "of arrays (angular momentum about the world origin).")
+      .def("__repr__", [](const RigidBody& b) {
+        return fmt::format("RigidBody(mass={} kg, principal_moments={} kg·m², loads={})", b.mass(),
+                           rigid::to_string(b.principal_moments().transpose()), b.load_count());
+      });
 }
 
 void bind_heavy_top(py::module_& body) {
@@ -148,10 +160,14 @@ void bind_heavy_top(py::module_& body) {
                        "A rigid body on a fixed frictionless pivot in uniform gravity: its mass "
                        "properties in the body frame B, the pivot in B (m), gravity (m/s²).")
       .def(py::init<const rigid::MassProperties&, const Eigen::Vector3d&, const Eigen::Vector3d&>(),
-           py::arg("mass_properties"), py::arg("pivot"), py::arg("gravity") = Eigen::Vector3d(0, 0, -9.81))
-      .def_property_readonly("mass", &HeavyTop::mass)
-      .def_property_readonly("inertia_about_pivot", &HeavyTop::inertia_about_pivot)
-      .def_property_readonly("com_from_pivot", &HeavyTop::com_from_pivot)
+           py::arg("mass_properties"), py::arg("pivot"), py::arg("gravity") = Eigen::Vector3d(0, 0, -9.81),
+           "From mass properties in the body frame B, the pivot point in B (m, from B's origin) and "
+           "uniform gravity in the world frame (m/s²).")
+      .def_property_readonly("mass", &HeavyTop::mass, "Mass (kg).")
+      .def_property_readonly("inertia_about_pivot", &HeavyTop::inertia_about_pivot,
+                             "Inertia about the pivot, in the body frame (kg·m²).")
+      .def_property_readonly("com_from_pivot", &HeavyTop::com_from_pivot,
+                             "COM position from the pivot, in the body frame (m).")
       .def(
           "energy",
           [](const HeavyTop& top, const Eigen::Vector4d& q_wxyz, const Eigen::Vector3d& w_B) {
@@ -174,7 +190,12 @@ void bind_heavy_top(py::module_& body) {
           py::arg("q_wxyz"), py::arg("omega_body"), py::arg("h_max"), py::arg("times"),
           py::arg("free_method") = "splitting2",
           "Integrates by the gravity-kick splitting around the free flow (splitting2/4/6); returns a "
-          "dict of arrays sampled at `times` (L_world about the pivot).");
+          "dict of arrays sampled at `times` (L_world about the pivot).")
+      .def("__repr__", [](const HeavyTop& top) {
+        return fmt::format("HeavyTop(mass={} kg, com_from_pivot={} m, inertia_about_pivot={} kg·m²)", top.mass(),
+                           rigid::to_string(top.com_from_pivot().transpose()),
+                           rigid::to_string(top.inertia_about_pivot()));
+      });
 }
 
 }  // namespace
@@ -184,19 +205,30 @@ void bind_body(py::module_& m) {
   py::class_<rigid::body::FreeBodyExact>(body, "FreeBodyExact",
                                          "Exact torque-free body angular velocity (Jacobi elliptic functions).")
       .def(py::init<const Eigen::Vector3d&, const Eigen::Vector3d&>(), py::arg("principal_moments"),
-           py::arg("omega_body"))
+           py::arg("omega_body"),
+           "From the principal moments (kg·m²) and the initial angular velocity in the principal "
+           "body frame (rad/s).")
       .def("omega_body", &rigid::body::FreeBodyExact::omega_body, py::arg("t"), "Body angular velocity at t (s).")
-      .def_property_readonly("period", &rigid::body::FreeBodyExact::period)
-      .def_property_readonly("modulus", &rigid::body::FreeBodyExact::modulus)
-      .def_property_readonly("energy", &rigid::body::FreeBodyExact::energy)
-      .def_property_readonly("angular_momentum_norm", &rigid::body::FreeBodyExact::angular_momentum_norm);
+      .def_property_readonly("period", &rigid::body::FreeBodyExact::period,
+                             "Period of ω(t) (s; inf on the separatrix or for a steady rotation).")
+      .def_property_readonly("modulus", &rigid::body::FreeBodyExact::modulus,
+                             "Elliptic modulus k (0 for a symmetric body, 1 on the separatrix).")
+      .def_property_readonly("energy", &rigid::body::FreeBodyExact::energy, "Kinetic energy ½ ωᵀIω (J), constant.")
+      .def_property_readonly("angular_momentum_norm", &rigid::body::FreeBodyExact::angular_momentum_norm,
+                             "|L| (kg·m²/s), constant.")
+      .def("__repr__", [](const rigid::body::FreeBodyExact& e) {
+        return fmt::format("FreeBodyExact(energy={} J, angular_momentum_norm={} kg·m²/s, modulus={}, period={} s)",
+                           e.energy(), e.angular_momentum_norm(), e.modulus(), e.period());
+      });
   py::class_<rigid::body::FreeBodyMotion>(
       body, "FreeBodyMotion",
       "Exact torque-free motion: orientation R_WB(t) and body angular velocity in closed form.")
       .def(py::init([](const Eigen::Vector3d& I_B, const Eigen::Vector4d& q_wxyz, const Eigen::Vector3d& w_B) {
              return rigid::body::FreeBodyMotion(I_B, rotation_of(q_wxyz), w_B);
            }),
-           py::arg("principal_moments"), py::arg("q_wxyz"), py::arg("omega_body"))
+           py::arg("principal_moments"), py::arg("q_wxyz"), py::arg("omega_body"),
+           "The motion of a body in its principal frame B: principal moments (kg·m²), initial "
+           "orientation R_WB as a unit quaternion (w, x, y, z), initial body angular velocity (rad/s).")
       .def(py::init([](const rigid::MassProperties& mp, const Eigen::Vector4d& q_wxyz, const Eigen::Vector3d& w_B) {
              return rigid::body::FreeBodyMotion(mp, rotation_of(q_wxyz), w_B);
            }),
@@ -209,9 +241,17 @@ void bind_body(py::module_& m) {
           },
           py::arg("t"), "Orientation R_WB(t) as a quaternion (w, x, y, z).")
       .def("omega_body", &rigid::body::FreeBodyMotion::omega_body, py::arg("t"), "Body angular velocity at t (s).")
-      .def_property_readonly("angular_momentum_world", &rigid::body::FreeBodyMotion::angular_momentum_world)
-      .def_property_readonly("period", [](const rigid::body::FreeBodyMotion& motion) { return motion.omega_solution().period(); })
-      .def_property_readonly("modulus", [](const rigid::body::FreeBodyMotion& motion) { return motion.omega_solution().modulus(); });
+      .def_property_readonly("angular_momentum_world", &rigid::body::FreeBodyMotion::angular_momentum_world,
+                             "Angular momentum about the COM in the world frame (kg·m²/s), constant.")
+      .def_property_readonly("period", [](const rigid::body::FreeBodyMotion& motion) { return motion.omega_solution().period(); },
+                             "Period of the body angular velocity (s).")
+      .def_property_readonly("modulus", [](const rigid::body::FreeBodyMotion& motion) { return motion.omega_solution().modulus(); },
+                             "Elliptic modulus k of the body angular velocity's solution.")
+      .def("__repr__", [](const rigid::body::FreeBodyMotion& motion) {
+        return fmt::format("FreeBodyMotion(angular_momentum_world={} kg·m²/s, period={} s, modulus={})",
+                           rigid::to_string(motion.angular_momentum_world().transpose()),
+                           motion.omega_solution().period(), motion.omega_solution().modulus());
+      });
   body.def(
       "simulate_free_body",
       [](const std::string& method, const Eigen::Vector3d& I_B, const Eigen::Vector4d& q_wxyz,
