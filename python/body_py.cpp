@@ -210,7 +210,7 @@ void bind_body(py::module_& m) {
            "body frame (rad/s).")
       .def("omega_body", &rigid::body::FreeBodyExact::omega_body, py::arg("t"), "Body angular velocity at t (s).")
       .def_property_readonly("period", &rigid::body::FreeBodyExact::period,
-                             "Period of ω(t) (s; inf on the separatrix or for a steady rotation).")
+                             "Period of ω(t) (s; inf when ω is constant or on the separatrix).")
       .def_property_readonly("modulus", &rigid::body::FreeBodyExact::modulus,
                              "Elliptic modulus k (0 for a symmetric body, 1 on the separatrix).")
       .def_property_readonly("energy", &rigid::body::FreeBodyExact::energy, "Kinetic energy ½ ωᵀIω (J), constant.")
