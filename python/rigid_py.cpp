@@ -19,6 +19,9 @@ void bind_modes(py::module_& m);
 PYBIND11_MODULE(_rigid, m) {
   m.doc() = "rigid: rigid-body mechanics from isometries and inertia tensors to Euler's equations";
   m.attr("__version__") = RIGID_VERSION_STRING;
+  // classes and submodules are named after the package users import (rigid.SO3, rigid.mass), in
+  // their reprs and in every docstring's signature; the module's own name is restored at the end
+  m.attr("__name__") = "rigid";
   // rigid.Error (a ValueError) with the remedy worded for Python (`shell=True`, not --shell);
   // a cancelled run (Ctrl-C while the GIL was released) is a KeyboardInterrupt
   static py::exception<rigid::Error> error(m, "Error", PyExc_ValueError);
@@ -41,4 +44,5 @@ PYBIND11_MODULE(_rigid, m) {
   bind_mesh(m);
   bind_scene(m);
   bind_modes(m);
+  m.attr("__name__") = "rigid._rigid";
 }

@@ -56,20 +56,14 @@ from ._rigid import __version__, Error  # noqa: E402,F401
 
 
 def _adopt(module, name):
-    # classes and submodules report themselves as rigid.X / rigid.mass.X (not rigid._rigid...),
-    # and `import rigid.mass` works
-    for value in vars(module).values():
-        if isinstance(value, type) and value.__module__ == module.__name__:
-            try:
-                value.__module__ = name
-            except (AttributeError, TypeError):
-                pass
+    # the extension names its classes and submodules after the package (rigid.SO3, rigid.mass);
+    # registering the submodules makes `import rigid.mass` work wherever the package lives
     for attr, value in list(vars(module).items()):
-        if type(value) is type(_sys) and value.__name__.startswith(module.__name__ + "."):
+        if isinstance(value, type(_sys)) and not attr.startswith("_"):
             sub = f"{name}.{attr}"
-            _adopt(value, sub)
             value.__name__ = sub
             _sys.modules[sub] = value
+            _adopt(value, sub)
 
 
 _adopt(_rigid, __name__)
