@@ -8,7 +8,11 @@ rigid.Error, and the submodules rigid.lie, rigid.mass, rigid.mesh, rigid.body, r
 """
 import sys as _sys
 
-from . import _built_for
+try:
+    from . import _built_for
+except ImportError:  # python/rigid/ in the source tree: CMake writes _built_for.py into the build's copy
+    raise ImportError("this is rigid's source directory, which holds no extension: import the built "
+                      "package (PYTHONPATH=build/ci/python after `make demo`) or an installed one") from None
 
 
 def _this_python():
