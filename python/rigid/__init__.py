@@ -3,9 +3,10 @@
 Classes and functions live in the compiled extension rigid._rigid; this package checks that
 the Python importing it can load that extension (the version it was built for, numpy), says
 what to do when it cannot, and re-exports everything: rigid.SO3, rigid.MassProperties,
-rigid.Error, and the submodules rigid.lie, rigid.mass, rigid.mesh, rigid.body, rigid.lagrange
+rigid.Error, and the submodules rigid.mass, rigid.mesh, rigid.body, rigid.lagrange
 (also importable as `import rigid.mass`).
 """
+import os as _os
 import sys as _sys
 
 try:
@@ -37,7 +38,7 @@ def _check_numpy():
     try:
         import numpy  # noqa: F401
     except ImportError:
-        if _sys.executable == _built_for.EXECUTABLE:
+        if _os.path.realpath(_sys.executable or "") == _os.path.realpath(_built_for.EXECUTABLE):
             remedy = "install it with `apt install python3-numpy` (or `python3 -m pip install numpy` in a venv)"
         else:
             remedy = (f"run rigid with the Python it was built for, {_built_python()}, or install numpy "
