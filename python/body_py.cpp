@@ -146,8 +146,12 @@ void bind_rigid_body(py::module_& body) {
           },
           py::arg("method"), py::arg("q_wxyz"), py::arg("omega_body"), py::arg("p_world"),
           py::arg("v_world"), py::arg("h_max"), py::arg("times"), py::arg("free_method") = "splitting2",
-          "Integrates from t = 0 (method: splitting2 or rk4) and samples at `times`; returns a dict "
-          "of arrays (angular momentum about the world origin).")
+          "Integrates from t = 0 (method: splitting2 or rk4) and samples at `times` (s): initial "
+          "orientation R_WB as a unit quaternion (w, x, y, z), body angular velocity omega_body (rad/s, "
+          "body frame), COM position p_world (m) and velocity v_world (m/s) in the world frame, largest "
+          "step h_max (s). Returns a dict of arrays, one row per sample: t, q_wxyz, omega_body, p_world, "
+          "v_world, momentum_world (kg·m/s), angular_momentum_world (about the world origin, kg·m²/s), "
+          "energy (J).")
       .def("__repr__", [](const RigidBody& b) {
         return fmt::format("RigidBody(mass={} kg, principal_moments={} kg·m², loads={})", b.mass(),
                            rigid::to_string(b.principal_moments().transpose()), b.load_count());
@@ -173,7 +177,9 @@ void bind_heavy_top(py::module_& body) {
           [](const HeavyTop& top, const Eigen::Vector4d& q_wxyz, const Eigen::Vector3d& w_B) {
             return top.energy({rotation_of(q_wxyz), w_B});
           },
-          py::arg("q_wxyz"), py::arg("omega_body"), "Kinetic + gravitational energy (J).")
+          py::arg("q_wxyz"), py::arg("omega_body"),
+          "Kinetic + gravitational energy (J) at orientation R_WB (unit quaternion w, x, y, z) and body "
+          "angular velocity omega_body (rad/s, body frame): ½ ωᵀ I_pivot ω − m g · (R_WB p_pivot→COM).")
       .def(
           "simulate",
           [](const HeavyTop& top, const Eigen::Vector4d& q_wxyz, const Eigen::Vector3d& w_B, double h_max,
@@ -189,8 +195,11 @@ void bind_heavy_top(py::module_& body) {
           },
           py::arg("q_wxyz"), py::arg("omega_body"), py::arg("h_max"), py::arg("times"),
           py::arg("free_method") = "splitting2",
-          "Integrates by the gravity-kick splitting around the free flow (splitting2/4/6); returns a "
-          "dict of arrays sampled at `times` (L_world about the pivot).")
+          "Integrates by the gravity-kick splitting around the free flow (free_method splitting2/4/6) "
+          "from orientation R_WB (unit quaternion w, x, y, z) and body angular velocity omega_body "
+          "(rad/s, body frame), largest step h_max (s); returns a dict of arrays sampled at `times` "
+          "(s): t, q_wxyz, omega_body, L_world (about the pivot, kg·m²/s), energy (J), "
+          "orthonormality_error.")
       .def("__repr__", [](const HeavyTop& top) {
         return fmt::format("HeavyTop(mass={} kg, com_from_pivot={} m, inertia_about_pivot={} kg·m²)", top.mass(),
                            rigid::to_string(top.com_from_pivot().transpose()),
@@ -268,8 +277,11 @@ void bind_body(py::module_& m) {
       },
       py::arg("method"), py::arg("principal_moments"), py::arg("q_wxyz"), py::arg("omega_body"),
       py::arg("h_max"), py::arg("times"),
-      "Integrate a free body in its principal frame (method: rk4, splitting2, splitting4, "
-      "splitting6, midpoint, rkmk4, moser_veselov); returns a dict of arrays sampled at `times`.");
+      "Integrate a torque-free body in its principal frame (method: rk4, splitting2, splitting4, "
+      "splitting6, midpoint, rkmk4, moser_veselov): principal moments (kg·m²), initial orientation "
+      "R_WB (unit quaternion w, x, y, z), body angular velocity omega_body (rad/s), largest step h_max "
+      "(s); returns a dict of arrays sampled at `times` (s): t, q_wxyz, omega_body, L_world "
+      "(kg·m²/s), energy (J), orthonormality_error.");
 
   bind_rigid_body(body);
   bind_heavy_top(body);
