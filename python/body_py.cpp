@@ -222,7 +222,8 @@ void bind_body(py::module_& m) {
                              "Period of ω(t) (s; inf when ω is constant or on the separatrix).")
       .def_property_readonly("modulus", &rigid::body::FreeBodyExact::modulus,
                              "Elliptic modulus k (0 for a symmetric body, 1 on the separatrix).")
-      .def_property_readonly("energy", &rigid::body::FreeBodyExact::energy, "Kinetic energy ½ ωᵀIω (J), constant.")
+      .def_property_readonly("energy", &rigid::body::FreeBodyExact::energy,
+                             "Kinetic energy ½ ωᵀIω (J), constant.")
       .def_property_readonly("angular_momentum_norm", &rigid::body::FreeBodyExact::angular_momentum_norm,
                              "|L| (kg·m²/s), constant.")
       .def("__repr__", [](const rigid::body::FreeBodyExact& e) {

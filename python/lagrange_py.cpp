@@ -113,28 +113,43 @@ void bind_lagrange(py::module_& root) {
                         "The derived equations: L, T, V, the mass matrix M(q), the forcing f(q, q_dot) "
                         "(inertial + potential + generalized), the constraints and their Jacobian, the "
                         "conserved quantities and the symbols, each quantity a Printed (text, latex).")
-      .def_readonly("coordinates", &Equations::coordinates, "The generalized coordinates' names, in order.")
+      .def_readonly("coordinates", &Equations::coordinates,
+                    "The generalized coordinates' names, in order.")
       .def_property_readonly("parameters", [](const Equations& e) {
         py::dict d;
         for (const auto& p : e.parameters) d[py::str(p.name)] = p.value;
         return d;
       }, "{name: value} in declaration order")
-      .def_readonly("constraint_names", &Equations::constraint_names, "The holonomic constraints' names, in order.")
+      .def_readonly("constraint_names", &Equations::constraint_names,
+                    "The holonomic constraints' names, in order.")
       .def_readonly("lagrangian", &Equations::lagrangian, "L = T − V (J).")
       .def_readonly("kinetic_energy", &Equations::kinetic_energy, "T (J).")
       .def_readonly("potential_energy", &Equations::potential_energy, "V (J).")
       .def_readonly("mass_matrix", &Equations::mass_matrix, "n lists of n Printed")
-      .def_readonly("forcing", &Equations::forcing, "F(q, q̇) with M(q) q̈ = f: forcing_inertial + forcing_potential + forcing_generalized, one Printed per coordinate.")
-      .def_readonly("forcing_inertial", &Equations::forcing_inertial, "The velocity-product (Coriolis and centrifugal) part of f, one Printed per coordinate.")
-      .def_readonly("forcing_potential", &Equations::forcing_potential, "−∂V/∂q, one Printed per coordinate.")
-      .def_readonly("forcing_generalized", &Equations::forcing_generalized, "The generalized forces Q (the `forces` given), one Printed per coordinate.")
+      .def_readonly("forcing", &Equations::forcing,
+                    "Forcing f(q, q̇) with M(q) q̈ = f: forcing_inertial + forcing_potential + "
+                    "forcing_generalized, one Printed per coordinate.")
+      .def_readonly("forcing_inertial", &Equations::forcing_inertial,
+                    "∂T/∂q − (∂²T/∂q̇∂q) q̇ − ∂²T/∂q̇∂t (Coriolis, centrifugal, driven), one Printed "
+                    "per coordinate.")
+      .def_readonly("forcing_potential", &Equations::forcing_potential,
+                    "−∂V/∂q, one Printed per coordinate.")
+      .def_readonly("forcing_generalized", &Equations::forcing_generalized,
+                    "The generalized forces Q (the `forces` given), one Printed per coordinate.")
       .def_readonly("equations", &Equations::equations, "one Printed 'lhs = rhs' per coordinate")
-      .def_readonly("constraints", &Equations::constraints, "The holonomic constraints g(q, t) = 0, one Printed each.")
-      .def_readonly("constraint_jacobian", &Equations::constraint_jacobian, "∂g/∂q: one list of n Printed per constraint.")
-      .def_readonly("jacobi_integral", &Equations::jacobi_integral, "The Jacobi integral h = Σ q̇ ∂L/∂q̇ − L (J; the energy when T is quadratic in q̇).")
-      .def_readonly("jacobi_conserved", &Equations::jacobi_conserved, "True when L has no explicit t and there are no generalized forces (h is conserved).")
+      .def_readonly("constraints", &Equations::constraints,
+                    "The holonomic constraints g(q, t) = 0, one Printed each.")
+      .def_readonly("constraint_jacobian", &Equations::constraint_jacobian,
+                    "∂g/∂q: one list of n Printed per constraint.")
+      .def_readonly("jacobi_integral", &Equations::jacobi_integral,
+                    "The Jacobi integral h = Σ q̇ ∂L/∂q̇ − L (J; the energy when T is quadratic in "
+                    "q̇).")
+      .def_readonly("jacobi_conserved", &Equations::jacobi_conserved,
+                    "True when h is conserved: L and the constraints do not depend on t, there are "
+                    "no forces, and the velocity constraints have no term a.")
       .def_readonly("cyclic", &Equations::cyclic, "The cyclic coordinates (L independent of them).")
-      .def_readonly("cyclic_momenta", &Equations::cyclic_momenta, "∂L/∂q̇ of each cyclic coordinate (conserved), one Printed each.")
+      .def_readonly("cyclic_momenta", &Equations::cyclic_momenta,
+                    "∂L/∂q̇ of each cyclic coordinate (conserved), one Printed each.")
       .def_property_readonly("symbols", [](const Equations& e) {
         py::list out;
         for (const auto& s : e.symbols) {
@@ -220,8 +235,10 @@ void bind_lagrange(py::module_& root) {
            "name is its coordinate); springs: [{'body_a', 'point_a', 'body_b' (omit: world), "
            "'point_b', 'stiffness', 'rest_length'}]; velocity_constraints: [{'name', "
            "'coefficients': {coordinate: A_i(q, t)}, 'term': a(q, t)}] for Σ A_i q̇_i + a = 0.")
-      .def_property_readonly("coordinate_names", &System::coordinate_names, "The generalized coordinates, in order.")
-      .def_property_readonly("constraint_names", &System::constraint_names, "The holonomic constraints, in order.")
+      .def_property_readonly("coordinate_names", &System::coordinate_names,
+                             "The generalized coordinates, in order.")
+      .def_property_readonly("constraint_names", &System::constraint_names,
+                             "The holonomic constraints, in order.")
       .def_property_readonly("cyclic_coordinates", &System::cyclic_coordinates,
                              "Coordinates L does not depend on (their momenta are conserved).")
       .def_property_readonly("velocity_constraint_names", &System::velocity_constraint_names,

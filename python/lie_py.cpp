@@ -18,47 +18,63 @@ namespace {
 // The docstrings the groups share, filled in with the group's name, its tangent coordinates
 // and its matrix form; conventions of [Sola2018] as in include/rigid/lie/*.hpp.
 struct GroupDocs {
-  std::string identity, exp, hat, vee, from_matrix, right_jacobian, left_jacobian, right_jacobian_inverse,
-      left_jacobian_inverse, sample, log, matrix, adjoint, homogeneous, inverse, interpolate, is_approx,
-      rotation, translation, act_vector, n, dimension, dimension_of, ad, init, angle, from_angle, from_complex,
-      from_axis_angle;
+  std::string identity, exp, hat, vee, from_matrix, right_jacobian, left_jacobian,
+      right_jacobian_inverse, left_jacobian_inverse, sample, log, matrix, adjoint, homogeneous,
+      inverse, interpolate, is_approx, rotation, translation, act_vector, n, dimension,
+      dimension_of, ad, init, angle, from_angle, from_complex, from_axis_angle;
 };
 
-GroupDocs group_docs(const std::string& g, const std::string& tangent, const std::string& matrix, bool motion) {
+GroupDocs group_docs(const std::string& g, const std::string& tangent, const std::string& matrix,
+                     bool motion) {
   GroupDocs d;
   d.identity = fmt::format("The identity element of {}.", g);
   d.exp = fmt::format("Exponential map: tangent coordinates {} -> element of {}.", tangent, g);
   d.hat = fmt::format("hat(xi): the Lie-algebra matrix of the tangent coordinates {}.", tangent);
-  d.vee = fmt::format("vee(M): the tangent coordinates {} of a Lie-algebra matrix (inverse of hat).", tangent);
-  d.from_matrix = fmt::format("The element of {} whose matrix is the {} (checked within tol: RᵀR = I, "
-                              "det R = +1{}); raises rigid.Error giving the defect otherwise.",
-                              g, matrix, motion ? ", last row (0, ..., 0, 1)" : "");
-  d.right_jacobian = "Right Jacobian Jr(xi) of exp: exp(xi + d) ≈ exp(xi) exp(Jr(xi) d) [Sola2018].";
-  d.left_jacobian = "Left Jacobian Jl(xi) of exp: exp(xi + d) ≈ exp(Jl(xi) d) exp(xi); Jl(xi) = Jr(-xi) [Sola2018].";
+  d.vee = fmt::format(
+      "vee(M): the tangent coordinates {} of a Lie-algebra matrix (inverse of hat).", tangent);
+  d.from_matrix = fmt::format(
+      "The element of {} whose matrix is the {} (checked within tol: RᵀR = I, "
+      "det R = +1{}); raises rigid.Error giving the defect otherwise.",
+      g, matrix, motion ? ", last row (0, ..., 0, 1)" : "");
+  d.right_jacobian =
+      "Right Jacobian Jr(xi) of exp: exp(xi + d) ≈ exp(xi) exp(Jr(xi) d) [Sola2018].";
+  d.left_jacobian =
+      "Left Jacobian Jl(xi) of exp: exp(xi + d) ≈ exp(Jl(xi) d) exp(xi); Jl(xi) = Jr(-xi) "
+      "[Sola2018].";
   d.right_jacobian_inverse = "The inverse Jr(xi)⁻¹ of the right Jacobian, in closed form.";
   d.left_jacobian_inverse = "The inverse Jl(xi)⁻¹ of the left Jacobian, in closed form.";
-  d.sample = motion ? fmt::format("Random elements of {} from a seeded std::mt19937_64: Haar-uniform rotation, "
-                                  "translation uniform in [-half_extent, half_extent] (m) on each axis.", g)
-                    : fmt::format("Haar-uniform random elements of {} from a seeded std::mt19937_64.", g);
-  d.log = fmt::format("Logarithm: the tangent coordinates {} with exp(log(X)) = X (rotation angle in [0, π]).", tangent);
+  d.sample =
+      motion ? fmt::format(
+                   "Random elements of {} from a seeded std::mt19937_64: Haar-uniform rotation, "
+                   "translation uniform in [-half_extent, half_extent] (m) on each axis.",
+                   g)
+             : fmt::format("Haar-uniform random elements of {} from a seeded std::mt19937_64.", g);
+  d.log = fmt::format(
+      "Logarithm: the tangent coordinates {} with exp(log(X)) = X (rotation angle in [0, π]).",
+      tangent);
   d.matrix = fmt::format("The {}.", matrix);
   d.adjoint = "The adjoint matrix Ad(X) on tangent coordinates: X exp(xi) X⁻¹ = exp(Ad(X) xi).";
   d.homogeneous = "The homogeneous matrix [[R, t], [0, 1]] (t = 0 for a rotation): acts on (p, 1).";
-  d.inverse = motion ? "The inverse motion (Rᵀ, -Rᵀ t): p -> Rᵀ (p - t)." : "The inverse rotation (Rᵀ).";
-  d.interpolate = "Geodesic interpolation self · exp(s · log(self⁻¹ · other)): self at s = 0, other at s = 1.";
-  d.is_approx = "True if self and other are the same element within tol (the angle of self⁻¹ · other, rad).";
+  d.inverse =
+      motion ? "The inverse motion (Rᵀ, -Rᵀ t): p -> Rᵀ (p - t)." : "The inverse rotation (Rᵀ).";
+  d.interpolate =
+      "Geodesic interpolation self · exp(s · log(self⁻¹ · other)): self at s = 0, other at s = 1.";
+  d.is_approx =
+      "True if self and other are the same element within tol (the angle of self⁻¹ · other, rad).";
   d.rotation = "The rotation part R.";
   d.translation = "The translation part t (m): p -> R p + t.";
   d.act_vector = "Acts on a free vector (no translation): R v.";
   d.n = "n, the dimension of the space acted on.";
-  d.dimension = motion ? "Dimension of the tangent space, n(n+1)/2." : "Dimension of the tangent space, n(n-1)/2.";
+  d.dimension = motion ? "Dimension of the tangent space, n(n+1)/2."
+                       : "Dimension of the tangent space, n(n-1)/2.";
   d.dimension_of = fmt::format("The tangent dimension of {} for a given n.", g);
   d.ad = "The small adjoint ad(xi): the matrix of the Lie bracket [xi, ·] on tangent coordinates.";
   d.init = "The rigid motion p -> R p + t from its rotation R and translation t (m).";
   d.angle = "The rotation angle (rad): in (-π, π] for SO(2), in [0, π] for SO(3).";
   d.from_angle = "The rotation by theta (rad, counter-clockwise).";
   d.from_complex = "The rotation of the complex number c + i s (normalised).";
-  d.from_axis_angle = "The rotation by `angle` (rad) about `axis` (normalised); raises rigid.Error on a zero axis.";
+  d.from_axis_angle =
+      "The rotation by `angle` (rad) about `axis` (normalised); raises rigid.Error on a zero axis.";
   return d;
 }
 
@@ -82,10 +98,14 @@ void bind_lie(py::module_& m) {
       .def_static("exp", [](double theta) { return SO2d::exp(T1(theta)); }, py::arg("theta"),
                   "angle (rad, counter-clockwise) -> rotation")
       .def_static("from_angle", &SO2d::from_angle, py::arg("theta"), dso2.from_angle.c_str())
-      .def_static("from_complex", &SO2d::from_complex, py::arg("c"), py::arg("s"), dso2.from_complex.c_str())
-      .def_static("from_matrix", &SO2d::from_matrix, py::arg("R"), py::arg("tol") = 1e-9, dso2.from_matrix.c_str())
-      .def_static("hat", [](double theta) { return SO2d::hat(T1(theta)); }, py::arg("theta"), dso2.hat.c_str())
-      .def_static("vee", [](const Eigen::Matrix2d& W) { return SO2d::vee(W)(0); }, py::arg("matrix"), dso2.vee.c_str())
+      .def_static("from_complex", &SO2d::from_complex, py::arg("c"), py::arg("s"),
+                  dso2.from_complex.c_str())
+      .def_static("from_matrix", &SO2d::from_matrix, py::arg("R"), py::arg("tol") = 1e-9,
+                  dso2.from_matrix.c_str())
+      .def_static("hat", [](double theta) { return SO2d::hat(T1(theta)); }, py::arg("theta"),
+                  dso2.hat.c_str())
+      .def_static("vee", [](const Eigen::Matrix2d& W) { return SO2d::vee(W)(0); }, py::arg("matrix"),
+                  dso2.vee.c_str())
       .def_static(
           "sample",
           [](std::uint64_t seed, int n) {
@@ -103,8 +123,10 @@ void bind_lie(py::module_& m) {
       .def("homogeneous", &SO2d::homogeneous, dso2.homogeneous.c_str())
       .def("complex", [](const SO2d& R) { return V2(R.real(), R.imag()); }, "(c, s)")
       .def("inverse", &SO2d::inverse, dso2.inverse.c_str())
-      .def("interpolate", &SO2d::interpolate, py::arg("other"), py::arg("s"), dso2.interpolate.c_str())
-      .def("is_approx", &SO2d::is_approx, py::arg("other"), py::arg("tol") = 1e-12, dso2.is_approx.c_str())
+      .def("interpolate", &SO2d::interpolate, py::arg("other"), py::arg("s"),
+           dso2.interpolate.c_str())
+      .def("is_approx", &SO2d::is_approx, py::arg("other"), py::arg("tol") = 1e-12,
+           dso2.is_approx.c_str())
       .def("__mul__", [](const SO2d& a, const SO2d& b) { return a * b; }, py::is_operator())
       .def("__mul__", [](const SO2d& a, const V2& v) -> V2 { return a * v; }, py::is_operator())
       .def("__repr__", [](const SO2d& R) { return fmt::format("SO2(angle={})", R.angle()); });
@@ -116,11 +138,15 @@ void bind_lie(py::module_& m) {
       .def_static("exp", &SE2d::exp, py::arg("xi"), dse2.exp.c_str())
       .def_static("hat", &SE2d::hat, py::arg("xi"), dse2.hat.c_str())
       .def_static("vee", &SE2d::vee, py::arg("matrix"), dse2.vee.c_str())
-      .def_static("from_matrix", &SE2d::from_matrix, py::arg("T"), py::arg("tol") = 1e-9, dse2.from_matrix.c_str())
-      .def_static("right_jacobian", &SE2d::right_jacobian, py::arg("xi"), dse2.right_jacobian.c_str())
+      .def_static("from_matrix", &SE2d::from_matrix, py::arg("T"), py::arg("tol") = 1e-9,
+                  dse2.from_matrix.c_str())
+      .def_static("right_jacobian", &SE2d::right_jacobian, py::arg("xi"),
+                  dse2.right_jacobian.c_str())
       .def_static("left_jacobian", &SE2d::left_jacobian, py::arg("xi"), dse2.left_jacobian.c_str())
-      .def_static("right_jacobian_inverse", &SE2d::right_jacobian_inverse, py::arg("xi"), dse2.right_jacobian_inverse.c_str())
-      .def_static("left_jacobian_inverse", &SE2d::left_jacobian_inverse, py::arg("xi"), dse2.left_jacobian_inverse.c_str())
+      .def_static("right_jacobian_inverse", &SE2d::right_jacobian_inverse, py::arg("xi"),
+                  dse2.right_jacobian_inverse.c_str())
+      .def_static("left_jacobian_inverse", &SE2d::left_jacobian_inverse, py::arg("xi"),
+                  dse2.left_jacobian_inverse.c_str())
       .def_static(
           "sample",
           [](std::uint64_t seed, int n, double half_extent) {
@@ -138,7 +164,8 @@ void bind_lie(py::module_& m) {
       .def("homogeneous", &SE2d::homogeneous, dse2.homogeneous.c_str())
       .def("adjoint", &SE2d::adjoint, dse2.adjoint.c_str())
       .def("inverse", &SE2d::inverse, dse2.inverse.c_str())
-      .def("interpolate", &SE2d::interpolate, py::arg("other"), py::arg("s"), dse2.interpolate.c_str())
+      .def("interpolate", &SE2d::interpolate, py::arg("other"), py::arg("s"),
+           dse2.interpolate.c_str())
       .def("act_vector", &SE2d::act_vector, py::arg("v"), dse2.act_vector.c_str())
       .def("__mul__", [](const SE2d& a, const SE2d& b) { return a * b; }, py::is_operator())
       .def("__mul__", [](const SE2d& a, const V2& p) -> V2 { return a * p; }, py::is_operator())
@@ -153,12 +180,17 @@ void bind_lie(py::module_& m) {
       .def_static("hat", &SOn::hat, py::arg("omega"), dson.hat.c_str())
       .def_static("vee", &SOn::vee, py::arg("matrix"), py::arg("tol") = 1e-9, dson.vee.c_str())
       .def_static("ad", &SOn::ad, py::arg("omega"), dson.ad.c_str())
-      .def_static("from_matrix", &SOn::from_matrix, py::arg("R"), py::arg("tol") = 1e-9, dson.from_matrix.c_str())
+      .def_static("from_matrix", &SOn::from_matrix, py::arg("R"), py::arg("tol") = 1e-9,
+                  dson.from_matrix.c_str())
       .def_static("dimension_of", &SOn::dimension_of, py::arg("n"), dson.dimension_of.c_str())
-      .def_static("right_jacobian", &SOn::right_jacobian, py::arg("omega"), dson.right_jacobian.c_str())
-      .def_static("left_jacobian", &SOn::left_jacobian, py::arg("omega"), dson.left_jacobian.c_str())
-      .def_static("right_jacobian_inverse", &SOn::right_jacobian_inverse, py::arg("omega"), dson.right_jacobian_inverse.c_str())
-      .def_static("left_jacobian_inverse", &SOn::left_jacobian_inverse, py::arg("omega"), dson.left_jacobian_inverse.c_str())
+      .def_static("right_jacobian", &SOn::right_jacobian, py::arg("omega"),
+                  dson.right_jacobian.c_str())
+      .def_static("left_jacobian", &SOn::left_jacobian, py::arg("omega"),
+                  dson.left_jacobian.c_str())
+      .def_static("right_jacobian_inverse", &SOn::right_jacobian_inverse, py::arg("omega"),
+                  dson.right_jacobian_inverse.c_str())
+      .def_static("left_jacobian_inverse", &SOn::left_jacobian_inverse, py::arg("omega"),
+                  dson.left_jacobian_inverse.c_str())
       .def_static(
           "sample",
           [](int dim, std::uint64_t seed, int count) {
@@ -176,8 +208,10 @@ void bind_lie(py::module_& m) {
       .def_property_readonly("n", &SOn::n, dson.n.c_str())
       .def_property_readonly("dimension", &SOn::dimension, dson.dimension.c_str())
       .def("inverse", &SOn::inverse, dson.inverse.c_str())
-      .def("interpolate", &SOn::interpolate, py::arg("other"), py::arg("s"), dson.interpolate.c_str())
-      .def("is_approx", &SOn::is_approx, py::arg("other"), py::arg("tol") = 1e-12, dson.is_approx.c_str())
+      .def("interpolate", &SOn::interpolate, py::arg("other"), py::arg("s"),
+           dson.interpolate.c_str())
+      .def("is_approx", &SOn::is_approx, py::arg("other"), py::arg("tol") = 1e-12,
+           dson.is_approx.c_str())
       .def("__mul__", [](const SOn& a, const SOn& b) { return a * b; }, py::is_operator())
       .def("__mul__", [](const SOn& a, const VX& v) -> VX { return a * v; }, py::is_operator())
       .def("__repr__", [](const SOn& R) { return fmt::format("SOn(n={}, matrix={})", R.n(), rigid::to_string(R.matrix())); });
@@ -190,12 +224,16 @@ void bind_lie(py::module_& m) {
       .def_static("hat", &SEn::hat, py::arg("xi"), dsen.hat.c_str())
       .def_static("vee", &SEn::vee, py::arg("matrix"), py::arg("tol") = 1e-9, dsen.vee.c_str())
       .def_static("ad", &SEn::ad, py::arg("xi"), dsen.ad.c_str())
-      .def_static("from_matrix", &SEn::from_matrix, py::arg("T"), py::arg("tol") = 1e-9, dsen.from_matrix.c_str())
+      .def_static("from_matrix", &SEn::from_matrix, py::arg("T"), py::arg("tol") = 1e-9,
+                  dsen.from_matrix.c_str())
       .def_static("dimension_of", &SEn::dimension_of, py::arg("n"), dsen.dimension_of.c_str())
-      .def_static("right_jacobian", &SEn::right_jacobian, py::arg("xi"), dsen.right_jacobian.c_str())
+      .def_static("right_jacobian", &SEn::right_jacobian, py::arg("xi"),
+                  dsen.right_jacobian.c_str())
       .def_static("left_jacobian", &SEn::left_jacobian, py::arg("xi"), dsen.left_jacobian.c_str())
-      .def_static("right_jacobian_inverse", &SEn::right_jacobian_inverse, py::arg("xi"), dsen.right_jacobian_inverse.c_str())
-      .def_static("left_jacobian_inverse", &SEn::left_jacobian_inverse, py::arg("xi"), dsen.left_jacobian_inverse.c_str())
+      .def_static("right_jacobian_inverse", &SEn::right_jacobian_inverse, py::arg("xi"),
+                  dsen.right_jacobian_inverse.c_str())
+      .def_static("left_jacobian_inverse", &SEn::left_jacobian_inverse, py::arg("xi"),
+                  dsen.left_jacobian_inverse.c_str())
       .def_static(
           "sample",
           [](int dim, std::uint64_t seed, int count, double half_extent) {
@@ -214,7 +252,8 @@ void bind_lie(py::module_& m) {
       .def_property_readonly("n", &SEn::n, dsen.n.c_str())
       .def_property_readonly("dimension", &SEn::dimension, dsen.dimension.c_str())
       .def("inverse", &SEn::inverse, dsen.inverse.c_str())
-      .def("interpolate", &SEn::interpolate, py::arg("other"), py::arg("s"), dsen.interpolate.c_str())
+      .def("interpolate", &SEn::interpolate, py::arg("other"), py::arg("s"),
+           dsen.interpolate.c_str())
       .def("act_vector", &SEn::act_vector, py::arg("v"), dsen.act_vector.c_str())
       .def("__mul__", [](const SEn& a, const SEn& b) { return a * b; }, py::is_operator())
       .def("__mul__", [](const SEn& a, const VX& p) -> VX { return a * p; }, py::is_operator())
@@ -228,16 +267,22 @@ void bind_lie(py::module_& m) {
       .def_static("exp", &SO3d::exp, py::arg("omega"), "rotation vector (rad) -> rotation")
       .def_static("hat", &SO3d::hat, py::arg("omega"), dso3.hat.c_str())
       .def_static("vee", &SO3d::vee, py::arg("matrix"), dso3.vee.c_str())
-      .def_static("from_matrix", &SO3d::from_matrix, py::arg("R"), py::arg("tol") = 1e-9, dso3.from_matrix.c_str())
+      .def_static("from_matrix", &SO3d::from_matrix, py::arg("R"), py::arg("tol") = 1e-9,
+                  dso3.from_matrix.c_str())
       .def_static("from_quaternion", &SO3d::from_quaternion, py::arg("w"), py::arg("x"), py::arg("y"),
                   py::arg("z"),
                   "The rotation of the quaternion (w, x, y, z), normalised; raises rigid.Error if it is "
                   "not finite or its norm is below 1e-12.")
-      .def_static("from_axis_angle", &SO3d::from_axis_angle, py::arg("axis"), py::arg("angle"), dso3.from_axis_angle.c_str())
-      .def_static("right_jacobian", &SO3d::right_jacobian, py::arg("omega"), dso3.right_jacobian.c_str())
-      .def_static("left_jacobian", &SO3d::left_jacobian, py::arg("omega"), dso3.left_jacobian.c_str())
-      .def_static("right_jacobian_inverse", &SO3d::right_jacobian_inverse, py::arg("omega"), dso3.right_jacobian_inverse.c_str())
-      .def_static("left_jacobian_inverse", &SO3d::left_jacobian_inverse, py::arg("omega"), dso3.left_jacobian_inverse.c_str())
+      .def_static("from_axis_angle", &SO3d::from_axis_angle, py::arg("axis"), py::arg("angle"),
+                  dso3.from_axis_angle.c_str())
+      .def_static("right_jacobian", &SO3d::right_jacobian, py::arg("omega"),
+                  dso3.right_jacobian.c_str())
+      .def_static("left_jacobian", &SO3d::left_jacobian, py::arg("omega"),
+                  dso3.left_jacobian.c_str())
+      .def_static("right_jacobian_inverse", &SO3d::right_jacobian_inverse, py::arg("omega"),
+                  dso3.right_jacobian_inverse.c_str())
+      .def_static("left_jacobian_inverse", &SO3d::left_jacobian_inverse, py::arg("omega"),
+                  dso3.left_jacobian_inverse.c_str())
       .def_static(
           "sample",
           [](std::uint64_t seed, int n) {
@@ -269,8 +314,10 @@ void bind_lie(py::module_& m) {
       .def("homogeneous", &SO3d::homogeneous, dso3.homogeneous.c_str())
       .def("quaternion", &SO3d::quaternion, "(w, x, y, z)")
       .def("inverse", &SO3d::inverse, dso3.inverse.c_str())
-      .def("interpolate", &SO3d::interpolate, py::arg("other"), py::arg("s"), dso3.interpolate.c_str())
-      .def("is_approx", &SO3d::is_approx, py::arg("other"), py::arg("tol") = 1e-12, dso3.is_approx.c_str())
+      .def("interpolate", &SO3d::interpolate, py::arg("other"), py::arg("s"),
+           dso3.interpolate.c_str())
+      .def("is_approx", &SO3d::is_approx, py::arg("other"), py::arg("tol") = 1e-12,
+           dso3.is_approx.c_str())
       .def("__mul__", [](const SO3d& a, const SO3d& b) { return a * b; }, py::is_operator())
       .def("__mul__", [](const SO3d& a, const V3& v) -> V3 { return a * v; }, py::is_operator())
       .def("__repr__", [](const SO3d& R) { return "SO3(quaternion wxyz=" + rigid::to_string(R.quaternion().transpose()) + ")"; });
@@ -282,18 +329,23 @@ void bind_lie(py::module_& m) {
       .def_static("exp", &SE3d::exp, py::arg("xi"), dse3.exp.c_str())
       .def_static("hat", &SE3d::hat, py::arg("xi"), dse3.hat.c_str())
       .def_static("vee", &SE3d::vee, py::arg("matrix"), dse3.vee.c_str())
-      .def_static("from_matrix", &SE3d::from_matrix, py::arg("T"), py::arg("tol") = 1e-9, dse3.from_matrix.c_str())
-      .def_static("right_jacobian", &SE3d::right_jacobian, py::arg("xi"), dse3.right_jacobian.c_str())
+      .def_static("from_matrix", &SE3d::from_matrix, py::arg("T"), py::arg("tol") = 1e-9,
+                  dse3.from_matrix.c_str())
+      .def_static("right_jacobian", &SE3d::right_jacobian, py::arg("xi"),
+                  dse3.right_jacobian.c_str())
       .def_static("left_jacobian", &SE3d::left_jacobian, py::arg("xi"), dse3.left_jacobian.c_str())
-      .def_static("right_jacobian_inverse", &SE3d::right_jacobian_inverse, py::arg("xi"), dse3.right_jacobian_inverse.c_str())
-      .def_static("left_jacobian_inverse", &SE3d::left_jacobian_inverse, py::arg("xi"), dse3.left_jacobian_inverse.c_str())
+      .def_static("right_jacobian_inverse", &SE3d::right_jacobian_inverse, py::arg("xi"),
+                  dse3.right_jacobian_inverse.c_str())
+      .def_static("left_jacobian_inverse", &SE3d::left_jacobian_inverse, py::arg("xi"),
+                  dse3.left_jacobian_inverse.c_str())
       .def("log", &SE3d::log, dse3.log.c_str())
       .def("rotation", &SE3d::rotation, dse3.rotation.c_str())
       .def("translation", &SE3d::translation, dse3.translation.c_str())
       .def("matrix", &SE3d::matrix, dse3.matrix.c_str())
       .def("adjoint", &SE3d::adjoint, dse3.adjoint.c_str())
       .def("inverse", &SE3d::inverse, dse3.inverse.c_str())
-      .def("interpolate", &SE3d::interpolate, py::arg("other"), py::arg("s"), dse3.interpolate.c_str())
+      .def("interpolate", &SE3d::interpolate, py::arg("other"), py::arg("s"),
+           dse3.interpolate.c_str())
       .def("__mul__", [](const SE3d& a, const SE3d& b) { return a * b; }, py::is_operator())
       .def("__mul__", [](const SE3d& a, const V3& p) -> V3 { return a * p; }, py::is_operator())
       .def("__repr__", [](const SE3d& X) {
@@ -305,8 +357,10 @@ void bind_lie(py::module_& m) {
                                               "How far a matrix M is from O(n) and SO(n): check_orthogonal(M, tol).")
       .def_readonly("defect", &rigid::OrthogonalityReport::defect, "max |MᵀM − I| (entrywise).")
       .def_readonly("determinant", &rigid::OrthogonalityReport::determinant, "det M.")
-      .def_readonly("orthogonal", &rigid::OrthogonalityReport::orthogonal, "True if the defect is within tol (M in O(n)).")
-      .def_readonly("rotation", &rigid::OrthogonalityReport::rotation, "True if also det M > 0 (M in SO(n)).")
+      .def_readonly("orthogonal", &rigid::OrthogonalityReport::orthogonal,
+                    "True if the defect is within tol (M in O(n)).")
+      .def_readonly("rotation", &rigid::OrthogonalityReport::rotation,
+                    "True if also det M > 0 (M in SO(n)).")
       .def("__repr__", [](const rigid::OrthogonalityReport& r) {
         return fmt::format("OrthogonalityReport(defect={}, determinant={}, orthogonal={}, rotation={})", r.defect,
                            r.determinant, r.orthogonal ? "True" : "False", r.rotation ? "True" : "False");

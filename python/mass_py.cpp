@@ -67,8 +67,10 @@ void bind_mass(py::module_& m) {
            "frame B (m), inertia I_C_B about the COM in B (kg·m², the physical tensor with off-diagonal "
            "−∫ρxy dV); raises rigid.Error naming the failed condition and its margin.")
       .def_property_readonly("mass", &MassProperties::mass, "Mass (kg).")
-      .def_property_readonly("com", &MassProperties::com, "Center of mass p_OC_B: from the origin O, in frame B (m).")
-      .def_property_readonly("inertia_com", &MassProperties::inertia_com, "Inertia tensor about the COM, in frame B (kg·m²).")
+      .def_property_readonly("com", &MassProperties::com,
+                             "Center of mass p_OC_B: from the origin O, in frame B (m).")
+      .def_property_readonly("inertia_com", &MassProperties::inertia_com,
+                             "Inertia tensor about the COM, in frame B (kg·m²).")
       .def("inertia_about", &MassProperties::inertia_about, py::arg("p_OQ_B"),
            "Inertia about the point Q, expressed in B (parallel-axis theorem).")
       .def("inertia_about_axis", &MassProperties::inertia_about_axis, py::arg("p_OQ_B"),
@@ -109,7 +111,8 @@ void bind_mass(py::module_& m) {
            "Builds and validates: mass (kg), COM p_OC_B in the plane frame B (m), polar moment about "
            "the COM (kg·m², about the normal through C).")
       .def_property_readonly("mass", &MassProperties2::mass, "Mass (kg).")
-      .def_property_readonly("com", &MassProperties2::com, "Center of mass p_OC_B in the plane frame B (m).")
+      .def_property_readonly("com", &MassProperties2::com,
+                             "Center of mass p_OC_B in the plane frame B (m).")
       .def_property_readonly("moment_com", &MassProperties2::moment_com,
                              "Polar moment of inertia about the normal through the COM (kg·m²).")
       .def("moment_about", &MassProperties2::moment_about, py::arg("p_OQ_B"),
@@ -124,8 +127,10 @@ void bind_mass(py::module_& m) {
            "matrix J = ∫ρ r rᵀ dV about the COM (kg·m², n × n, symmetric positive semidefinite).")
       .def_property_readonly("mass", &SecondMoments::mass, "Mass (kg).")
       .def_property_readonly("com", &SecondMoments::com, "Center of mass in the body frame (m).")
-      .def_property_readonly("J_com", &SecondMoments::J_com, "Second-moment matrix ∫ρ r rᵀ dV about the COM (kg·m²).")
-      .def_property_readonly("dimension", &SecondMoments::dimension, "n, the dimension of the space.")
+      .def_property_readonly("J_com", &SecondMoments::J_com,
+                             "Second-moment matrix ∫ρ r rᵀ dV about the COM (kg·m²).")
+      .def_property_readonly("dimension", &SecondMoments::dimension,
+                             "n, the dimension of the space.")
       .def("J_about", &SecondMoments::J_about, py::arg("q"),
            "J about the point q (m): J_C + m (c − q)(c − q)ᵀ (kg·m²).")
       .def("apply", &SecondMoments::apply, py::arg("Omega"), "M = J Ω + Ω J for Ω in so(n).")
@@ -330,8 +335,10 @@ void bind_mass(py::module_& m) {
                                      "Mass properties of a variable density by adaptive cubature, with error bounds.")
       .def_readonly("mass_properties", &rm::DensityIntegration::mass_properties,
                     "The integrated rigid.MassProperties (in the shape's frame, centred).")
-      .def_readonly("mass_error", &rm::DensityIntegration::mass_error, "Error bound on the mass (kg).")
-      .def_readonly("com_error", &rm::DensityIntegration::com_error, "Error bound on every COM component (m).")
+      .def_readonly("mass_error", &rm::DensityIntegration::mass_error,
+                    "Error bound on the mass (kg).")
+      .def_readonly("com_error", &rm::DensityIntegration::com_error,
+                    "Error bound on every COM component (m).")
       .def_readonly("inertia_error", &rm::DensityIntegration::inertia_error,
                     "Error bound on every element of the inertia about the COM (kg·m²).")
       .def_readonly("cells", &rm::DensityIntegration::cells, "Cells used.")

@@ -98,7 +98,8 @@ void bind_mesh(py::module_& m) {
         return fmt::format("TriangleMesh({} vertices, {} triangles)", t.vertices.size(), t.triangles.size());
       });
 
-  py::class_<rm::ComponentReport>(mesh, "ComponentReport", "One connected component of a repaired mesh.")
+  py::class_<rm::ComponentReport>(mesh, "ComponentReport",
+                                  "One connected component of a repaired mesh.")
       .def_readonly("triangles", &rm::ComponentReport::triangles, "Triangles in the component.")
       .def_readonly("boundary_edges", &rm::ComponentReport::boundary_edges,
                     "Edges used by one triangle only (0 for a closed component).")
@@ -112,10 +113,12 @@ void bind_mesh(py::module_& m) {
 
   py::class_<rm::RepairReport>(mesh, "RepairReport", "What rigid.mesh.repair found and changed; str() is the "
                                                       "text `rigid mesh check` prints.")
-      .def_readonly("welded_vertices", &rm::RepairReport::welded_vertices, "Vertices merged into another.")
+      .def_readonly("welded_vertices", &rm::RepairReport::welded_vertices,
+                    "Vertices merged into another.")
       .def_readonly("degenerate_triangles", &rm::RepairReport::degenerate_triangles,
                     "Triangles removed: a repeated index or zero area.")
-      .def_readonly("boundary_edges", &rm::RepairReport::boundary_edges, "Edges used by exactly one triangle.")
+      .def_readonly("boundary_edges", &rm::RepairReport::boundary_edges,
+                    "Edges used by exactly one triangle.")
       .def_readonly("non_manifold_edges", &rm::RepairReport::non_manifold_edges,
                     "Edges used by three or more triangles.")
       .def_readonly("reoriented_triangles", &rm::RepairReport::reoriented_triangles,
@@ -124,7 +127,8 @@ void bind_mesh(py::module_& m) {
                     "Closed components with negative volume, flipped outward.")
       .def_readonly("tolerance_weld", &rm::RepairReport::tolerance_weld,
                     "True if the tolerance weld ran (after the exact weld left open edges).")
-      .def_readonly("components", &rm::RepairReport::components, "One ComponentReport per connected component.")
+      .def_readonly("components", &rm::RepairReport::components,
+                    "One ComponentReport per connected component.")
       .def_property_readonly("warnings", [](const rm::RepairReport& r) { return worded(r.warnings); },
                              "One sentence per problem left (open edges, non-manifold edges, ...).")
       .def_property_readonly("closed", &rm::RepairReport::closed,
@@ -139,16 +143,19 @@ void bind_mesh(py::module_& m) {
       });
 
   py::class_<rm::FilledHole>(mesh, "FilledHole", "One hole closed by rigid.mesh.fill_holes.")
-      .def_readonly("boundary_edges", &rm::FilledHole::boundary_edges, "Edges of the hole's border loop.")
+      .def_readonly("boundary_edges", &rm::FilledHole::boundary_edges,
+                    "Edges of the hole's border loop.")
       .def_readonly("area", &rm::FilledHole::area, "Area of the patch that closes it (m²).")
       .def("__repr__", [](const rm::FilledHole& h) {
         return fmt::format("FilledHole(boundary_edges={}, area={} m²)", h.boundary_edges, h.area);
       });
 
   py::class_<rm::HoleFillReport>(mesh, "HoleFillReport", "What rigid.mesh.fill_holes added.")
-      .def_readonly("holes", &rm::HoleFillReport::holes, "One FilledHole per hole, in the order found.")
+      .def_readonly("holes", &rm::HoleFillReport::holes,
+                    "One FilledHole per hole, in the order found.")
       .def_readonly("triangles_added", &rm::HoleFillReport::triangles_added, "Triangles added.")
-      .def_readonly("vertices_added", &rm::HoleFillReport::vertices_added, "Vertices added (fan centres).")
+      .def_readonly("vertices_added", &rm::HoleFillReport::vertices_added,
+                    "Vertices added (fan centres).")
       .def_readonly("area", &rm::HoleFillReport::area, "Total area of the patches (m²).")
       .def("__repr__", [](const rm::HoleFillReport& r) {
         return fmt::format("HoleFillReport(holes={}, triangles_added={}, vertices_added={}, area={} m²)",
