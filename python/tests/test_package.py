@@ -203,3 +203,23 @@ def test_another_python_of_the_same_version_without_numpy_is_pointed_at_the_buil
                            f"({sys.executable}) cannot import: run rigid with the Python it was built for, "
                            f"Python {major}.{minor}.99 (/opt/other/python3), or install numpy"), last
     assert "apt install python3-numpy" in last
+
+
+def test_the_python3_first_on_path_gets_the_package_or_a_clear_message(python_dir, tmp_path):
+    """The case users meet: a `python3` earlier on PATH (pyenv, conda) than the build's Python.
+    It imports rigid, or is told what to do; never a bare `initialization failed`."""
+    other = shutil.which("python3")
+    if not other:
+        pytest.skip("no python3 on PATH")
+    probe = subprocess.run([other, "-c", "import sys; print(sys.executable)"], capture_output=True, text=True,
+                           env=clean_env(), timeout=60)
+    if probe.returncode != 0 or os.path.realpath(probe.stdout.strip()) == os.path.realpath(sys.executable):
+        pytest.skip("the python3 on PATH is the build's own Python")
+    proc = subprocess.run([other, "-c", "import rigid; print(rigid.SO3.identity())"], capture_output=True,
+                          text=True, env=clean_env(PYTHONPATH=str(python_dir)), cwd=tmp_path, timeout=60)
+    if proc.returncode == 0:
+        assert proc.stdout.startswith("SO3(")
+    else:
+        last = proc.stderr.strip().splitlines()[-1]
+        assert last.startswith(("ImportError: rigid needs numpy", "ImportError: rigid was built for")), last
+        assert "initialization failed" not in proc.stderr
