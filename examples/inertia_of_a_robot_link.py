@@ -1,16 +1,12 @@
 """Mass properties of a robot link built from primitives, written as a URDF inertial.
 
 The link: an aluminium tube (the arm) with a steel box (the motor) at one end and a
-bolt hole drilled through the box. Run from a build tree:
-    RIGID_PYTHON_DIR=build/release/python python3 examples/inertia_of_a_robot_link.py
+bolt hole drilled through the box. Run after `make demo` (or with rigid installed):
+    PYTHONPATH=build/ci/python /usr/bin/python3 examples/inertia_of_a_robot_link.py
 """
-import os
-import sys
-
 import numpy as np
 
-sys.path.insert(0, os.environ.get("RIGID_PYTHON_DIR", "build/release/python"))
-import rigid  # noqa: E402
+import rigid
 
 ALUMINIUM = 2700.0  # kg/m³
 STEEL = 7850.0

@@ -3,7 +3,8 @@
 
 Closed form (pulley a solid cylinder of mass M): a = (m2 - m1) g / (m1 + m2 + M/2),
 T1 = m1 (g + a), T2 = m2 (g - a). The rope tensions are the Lagrange multipliers.
-Run with the built module on the path: PYTHONPATH=build/ci/python examples/lagrange_atwood.py
+Run after `make demo` (or with rigid installed):
+    PYTHONPATH=build/ci/python /usr/bin/python3 examples/lagrange_atwood.py
 """
 import numpy as np
 

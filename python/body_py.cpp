@@ -6,6 +6,8 @@
 #include <string_view>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include <pybind11/eigen.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -264,7 +266,11 @@ void bind_rigid_body(py::module_& body) {
           "Integrates from t = 0 (method: splitting2 or rk4) and samples at `times` (s, ascending); "
           "returns a dict of arrays, one row per time: q_wxyz (R_WB), omega_body (rad/s, body), "
           "p_world, v_world (COM, m and m/s), momentum_world, angular_momentum_world (about the "
-          "world origin), energy (J).");
+          "world origin), energy (J).")
+      .def("__repr__", [](const RigidBody& b) {
+        return fmt::format("RigidBody(mass={} kg, principal_moments={} kg·m², loads={})", b.mass(),
+                           rigid::to_string(b.principal_moments().transpose()), b.load_count());
+      });
 }
 
 void bind_heavy_top(py::module_& body) {
@@ -344,7 +350,12 @@ void bind_heavy_top(py::module_& body) {
           py::arg("free_method") = "splitting2",
           "Integrates by the gravity-kick splitting around the free flow (splitting2/4/6); returns a "
           "dict of arrays sampled at `times` (s): t, q_wxyz, omega_body, L_world (about the pivot, "
-          "kg·m²/s), energy (J, total), orthonormality_error.");
+          "kg·m²/s), energy (J, total), orthonormality_error.")
+      .def("__repr__", [](const HeavyTop& top) {
+        return fmt::format("HeavyTop(mass={} kg, com_from_pivot={} m, inertia_about_pivot={} kg·m²)", top.mass(),
+                           rigid::to_string(top.com_from_pivot().transpose()),
+                           rigid::to_string(top.inertia_about_pivot()));
+      });
 }
 
 // Euler–Arnold equations on SO(n): J (n,) and M (n, n) skew, refused by name when malformed.
@@ -405,7 +416,11 @@ void bind_body(py::module_& m) {
       .def_property_readonly("modulus", &rigid::body::FreeBodyExact::modulus, "Elliptic modulus k.")
       .def_property_readonly("energy", &rigid::body::FreeBodyExact::energy, "Kinetic energy ½ ωᵀ I ω (J).")
       .def_property_readonly("angular_momentum_norm", &rigid::body::FreeBodyExact::angular_momentum_norm,
-                             "|L| (kg·m²/s).");
+                             "|L| (kg·m²/s), constant.")
+      .def("__repr__", [](const rigid::body::FreeBodyExact& e) {
+        return fmt::format("FreeBodyExact(energy={} J, angular_momentum_norm={} kg·m²/s, modulus={}, period={} s)",
+                           e.energy(), e.angular_momentum_norm(), e.modulus(), e.period());
+      });
   py::class_<rigid::body::FreeBodyMotion>(
       body, "FreeBodyMotion",
       "Exact torque-free motion: orientation R_WB(t) and body angular velocity in closed form.")
@@ -435,7 +450,12 @@ void bind_body(py::module_& m) {
       .def_property_readonly("period", [](const rigid::body::FreeBodyMotion& motion) { return motion.omega_solution().period(); },
                              "Period of ω_B(t) (s).")
       .def_property_readonly("modulus", [](const rigid::body::FreeBodyMotion& motion) { return motion.omega_solution().modulus(); },
-                             "Elliptic modulus k.");
+                             "Elliptic modulus k of the body angular velocity's solution.")
+      .def("__repr__", [](const rigid::body::FreeBodyMotion& motion) {
+        return fmt::format("FreeBodyMotion(angular_momentum_world={} kg·m²/s, period={} s, modulus={})",
+                           rigid::to_string(motion.angular_momentum_world().transpose()),
+                           motion.omega_solution().period(), motion.omega_solution().modulus());
+      });
   body.def(
       "simulate_free_body",
       [](const std::string& method, const py::object& I_B, const py::object& q_wxyz, const py::object& w_B,

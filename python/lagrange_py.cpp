@@ -1,5 +1,7 @@
 // Python bindings of the Lagrangian engine: rigid.lagrange.System (derive once, simulate with
 // numpy arrays out) and the integrator names.
+#include <fmt/format.h>
+
 #include <pybind11/eigen.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -109,8 +111,8 @@ void bind_lagrange(py::module_& root) {
       "lagrange", "Euler–Lagrange equations derived symbolically, compiled, and integrated.");
 
   py::class_<rigid::lagrange::Printed>(m, "Printed", "One quantity as text (SymPy-parsable) and LaTeX.")
-      .def_readonly("text", &rigid::lagrange::Printed::text)
-      .def_readonly("latex", &rigid::lagrange::Printed::latex)
+      .def_readonly("text", &rigid::lagrange::Printed::text, "Plain text that SymPy parses.")
+      .def_readonly("latex", &rigid::lagrange::Printed::latex, "LaTeX.")
       .def("__str__", [](const rigid::lagrange::Printed& p) { return p.text; })
       .def("__repr__", [](const rigid::lagrange::Printed& p) { return "Printed('" + p.text + "')"; });
   using rigid::lagrange::Equations;
@@ -118,28 +120,43 @@ void bind_lagrange(py::module_& root) {
                         "The derived equations: L, T, V, the mass matrix M(q), the forcing f(q, q_dot) "
                         "(inertial + potential + generalized), the constraints and their Jacobian, the "
                         "conserved quantities and the symbols, each quantity a Printed (text, latex).")
-      .def_readonly("coordinates", &Equations::coordinates)
+      .def_readonly("coordinates", &Equations::coordinates,
+                    "The generalized coordinates' names, in order.")
       .def_property_readonly("parameters", [](const Equations& e) {
         py::dict d;
         for (const auto& p : e.parameters) d[py::str(p.name)] = p.value;
         return d;
       }, "{name: value} in declaration order")
-      .def_readonly("constraint_names", &Equations::constraint_names)
-      .def_readonly("lagrangian", &Equations::lagrangian)
-      .def_readonly("kinetic_energy", &Equations::kinetic_energy)
-      .def_readonly("potential_energy", &Equations::potential_energy)
+      .def_readonly("constraint_names", &Equations::constraint_names,
+                    "The holonomic constraints' names, in order.")
+      .def_readonly("lagrangian", &Equations::lagrangian, "L = T − V (J).")
+      .def_readonly("kinetic_energy", &Equations::kinetic_energy, "T (J).")
+      .def_readonly("potential_energy", &Equations::potential_energy, "V (J).")
       .def_readonly("mass_matrix", &Equations::mass_matrix, "n lists of n Printed")
-      .def_readonly("forcing", &Equations::forcing)
-      .def_readonly("forcing_inertial", &Equations::forcing_inertial)
-      .def_readonly("forcing_potential", &Equations::forcing_potential)
-      .def_readonly("forcing_generalized", &Equations::forcing_generalized)
+      .def_readonly("forcing", &Equations::forcing,
+                    "Forcing f(q, q̇) with M(q) q̈ = f: forcing_inertial + forcing_potential + "
+                    "forcing_generalized, one Printed per coordinate.")
+      .def_readonly("forcing_inertial", &Equations::forcing_inertial,
+                    "∂T/∂q − (∂²T/∂q̇∂q) q̇ − ∂²T/∂q̇∂t (Coriolis, centrifugal, driven), one Printed "
+                    "per coordinate.")
+      .def_readonly("forcing_potential", &Equations::forcing_potential,
+                    "−∂V/∂q, one Printed per coordinate.")
+      .def_readonly("forcing_generalized", &Equations::forcing_generalized,
+                    "The generalized forces Q (the `forces` given), one Printed per coordinate.")
       .def_readonly("equations", &Equations::equations, "one Printed 'lhs = rhs' per coordinate")
-      .def_readonly("constraints", &Equations::constraints)
-      .def_readonly("constraint_jacobian", &Equations::constraint_jacobian)
-      .def_readonly("jacobi_integral", &Equations::jacobi_integral)
-      .def_readonly("jacobi_conserved", &Equations::jacobi_conserved)
-      .def_readonly("cyclic", &Equations::cyclic)
-      .def_readonly("cyclic_momenta", &Equations::cyclic_momenta)
+      .def_readonly("constraints", &Equations::constraints,
+                    "The holonomic constraints g(q, t) = 0, one Printed each.")
+      .def_readonly("constraint_jacobian", &Equations::constraint_jacobian,
+                    "∂g/∂q: one list of n Printed per constraint.")
+      .def_readonly("jacobi_integral", &Equations::jacobi_integral,
+                    "The Jacobi integral h = Σ q̇ ∂L/∂q̇ − L (J; the energy when T is quadratic in "
+                    "q̇).")
+      .def_readonly("jacobi_conserved", &Equations::jacobi_conserved,
+                    "True when h is conserved: L and the constraints do not depend on t, there are "
+                    "no forces, and the velocity constraints have no term a.")
+      .def_readonly("cyclic", &Equations::cyclic, "The cyclic coordinates (L independent of them).")
+      .def_readonly("cyclic_momenta", &Equations::cyclic_momenta,
+                    "∂L/∂q̇ of each cyclic coordinate (conserved), one Printed each.")
       .def_property_readonly("symbols", [](const Equations& e) {
         py::list out;
         for (const auto& s : e.symbols) {
@@ -151,7 +168,8 @@ void bind_lagrange(py::module_& root) {
           out.append(d);
         }
         return out;
-      })
+      }, "Every symbol of the equations: [{'name', 'latex', 'role', 'unit'}] (role: coordinate, "
+         "velocity, parameter, ...; SI unit when known).")
       .def_readonly("text", &Equations::text, "the equations, one text line per coordinate")
       .def_readonly("latex", &Equations::latex, "the equations, one LaTeX line per coordinate")
       .def("format", [](const Equations& e, const std::string& format) {
@@ -224,10 +242,14 @@ void bind_lagrange(py::module_& root) {
            "name is its coordinate); springs: [{'body_a', 'point_a', 'body_b' (omit: world), "
            "'point_b', 'stiffness', 'rest_length'}]; velocity_constraints: [{'name', "
            "'coefficients': {coordinate: A_i(q, t)}, 'term': a(q, t)}] for Σ A_i q̇_i + a = 0.")
-      .def_property_readonly("coordinate_names", &System::coordinate_names)
-      .def_property_readonly("constraint_names", &System::constraint_names)
-      .def_property_readonly("cyclic_coordinates", &System::cyclic_coordinates)
-      .def_property_readonly("velocity_constraint_names", &System::velocity_constraint_names)
+      .def_property_readonly("coordinate_names", &System::coordinate_names,
+                             "The generalized coordinates, in order.")
+      .def_property_readonly("constraint_names", &System::constraint_names,
+                             "The holonomic constraints, in order.")
+      .def_property_readonly("cyclic_coordinates", &System::cyclic_coordinates,
+                             "Coordinates L does not depend on (their momenta are conserved).")
+      .def_property_readonly("velocity_constraint_names", &System::velocity_constraint_names,
+                             "The velocity (non-holonomic) constraints, in order.")
       .def("velocity_constraint_residual",
            [](const System& s, double t, const py::object& q, const py::object& q_dot) {
              const char* f = "System.velocity_constraint_residual";
@@ -282,8 +304,10 @@ void bind_lagrange(py::module_& root) {
           },
           py::arg("t"), py::arg("q"),
           "{body: {'p_world': origin of B in W (m), 'q_wxyz': R_WB, 'R_WB': (3, 3)}} at (t, q).")
-      .def_property_readonly("tape_size", &System::tape_size)
-      .def("set_parameter", &System::set_parameter, py::arg("name"), py::arg("value"))
+      .def_property_readonly("tape_size", &System::tape_size,
+                             "Instructions in the compiled tape that evaluates M, f and the constraints.")
+      .def("set_parameter", &System::set_parameter, py::arg("name"), py::arg("value"),
+           "Sets a parameter's value (SI units) for later evaluations and runs; the equations keep its name.")
       .def("equations", &System::equations,
            "The equations, printed canonically (the same on every run) and simplified: a "
            "rigid.lagrange.Equations with each quantity as text and LaTeX.")
@@ -379,5 +403,10 @@ void bind_lagrange(py::module_& root) {
           py::arg("q0") = py::none(), py::arg("q_dot0") = py::none(),
           "Integrates; returns a dict of numpy arrays (rows are samples): t, q, q_dot, lambda, "
           "energy, jacobi, cyclic_momenta, residual, velocity_residual, mu, "
-          "velocity_constraint_residual.");
+          "velocity_constraint_residual.")
+      .def("__repr__", [](const System& s) {
+        return fmt::format("System(coordinates=[{}], constraints=[{}], velocity_constraints=[{}])",
+                           fmt::join(s.coordinate_names(), ", "), fmt::join(s.constraint_names(), ", "),
+                           fmt::join(s.velocity_constraint_names(), ", "));
+      });
 }

@@ -1,6 +1,7 @@
 // rigid.SO2, rigid.SE2, rigid.SO3, rigid.SE3, rigid.SOn, rigid.SEn, Euler conversions,
 // rigid.check_orthogonal, rigid.nearest_rotation.
 #include <random>
+#include <string>
 
 #include <pybind11/eigen.h>
 #include <pybind11/operators.h>
@@ -14,6 +15,73 @@ namespace py = pybind11;
 
 void bind_so3_batch(py::module_& m);  // so3_batch_py.cpp: rigid.so3
 
+namespace {
+
+// The docstrings the groups share, filled in with the group's name, its tangent coordinates
+// and its matrix form; conventions of [Sola2018] as in include/rigid/lie/*.hpp.
+struct GroupDocs {
+  std::string identity, exp, hat, vee, from_matrix, right_jacobian, left_jacobian,
+      right_jacobian_inverse, left_jacobian_inverse, sample, log, matrix, adjoint, homogeneous,
+      inverse, interpolate, is_approx, rotation, translation, act_vector, n, dimension,
+      dimension_of, ad, init, angle, from_angle, from_complex, from_axis_angle;
+};
+
+GroupDocs group_docs(const std::string& g, const std::string& tangent, const std::string& matrix,
+                     bool motion) {
+  GroupDocs d;
+  d.identity = fmt::format("The identity element of {}.", g);
+  d.exp = fmt::format("Exponential map: tangent coordinates {} -> element of {}.", tangent, g);
+  d.hat = fmt::format("hat(xi): the Lie-algebra matrix of the tangent coordinates {}.", tangent);
+  d.vee = fmt::format(
+      "vee(M): the tangent coordinates {} of a Lie-algebra matrix (inverse of hat).", tangent);
+  d.from_matrix = fmt::format(
+      "The element of {} whose matrix is the {} (checked within tol: RᵀR = I, "
+      "det R = +1{}); raises rigid.Error giving the defect otherwise.",
+      g, matrix, motion ? ", last row (0, ..., 0, 1)" : "");
+  d.right_jacobian =
+      "Right Jacobian Jr(xi) of exp: exp(xi + d) ≈ exp(xi) exp(Jr(xi) d) [Sola2018].";
+  d.left_jacobian =
+      "Left Jacobian Jl(xi) of exp: exp(xi + d) ≈ exp(Jl(xi) d) exp(xi); Jl(xi) = Jr(-xi) "
+      "[Sola2018].";
+  d.right_jacobian_inverse = "The inverse Jr(xi)⁻¹ of the right Jacobian, in closed form.";
+  d.left_jacobian_inverse = "The inverse Jl(xi)⁻¹ of the left Jacobian, in closed form.";
+  d.sample =
+      motion ? fmt::format(
+                   "Random elements of {} from a seeded std::mt19937_64: Haar-uniform rotation, "
+                   "translation uniform in [-half_extent, half_extent] (m) on each axis.",
+                   g)
+             : fmt::format("Haar-uniform random elements of {} from a seeded std::mt19937_64.", g);
+  d.log = fmt::format(
+      "Logarithm: the tangent coordinates {} with exp(log(X)) = X (rotation angle in [0, π]).",
+      tangent);
+  d.matrix = fmt::format("The {}.", matrix);
+  d.adjoint = "The adjoint matrix Ad(X) on tangent coordinates: X exp(xi) X⁻¹ = exp(Ad(X) xi).";
+  d.homogeneous = "The homogeneous matrix [[R, t], [0, 1]] (t = 0 for a rotation): acts on (p, 1).";
+  d.inverse =
+      motion ? "The inverse motion (Rᵀ, -Rᵀ t): p -> Rᵀ (p - t)." : "The inverse rotation (Rᵀ).";
+  d.interpolate =
+      "Geodesic interpolation self · exp(s · log(self⁻¹ · other)): self at s = 0, other at s = 1.";
+  d.is_approx =
+      "True if self and other are the same element within tol (the angle of self⁻¹ · other, rad).";
+  d.rotation = "The rotation part R.";
+  d.translation = "The translation part t (m): p -> R p + t.";
+  d.act_vector = "Acts on a free vector (no translation): R v.";
+  d.n = "n, the dimension of the space acted on.";
+  d.dimension = motion ? "Dimension of the tangent space, n(n+1)/2."
+                       : "Dimension of the tangent space, n(n-1)/2.";
+  d.dimension_of = fmt::format("The tangent dimension of {} for a given n.", g);
+  d.ad = "The small adjoint ad(xi): the matrix of the Lie bracket [xi, ·] on tangent coordinates.";
+  d.init = "The rigid motion p -> R p + t from its rotation R and translation t (m).";
+  d.angle = "The rotation angle (rad): in (-π, π] for SO(2), in [0, π] for SO(3).";
+  d.from_angle = "The rotation by theta (rad, counter-clockwise).";
+  d.from_complex = "The rotation of the complex number c + i s (normalised).";
+  d.from_axis_angle =
+      "The rotation by `angle` (rad) about `axis` (normalised); raises rigid.Error on a zero axis.";
+  return d;
+}
+
+}  // namespace
+
 void bind_lie(py::module_& m) {
   using rigid::SE2d;
   using rigid::SE3d;
@@ -26,15 +94,20 @@ void bind_lie(py::module_& m) {
   using VX = Eigen::VectorXd;
   using T1 = SO2d::Tangent;
 
+  const GroupDocs dso2 = group_docs("SO(2)", "theta (rad, counter-clockwise)", "2×2 rotation matrix R", false);
   py::class_<SO2d>(m, "SO2", "Rotation in 2-D, stored as a unit complex number c + i s; tangent: the angle (float, rad)")
-      .def_static("identity", &SO2d::identity)
+      .def_static("identity", &SO2d::identity, dso2.identity.c_str())
       .def_static("exp", [](double theta) { return SO2d::exp(T1(theta)); }, py::arg("theta"),
                   "angle (rad, counter-clockwise) -> rotation")
-      .def_static("from_angle", &SO2d::from_angle, py::arg("theta"))
-      .def_static("from_complex", &SO2d::from_complex, py::arg("c"), py::arg("s"))
-      .def_static("from_matrix", &SO2d::from_matrix, py::arg("R"), py::arg("tol") = 1e-9)
-      .def_static("hat", [](double theta) { return SO2d::hat(T1(theta)); }, py::arg("theta"))
-      .def_static("vee", [](const Eigen::Matrix2d& W) { return SO2d::vee(W)(0); }, py::arg("matrix"))
+      .def_static("from_angle", &SO2d::from_angle, py::arg("theta"), dso2.from_angle.c_str())
+      .def_static("from_complex", &SO2d::from_complex, py::arg("c"), py::arg("s"),
+                  dso2.from_complex.c_str())
+      .def_static("from_matrix", &SO2d::from_matrix, py::arg("R"), py::arg("tol") = 1e-9,
+                  dso2.from_matrix.c_str())
+      .def_static("hat", [](double theta) { return SO2d::hat(T1(theta)); }, py::arg("theta"),
+                  dso2.hat.c_str())
+      .def_static("vee", [](const Eigen::Matrix2d& W) { return SO2d::vee(W)(0); }, py::arg("matrix"),
+                  dso2.vee.c_str())
       .def_static(
           "sample",
           [](std::uint64_t seed, int n) {
@@ -44,31 +117,38 @@ void bind_lie(py::module_& m) {
             return out;
           },
           py::arg("seed"), py::arg("n"), "n Haar-uniform rotations from a seeded std::mt19937_64")
-      .def_readonly_static("dimension", &SO2d::kDim)
+      .def_readonly_static("dimension", &SO2d::kDim, dso2.dimension.c_str())
       .def("log", [](const SO2d& R) { return R.log()(0); }, "angle in (-pi, pi]")
-      .def("angle", &SO2d::angle)
-      .def("matrix", &SO2d::matrix)
-      .def("adjoint", &SO2d::adjoint)
-      .def("homogeneous", &SO2d::homogeneous)
+      .def("angle", &SO2d::angle, dso2.angle.c_str())
+      .def("matrix", &SO2d::matrix, dso2.matrix.c_str())
+      .def("adjoint", &SO2d::adjoint, dso2.adjoint.c_str())
+      .def("homogeneous", &SO2d::homogeneous, dso2.homogeneous.c_str())
       .def("complex", [](const SO2d& R) { return V2(R.real(), R.imag()); }, "(c, s)")
-      .def("inverse", &SO2d::inverse)
-      .def("interpolate", &SO2d::interpolate, py::arg("other"), py::arg("s"))
-      .def("is_approx", &SO2d::is_approx, py::arg("other"), py::arg("tol") = 1e-12)
+      .def("inverse", &SO2d::inverse, dso2.inverse.c_str())
+      .def("interpolate", &SO2d::interpolate, py::arg("other"), py::arg("s"),
+           dso2.interpolate.c_str())
+      .def("is_approx", &SO2d::is_approx, py::arg("other"), py::arg("tol") = 1e-12,
+           dso2.is_approx.c_str())
       .def("__mul__", [](const SO2d& a, const SO2d& b) { return a * b; }, py::is_operator())
       .def("__mul__", [](const SO2d& a, const V2& v) -> V2 { return a * v; }, py::is_operator())
       .def("__repr__", [](const SO2d& R) { return fmt::format("SO2(angle={})", R.angle()); });
 
+  const GroupDocs dse2 = group_docs("SE(2)", "(rho_x, rho_y, theta) (m, m, rad)", "3×3 homogeneous matrix [[R, t], [0, 1]]", true);
   py::class_<SE2d>(m, "SE2", "Rigid motion of the plane (R, t): p -> R p + t; tangent (rho_x, rho_y, theta)")
-      .def(py::init<const SO2d&, const V2&>(), py::arg("R"), py::arg("t"))
-      .def_static("identity", &SE2d::identity)
-      .def_static("exp", &SE2d::exp, py::arg("xi"))
-      .def_static("hat", &SE2d::hat, py::arg("xi"))
-      .def_static("vee", &SE2d::vee, py::arg("matrix"))
-      .def_static("from_matrix", &SE2d::from_matrix, py::arg("T"), py::arg("tol") = 1e-9)
-      .def_static("right_jacobian", &SE2d::right_jacobian, py::arg("xi"))
-      .def_static("left_jacobian", &SE2d::left_jacobian, py::arg("xi"))
-      .def_static("right_jacobian_inverse", &SE2d::right_jacobian_inverse, py::arg("xi"))
-      .def_static("left_jacobian_inverse", &SE2d::left_jacobian_inverse, py::arg("xi"))
+      .def(py::init<const SO2d&, const V2&>(), py::arg("R"), py::arg("t"), dse2.init.c_str())
+      .def_static("identity", &SE2d::identity, dse2.identity.c_str())
+      .def_static("exp", &SE2d::exp, py::arg("xi"), dse2.exp.c_str())
+      .def_static("hat", &SE2d::hat, py::arg("xi"), dse2.hat.c_str())
+      .def_static("vee", &SE2d::vee, py::arg("matrix"), dse2.vee.c_str())
+      .def_static("from_matrix", &SE2d::from_matrix, py::arg("T"), py::arg("tol") = 1e-9,
+                  dse2.from_matrix.c_str())
+      .def_static("right_jacobian", &SE2d::right_jacobian, py::arg("xi"),
+                  dse2.right_jacobian.c_str())
+      .def_static("left_jacobian", &SE2d::left_jacobian, py::arg("xi"), dse2.left_jacobian.c_str())
+      .def_static("right_jacobian_inverse", &SE2d::right_jacobian_inverse, py::arg("xi"),
+                  dse2.right_jacobian_inverse.c_str())
+      .def_static("left_jacobian_inverse", &SE2d::left_jacobian_inverse, py::arg("xi"),
+                  dse2.left_jacobian_inverse.c_str())
       .def_static(
           "sample",
           [](std::uint64_t seed, int n, double half_extent) {
@@ -77,32 +157,42 @@ void bind_lie(py::module_& m) {
             for (int i = 0; i < n; ++i) out.push_back(SE2d::sample(rng, half_extent));
             return out;
           },
-          py::arg("seed"), py::arg("n"), py::arg("half_extent") = 1.0)
-      .def_readonly_static("dimension", &SE2d::kDim)
-      .def("log", &SE2d::log)
-      .def("rotation", &SE2d::rotation)
-      .def("translation", &SE2d::translation)
-      .def("matrix", &SE2d::matrix)
-      .def("homogeneous", &SE2d::homogeneous)
-      .def("adjoint", &SE2d::adjoint)
-      .def("inverse", &SE2d::inverse)
-      .def("interpolate", &SE2d::interpolate, py::arg("other"), py::arg("s"))
-      .def("act_vector", &SE2d::act_vector, py::arg("v"))
+          py::arg("seed"), py::arg("n"), py::arg("half_extent") = 1.0, dse2.sample.c_str())
+      .def_readonly_static("dimension", &SE2d::kDim, dse2.dimension.c_str())
+      .def("log", &SE2d::log, dse2.log.c_str())
+      .def("rotation", &SE2d::rotation, dse2.rotation.c_str())
+      .def("translation", &SE2d::translation, dse2.translation.c_str())
+      .def("matrix", &SE2d::matrix, dse2.matrix.c_str())
+      .def("homogeneous", &SE2d::homogeneous, dse2.homogeneous.c_str())
+      .def("adjoint", &SE2d::adjoint, dse2.adjoint.c_str())
+      .def("inverse", &SE2d::inverse, dse2.inverse.c_str())
+      .def("interpolate", &SE2d::interpolate, py::arg("other"), py::arg("s"),
+           dse2.interpolate.c_str())
+      .def("act_vector", &SE2d::act_vector, py::arg("v"), dse2.act_vector.c_str())
       .def("__mul__", [](const SE2d& a, const SE2d& b) { return a * b; }, py::is_operator())
-      .def("__mul__", [](const SE2d& a, const V2& p) -> V2 { return a * p; }, py::is_operator());
+      .def("__mul__", [](const SE2d& a, const V2& p) -> V2 { return a * p; }, py::is_operator())
+      .def("__repr__", [](const SE2d& X) {
+        return fmt::format("SE2(angle={}, translation={})", X.rotation().angle(), rigid::to_string(X.translation().transpose()));
+      });
 
+  const GroupDocs dson = group_docs("SO(n)", "omega in R^(n(n-1)/2) (rad; basis as in hat)", "n×n rotation matrix R", false);
   py::class_<SOn>(m, "SOn", "Rotation of R^n for any n >= 2 (n x n matrix); tangent in R^(n(n-1)/2), basis as in SOn::hat")
-      .def_static("identity", &SOn::identity, py::arg("n"))
+      .def_static("identity", &SOn::identity, py::arg("n"), dson.identity.c_str())
       .def_static("exp", &SOn::exp, py::arg("omega"), "so(n) coordinates -> rotation (n from the size)")
-      .def_static("hat", &SOn::hat, py::arg("omega"))
-      .def_static("vee", &SOn::vee, py::arg("matrix"), py::arg("tol") = 1e-9)
-      .def_static("ad", &SOn::ad, py::arg("omega"))
-      .def_static("from_matrix", &SOn::from_matrix, py::arg("R"), py::arg("tol") = 1e-9)
-      .def_static("dimension_of", &SOn::dimension_of, py::arg("n"))
-      .def_static("right_jacobian", &SOn::right_jacobian, py::arg("omega"))
-      .def_static("left_jacobian", &SOn::left_jacobian, py::arg("omega"))
-      .def_static("right_jacobian_inverse", &SOn::right_jacobian_inverse, py::arg("omega"))
-      .def_static("left_jacobian_inverse", &SOn::left_jacobian_inverse, py::arg("omega"))
+      .def_static("hat", &SOn::hat, py::arg("omega"), dson.hat.c_str())
+      .def_static("vee", &SOn::vee, py::arg("matrix"), py::arg("tol") = 1e-9, dson.vee.c_str())
+      .def_static("ad", &SOn::ad, py::arg("omega"), dson.ad.c_str())
+      .def_static("from_matrix", &SOn::from_matrix, py::arg("R"), py::arg("tol") = 1e-9,
+                  dson.from_matrix.c_str())
+      .def_static("dimension_of", &SOn::dimension_of, py::arg("n"), dson.dimension_of.c_str())
+      .def_static("right_jacobian", &SOn::right_jacobian, py::arg("omega"),
+                  dson.right_jacobian.c_str())
+      .def_static("left_jacobian", &SOn::left_jacobian, py::arg("omega"),
+                  dson.left_jacobian.c_str())
+      .def_static("right_jacobian_inverse", &SOn::right_jacobian_inverse, py::arg("omega"),
+                  dson.right_jacobian_inverse.c_str())
+      .def_static("left_jacobian_inverse", &SOn::left_jacobian_inverse, py::arg("omega"),
+                  dson.left_jacobian_inverse.c_str())
       .def_static(
           "sample",
           [](int dim, std::uint64_t seed, int count) {
@@ -112,33 +202,40 @@ void bind_lie(py::module_& m) {
             return out;
           },
           py::arg("n"), py::arg("seed"), py::arg("count"), "count Haar-uniform rotations of R^n (seeded)")
-      .def("log", &SOn::log)
+      .def("log", &SOn::log, dson.log.c_str())
       .def("angles", &SOn::angles, "rotation angles of the planes, descending, in [0, pi]")
-      .def("matrix", &SOn::matrix)
-      .def("homogeneous", &SOn::homogeneous)
-      .def("adjoint", &SOn::adjoint)
-      .def_property_readonly("n", &SOn::n)
-      .def_property_readonly("dimension", &SOn::dimension)
-      .def("inverse", &SOn::inverse)
-      .def("interpolate", &SOn::interpolate, py::arg("other"), py::arg("s"))
-      .def("is_approx", &SOn::is_approx, py::arg("other"), py::arg("tol") = 1e-12)
+      .def("matrix", &SOn::matrix, dson.matrix.c_str())
+      .def("homogeneous", &SOn::homogeneous, dson.homogeneous.c_str())
+      .def("adjoint", &SOn::adjoint, dson.adjoint.c_str())
+      .def_property_readonly("n", &SOn::n, dson.n.c_str())
+      .def_property_readonly("dimension", &SOn::dimension, dson.dimension.c_str())
+      .def("inverse", &SOn::inverse, dson.inverse.c_str())
+      .def("interpolate", &SOn::interpolate, py::arg("other"), py::arg("s"),
+           dson.interpolate.c_str())
+      .def("is_approx", &SOn::is_approx, py::arg("other"), py::arg("tol") = 1e-12,
+           dson.is_approx.c_str())
       .def("__mul__", [](const SOn& a, const SOn& b) { return a * b; }, py::is_operator())
       .def("__mul__", [](const SOn& a, const VX& v) -> VX { return a * v; }, py::is_operator())
       .def("__repr__", [](const SOn& R) { return fmt::format("SOn(n={}, matrix={})", R.n(), rigid::to_string(R.matrix())); });
 
+  const GroupDocs dsen = group_docs("SE(n)", "(rho, omega) in R^(n(n+1)/2) (m, rad)", "(n+1)×(n+1) homogeneous matrix [[R, t], [0, 1]]", true);
   py::class_<SEn>(m, "SEn", "Rigid motion of R^n (R, t) for any n >= 2; tangent (rho, omega) in R^(n(n+1)/2)")
-      .def(py::init<const SOn&, const VX&>(), py::arg("R"), py::arg("t"))
-      .def_static("identity", &SEn::identity, py::arg("n"))
-      .def_static("exp", &SEn::exp, py::arg("xi"))
-      .def_static("hat", &SEn::hat, py::arg("xi"))
-      .def_static("vee", &SEn::vee, py::arg("matrix"), py::arg("tol") = 1e-9)
-      .def_static("ad", &SEn::ad, py::arg("xi"))
-      .def_static("from_matrix", &SEn::from_matrix, py::arg("T"), py::arg("tol") = 1e-9)
-      .def_static("dimension_of", &SEn::dimension_of, py::arg("n"))
-      .def_static("right_jacobian", &SEn::right_jacobian, py::arg("xi"))
-      .def_static("left_jacobian", &SEn::left_jacobian, py::arg("xi"))
-      .def_static("right_jacobian_inverse", &SEn::right_jacobian_inverse, py::arg("xi"))
-      .def_static("left_jacobian_inverse", &SEn::left_jacobian_inverse, py::arg("xi"))
+      .def(py::init<const SOn&, const VX&>(), py::arg("R"), py::arg("t"), dsen.init.c_str())
+      .def_static("identity", &SEn::identity, py::arg("n"), dsen.identity.c_str())
+      .def_static("exp", &SEn::exp, py::arg("xi"), dsen.exp.c_str())
+      .def_static("hat", &SEn::hat, py::arg("xi"), dsen.hat.c_str())
+      .def_static("vee", &SEn::vee, py::arg("matrix"), py::arg("tol") = 1e-9, dsen.vee.c_str())
+      .def_static("ad", &SEn::ad, py::arg("xi"), dsen.ad.c_str())
+      .def_static("from_matrix", &SEn::from_matrix, py::arg("T"), py::arg("tol") = 1e-9,
+                  dsen.from_matrix.c_str())
+      .def_static("dimension_of", &SEn::dimension_of, py::arg("n"), dsen.dimension_of.c_str())
+      .def_static("right_jacobian", &SEn::right_jacobian, py::arg("xi"),
+                  dsen.right_jacobian.c_str())
+      .def_static("left_jacobian", &SEn::left_jacobian, py::arg("xi"), dsen.left_jacobian.c_str())
+      .def_static("right_jacobian_inverse", &SEn::right_jacobian_inverse, py::arg("xi"),
+                  dsen.right_jacobian_inverse.c_str())
+      .def_static("left_jacobian_inverse", &SEn::left_jacobian_inverse, py::arg("xi"),
+                  dsen.left_jacobian_inverse.c_str())
       .def_static(
           "sample",
           [](int dim, std::uint64_t seed, int count, double half_extent) {
@@ -147,34 +244,47 @@ void bind_lie(py::module_& m) {
             for (int i = 0; i < count; ++i) out.push_back(SEn::sample(dim, rng, half_extent));
             return out;
           },
-          py::arg("n"), py::arg("seed"), py::arg("count"), py::arg("half_extent") = 1.0)
-      .def("log", &SEn::log)
-      .def("rotation", &SEn::rotation)
-      .def("translation", &SEn::translation)
-      .def("matrix", &SEn::matrix)
-      .def("homogeneous", &SEn::homogeneous)
-      .def("adjoint", &SEn::adjoint)
-      .def_property_readonly("n", &SEn::n)
-      .def_property_readonly("dimension", &SEn::dimension)
-      .def("inverse", &SEn::inverse)
-      .def("interpolate", &SEn::interpolate, py::arg("other"), py::arg("s"))
-      .def("act_vector", &SEn::act_vector, py::arg("v"))
+          py::arg("n"), py::arg("seed"), py::arg("count"), py::arg("half_extent") = 1.0, dsen.sample.c_str())
+      .def("log", &SEn::log, dsen.log.c_str())
+      .def("rotation", &SEn::rotation, dsen.rotation.c_str())
+      .def("translation", &SEn::translation, dsen.translation.c_str())
+      .def("matrix", &SEn::matrix, dsen.matrix.c_str())
+      .def("homogeneous", &SEn::homogeneous, dsen.homogeneous.c_str())
+      .def("adjoint", &SEn::adjoint, dsen.adjoint.c_str())
+      .def_property_readonly("n", &SEn::n, dsen.n.c_str())
+      .def_property_readonly("dimension", &SEn::dimension, dsen.dimension.c_str())
+      .def("inverse", &SEn::inverse, dsen.inverse.c_str())
+      .def("interpolate", &SEn::interpolate, py::arg("other"), py::arg("s"),
+           dsen.interpolate.c_str())
+      .def("act_vector", &SEn::act_vector, py::arg("v"), dsen.act_vector.c_str())
       .def("__mul__", [](const SEn& a, const SEn& b) { return a * b; }, py::is_operator())
-      .def("__mul__", [](const SEn& a, const VX& p) -> VX { return a * p; }, py::is_operator());
+      .def("__mul__", [](const SEn& a, const VX& p) -> VX { return a * p; }, py::is_operator())
+      .def("__repr__", [](const SEn& X) {
+        return fmt::format("SEn(n={}, matrix={})", X.n(), rigid::to_string(X.matrix()));
+      });
 
+  const GroupDocs dso3 = group_docs("SO(3)", "omega (rotation vector: axis · angle, rad)", "3×3 rotation matrix R_AB (v_A = R_AB v_B)", false);
   py::class_<SO3d>(m, "SO3", "Rotation in 3-D, stored as a unit quaternion (w, x, y, z)")
-      .def_static("identity", &SO3d::identity)
+      .def_static("identity", &SO3d::identity, dso3.identity.c_str())
       .def_static("exp", &SO3d::exp, py::arg("omega"), "rotation vector (rad) -> rotation")
-      .def_static("hat", &SO3d::hat, py::arg("omega"))
-      .def_static("vee", &SO3d::vee, py::arg("matrix"))
-      .def_static("from_matrix", &SO3d::from_matrix, py::arg("R"), py::arg("tol") = 1e-9)
+      .def_static("hat", &SO3d::hat, py::arg("omega"), dso3.hat.c_str())
+      .def_static("vee", &SO3d::vee, py::arg("matrix"), dso3.vee.c_str())
+      .def_static("from_matrix", &SO3d::from_matrix, py::arg("R"), py::arg("tol") = 1e-9,
+                  dso3.from_matrix.c_str())
       .def_static("from_quaternion", &SO3d::from_quaternion, py::arg("w"), py::arg("x"), py::arg("y"),
-                  py::arg("z"))
-      .def_static("from_axis_angle", &SO3d::from_axis_angle, py::arg("axis"), py::arg("angle"))
-      .def_static("right_jacobian", &SO3d::right_jacobian, py::arg("omega"))
-      .def_static("left_jacobian", &SO3d::left_jacobian, py::arg("omega"))
-      .def_static("right_jacobian_inverse", &SO3d::right_jacobian_inverse, py::arg("omega"))
-      .def_static("left_jacobian_inverse", &SO3d::left_jacobian_inverse, py::arg("omega"))
+                  py::arg("z"),
+                  "The rotation of the quaternion (w, x, y, z), normalised; raises rigid.Error if it is "
+                  "not finite or its norm is below 1e-12.")
+      .def_static("from_axis_angle", &SO3d::from_axis_angle, py::arg("axis"), py::arg("angle"),
+                  dso3.from_axis_angle.c_str())
+      .def_static("right_jacobian", &SO3d::right_jacobian, py::arg("omega"),
+                  dso3.right_jacobian.c_str())
+      .def_static("left_jacobian", &SO3d::left_jacobian, py::arg("omega"),
+                  dso3.left_jacobian.c_str())
+      .def_static("right_jacobian_inverse", &SO3d::right_jacobian_inverse, py::arg("omega"),
+                  dso3.right_jacobian_inverse.c_str())
+      .def_static("left_jacobian_inverse", &SO3d::left_jacobian_inverse, py::arg("omega"),
+                  dso3.left_jacobian_inverse.c_str())
       .def_static(
           "sample",
           [](std::uint64_t seed, int n) {
@@ -189,52 +299,74 @@ void bind_lie(py::module_& m) {
           [](const V3& angles, const std::string& seq, bool intrinsic) {
             return rigid::from_euler(angles, rigid::EulerConvention::parse(seq, intrinsic));
           },
-          py::arg("angles"), py::arg("sequence") = "ZYX", py::arg("intrinsic") = true)
+          py::arg("angles"), py::arg("sequence") = "ZYX", py::arg("intrinsic") = true,
+          "The rotation of Euler angles (rad) about the axes of `sequence` (any of the 12, e.g. 'ZYX', 'ZXZ'; "
+          "intrinsic: about the moving axes, else about the fixed axes).")
       .def(
           "to_euler",
           [](const SO3d& R, const std::string& seq, bool intrinsic) {
             return rigid::to_euler(R, rigid::EulerConvention::parse(seq, intrinsic));
           },
-          py::arg("sequence") = "ZYX", py::arg("intrinsic") = true)
-      .def("log", &SO3d::log)
-      .def("angle", &SO3d::angle)
-      .def("matrix", &SO3d::matrix)
-      .def("adjoint", &SO3d::adjoint)
-      .def("homogeneous", &SO3d::homogeneous)
+          py::arg("sequence") = "ZYX", py::arg("intrinsic") = true,
+          "The Euler angles (rad) of this rotation for `sequence` and intrinsic/extrinsic, as from_euler takes them.")
+      .def("log", &SO3d::log, dso3.log.c_str())
+      .def("angle", &SO3d::angle, dso3.angle.c_str())
+      .def("matrix", &SO3d::matrix, dso3.matrix.c_str())
+      .def("adjoint", &SO3d::adjoint, dso3.adjoint.c_str())
+      .def("homogeneous", &SO3d::homogeneous, dso3.homogeneous.c_str())
       .def("quaternion", &SO3d::quaternion, "(w, x, y, z)")
-      .def("inverse", &SO3d::inverse)
-      .def("interpolate", &SO3d::interpolate, py::arg("other"), py::arg("s"))
-      .def("is_approx", &SO3d::is_approx, py::arg("other"), py::arg("tol") = 1e-12)
+      .def("inverse", &SO3d::inverse, dso3.inverse.c_str())
+      .def("interpolate", &SO3d::interpolate, py::arg("other"), py::arg("s"),
+           dso3.interpolate.c_str())
+      .def("is_approx", &SO3d::is_approx, py::arg("other"), py::arg("tol") = 1e-12,
+           dso3.is_approx.c_str())
       .def("__mul__", [](const SO3d& a, const SO3d& b) { return a * b; }, py::is_operator())
       .def("__mul__", [](const SO3d& a, const V3& v) -> V3 { return a * v; }, py::is_operator())
       .def("__repr__", [](const SO3d& R) { return "SO3(quaternion wxyz=" + rigid::to_string(R.quaternion().transpose()) + ")"; });
 
+  const GroupDocs dse3 = group_docs("SE(3)", "(rho, omega) (m, rad; translation part first)", "4×4 homogeneous matrix [[R, t], [0, 1]]", true);
   py::class_<SE3d>(m, "SE3", "Rigid motion (R, t): p -> R p + t; tangent (rho, omega)")
-      .def(py::init<const SO3d&, const V3&>(), py::arg("R"), py::arg("t"))
-      .def_static("identity", &SE3d::identity)
-      .def_static("exp", &SE3d::exp, py::arg("xi"))
-      .def_static("hat", &SE3d::hat, py::arg("xi"))
-      .def_static("vee", &SE3d::vee, py::arg("matrix"))
-      .def_static("from_matrix", &SE3d::from_matrix, py::arg("T"), py::arg("tol") = 1e-9)
-      .def_static("right_jacobian", &SE3d::right_jacobian, py::arg("xi"))
-      .def_static("left_jacobian", &SE3d::left_jacobian, py::arg("xi"))
-      .def_static("right_jacobian_inverse", &SE3d::right_jacobian_inverse, py::arg("xi"))
-      .def_static("left_jacobian_inverse", &SE3d::left_jacobian_inverse, py::arg("xi"))
-      .def("log", &SE3d::log)
-      .def("rotation", &SE3d::rotation)
-      .def("translation", &SE3d::translation)
-      .def("matrix", &SE3d::matrix)
-      .def("adjoint", &SE3d::adjoint)
-      .def("inverse", &SE3d::inverse)
-      .def("interpolate", &SE3d::interpolate, py::arg("other"), py::arg("s"))
+      .def(py::init<const SO3d&, const V3&>(), py::arg("R"), py::arg("t"), dse3.init.c_str())
+      .def_static("identity", &SE3d::identity, dse3.identity.c_str())
+      .def_static("exp", &SE3d::exp, py::arg("xi"), dse3.exp.c_str())
+      .def_static("hat", &SE3d::hat, py::arg("xi"), dse3.hat.c_str())
+      .def_static("vee", &SE3d::vee, py::arg("matrix"), dse3.vee.c_str())
+      .def_static("from_matrix", &SE3d::from_matrix, py::arg("T"), py::arg("tol") = 1e-9,
+                  dse3.from_matrix.c_str())
+      .def_static("right_jacobian", &SE3d::right_jacobian, py::arg("xi"),
+                  dse3.right_jacobian.c_str())
+      .def_static("left_jacobian", &SE3d::left_jacobian, py::arg("xi"), dse3.left_jacobian.c_str())
+      .def_static("right_jacobian_inverse", &SE3d::right_jacobian_inverse, py::arg("xi"),
+                  dse3.right_jacobian_inverse.c_str())
+      .def_static("left_jacobian_inverse", &SE3d::left_jacobian_inverse, py::arg("xi"),
+                  dse3.left_jacobian_inverse.c_str())
+      .def("log", &SE3d::log, dse3.log.c_str())
+      .def("rotation", &SE3d::rotation, dse3.rotation.c_str())
+      .def("translation", &SE3d::translation, dse3.translation.c_str())
+      .def("matrix", &SE3d::matrix, dse3.matrix.c_str())
+      .def("adjoint", &SE3d::adjoint, dse3.adjoint.c_str())
+      .def("inverse", &SE3d::inverse, dse3.inverse.c_str())
+      .def("interpolate", &SE3d::interpolate, py::arg("other"), py::arg("s"),
+           dse3.interpolate.c_str())
       .def("__mul__", [](const SE3d& a, const SE3d& b) { return a * b; }, py::is_operator())
-      .def("__mul__", [](const SE3d& a, const V3& p) -> V3 { return a * p; }, py::is_operator());
+      .def("__mul__", [](const SE3d& a, const V3& p) -> V3 { return a * p; }, py::is_operator())
+      .def("__repr__", [](const SE3d& X) {
+        return "SE3(quaternion wxyz=" + rigid::to_string(X.rotation().quaternion().transpose()) +
+               ", translation=" + rigid::to_string(X.translation().transpose()) + ")";
+      });
 
-  py::class_<rigid::OrthogonalityReport>(m, "OrthogonalityReport")
-      .def_readonly("defect", &rigid::OrthogonalityReport::defect)
-      .def_readonly("determinant", &rigid::OrthogonalityReport::determinant)
-      .def_readonly("orthogonal", &rigid::OrthogonalityReport::orthogonal)
-      .def_readonly("rotation", &rigid::OrthogonalityReport::rotation);
+  py::class_<rigid::OrthogonalityReport>(m, "OrthogonalityReport",
+                                              "How far a matrix M is from O(n) and SO(n): check_orthogonal(M, tol).")
+      .def_readonly("defect", &rigid::OrthogonalityReport::defect, "max |MᵀM − I| (entrywise).")
+      .def_readonly("determinant", &rigid::OrthogonalityReport::determinant, "det M.")
+      .def_readonly("orthogonal", &rigid::OrthogonalityReport::orthogonal,
+                    "True if the defect is within tol (M in O(n)).")
+      .def_readonly("rotation", &rigid::OrthogonalityReport::rotation,
+                    "True if also det M > 0 (M in SO(n)).")
+      .def("__repr__", [](const rigid::OrthogonalityReport& r) {
+        return fmt::format("OrthogonalityReport(defect={}, determinant={}, orthogonal={}, rotation={})", r.defect,
+                           r.determinant, r.orthogonal ? "True" : "False", r.rotation ? "True" : "False");
+      });
   m.def("check_orthogonal", &rigid::check_orthogonal, py::arg("M"), py::arg("tol") = 1e-9,
         "O(n) membership: max|MᵀM − I| and det M");
   m.def("nearest_rotation", &rigid::nearest_rotation, py::arg("M"), "closest SO(n) matrix (SVD)");

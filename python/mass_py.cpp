@@ -119,7 +119,8 @@ void bind_mass(py::module_& m) {
             return py::make_tuple(pa.moments, pa.R_BP);
           },
           "(ascending principal moments, R_BP with the principal axes as columns, det +1).")
-      .def("invalidity_report", &MassProperties::invalidity_report)
+      .def("invalidity_report", &MassProperties::invalidity_report,
+           "Why these mass properties are not physical, or None (always None once built; see check).")
       .def_static("check",
                   [](double mass, const py::object& p, const py::object& I) {
                     const char* f = "rigid.MassProperties.check";
@@ -145,9 +146,11 @@ void bind_mass(py::module_& m) {
            }),
            py::arg("mass"), py::arg("p_OC_B"), py::arg("moment_com"),
            "Mass (kg), COM p_OC_B (shape (2,), m) and moment about the COM (kg·m²) of a lamina.")
-      .def_property_readonly("mass", &MassProperties2::mass)
-      .def_property_readonly("com", &MassProperties2::com)
-      .def_property_readonly("moment_com", &MassProperties2::moment_com)
+      .def_property_readonly("mass", &MassProperties2::mass, "Mass (kg).")
+      .def_property_readonly("com", &MassProperties2::com,
+                             "Center of mass p_OC_B in the plane frame B (m).")
+      .def_property_readonly("moment_com", &MassProperties2::moment_com,
+                             "Polar moment of inertia about the normal through the COM (kg·m²).")
       .def("moment_about",
            [](const MassProperties2& mp, const py::object& p) {
              return mp.moment_about(cv::vector(p, {"MassProperties2.moment_about", "p_OQ_B"}, 2));
@@ -177,10 +180,12 @@ void bind_mass(py::module_& m) {
            py::arg("mass"), py::arg("com"), py::arg("J_com"),
            "Mass (kg), COM (shape (n,), m) and second-moment matrix J = ∫ρ r rᵀ about the COM "
            "(shape (n, n), kg·m²) of an n-dimensional body.")
-      .def_property_readonly("mass", &SecondMoments::mass)
-      .def_property_readonly("com", &SecondMoments::com)
-      .def_property_readonly("J_com", &SecondMoments::J_com)
-      .def_property_readonly("dimension", &SecondMoments::dimension)
+      .def_property_readonly("mass", &SecondMoments::mass, "Mass (kg).")
+      .def_property_readonly("com", &SecondMoments::com, "Center of mass in the body frame (m).")
+      .def_property_readonly("J_com", &SecondMoments::J_com,
+                             "Second-moment matrix ∫ρ r rᵀ dV about the COM (kg·m²).")
+      .def_property_readonly("dimension", &SecondMoments::dimension,
+                             "n, the dimension of the space.")
       .def("J_about",
            [](const SecondMoments& J, const py::object& q) {
              return J.J_about(cv::vector(q, {"SecondMoments.J_about", "q"}, J.dimension()));
@@ -193,8 +198,14 @@ void bind_mass(py::module_& m) {
            py::arg("Omega"),
            "Body angular momentum M = J Ω + Ω J (kg·m²/s) of the angular velocity Ω ∈ so(n) "
            "(n × n skew, rad/s).")
-      .def("to_mass_properties", &SecondMoments::to_mass_properties)
-      .def_static("from_mass_properties", &SecondMoments::from_mass_properties, py::arg("mp"));
+      .def("to_mass_properties", &SecondMoments::to_mass_properties,
+           "The 3D MassProperties (I = tr(J) 1 − J); raises rigid.Error unless n = 3.")
+      .def_static("from_mass_properties", &SecondMoments::from_mass_properties, py::arg("mp"),
+                  "The second moments of 3D mass properties: J = ½ tr(I) 1 − I.")
+      .def("__repr__", [](const SecondMoments& s) {
+        return fmt::format("SecondMoments(n={}, mass={} kg, com={} m, J_com={} kg·m²)", s.dimension(), s.mass(),
+                           rigid::to_string(s.com().transpose()), rigid::to_string(s.J_com()));
+      });
 
   auto mass = m.def_submodule("mass", "Primitive bodies, laminae, n-D bodies, density cubature.");
   namespace rm = rigid::mass;
@@ -476,13 +487,24 @@ void bind_mass(py::module_& m) {
            "turns (not finite, negative, I_i > I_j + I_k, or a zero moment), or None: the check the "
            "dynamics (rigid.body, rigid.spring) make.");
 
-  py::class_<rm::DensityIntegration>(mass, "DensityIntegration")
-      .def_readonly("mass_properties", &rm::DensityIntegration::mass_properties)
-      .def_readonly("mass_error", &rm::DensityIntegration::mass_error)
-      .def_readonly("com_error", &rm::DensityIntegration::com_error)
-      .def_readonly("inertia_error", &rm::DensityIntegration::inertia_error)
-      .def_readonly("cells", &rm::DensityIntegration::cells)
-      .def_readonly("converged", &rm::DensityIntegration::converged);
+  py::class_<rm::DensityIntegration>(mass, "DensityIntegration",
+                                     "Mass properties of a variable density by adaptive cubature, with error bounds.")
+      .def_readonly("mass_properties", &rm::DensityIntegration::mass_properties,
+                    "The integrated rigid.MassProperties (in the shape's frame, centred).")
+      .def_readonly("mass_error", &rm::DensityIntegration::mass_error,
+                    "Error bound on the mass (kg).")
+      .def_readonly("com_error", &rm::DensityIntegration::com_error,
+                    "Error bound on every COM component (m).")
+      .def_readonly("inertia_error", &rm::DensityIntegration::inertia_error,
+                    "Error bound on every element of the inertia about the COM (kg·m²).")
+      .def_readonly("cells", &rm::DensityIntegration::cells, "Cells used.")
+      .def_readonly("converged", &rm::DensityIntegration::converged,
+                    "False if max_cells was reached before the relative tolerance.")
+      .def("__repr__", [](const rm::DensityIntegration& d) {
+        return fmt::format("DensityIntegration(mass_properties={}, mass_error={} kg, com_error={} m, "
+                           "inertia_error={} kg·m², cells={}, converged={})", d.mass_properties, d.mass_error,
+                           d.com_error, d.inertia_error, d.cells, d.converged ? "True" : "False");
+      });
   auto opts = [](double tol, int cells) {
     return rm::CubatureOptions{.relative_tolerance = tol, .max_cells = cells};
   };
@@ -492,21 +514,27 @@ void bind_mass(py::module_& m) {
         return rm::integrate_density_over_box(rho, lx, ly, lz, opts(tol, cells));
       },
       py::arg("rho"), py::arg("lx"), py::arg("ly"), py::arg("lz"),
-      py::arg("relative_tolerance") = 1e-10, py::arg("max_cells") = 2000);
+      py::arg("relative_tolerance") = 1e-10, py::arg("max_cells") = 2000,
+      "Mass properties of the density rho(p) (kg/m³; p a point in m, the box's frame) over the box "
+      "[-lx/2, lx/2] × [-ly/2, ly/2] × [-lz/2, lz/2] (m), by adaptive cubature: a DensityIntegration.");
   mass.def(
       "integrate_density_over_cylinder",
       [opts](const rm::DensityFunction& rho, double r, double h, double tol, int cells) {
         return rm::integrate_density_over_cylinder(rho, r, h, opts(tol, cells));
       },
       py::arg("rho"), py::arg("r"), py::arg("h"), py::arg("relative_tolerance") = 1e-10,
-      py::arg("max_cells") = 2000);
+      py::arg("max_cells") = 2000,
+      "Mass properties of the density rho(p) (kg/m³) over the cylinder of radius r and height h (m), "
+      "axis z, centred at the origin, by adaptive cubature: a DensityIntegration.");
   mass.def(
       "integrate_density_over_sphere",
       [opts](const rm::DensityFunction& rho, double r, double tol, int cells) {
         return rm::integrate_density_over_sphere(rho, r, opts(tol, cells));
       },
       py::arg("rho"), py::arg("r"), py::arg("relative_tolerance") = 1e-10,
-      py::arg("max_cells") = 2000);
+      py::arg("max_cells") = 2000,
+      "Mass properties of the density rho(p) (kg/m³) over the ball of radius r (m) centred at the "
+      "origin, by adaptive cubature: a DensityIntegration.");
 
   // inertial XML
   auto parse_format = [](const std::string& f) {

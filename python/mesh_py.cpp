@@ -1,4 +1,6 @@
 // rigid.mesh: triangle meshes from files or numpy arrays, repair, exact mass properties.
+#include <fmt/format.h>
+
 #include <pybind11/eigen.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -106,7 +108,7 @@ void bind_mesh(py::module_& m) {
                                for (std::size_t i = 0; i < t.vertices.size(); ++i)
                                  for (int k = 0; k < 3; ++k) w(static_cast<py::ssize_t>(i), k) = t.vertices[i][k];
                                return a;
-                             })
+                             }, "Vertex positions, an (n, 3) array (m).")
       .def_property_readonly("triangles",
                              [](const TriangleMesh& t) {
                                py::array_t<long long> a({static_cast<py::ssize_t>(t.triangles.size()), py::ssize_t{3}});
@@ -114,8 +116,11 @@ void bind_mesh(py::module_& m) {
                                for (std::size_t i = 0; i < t.triangles.size(); ++i)
                                  for (int k = 0; k < 3; ++k) w(static_cast<py::ssize_t>(i), k) = t.triangles[i][static_cast<std::size_t>(k)];
                                return a;
-                             })
+                             }, "Vertex indices of each triangle, an (m, 3) integer array.")
       .def("__len__", &TriangleMesh::size)
+      .def("__repr__", [](const TriangleMesh& t) {
+        return fmt::format("TriangleMesh({} vertices, {} triangles)", t.vertices.size(), t.triangles.size());
+      })
       .def_property_readonly("bounding_box",
                              [](const TriangleMesh& t) {
                                const auto b = t.bounding_box();
@@ -141,34 +146,69 @@ void bind_mesh(py::module_& m) {
                            e.misoriented);
       });
 
-  py::class_<rm::ComponentReport>(mesh, "ComponentReport")
-      .def_readonly("triangles", &rm::ComponentReport::triangles)
-      .def_readonly("boundary_edges", &rm::ComponentReport::boundary_edges)
-      .def_readonly("volume", &rm::ComponentReport::signed_volume)
-      .def_readonly("area", &rm::ComponentReport::area);
+  py::class_<rm::ComponentReport>(mesh, "ComponentReport",
+                                  "One connected component of a repaired mesh.")
+      .def_readonly("triangles", &rm::ComponentReport::triangles, "Triangles in the component.")
+      .def_readonly("boundary_edges", &rm::ComponentReport::boundary_edges,
+                    "Edges used by one triangle only (0 for a closed component).")
+      .def_readonly("volume", &rm::ComponentReport::signed_volume,
+                    "Signed volume after orientation (m³; meaningful when closed).")
+      .def_readonly("area", &rm::ComponentReport::area, "Surface area (m²).")
+      .def("__repr__", [](const rm::ComponentReport& c) {
+        return fmt::format("ComponentReport(triangles={}, boundary_edges={}, volume={} m³, area={} m²)", c.triangles,
+                           c.boundary_edges, c.signed_volume, c.area);
+      });
 
-  py::class_<rm::RepairReport>(mesh, "RepairReport")
-      .def_readonly("welded_vertices", &rm::RepairReport::welded_vertices)
-      .def_readonly("degenerate_triangles", &rm::RepairReport::degenerate_triangles)
-      .def_readonly("boundary_edges", &rm::RepairReport::boundary_edges)
-      .def_readonly("non_manifold_edges", &rm::RepairReport::non_manifold_edges)
-      .def_readonly("reoriented_triangles", &rm::RepairReport::reoriented_triangles)
-      .def_readonly("inverted_components", &rm::RepairReport::inverted_components)
-      .def_readonly("tolerance_weld", &rm::RepairReport::tolerance_weld)
-      .def_readonly("components", &rm::RepairReport::components)
-      .def_property_readonly("warnings", [](const rm::RepairReport& r) { return worded(r.warnings); })
-      .def_property_readonly("closed", &rm::RepairReport::closed)
-      .def("__str__", [](const rm::RepairReport& r) { return rm::describe(r); });
+  py::class_<rm::RepairReport>(mesh, "RepairReport", "What rigid.mesh.repair found and changed; str() is the "
+                                                      "text `rigid mesh check` prints.")
+      .def_readonly("welded_vertices", &rm::RepairReport::welded_vertices,
+                    "Vertices merged into another.")
+      .def_readonly("degenerate_triangles", &rm::RepairReport::degenerate_triangles,
+                    "Triangles removed: a repeated index or zero area.")
+      .def_readonly("boundary_edges", &rm::RepairReport::boundary_edges,
+                    "Edges used by exactly one triangle.")
+      .def_readonly("non_manifold_edges", &rm::RepairReport::non_manifold_edges,
+                    "Edges used by three or more triangles.")
+      .def_readonly("reoriented_triangles", &rm::RepairReport::reoriented_triangles,
+                    "Triangles flipped to agree with their neighbours.")
+      .def_readonly("inverted_components", &rm::RepairReport::inverted_components,
+                    "Closed components with negative volume, flipped outward.")
+      .def_readonly("tolerance_weld", &rm::RepairReport::tolerance_weld,
+                    "True if the tolerance weld ran (after the exact weld left open edges).")
+      .def_readonly("components", &rm::RepairReport::components,
+                    "One ComponentReport per connected component.")
+      .def_property_readonly("warnings", [](const rm::RepairReport& r) { return worded(r.warnings); },
+                             "One sentence per problem left (open edges, non-manifold edges, ...).")
+      .def_property_readonly("closed", &rm::RepairReport::closed,
+                             "True when the mesh bounds a solid: every edge shared by exactly two triangles.")
+      .def("__str__", [](const rm::RepairReport& r) { return rm::describe(r); })
+      .def("__repr__", [](const rm::RepairReport& r) {
+        return fmt::format("RepairReport(closed={}, components={}, welded_vertices={}, degenerate_triangles={}, "
+                           "boundary_edges={}, non_manifold_edges={}, reoriented_triangles={}, "
+                           "inverted_components={}, warnings={})", r.closed() ? "True" : "False",
+                           r.components.size(), r.welded_vertices, r.degenerate_triangles, r.boundary_edges,
+                           r.non_manifold_edges, r.reoriented_triangles, r.inverted_components, r.warnings.size());
+      });
 
-  py::class_<rm::FilledHole>(mesh, "FilledHole")
-      .def_readonly("boundary_edges", &rm::FilledHole::boundary_edges)
-      .def_readonly("area", &rm::FilledHole::area);
+  py::class_<rm::FilledHole>(mesh, "FilledHole", "One hole closed by rigid.mesh.fill_holes.")
+      .def_readonly("boundary_edges", &rm::FilledHole::boundary_edges,
+                    "Edges of the hole's border loop.")
+      .def_readonly("area", &rm::FilledHole::area, "Area of the patch that closes it (m²).")
+      .def("__repr__", [](const rm::FilledHole& h) {
+        return fmt::format("FilledHole(boundary_edges={}, area={} m²)", h.boundary_edges, h.area);
+      });
 
-  py::class_<rm::HoleFillReport>(mesh, "HoleFillReport")
-      .def_readonly("holes", &rm::HoleFillReport::holes)
-      .def_readonly("triangles_added", &rm::HoleFillReport::triangles_added)
-      .def_readonly("vertices_added", &rm::HoleFillReport::vertices_added)
-      .def_readonly("area", &rm::HoleFillReport::area);
+  py::class_<rm::HoleFillReport>(mesh, "HoleFillReport", "What rigid.mesh.fill_holes added.")
+      .def_readonly("holes", &rm::HoleFillReport::holes,
+                    "One FilledHole per hole, in the order found.")
+      .def_readonly("triangles_added", &rm::HoleFillReport::triangles_added, "Triangles added.")
+      .def_readonly("vertices_added", &rm::HoleFillReport::vertices_added,
+                    "Vertices added (fan centres).")
+      .def_readonly("area", &rm::HoleFillReport::area, "Total area of the patches (m²).")
+      .def("__repr__", [](const rm::HoleFillReport& r) {
+        return fmt::format("HoleFillReport(holes={}, triangles_added={}, vertices_added={}, area={} m²)",
+                           r.holes.size(), r.triangles_added, r.vertices_added, r.area);
+      });
 
   mesh.def(
       "fill_holes",

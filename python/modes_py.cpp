@@ -76,7 +76,9 @@ void bind_modes(py::module_& root) {
       .def_readonly("omega_squared", &Mode::omega_squared,
                     "ω² of K φ = ω² M φ (1/s², negative: unstable); nan for the state-space problem")
       .def_readonly("growth_rate", &Mode::growth_rate, "Re λ (1/s)")
-      .def_property_readonly("stability", [](const Mode& md) { return rigid::lagrange::to_string(md.stability); })
+      .def_property_readonly("stability", [](const Mode& md) { return rigid::lagrange::to_string(md.stability); },
+                             "'stable', 'unstable' or 'marginal' (this mode alone, from its "
+                             "eigenvalue).")
       .def_readonly("shape", &Mode::shape,
                     "complex shape over all coordinates, M-normalised, largest component real > 0")
       .def("__repr__", &mode_repr);
@@ -84,28 +86,45 @@ void bind_modes(py::module_& root) {
   py::class_<PyModes>(m, "NormalModes",
                       "The linearisation M δq̈ + C δq̇ + K δq = 0 about an equilibrium or steady "
                       "motion, and its modes (docs/lagrange.md, Normal modes).")
-      .def_property_readonly("coordinates", [](const PyModes& p) { return p.modes.coordinate_names; })
+      .def_property_readonly("coordinates", [](const PyModes& p) { return p.modes.coordinate_names; },
+                             "The coordinates of the system, in order.")
       .def_property_readonly("ignorable", [](const PyModes& p) { return p.modes.ignorable_names; },
                              "cyclic coordinates whose momentum is held (Routh reduction)")
-      .def_property_readonly("reduced_coordinates", [](const PyModes& p) { return p.modes.reduced_names; })
+      .def_property_readonly("reduced_coordinates", [](const PyModes& p) { return p.modes.reduced_names; },
+                             "The coordinates the modes are computed in (the ignorable ones "
+                             "removed).")
       .def_property_readonly("q", [](const PyModes& p) { return p.modes.q; }, "the point")
-      .def_property_readonly("q_dot", [](const PyModes& p) { return p.modes.q_dot; })
-      .def_property_readonly("searched", [](const PyModes& p) { return p.modes.searched; })
-      .def_property_readonly("iterations", [](const PyModes& p) { return p.modes.iterations; })
+      .def_property_readonly("q_dot", [](const PyModes& p) { return p.modes.q_dot; },
+                             "The velocities at the point (the cyclic rates of a steady motion, "
+                             "else 0).")
+      .def_property_readonly("searched", [](const PyModes& p) { return p.modes.searched; },
+                             "True if the point was found by a Newton search (coordinates not "
+                             "given in `at`).")
+      .def_property_readonly("iterations", [](const PyModes& p) { return p.modes.iterations; },
+                             "Newton iterations of the search (0 when nothing was searched).")
       .def_property_readonly("residual", [](const PyModes& p) { return p.modes.residual; },
                              "max |q̈| at the point")
       .def_property_readonly("stability", [](const PyModes& p) { return rigid::lagrange::to_string(p.modes.stability); },
                              "'stable', 'marginal' or 'unstable'")
       .def_property_readonly("gyroscopic", [](const PyModes& p) { return p.modes.gyroscopic; },
                              "solved as the state-space eigenproblem (C ≠ 0 or K not symmetric)")
-      .def_property_readonly("M", [](const PyModes& p) { return p.modes.M; })
-      .def_property_readonly("C", [](const PyModes& p) { return p.modes.C; })
-      .def_property_readonly("K", [](const PyModes& p) { return p.modes.K; })
-      .def_property_readonly("M_reduced", [](const PyModes& p) { return p.modes.M_reduced; })
-      .def_property_readonly("C_reduced", [](const PyModes& p) { return p.modes.C_reduced; })
-      .def_property_readonly("K_reduced", [](const PyModes& p) { return p.modes.K_reduced; })
-      .def_property_readonly("eigenvalues", [](const PyModes& p) { return p.modes.eigenvalues; })
-      .def_property_readonly("modes", [](const PyModes& p) { return p.modes.modes; })
+      .def_property_readonly("M", [](const PyModes& p) { return p.modes.M; },
+                             "Mass matrix of the linearisation M δq̈ + C δq̇ + K δq = 0 (SI units "
+                             "of the coordinates).")
+      .def_property_readonly("C", [](const PyModes& p) { return p.modes.C; },
+                             "Velocity (damping and gyroscopic) matrix C of the linearisation.")
+      .def_property_readonly("K", [](const PyModes& p) { return p.modes.K; },
+                             "Stiffness matrix K of the linearisation.")
+      .def_property_readonly("M_reduced", [](const PyModes& p) { return p.modes.M_reduced; },
+                             "M in the reduced coordinates (ignorable ones removed).")
+      .def_property_readonly("C_reduced", [](const PyModes& p) { return p.modes.C_reduced; },
+                             "C in the reduced coordinates.")
+      .def_property_readonly("K_reduced", [](const PyModes& p) { return p.modes.K_reduced; },
+                             "K in the reduced coordinates.")
+      .def_property_readonly("eigenvalues", [](const PyModes& p) { return p.modes.eigenvalues; },
+                             "Every eigenvalue λ (1/s) of the linearisation.")
+      .def_property_readonly("modes", [](const PyModes& p) { return p.modes.modes; },
+                             "The modes (rigid.lagrange.Mode), one per eigenvalue pair.")
       .def_property_readonly("omega", [](const PyModes& p) {
         Eigen::VectorXd w(static_cast<Eigen::Index>(p.modes.modes.size()));
         for (std::size_t k = 0; k < p.modes.modes.size(); ++k) w[static_cast<Eigen::Index>(k)] = p.modes.modes[k].omega;

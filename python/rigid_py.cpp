@@ -1,5 +1,5 @@
-// The Python module `rigid`: numpy arrays in and out, rigid::Error raised as rigid.Error
-// (a subclass of ValueError).
+// The extension module `rigid._rigid` behind the package `rigid` (python/rigid/__init__.py
+// re-exports it): numpy arrays in and out, rigid::Error raised as rigid.Error (a ValueError).
 #include <pybind11/pybind11.h>
 
 #include "rigid/common/error.hpp"
@@ -18,12 +18,18 @@ void bind_modes(py::module_& m);
 void bind_spring(py::module_& m);
 void bind_integrate(py::module_& m);
 
-PYBIND11_MODULE(rigid, m) {
+PYBIND11_MODULE(_rigid, m) {
   m.doc() = "rigid: rigid-body mechanics from isometries and inertia tensors to Euler's equations";
   m.attr("__version__") = RIGID_VERSION_STRING;
+  // classes and submodules are named after the package users import (rigid.SO3, rigid.mass), in
+  // their reprs and in every docstring's signature; the module's own name is restored at the end
+  m.attr("__name__") = "rigid";
   // rigid.Error (a ValueError) with the remedy worded for Python (`shell=True`, not --shell);
   // a cancelled run (Ctrl-C while the GIL was released) is a KeyboardInterrupt
   static py::exception<rigid::Error> error(m, "Error", PyExc_ValueError);
+  error.attr("__doc__") =
+      "Bad input or a refused computation: the message says what, where, the value, what was expected "
+      "and the remedy (the text the command line prints). A ValueError.";
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
@@ -42,4 +48,5 @@ PYBIND11_MODULE(rigid, m) {
   bind_modes(m);
   bind_spring(m);
   bind_integrate(m);
+  m.attr("__name__") = "rigid._rigid";
 }

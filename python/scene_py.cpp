@@ -305,19 +305,20 @@ void bind_scene(py::module_& m) {
           "current directory by default); `set` as in rigid.Scene(path, set).")
       .def_property_readonly("kind", [](const Model& mo) {
         return mo.kind() == rigid::scene::SceneKind::kCoordinates ? "coordinates" : "free_bodies";
-      })
+      }, "'coordinates' (a Lagrangian system of generalized coordinates) or 'free_bodies'.")
       .def_property_readonly("parameters", [](const Model& mo) {
         py::dict d;
         for (const auto& p : mo.parameters()) d[py::str(p.name)] = p.value;
         return d;
-      })
+      }, "The scene's parameters after `set` overrides, {name: value} in file order (SI units).")
       .def_property_readonly("bodies", [](const Model& mo) {
         py::dict d;
         for (const auto& b : mo.bodies()) d[py::str(b.name)] = b.mass;
         return d;
       }, "The bodies' mass properties (rigid.MassProperties in each body's frame), by name.")
-      .def_property_readonly("warnings", &Model::warnings)
-      .def_property_readonly("t_end", &Model::t_end)
+      .def_property_readonly("warnings", &Model::warnings,
+                             "What the scene's checks found suspicious but not wrong (the CLI prints them too).")
+      .def_property_readonly("t_end", &Model::t_end, "End time of a run (s).")
       .def("integrator", &Model::integrator, py::arg("requested") = std::string{},
            "The method a run uses (the requested one, the scene's, or the kind's default).")
       .def("equations", [](const Model& mo, bool latex, const std::string& format) {
@@ -361,5 +362,10 @@ void bind_scene(py::module_& m) {
            "KeyboardInterrupt and writes nothing. `report=True` adds report.html to the files in "
            "`output` (one self-contained page: 3D motion, plots, equations; docs/report.md), "
            "`report=PATH` writes the page alone; its path is under 'report'. `report_frames` (default "
-           "2000) caps the frames the page keeps.");
+           "2000) caps the frames the page keeps.")
+      .def("__repr__", [](const Model& mo) {
+        return fmt::format("Scene('{}', kind='{}', t_end={} s)", mo.scene().file.string(),
+                           mo.kind() == rigid::scene::SceneKind::kCoordinates ? "coordinates" : "free_bodies",
+                           mo.t_end());
+      });
 }

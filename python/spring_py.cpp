@@ -175,7 +175,7 @@ void bind_spring(py::module_& m) {
           "and velocity (shape (len(times), n, 3), m and m/s, world) and energy (J). Releases the "
           "GIL; Ctrl-C raises KeyboardInterrupt.")
       .def("__repr__", [](const Network& net) {
-        return fmt::format("<rigid.spring.Network: {} particles, {} springs, mass {:.6g} kg>",
+        return fmt::format("Network(particles={}, springs={}, mass={:.6g} kg)",
                            net.mass.size(), net.springs.size(), net.mass.sum());
       });
 

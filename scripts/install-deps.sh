@@ -33,6 +33,7 @@ build_packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libmujoco-dev libmujoco-samples
   pybind11-dev python3-dev python3-numpy python3-pytest python3-scipy python3-sympy python3-meshio
+  python3-pip python3-setuptools python3-wheel python3-venv
   chromium
 )
 bench_packages=(libbullet-dev libode-dev)
