@@ -135,6 +135,20 @@ void Workspace::set_parameter(const std::string& name, double value) {
   impl_->params = std::move(values);
 }
 
+void Workspace::set_parameters(const std::vector<Parameter>& parameters) {
+  if (parameters.empty()) return;
+  const System::Impl& s = *impl_->owner;
+  std::vector<double> values = impl_->params;
+  for (const Parameter& p : parameters) {
+    RIGID_REQUIRE(std::isfinite(p.value), "parameter '{}' must be finite, got {}", p.name, p.value);
+    values[s.parameter_index(p.name)] = p.value;
+  }
+  // the masses are checked once, for the values together: one at a time, a valid set of new
+  // values could pass through an invalid one (a new ixx with the old iyy and izz)
+  s.check_masses(values, "for the run's parameter values");
+  impl_->params = std::move(values);
+}
+
 Workspace System::make_workspace() const {
   const Impl& s = *impl_;
   auto w = std::make_unique<Workspace::Impl>();
@@ -304,7 +318,7 @@ Trajectory System::simulate(const SimulationOptions& o, const Eigen::VectorXd& q
   }
   Workspace workspace = make_workspace();
   WorkImpl& w = *Workspace::Access::impl(workspace);
-  for (const Parameter& p : o.parameters) workspace.set_parameter(p.name, p.value);
+  workspace.set_parameters(o.parameters);
   Eigen::VectorXd q0 = q0_in, qd0 = qd0_in;
   const double t0 = 0.0;
 

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdint>
 #include <cmath>
+#include <memory>
 #include <optional>
 
 #include <fnmatch.h>
@@ -271,8 +272,11 @@ struct Model::Impl {
   Eigen::Vector3d gravity = Eigen::Vector3d::Zero();
   // simulation settings (validated)
   double t_end = 0, dt = 1e-3, tolerance = 1e-9, output_dt = 0;
-  // coordinates
-  std::unique_ptr<lagrange::System> system;
+  // coordinates: the derived equations (shared, read-only, by the models built from this one with
+  // Model(scene, like)), and this model's initial state; runs pass this model's parameter values
+  // and initial state, so the System's own defaults are never what a run uses
+  std::shared_ptr<const lagrange::System> system;
+  Eigen::VectorXd q0, q_dot0;
   // free bodies
   std::vector<FreeBody> free;
   // metrics: the column each reads (index in columns()), and how many leading columns are
@@ -370,12 +374,31 @@ struct Model::Impl {
                                                      static_cast<double>(integrate::TimeGrid::kMaxOutputs)));
   }
 
+  void read_initial_state() {
+    const auto n = static_cast<Eigen::Index>(scene.coordinates.size());
+    q0.resize(n);
+    q_dot0.resize(n);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const Coordinate& c = scene.coordinates[static_cast<std::size_t>(i)];
+      q0(i) = value_of(c.initial, params, c.name + " initial");
+      q_dot0(i) = value_of(c.velocity, params, c.name + " velocity");
+    }
+  }
+
+  // A workspace of the System with this model's parameter values.
+  [[nodiscard]] lagrange::Workspace make_workspace() const {
+    lagrange::Workspace w = system->make_workspace();
+    w.set_parameters(params);
+    return w;
+  }
+
   void build_coordinates(const std::vector<lagrange::BodyMass>& masses) {
+    read_initial_state();
     lagrange::SystemSpec spec;
     spec.parameters = params;
-    for (const Coordinate& c : scene.coordinates) {
-      spec.coordinates.push_back({c.name, value_of(c.initial, params, c.name + " initial"),
-                                  value_of(c.velocity, params, c.name + " velocity")});
+    for (std::size_t i = 0; i < scene.coordinates.size(); ++i) {
+      const auto k = static_cast<Eigen::Index>(i);
+      spec.coordinates.push_back({scene.coordinates[i].name, q0(k), q_dot0(k)});
     }
     for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
       const Body& b = scene.bodies[i];
@@ -407,7 +430,7 @@ struct Model::Impl {
       spec.springs.push_back(std::move(ls));
     }
     const SourceLocation whole{scene.file.string(), 0, 0};
-    system = std::make_unique<lagrange::System>(at_location(whole, "the equations of motion", [&] {
+    system = std::make_shared<const lagrange::System>(at_location(whole, "the equations of motion", [&] {
       return lagrange::System(spec);
     }));
   }
@@ -571,7 +594,11 @@ struct Model::Impl {
   RunResult run_free(const Method& method, const RunOptions& o) const;
 };
 
-Model::Model(const Scene& scene) : impl_(std::make_unique<Impl>()) {
+Model::Model(const Scene& scene) : Model(scene, nullptr) {}
+
+Model::Model(const Scene& scene, const Model& like) : Model(scene, &like) {}
+
+Model::Model(const Scene& scene, const Model* like) : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
   m.scene = scene;
   m.kind = scene.is_free_body_scene() ? SceneKind::kFreeBodies : SceneKind::kCoordinates;
@@ -589,7 +616,28 @@ Model::Model(const Scene& scene) : impl_(std::make_unique<Impl>()) {
   }
   m.params.insert(m.params.end(), derived.begin(), derived.end());
   m.read_simulation();
-  if (m.kind == SceneKind::kCoordinates) {
+  if (m.kind == SceneKind::kCoordinates && like != nullptr) {
+    // the equations of `like`, whose scene differs from this one only in values: checked as far
+    // as names go (a scene changed by apply_overrides keeps every name and expression)
+    const Impl& l = *like->impl_;
+    auto names = [](const std::vector<lagrange::Parameter>& ps) {
+      std::vector<std::string> out;
+      for (const auto& p : ps) out.push_back(p.name);
+      return out;
+    };
+    auto coordinate_names = [](const Scene& sc) {
+      std::vector<std::string> out;
+      for (const auto& c : sc.coordinates) out.push_back(c.name);
+      return out;
+    };
+    RIGID_REQUIRE(l.kind == SceneKind::kCoordinates && names(l.params) == names(m.params) &&
+                      coordinate_names(l.scene) == coordinate_names(scene) &&
+                      l.scene.bodies.size() == scene.bodies.size(),
+                  "the scene '{}' differs from the model's it should share equations with in more than values",
+                  scene.file.string());
+    m.system = l.system;
+    m.read_initial_state();
+  } else if (m.kind == SceneKind::kCoordinates) {
     m.build_coordinates(masses);
   } else {
     m.build_free_bodies(masses);
@@ -731,9 +779,10 @@ void Model::check(const RunOptions& options) const {
     so.tolerance = m.tolerance;
     so.output_dt = m.output_dt;
     so.t_end = m.output_dt > 0 ? m.output_dt : std::min(m.t_end, m.dt);
+    so.parameters = m.params;
     // a failure here is the model's at its start, with the run's settings
     (void)at_location(m.scene.simulation.where, "[simulation] the first output interval",
-                      [&] { return m.system->simulate(so); });
+                      [&] { return m.system->simulate(so, m.q0, m.q_dot0); });
   }
 }
 
@@ -821,7 +870,8 @@ RunResult Model::Impl::run_coordinates(const Method& method, const RunOptions& o
   // metrics: every step's state (and dopri5's dense output inside it) through the probe
   const bool with_metrics = !scene.output.metrics.empty();
   MetricRecorder recorder(scene.output.metrics, metric_columns);
-  lagrange::Workspace probe_workspace = system->make_workspace();
+  so.parameters = params;
+  lagrange::Workspace probe_workspace = make_workspace();
   const auto n = static_cast<Eigen::Index>(system->coordinate_names().size());
   std::vector<Eigen::Vector4d> probe_previous(system->body_names().size(), Eigen::Vector4d(1, 0, 0, 0));
   Eigen::VectorXd pq(n), pqd(n);
@@ -839,8 +889,8 @@ RunResult Model::Impl::run_coordinates(const Method& method, const RunOptions& o
   std::vector<double> values;
   std::vector<double> ybuf(static_cast<std::size_t>(2 * n));
   if (with_metrics) {
-    pq = system->initial_q();
-    pqd = system->initial_q_dot();
+    pq = q0;
+    pqd = q_dot0;
     probe(0.0, values);
     recorder.start(0.0, values);
     so.control.on_step = [&, outer = o.control.on_step](const integrate::StepView& v) {
@@ -863,11 +913,11 @@ RunResult Model::Impl::run_coordinates(const Method& method, const RunOptions& o
       if (outer) outer(v);
     };
   }
-  const lagrange::Trajectory tr = system->simulate(so);
+  const lagrange::Trajectory tr = system->simulate(so, q0, q_dot0);
 
   RunResult r;
   r.trajectory = io::Table(columns());
-  lagrange::Workspace workspace = system->make_workspace();
+  lagrange::Workspace workspace = make_workspace();
   std::vector<Eigen::Vector4d> previous(system->body_names().size(), Eigen::Vector4d(1, 0, 0, 0));
   std::vector<double> row;
   for (Eigen::Index k = 0; k < tr.t.size(); ++k) {

@@ -10,6 +10,7 @@
 #include <cstring>
 #include <fstream>
 #include <limits>
+#include <memory>
 #include <mutex>
 #include <new>
 #include <sstream>
@@ -489,18 +490,53 @@ std::vector<SweepRow> run_sweep(const SweepIdentity& id, std::span<const std::si
   std::atomic<std::size_t> next{0};
   std::atomic<bool> stopped{false};
   std::mutex report;
+  auto overrides_of = [&](const std::vector<double>& values) {
+    std::vector<std::string> set = id.set;
+    for (std::size_t k = 0; k < names.size(); ++k) set.push_back(override_text(names[k], values[k]));
+    return set;
+  };
+
+  // The scene is read once; a run is that scene with its overrides. The overrides change values
+  // only (apply_overrides), so a coordinate scene's equations are derived once, before the runs,
+  // for the slice's first run, and every run's model shares them (Model(scene, like)): no run
+  // pays for the derivation. When that first model cannot be built (its values are refused),
+  // each run builds its own and records its own error, as without the prototype.
+  const Scene base = load_scene(id.scene);
+  std::shared_ptr<const Model> prototype;
+  if (!base.is_free_body_scene() && !indices.empty()) {
+    std::lock_guard lock(g_symbolic);
+    try {
+      Scene first = base;
+      apply_overrides(first, overrides_of(run_values(id.spec, indices.front())));
+      prototype = std::make_shared<const Model>(first);
+    } catch (const Error&) {
+      prototype.reset();
+    }
+  }
+  // the prototype's GiNaC expressions are released under the lock too, however this returns
+  struct ReleaseUnderLock {
+    std::shared_ptr<const Model>& model;
+    ~ReleaseUnderLock() {
+      std::lock_guard lock(g_symbolic);
+      model.reset();
+    }
+  } release_prototype{prototype};
 
   auto one_run = [&](std::size_t slot) {
     SweepRow& row = rows[slot];
     row.index = indices[slot];
     row.values = run_values(id.spec, row.index);
-    std::vector<std::string> set = id.set;
-    for (std::size_t k = 0; k < names.size(); ++k) set.push_back(override_text(names[k], row.values[k]));
     std::optional<Model> model;
     try {
       {
         std::lock_guard lock(g_symbolic);
-        model.emplace(load_model(id.scene, set));
+        Scene scene = base;
+        apply_overrides(scene, overrides_of(row.values));
+        if (prototype) {
+          model.emplace(scene, *prototype);
+        } else {
+          model.emplace(scene);
+        }
       }
       RunOptions ro;
       ro.integrator = id.integrator;

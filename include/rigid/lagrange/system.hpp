@@ -281,6 +281,9 @@ class Workspace {
   /// Sets a parameter's value for evaluations through this workspace only.
   /// @throws rigid::Error for an unknown name or a non-finite value.
   void set_parameter(const std::string& name, double value);
+  /// Sets several parameters at once; the bodies' masses are checked for the new values
+  /// together. @throws rigid::Error for an unknown name, a non-finite value, invalid masses.
+  void set_parameters(const std::vector<Parameter>& parameters);
 
   struct Impl;
   struct Access;  ///< the library's own access to the scratch (src/lagrange)

@@ -66,6 +66,14 @@ class Model {
   ///   sizes, an inertia violating the triangle inequality, an open mesh), a free body
   ///   whose rotation is undefined (a principal moment 0), an unknown integrator.
   explicit Model(const Scene& scene);
+  /// A model of `scene` that shares the equations already derived for `like` instead of deriving
+  /// them again (what a sweep does for each run). `scene` must differ from like.scene() only in
+  /// what apply_overrides changes: parameter values, initial conditions, [simulation] settings,
+  /// a free body's initial state. Runs and check() use this model's values; system() is like's
+  /// System, whose own default values are like's.
+  /// @throws rigid::Error as Model(scene), and when the names of the parameters, coordinates or
+  ///   bodies differ from like's.
+  Model(const Scene& scene, const Model& like);
   ~Model();
   Model(Model&&) noexcept;
   Model& operator=(Model&&) noexcept;
@@ -97,7 +105,9 @@ class Model {
   /// as text and LaTeX; rigid::lagrange::format_equations). The same bytes on every run.
   [[nodiscard]] std::string equations(lagrange::EquationFormat format) const;
 
-  /// The coordinate system (only for kind() == kCoordinates). @throws rigid::Error otherwise.
+  /// The coordinate system (only for kind() == kCoordinates), with the model's parameter values
+  /// and initial state as its defaults (for a model built with `like`: like's). @throws
+  /// rigid::Error otherwise.
   [[nodiscard]] const lagrange::System& system() const;
 
   /// Checks what a run would check before stepping (consistent initial conditions,
@@ -127,6 +137,7 @@ class Model {
   [[nodiscard]] std::vector<io::OutputFormat> output_formats(const std::vector<std::string>& requested = {}) const;
 
  private:
+  Model(const Scene& scene, const Model* like);
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
