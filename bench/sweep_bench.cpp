@@ -2,10 +2,12 @@
 // run_bench, which must keep building against older commits).
 //  - runs per second on 1 and 2 threads for a grid of 32 runs of a small scene: the racket for
 //    10 s (splitting4, 10³ steps), and the physical pendulum for 2 s by dopri5 (tolerance 1e-10),
-//    whose equations are derived again for every run (under the lock of the symbolic side);
-//  - one run through run_sweep (read the scene, apply the override, build the model, run, make
-//    the row) against Model::run of a model built once: the difference is a sweep's overhead
-//    per run beyond the integration.
+//    whose equations are derived once per sweep and shared by its runs;
+//  - the CPU time per run of a 32-run sweep on one thread (apply the override, build the model
+//    from the scene read once, run, make the row; the derivation amortised over 32 runs) against
+//    Model::run of a model built once: the difference is a sweep's overhead per run beyond the
+//    integration;
+//  - one run through run_sweep (the file read, and a coordinate scene's derivation, included).
 // MPI ranks are measured from the command line (docs/performance.md gives the commands).
 #include <filesystem>
 #include <fstream>
@@ -78,6 +80,20 @@ void BM_Sweep_runs(benchmark::State& st, const char* name, const char* text, con
       benchmark::Counter(static_cast<double>(st.iterations() * all.size()), benchmark::Counter::kIsRate);
 }
 
+// The CPU time per run of a sweep of `axis` on one thread (counter "per_run"), to compare with
+// BM_Sweep_modelRun of the same scene.
+void BM_Sweep_perRun(benchmark::State& st, const char* name, const char* text, const char* axis) {
+  const auto id = sweep_of(name, text, axis);
+  std::vector<std::size_t> all(rigid::scene::run_count(id.spec));
+  std::iota(all.begin(), all.end(), 0);
+  for (auto _ : st) {
+    const auto rows = rigid::scene::run_sweep(id, all, {.threads = 1});
+    benchmark::DoNotOptimize(rows.data());
+  }
+  st.counters["per_run"] = benchmark::Counter(static_cast<double>(st.iterations() * all.size()),
+                                              benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
 // One run through the sweep's path, to compare with BM_Sweep_modelRun of the same scene.
 void BM_Sweep_oneRun(benchmark::State& st, const char* name, const char* text, const char* axis) {
   const auto id = sweep_of(name, text, axis);
@@ -102,6 +118,10 @@ BENCHMARK_CAPTURE(BM_Sweep_runs, racket_10s_x32, "racket", kSmallRacket, "I2=1.9
 BENCHMARK_CAPTURE(BM_Sweep_runs, pendulum_2s_x32, "pendulum", kSmallPendulum, "L=0.5:2:32")
     ->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Sweep_modelRun, racket_10s, kSmallRacket)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_Sweep_perRun, racket_10s_x32, "racketp", kSmallRacket, "I2=1.95:2.05:32")
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Sweep_perRun, pendulum_2s_x32, "pendulump", kSmallPendulum, "L=0.5:2:32")
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Sweep_oneRun, racket_10s, "racket1", kSmallRacket, "I2=2:2:1")->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_Sweep_modelRun, pendulum_2s, kSmallPendulum)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_Sweep_oneRun, pendulum_2s, "pendulum1", kSmallPendulum, "L=1:1:1")->Unit(benchmark::kMicrosecond);
