@@ -1,7 +1,8 @@
 #pragma once
 // Batch arguments for the rigid.so3 functions: numpy arrays of shape (N, k…) or one (k…)
 // element, read by python/convert.hpp (one converter: the same dtype and shape wording as
-// every other array argument), then looped over in C++ (without the GIL for large N, on several threads for very large N).
+// every other array argument), then looped over in C++ (without the GIL for large N, on several
+// threads for very large N).
 #include <fmt/format.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -66,7 +67,8 @@ inline BatchArray batch_argument(const pybind11::handle& obj, const convert::Arg
     for (py::ssize_t k : element) ok = ok && a.shape(lead + d++) == k;
   }
   if (!ok) {
-    convert::refuse(arg, fmt::format("must have shape {}; got {}", expected, convert::shape_text(a)));
+    convert::refuse(arg,
+                    fmt::format("must have shape {}; got {}", expected, convert::shape_text(a)));
   }
   BatchArray b;
   b.array = a;

@@ -85,8 +85,8 @@ inline RealArray real_array(const py::handle& value, const Arg& arg, std::string
   } catch (const py::error_already_set&) {
     // numpy refuses ragged nested sequences ("inhomogeneous shape")
     refuse(arg, fmt::format("must be an array of numbers of shape {}; got a {} that is not "
-                                    "rectangular",
-                                    expected, type_name(value)));
+                            "rectangular",
+                            expected, type_name(value)));
   }
   const char kind = a.dtype().kind();
   if (a.ndim() == 0 && kind != 'f' && kind != 'i' && kind != 'u' && kind != 'c' && kind != 'b') {
@@ -96,10 +96,9 @@ inline RealArray real_array(const py::handle& value, const Arg& arg, std::string
                     arg.function, arg.name, expected, type_name(value)));
   }
   if (kind != 'f' && kind != 'i' && kind != 'u') {
-    refuse(arg,
-                   fmt::format("must hold real numbers (a float or integer dtype) of shape {}; "
-                               "got dtype {}",
-                               expected, py::str(a.dtype()).cast<std::string>()));
+    refuse(arg, fmt::format("must hold real numbers (a float or integer dtype) of shape {}; "
+                            "got dtype {}",
+                            expected, py::str(a.dtype()).cast<std::string>()));
   }
   RealArray out = RealArray::ensure(a);
   if (!out) {
@@ -200,7 +199,8 @@ inline Eigen::Matrix3d matrix3(const py::handle& value, const Arg& arg,
   return fixed_matrix<3, 3>(value, arg, finite);
 }
 
-/// A square matrix of shape (n, n), any n (an empty one is the library's to refuse); `n_name` names n in messages ("n", "n+1").
+/// A square matrix of shape (n, n), any n (an empty one is the library's to refuse); `n_name` names
+/// n in messages ("n", "n+1").
 inline Eigen::MatrixXd square_matrix(const py::handle& value, const Arg& arg,
                                      Finite finite = Finite::kRequired,
                                      std::string_view n_name = "n") {
@@ -231,8 +231,7 @@ inline Eigen::MatrixXd points(const py::handle& value, const Arg& arg, Eigen::In
     std::string hint;
     if (a.ndim() == 2 && a.shape(0) == d)
       hint = fmt::format(" (one point per row: pass {}.T for points as columns)", arg.name);
-    refuse(
-        arg, fmt::format("must have shape {}; got {}{}", expected, shape_text(a), hint));
+    refuse(arg, fmt::format("must have shape {}; got {}{}", expected, shape_text(a), hint));
   }
   Eigen::MatrixXd m(d, a.shape(0));
   const auto v = a.unchecked<2>();

@@ -5,13 +5,13 @@
 // shape or dtype names the function (as Python users call it), the argument and the expected
 // shape; NaN and infinity are refused where the result would be NaN. `*` is one __mul__ per
 // class that dispatches on its operand: another element (composition) or an array (action).
-#include <random>
-#include <string>
-#include <string_view>
-
 #include <pybind11/eigen.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
+
+#include <random>
+#include <string>
+#include <string_view>
 
 #include "convert.hpp"
 #include "rigid/common/format.hpp"
@@ -158,17 +158,22 @@ void bind_lie(py::module_& m) {
   using T1 = SO2d::Tangent;
 
   const GroupDocs dso2 = group_docs("SO(2)", "theta (rad, counter-clockwise)", "2×2 rotation matrix R", false);
-  py::class_<SO2d>(m, "SO2", "Rotation in 2-D, stored as a unit complex number c + i s; tangent: the angle (float, rad)")
+  py::class_<SO2d>(
+      m, "SO2",
+      "Rotation in 2-D, stored as a unit complex number c + i s; tangent: the angle (float, rad)")
       .def_static("identity", &SO2d::identity, dso2.identity.c_str())
-      .def_static("exp", [](double theta) { return SO2d::exp(T1(theta)); }, py::arg("theta"),
-                  "angle (rad, counter-clockwise) -> rotation")
+      .def_static(
+          "exp", [](double theta) { return SO2d::exp(T1(theta)); }, py::arg("theta"),
+          "angle (rad, counter-clockwise) -> rotation")
       .def_static("from_angle", &SO2d::from_angle, py::arg("theta"), dso2.from_angle.c_str())
       .def_static("from_complex", &SO2d::from_complex, py::arg("c"), py::arg("s"),
                   dso2.from_complex.c_str())
-      .def_static("from_matrix", on_matrix_tol<2, 2>("rigid.SO2.from_matrix", "R", &SO2d::from_matrix),
+      .def_static("from_matrix",
+                  on_matrix_tol<2, 2>("rigid.SO2.from_matrix", "R", &SO2d::from_matrix),
                   py::arg("R"), py::arg("tol") = 1e-9, dso2.from_matrix.c_str())
-      .def_static("hat", [](double theta) { return SO2d::hat(T1(theta)); }, py::arg("theta"),
-                  dso2.hat.c_str())
+      .def_static(
+          "hat", [](double theta) { return SO2d::hat(T1(theta)); }, py::arg("theta"),
+          dso2.hat.c_str())
       .def_static("vee",
                   on_matrix<2, 2>("rigid.SO2.vee", "matrix",
                                   [](const Eigen::Matrix2d& W) { return SO2d::vee(W)(0); }),
@@ -183,27 +188,32 @@ void bind_lie(py::module_& m) {
           },
           py::arg("seed"), py::arg("n"), "n Haar-uniform rotations from a seeded std::mt19937_64")
       .def_readonly_static("dimension", &SO2d::kDim, dso2.dimension.c_str())
-      .def("log", [](const SO2d& R) { return R.log()(0); }, "angle in (-pi, pi]")
+      .def(
+          "log", [](const SO2d& R) { return R.log()(0); }, "angle in (-pi, pi]")
       .def("angle", &SO2d::angle, dso2.angle.c_str())
       .def("matrix", &SO2d::matrix, dso2.matrix.c_str())
       .def("adjoint", &SO2d::adjoint, dso2.adjoint.c_str())
       .def("homogeneous", &SO2d::homogeneous, dso2.homogeneous.c_str())
-      .def("complex", [](const SO2d& R) { return V2(R.real(), R.imag()); }, "(c, s)")
+      .def(
+          "complex", [](const SO2d& R) { return V2(R.real(), R.imag()); }, "(c, s)")
       .def("inverse", &SO2d::inverse, dso2.inverse.c_str())
       .def("interpolate", &SO2d::interpolate, py::arg("other"), py::arg("s"),
            dso2.interpolate.c_str())
       .def("is_approx", &SO2d::is_approx, py::arg("other"), py::arg("tol") = 1e-12,
            dso2.is_approx.c_str())
-      .def("__mul__",
-           [](const SO2d& a, const py::object& other) {
-             return multiply_fixed<SO2d, 2>(a, other, "SO2.__mul__");
-           },
-           py::arg("other"), py::is_operator(),
-           "Composition self * other (other: an SO2), or the rotated vector R v (other: shape (2,)).")
+      .def(
+          "__mul__",
+          [](const SO2d& a, const py::object& other) {
+            return multiply_fixed<SO2d, 2>(a, other, "SO2.__mul__");
+          },
+          py::arg("other"), py::is_operator(),
+          "Composition self * other (other: an SO2), or the rotated vector R v (other: shape "
+          "(2,)).")
       .def("__repr__", [](const SO2d& R) { return fmt::format("SO2(angle={})", R.angle()); });
 
   const GroupDocs dse2 = group_docs("SE(2)", "(rho_x, rho_y, theta) (m, m, rad)", "3×3 homogeneous matrix [[R, t], [0, 1]]", true);
-  py::class_<SE2d>(m, "SE2", "Rigid motion of the plane (R, t): p -> R p + t; tangent (rho_x, rho_y, theta)")
+  py::class_<SE2d>(m, "SE2",
+                   "Rigid motion of the plane (R, t): p -> R p + t; tangent (rho_x, rho_y, theta)")
       .def(py::init([](const SO2d& R, const py::object& t) {
              return SE2d(R, fixed_vector<2>(t, {"rigid.SE2", "t"}));
            }),
@@ -213,19 +223,25 @@ void bind_lie(py::module_& m) {
                   dse2.exp.c_str())
       .def_static("hat", on_vector<3>("rigid.SE2.hat", "xi", &SE2d::hat), py::arg("xi"),
                   dse2.hat.c_str())
-      .def_static("vee", on_matrix<3, 3>("rigid.SE2.vee", "matrix", &SE2d::vee),
-                  py::arg("matrix"), dse2.vee.c_str())
+      .def_static("vee", on_matrix<3, 3>("rigid.SE2.vee", "matrix", &SE2d::vee), py::arg("matrix"),
+                  dse2.vee.c_str())
       .def_static("from_matrix",
                   on_matrix_tol<3, 3>("rigid.SE2.from_matrix", "T", &SE2d::from_matrix),
                   py::arg("T"), py::arg("tol") = 1e-9, dse2.from_matrix.c_str())
-      .def_static("right_jacobian", on_vector<3>("rigid.SE2.right_jacobian", "xi", &SE2d::right_jacobian),
+      .def_static("right_jacobian",
+                  on_vector<3>("rigid.SE2.right_jacobian", "xi", &SE2d::right_jacobian),
                   py::arg("xi"), dse2.right_jacobian.c_str())
-      .def_static("left_jacobian", on_vector<3>("rigid.SE2.left_jacobian", "xi", &SE2d::left_jacobian),
+      .def_static("left_jacobian",
+                  on_vector<3>("rigid.SE2.left_jacobian", "xi", &SE2d::left_jacobian),
                   py::arg("xi"), dse2.left_jacobian.c_str())
-      .def_static("right_jacobian_inverse", on_vector<3>("rigid.SE2.right_jacobian_inverse", "xi", &SE2d::right_jacobian_inverse),
-                  py::arg("xi"), dse2.right_jacobian_inverse.c_str())
-      .def_static("left_jacobian_inverse", on_vector<3>("rigid.SE2.left_jacobian_inverse", "xi", &SE2d::left_jacobian_inverse),
-                  py::arg("xi"), dse2.left_jacobian_inverse.c_str())
+      .def_static(
+          "right_jacobian_inverse",
+          on_vector<3>("rigid.SE2.right_jacobian_inverse", "xi", &SE2d::right_jacobian_inverse),
+          py::arg("xi"), dse2.right_jacobian_inverse.c_str())
+      .def_static(
+          "left_jacobian_inverse",
+          on_vector<3>("rigid.SE2.left_jacobian_inverse", "xi", &SE2d::left_jacobian_inverse),
+          py::arg("xi"), dse2.left_jacobian_inverse.c_str())
       .def_static(
           "sample",
           [](std::uint64_t seed, int n, double half_extent) {
@@ -251,18 +267,22 @@ void bind_lie(py::module_& m) {
             return X.act_vector(fixed_vector<2>(v, {"SE2.act_vector", "v"}));
           },
           py::arg("v"), dse2.act_vector.c_str())
-      .def("__mul__",
-           [](const SE2d& a, const py::object& other) {
-             return multiply_fixed<SE2d, 2>(a, other, "SE2.__mul__");
-           },
-           py::arg("other"), py::is_operator(),
-           "Composition self * other (other: an SE2), or the moved point R p + t (other: shape (2,)).")
+      .def(
+          "__mul__",
+          [](const SE2d& a, const py::object& other) {
+            return multiply_fixed<SE2d, 2>(a, other, "SE2.__mul__");
+          },
+          py::arg("other"), py::is_operator(),
+          "Composition self * other (other: an SE2), or the moved point R p + t (other: shape "
+          "(2,)).")
       .def("__repr__", [](const SE2d& X) {
         return fmt::format("SE2(angle={}, translation={})", X.rotation().angle(), rigid::to_string(X.translation().transpose()));
       });
 
   const GroupDocs dson = group_docs("SO(n)", "omega in R^(n(n-1)/2) (rad; basis as in hat)", "n×n rotation matrix R", false);
-  py::class_<SOn>(m, "SOn", "Rotation of R^n for any n >= 2 (n x n matrix); tangent in R^(n(n-1)/2), basis as in SOn::hat")
+  py::class_<SOn>(m, "SOn",
+                  "Rotation of R^n for any n >= 2 (n x n matrix); tangent in R^(n(n-1)/2), basis "
+                  "as in SOn::hat")
       .def_static("identity", &SOn::identity, py::arg("n"), dson.identity.c_str())
       .def_static("exp", on_tangent("rigid.SOn.exp", "omega", "n(n-1)/2", &SOn::exp),
                   py::arg("omega"), "so(n) coordinates -> rotation (n from the size)")
@@ -270,19 +290,25 @@ void bind_lie(py::module_& m) {
                   py::arg("omega"), dson.hat.c_str())
       .def_static("vee", on_square_tol("rigid.SOn.vee", "matrix", "n", &SOn::vee),
                   py::arg("matrix"), py::arg("tol") = 1e-9, dson.vee.c_str())
-      .def_static("ad", on_tangent("rigid.SOn.ad", "omega", "n(n-1)/2", &SOn::ad),
-                  py::arg("omega"), dson.ad.c_str())
+      .def_static("ad", on_tangent("rigid.SOn.ad", "omega", "n(n-1)/2", &SOn::ad), py::arg("omega"),
+                  dson.ad.c_str())
       .def_static("from_matrix",
-                  on_square_tol("rigid.SOn.from_matrix", "R", "n", &SOn::from_matrix),
-                  py::arg("R"), py::arg("tol") = 1e-9, dson.from_matrix.c_str())
+                  on_square_tol("rigid.SOn.from_matrix", "R", "n", &SOn::from_matrix), py::arg("R"),
+                  py::arg("tol") = 1e-9, dson.from_matrix.c_str())
       .def_static("dimension_of", &SOn::dimension_of, py::arg("n"), dson.dimension_of.c_str())
-      .def_static("right_jacobian", on_tangent("rigid.SOn.right_jacobian", "omega", "n(n-1)/2", &SOn::right_jacobian),
+      .def_static("right_jacobian",
+                  on_tangent("rigid.SOn.right_jacobian", "omega", "n(n-1)/2", &SOn::right_jacobian),
                   py::arg("omega"), dson.right_jacobian.c_str())
-      .def_static("left_jacobian", on_tangent("rigid.SOn.left_jacobian", "omega", "n(n-1)/2", &SOn::left_jacobian),
+      .def_static("left_jacobian",
+                  on_tangent("rigid.SOn.left_jacobian", "omega", "n(n-1)/2", &SOn::left_jacobian),
                   py::arg("omega"), dson.left_jacobian.c_str())
-      .def_static("right_jacobian_inverse", on_tangent("rigid.SOn.right_jacobian_inverse", "omega", "n(n-1)/2", &SOn::right_jacobian_inverse),
+      .def_static("right_jacobian_inverse",
+                  on_tangent("rigid.SOn.right_jacobian_inverse", "omega", "n(n-1)/2",
+                             &SOn::right_jacobian_inverse),
                   py::arg("omega"), dson.right_jacobian_inverse.c_str())
-      .def_static("left_jacobian_inverse", on_tangent("rigid.SOn.left_jacobian_inverse", "omega", "n(n-1)/2", &SOn::left_jacobian_inverse),
+      .def_static("left_jacobian_inverse",
+                  on_tangent("rigid.SOn.left_jacobian_inverse", "omega", "n(n-1)/2",
+                             &SOn::left_jacobian_inverse),
                   py::arg("omega"), dson.left_jacobian_inverse.c_str())
       .def_static(
           "sample",
@@ -292,7 +318,8 @@ void bind_lie(py::module_& m) {
             for (int i = 0; i < count; ++i) out.push_back(SOn::sample(dim, rng));
             return out;
           },
-          py::arg("n"), py::arg("seed"), py::arg("count"), "count Haar-uniform rotations of R^n (seeded)")
+          py::arg("n"), py::arg("seed"), py::arg("count"),
+          "count Haar-uniform rotations of R^n (seeded)")
       .def("log", &SOn::log, dson.log.c_str())
       .def("angles", &SOn::angles, "rotation angles of the planes, descending, in [0, pi]")
       .def("matrix", &SOn::matrix, dson.matrix.c_str())
@@ -305,17 +332,22 @@ void bind_lie(py::module_& m) {
            dson.interpolate.c_str())
       .def("is_approx", &SOn::is_approx, py::arg("other"), py::arg("tol") = 1e-12,
            dson.is_approx.c_str())
-      .def("__mul__",
-           [](const SOn& a, const py::object& other) {
-             return multiply(a, other, "SOn.__mul__", a.n(), [&](const VX& v) -> VX { return a * v; });
-           },
-           py::arg("other"), py::is_operator(),
-           "Composition self * other (other: an SOn of the same n), or the rotated vector R v "
-           "(other: shape (n,)).")
-      .def("__repr__", [](const SOn& R) { return fmt::format("SOn(n={}, matrix={})", R.n(), rigid::to_string(R.matrix())); });
+      .def(
+          "__mul__",
+          [](const SOn& a, const py::object& other) {
+            return multiply(a, other, "SOn.__mul__", a.n(),
+                            [&](const VX& v) -> VX { return a * v; });
+          },
+          py::arg("other"), py::is_operator(),
+          "Composition self * other (other: an SOn of the same n), or the rotated vector R v "
+          "(other: shape (n,)).")
+      .def("__repr__", [](const SOn& R) {
+        return fmt::format("SOn(n={}, matrix={})", R.n(), rigid::to_string(R.matrix()));
+      });
 
   const GroupDocs dsen = group_docs("SE(n)", "(rho, omega) in R^(n(n+1)/2) (m, rad)", "(n+1)×(n+1) homogeneous matrix [[R, t], [0, 1]]", true);
-  py::class_<SEn>(m, "SEn", "Rigid motion of R^n (R, t) for any n >= 2; tangent (rho, omega) in R^(n(n+1)/2)")
+  py::class_<SEn>(m, "SEn",
+                  "Rigid motion of R^n (R, t) for any n >= 2; tangent (rho, omega) in R^(n(n+1)/2)")
       .def(py::init([](const SOn& R, const py::object& t) {
              return SEn(R, cv::vector(t, {"rigid.SEn", "t"}, R.n()));
            }),
@@ -323,23 +355,29 @@ void bind_lie(py::module_& m) {
       .def_static("identity", &SEn::identity, py::arg("n"), dsen.identity.c_str())
       .def_static("exp", on_tangent("rigid.SEn.exp", "xi", "n(n+1)/2", &SEn::exp), py::arg("xi"),
                   dsen.exp.c_str())
-      .def_static("hat", on_tangent("rigid.SEn.hat", "xi", "n(n+1)/2", &SEn::hat),
-                  py::arg("xi"), dsen.hat.c_str())
+      .def_static("hat", on_tangent("rigid.SEn.hat", "xi", "n(n+1)/2", &SEn::hat), py::arg("xi"),
+                  dsen.hat.c_str())
       .def_static("vee", on_square_tol("rigid.SEn.vee", "matrix", "n+1", &SEn::vee),
                   py::arg("matrix"), py::arg("tol") = 1e-9, dsen.vee.c_str())
-      .def_static("ad", on_tangent("rigid.SEn.ad", "xi", "n(n+1)/2", &SEn::ad),
-                  py::arg("xi"), dsen.ad.c_str())
+      .def_static("ad", on_tangent("rigid.SEn.ad", "xi", "n(n+1)/2", &SEn::ad), py::arg("xi"),
+                  dsen.ad.c_str())
       .def_static("from_matrix",
                   on_square_tol("rigid.SEn.from_matrix", "T", "n+1", &SEn::from_matrix),
                   py::arg("T"), py::arg("tol") = 1e-9, dsen.from_matrix.c_str())
       .def_static("dimension_of", &SEn::dimension_of, py::arg("n"), dsen.dimension_of.c_str())
-      .def_static("right_jacobian", on_tangent("rigid.SEn.right_jacobian", "xi", "n(n+1)/2", &SEn::right_jacobian),
+      .def_static("right_jacobian",
+                  on_tangent("rigid.SEn.right_jacobian", "xi", "n(n+1)/2", &SEn::right_jacobian),
                   py::arg("xi"), dsen.right_jacobian.c_str())
-      .def_static("left_jacobian", on_tangent("rigid.SEn.left_jacobian", "xi", "n(n+1)/2", &SEn::left_jacobian),
+      .def_static("left_jacobian",
+                  on_tangent("rigid.SEn.left_jacobian", "xi", "n(n+1)/2", &SEn::left_jacobian),
                   py::arg("xi"), dsen.left_jacobian.c_str())
-      .def_static("right_jacobian_inverse", on_tangent("rigid.SEn.right_jacobian_inverse", "xi", "n(n+1)/2", &SEn::right_jacobian_inverse),
+      .def_static("right_jacobian_inverse",
+                  on_tangent("rigid.SEn.right_jacobian_inverse", "xi", "n(n+1)/2",
+                             &SEn::right_jacobian_inverse),
                   py::arg("xi"), dsen.right_jacobian_inverse.c_str())
-      .def_static("left_jacobian_inverse", on_tangent("rigid.SEn.left_jacobian_inverse", "xi", "n(n+1)/2", &SEn::left_jacobian_inverse),
+      .def_static("left_jacobian_inverse",
+                  on_tangent("rigid.SEn.left_jacobian_inverse", "xi", "n(n+1)/2",
+                             &SEn::left_jacobian_inverse),
                   py::arg("xi"), dsen.left_jacobian_inverse.c_str())
       .def_static(
           "sample",
@@ -349,7 +387,8 @@ void bind_lie(py::module_& m) {
             for (int i = 0; i < count; ++i) out.push_back(SEn::sample(dim, rng, half_extent));
             return out;
           },
-          py::arg("n"), py::arg("seed"), py::arg("count"), py::arg("half_extent") = 1.0, dsen.sample.c_str())
+          py::arg("n"), py::arg("seed"), py::arg("count"), py::arg("half_extent") = 1.0,
+          dsen.sample.c_str())
       .def("log", &SEn::log, dsen.log.c_str())
       .def("rotation", &SEn::rotation, dsen.rotation.c_str())
       .def("translation", &SEn::translation, dsen.translation.c_str())
@@ -367,13 +406,15 @@ void bind_lie(py::module_& m) {
             return X.act_vector(cv::vector(v, {"SEn.act_vector", "v"}, X.n()));
           },
           py::arg("v"), dsen.act_vector.c_str())
-      .def("__mul__",
-           [](const SEn& a, const py::object& other) {
-             return multiply(a, other, "SEn.__mul__", a.n(), [&](const VX& p) -> VX { return a * p; });
-           },
-           py::arg("other"), py::is_operator(),
-           "Composition self * other (other: an SEn of the same n), or the moved point R p + t "
-           "(other: shape (n,)).")
+      .def(
+          "__mul__",
+          [](const SEn& a, const py::object& other) {
+            return multiply(a, other, "SEn.__mul__", a.n(),
+                            [&](const VX& p) -> VX { return a * p; });
+          },
+          py::arg("other"), py::is_operator(),
+          "Composition self * other (other: an SEn of the same n), or the moved point R p + t "
+          "(other: shape (n,)).")
       .def("__repr__", [](const SEn& X) {
         return fmt::format("SEn(n={}, matrix={})", X.n(), rigid::to_string(X.matrix()));
       });
@@ -396,30 +437,37 @@ void bind_lie(py::module_& m) {
           py::arg("omega"), "rotation vector (rad) -> rotation; refuses a non-finite omega")
       .def_static("hat", on_vector<3>("rigid.SO3.hat", "omega", &SO3d::hat), py::arg("omega"),
                   dso3.hat.c_str())
-      .def_static("vee", on_matrix<3, 3>("rigid.SO3.vee", "matrix", &SO3d::vee),
-                  py::arg("matrix"), dso3.vee.c_str())
+      .def_static("vee", on_matrix<3, 3>("rigid.SO3.vee", "matrix", &SO3d::vee), py::arg("matrix"),
+                  dso3.vee.c_str())
       .def_static("from_matrix",
                   on_matrix_tol<3, 3>("rigid.SO3.from_matrix", "R", &SO3d::from_matrix),
                   py::arg("R"), py::arg("tol") = 1e-9, dso3.from_matrix.c_str())
-      .def_static("from_quaternion", &SO3d::from_quaternion, py::arg("w"), py::arg("x"), py::arg("y"),
-                  py::arg("z"),
-                  "The rotation of the quaternion (w, x, y, z), normalised; raises rigid.Error if it is "
-                  "not finite or its norm is below 1e-12.")
+      .def_static(
+          "from_quaternion", &SO3d::from_quaternion, py::arg("w"), py::arg("x"), py::arg("y"),
+          py::arg("z"),
+          "The rotation of the quaternion (w, x, y, z), normalised; raises rigid.Error if it is "
+          "not finite or its norm is below 1e-12.")
       .def_static(
           "from_axis_angle",
           [](const py::object& axis, double angle) {
-            return SO3d::from_axis_angle(fixed_vector<3>(axis, {"rigid.SO3.from_axis_angle", "axis"}),
-                                         angle);
+            return SO3d::from_axis_angle(
+                fixed_vector<3>(axis, {"rigid.SO3.from_axis_angle", "axis"}), angle);
           },
           py::arg("axis"), py::arg("angle"), dso3.from_axis_angle.c_str())
-      .def_static("right_jacobian", on_vector<3>("rigid.SO3.right_jacobian", "omega", &SO3d::right_jacobian),
+      .def_static("right_jacobian",
+                  on_vector<3>("rigid.SO3.right_jacobian", "omega", &SO3d::right_jacobian),
                   py::arg("omega"), dso3.right_jacobian.c_str())
-      .def_static("left_jacobian", on_vector<3>("rigid.SO3.left_jacobian", "omega", &SO3d::left_jacobian),
+      .def_static("left_jacobian",
+                  on_vector<3>("rigid.SO3.left_jacobian", "omega", &SO3d::left_jacobian),
                   py::arg("omega"), dso3.left_jacobian.c_str())
-      .def_static("right_jacobian_inverse", on_vector<3>("rigid.SO3.right_jacobian_inverse", "omega", &SO3d::right_jacobian_inverse),
-                  py::arg("omega"), dso3.right_jacobian_inverse.c_str())
-      .def_static("left_jacobian_inverse", on_vector<3>("rigid.SO3.left_jacobian_inverse", "omega", &SO3d::left_jacobian_inverse),
-                  py::arg("omega"), dso3.left_jacobian_inverse.c_str())
+      .def_static(
+          "right_jacobian_inverse",
+          on_vector<3>("rigid.SO3.right_jacobian_inverse", "omega", &SO3d::right_jacobian_inverse),
+          py::arg("omega"), dso3.right_jacobian_inverse.c_str())
+      .def_static(
+          "left_jacobian_inverse",
+          on_vector<3>("rigid.SO3.left_jacobian_inverse", "omega", &SO3d::left_jacobian_inverse),
+          py::arg("omega"), dso3.left_jacobian_inverse.c_str())
       .def_static(
           "sample",
           [](std::uint64_t seed, int n) {
@@ -439,7 +487,8 @@ void bind_lie(py::module_& m) {
             return rigid::from_euler(a, rigid::EulerConvention::parse(seq, intrinsic));
           },
           py::arg("angles"), py::arg("sequence") = "ZYX", py::arg("intrinsic") = true,
-          "The rotation of Euler angles (rad) about the axes of `sequence` (any of the 12, e.g. 'ZYX', 'ZXZ'; "
+          "The rotation of Euler angles (rad) about the axes of `sequence` (any of the 12, e.g. "
+          "'ZYX', 'ZXZ'; "
           "intrinsic: about the moving axes, else about the fixed axes).")
       .def(
           "to_euler",
@@ -447,7 +496,8 @@ void bind_lie(py::module_& m) {
             return rigid::to_euler(R, rigid::EulerConvention::parse(seq, intrinsic));
           },
           py::arg("sequence") = "ZYX", py::arg("intrinsic") = true,
-          "The Euler angles (rad) of this rotation for `sequence` and intrinsic/extrinsic, as from_euler takes them.")
+          "The Euler angles (rad) of this rotation for `sequence` and intrinsic/extrinsic, as "
+          "from_euler takes them.")
       .def("log", &SO3d::log, dso3.log.c_str())
       .def("angle", &SO3d::angle, dso3.angle.c_str())
       .def("matrix", &SO3d::matrix, dso3.matrix.c_str())
@@ -459,14 +509,17 @@ void bind_lie(py::module_& m) {
            dso3.interpolate.c_str())
       .def("is_approx", &SO3d::is_approx, py::arg("other"), py::arg("tol") = 1e-12,
            dso3.is_approx.c_str())
-      .def("__mul__",
-           [](const SO3d& a, const py::object& other) {
-             return multiply_fixed<SO3d, 3>(a, other, "SO3.__mul__");
-           },
-           py::arg("other"), py::is_operator(),
-           "Composition self * other (R_AC = R_AB * R_BC; other: an SO3), or the rotated vector "
-           "R v (v_A = R_AB v_B; other: shape (3,)).")
-      .def("__repr__", [](const SO3d& R) { return "SO3(quaternion wxyz=" + rigid::to_string(R.quaternion().transpose()) + ")"; });
+      .def(
+          "__mul__",
+          [](const SO3d& a, const py::object& other) {
+            return multiply_fixed<SO3d, 3>(a, other, "SO3.__mul__");
+          },
+          py::arg("other"), py::is_operator(),
+          "Composition self * other (R_AC = R_AB * R_BC; other: an SO3), or the rotated vector "
+          "R v (v_A = R_AB v_B; other: shape (3,)).")
+      .def("__repr__", [](const SO3d& R) {
+        return "SO3(quaternion wxyz=" + rigid::to_string(R.quaternion().transpose()) + ")";
+      });
 
   const GroupDocs dse3 = group_docs("SE(3)", "(rho, omega) (m, rad; translation part first)", "4×4 homogeneous matrix [[R, t], [0, 1]]", true);
   py::class_<SE3d>(m, "SE3", "Rigid motion (R, t): p -> R p + t; tangent (rho, omega)")
@@ -479,19 +532,25 @@ void bind_lie(py::module_& m) {
                   dse3.exp.c_str())
       .def_static("hat", on_vector<6>("rigid.SE3.hat", "xi", &SE3d::hat), py::arg("xi"),
                   dse3.hat.c_str())
-      .def_static("vee", on_matrix<4, 4>("rigid.SE3.vee", "matrix", &SE3d::vee),
-                  py::arg("matrix"), dse3.vee.c_str())
+      .def_static("vee", on_matrix<4, 4>("rigid.SE3.vee", "matrix", &SE3d::vee), py::arg("matrix"),
+                  dse3.vee.c_str())
       .def_static("from_matrix",
                   on_matrix_tol<4, 4>("rigid.SE3.from_matrix", "T", &SE3d::from_matrix),
                   py::arg("T"), py::arg("tol") = 1e-9, dse3.from_matrix.c_str())
-      .def_static("right_jacobian", on_vector<6>("rigid.SE3.right_jacobian", "xi", &SE3d::right_jacobian),
+      .def_static("right_jacobian",
+                  on_vector<6>("rigid.SE3.right_jacobian", "xi", &SE3d::right_jacobian),
                   py::arg("xi"), dse3.right_jacobian.c_str())
-      .def_static("left_jacobian", on_vector<6>("rigid.SE3.left_jacobian", "xi", &SE3d::left_jacobian),
+      .def_static("left_jacobian",
+                  on_vector<6>("rigid.SE3.left_jacobian", "xi", &SE3d::left_jacobian),
                   py::arg("xi"), dse3.left_jacobian.c_str())
-      .def_static("right_jacobian_inverse", on_vector<6>("rigid.SE3.right_jacobian_inverse", "xi", &SE3d::right_jacobian_inverse),
-                  py::arg("xi"), dse3.right_jacobian_inverse.c_str())
-      .def_static("left_jacobian_inverse", on_vector<6>("rigid.SE3.left_jacobian_inverse", "xi", &SE3d::left_jacobian_inverse),
-                  py::arg("xi"), dse3.left_jacobian_inverse.c_str())
+      .def_static(
+          "right_jacobian_inverse",
+          on_vector<6>("rigid.SE3.right_jacobian_inverse", "xi", &SE3d::right_jacobian_inverse),
+          py::arg("xi"), dse3.right_jacobian_inverse.c_str())
+      .def_static(
+          "left_jacobian_inverse",
+          on_vector<6>("rigid.SE3.left_jacobian_inverse", "xi", &SE3d::left_jacobian_inverse),
+          py::arg("xi"), dse3.left_jacobian_inverse.c_str())
       .def("log", &SE3d::log, dse3.log.c_str())
       .def("rotation", &SE3d::rotation, dse3.rotation.c_str())
       .def("translation", &SE3d::translation, dse3.translation.c_str())
@@ -500,13 +559,14 @@ void bind_lie(py::module_& m) {
       .def("inverse", &SE3d::inverse, dse3.inverse.c_str())
       .def("interpolate", &SE3d::interpolate, py::arg("other"), py::arg("s"),
            dse3.interpolate.c_str())
-      .def("__mul__",
-           [](const SE3d& a, const py::object& other) {
-             return multiply_fixed<SE3d, 3>(a, other, "SE3.__mul__");
-           },
-           py::arg("other"), py::is_operator(),
-           "Composition self * other (X_AC = X_AB * X_BC; other: an SE3), or the moved point "
-           "R p + t (other: shape (3,)).")
+      .def(
+          "__mul__",
+          [](const SE3d& a, const py::object& other) {
+            return multiply_fixed<SE3d, 3>(a, other, "SE3.__mul__");
+          },
+          py::arg("other"), py::is_operator(),
+          "Composition self * other (X_AC = X_AB * X_BC; other: an SE3), or the moved point "
+          "R p + t (other: shape (3,)).")
       .def("__repr__", [](const SE3d& X) {
         return "SE3(quaternion wxyz=" + rigid::to_string(X.rotation().quaternion().transpose()) +
                ", translation=" + rigid::to_string(X.translation().transpose()) + ")";

@@ -11,10 +11,10 @@
 #include <string_view>
 
 #include "batch.hpp"
-#include "rotation_vector.hpp"
 #include "rigid/common/error.hpp"
 #include "rigid/common/format.hpp"
 #include "rigid/lie.hpp"
+#include "rotation_vector.hpp"
 
 namespace py = pybind11;
 
