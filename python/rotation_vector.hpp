@@ -13,12 +13,19 @@
 
 namespace rigid::python {
 
+/// rigid::Error "<what> [0, nan, 0] has a non-finite component" (out of line: the loops that
+/// check stay small).
+[[noreturn, gnu::cold, gnu::noinline]] inline void refuse_non_finite(const Eigen::Vector3d& v,
+                                                                     std::string_view what) {
+  throw rigid::Error(
+      fmt::format("{} {} has a non-finite component", what, rigid::to_string(v.transpose())));
+}
+
 /// rigid::Error "rotation vector [0, nan, 0] has a non-finite component" unless v is finite
 /// (`what` names the vector).
 inline void require_finite_vector(const Eigen::Vector3d& v, std::string_view what) {
-  if (!v.allFinite())
-    throw rigid::Error(
-        fmt::format("{} {} has a non-finite component", what, rigid::to_string(v.transpose())));
+  if (!v.allFinite()) [[unlikely]]
+    refuse_non_finite(v, what);
 }
 
 /// SO3d::exp(omega), or rigid::Error (without a function name: the caller names the function,
@@ -26,7 +33,7 @@ inline void require_finite_vector(const Eigen::Vector3d& v, std::string_view wha
 inline SO3d exp_of_rotation_vector(const Eigen::Vector3d& omega) {
   require_finite_vector(omega, "rotation vector");
   const SO3d R = SO3d::exp(omega);
-  if (!R.quaternion().allFinite()) {
+  if (!R.quaternion().allFinite()) [[unlikely]] {
     throw rigid::Error(fmt::format("rotation vector {} is too long: |ω|² overflows",
                                    rigid::to_string(omega.transpose())));
   }
