@@ -361,3 +361,21 @@ def test_square_matrices_are_required_where_n_is_free():
     # a tangent vector whose length is no n(n-1)/2 is the library's to refuse, as before
     with pytest.raises(rigid.Error, match="tangent vector has 4 components"):
         rigid.SOn.exp(np.zeros(4))
+
+
+def test_batch_arguments_are_read_by_the_same_converter():
+    # rigid.so3 takes (N, k) or (k,) through convert.hpp: the same refusals, in the same words,
+    # as the scalar functions (with the batch's expected shape)
+    with pytest.raises(TypeError, match=re.escape("so3.exp(): argument 'omega' must be an array of numbers of shape "
+                                                  "(N, 3) or (3,); got NoneType")):
+        rigid.so3.exp(None)
+    with pytest.raises(rigid.Error, match=re.escape("so3.act(): argument 'v' must hold real numbers (a float or integer "
+                                                    "dtype) of shape (N, 3) or (3,); got dtype complex128")):
+        rigid.so3.act(Q1, np.ones(3, complex))
+    with pytest.raises(rigid.Error, match=re.escape("so3.compose(): argument 'b' must be an array of numbers of shape "
+                                                    "(N, 4) or (4,); got a list that is not rectangular")):
+        rigid.so3.compose(Q1, [[1, 0, 0, 0], [1, 0, 0]])
+    # and the same conversions: a strided, read-only int8 array gives the numbers of its float64 copy
+    v = np.repeat(np.array([[1, 2, 3]], np.int8), 2, axis=1)[:, ::2]
+    v.flags.writeable = False
+    assert np.array_equal(rigid.so3.act(Q1, v), rigid.so3.act(Q1, np.array([[1.0, 2.0, 3.0]])))
