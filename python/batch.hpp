@@ -1,7 +1,8 @@
 #pragma once
 // Batch arguments for the rigid.so3 functions: numpy arrays of shape (N, k…) or one (k…)
-// element, checked once with messages that name the function and the argument, then looped
-// over in C++ (without the GIL for large N, on several threads for very large N).
+// element, read by python/convert.hpp (one converter: the same dtype and shape wording as
+// every other array argument), then looped over in C++ (without the GIL for large N, on several
+// threads for very large N).
 #include <fmt/format.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -19,6 +20,7 @@
 #include <thread>
 #include <vector>
 
+#include "convert.hpp"
 #include "rigid/common/error.hpp"
 #include "rigid/common/wording.hpp"
 
@@ -33,18 +35,11 @@ inline std::string batch_shape_text(std::initializer_list<py::ssize_t> element) 
   return s + ")";
 }
 
-/// "(5, 4)", "()" : a numpy shape as Python prints it (a 1-tuple with its comma).
-inline std::string shape_text(const pybind11::array& a) {
-  std::string s = "(";
-  for (py::ssize_t d = 0; d < a.ndim(); ++d) s += fmt::format("{}{}", d ? ", " : "", a.shape(d));
-  return s + (a.ndim() == 1 ? ",)" : ")");
-}
-
 /// A batch argument: N elements of `element` shape, contiguous float64, row-major.
 /// `single` is true when the argument was one element (shape `element`, no leading N): the
 /// result then drops its leading axis too.
 struct BatchArray {
-  pybind11::array_t<double, pybind11::array::c_style> array;  // keeps the data alive
+  convert::RealArray array;  // keeps the data alive
   const double* data = nullptr;
   py::ssize_t row_size = 0;  // doubles per element: 3, 4 or 9
   py::ssize_t n = 0;
@@ -52,32 +47,18 @@ struct BatchArray {
   [[nodiscard]] const double* row(py::ssize_t i) const { return data + i * row_size; }
 };
 
-/// The argument `name` of `function` as a float64 batch of elements of shape `element`:
-/// anything numpy turns into a real array (lists, float32, integers; non-contiguous and
-/// read-only arrays are copied or read in place) is taken; another dtype or shape raises
-/// rigid::Error: "so3.exp(): argument 'omega' must have shape (N, 3) or (3,); got (5, 4)".
-inline BatchArray batch_argument(const pybind11::handle& obj, std::string_view function,
-                                 std::string_view name,
+/// The argument `arg` as a float64 batch of elements of shape `element`, read by
+/// convert::real_array (python/convert.hpp: the same dtype, ragged-list and no-array refusals
+/// as every other array argument); then a shape that is neither (N, element...) nor (element...)
+/// raises rigid::Error: "so3.exp(): argument 'omega' must have shape (N, 3) or (3,); got (5, 4)".
+/// Finiteness is left to the row loop, whose refusals name the row.
+inline BatchArray batch_argument(const pybind11::handle& obj, const convert::Arg& arg,
                                  std::initializer_list<py::ssize_t> element) {
-  namespace py = pybind11;
   std::string one = "(";
   for (py::ssize_t k : element) one += fmt::format("{}{}", one.size() > 1 ? ", " : "", k);
   const std::string expected =
       fmt::format("{} or {}", batch_shape_text(element), one + (element.size() == 1 ? ",)" : ")"));
-  py::array a = py::array::ensure(obj);
-  if (!a) {
-    throw rigid::Error(fmt::format(
-        "{}(): argument '{}' must be an array of shape {}; got a {} that numpy "
-        "cannot turn into an array of numbers",
-        function, name, expected, py::str(py::type::of(obj).attr("__name__")).cast<std::string>()));
-  }
-  const char kind = a.dtype().kind();
-  if (kind != 'f' && kind != 'i' && kind != 'u') {
-    throw rigid::Error(
-        fmt::format("{}(): argument '{}' must be real numbers (float64; float32 and integers "
-                    "are converted to it); got dtype {}",
-                    function, name, py::str(a.dtype()).cast<std::string>()));
-  }
+  const convert::RealArray a = convert::real_array(obj, arg, expected, convert::Finite::kAllowed);
   const auto dims = static_cast<py::ssize_t>(element.size());
   bool ok = a.ndim() == dims || a.ndim() == dims + 1;
   const py::ssize_t lead = a.ndim() == dims + 1 ? 1 : 0;
@@ -86,12 +67,11 @@ inline BatchArray batch_argument(const pybind11::handle& obj, std::string_view f
     for (py::ssize_t k : element) ok = ok && a.shape(lead + d++) == k;
   }
   if (!ok) {
-    throw rigid::Error(fmt::format("{}(): argument '{}' must have shape {}; got {}", function, name,
-                                   expected, shape_text(a)));
+    convert::refuse(arg,
+                    fmt::format("must have shape {}; got {}", expected, convert::shape_text(a)));
   }
   BatchArray b;
-  b.array = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
-  if (!b.array) throw py::error_already_set();
+  b.array = a;
   b.single = lead == 0;
   b.n = b.single ? 1 : a.shape(0);
   b.data = b.array.data();

@@ -12,6 +12,9 @@
 // booleans), a ragged sequence, NaN or infinity where a finite value is required. Refused with
 // TypeError: an object that is no array at all (None, a dict, a str).
 //
+// python/batch.hpp (the rigid.so3 batch arguments, (N, k...) or one (k...) element) builds on
+// real_array, shape_text and refuse here, so batch and scalar refusals read alike.
+//
 // The function is named as Python users call it (rigid.mass.point_masses): the module's
 // exception translator strips bare C++ names ("point_masses(): ") from library messages, but
 // keeps dotted Python names.
@@ -46,8 +49,7 @@ enum class Finite { kRequired, kAllowed };
 /// A float64, C-contiguous copy (or view) of an array-like of real numbers.
 using RealArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
-namespace detail {
-
+/// "(5, 4)", "(3,)", "()": a numpy shape as Python prints it (a 1-tuple with its comma).
 inline std::string shape_text(const py::array& a) {
   std::string s = "(";
   for (py::ssize_t k = 0; k < a.ndim(); ++k) {
@@ -56,53 +58,53 @@ inline std::string shape_text(const py::array& a) {
   return s + (a.ndim() == 1 ? ",)" : ")");
 }
 
+/// The name of a Python object's type ("list", "NoneType"), for messages.
 inline std::string type_name(const py::handle& value) {
   return py::str(py::type::handle_of(value).attr("__name__")).cast<std::string>();
 }
 
+/// rigid::Error "<function>(): argument '<name>' <what>".
 [[noreturn]] inline void refuse(const Arg& arg, const std::string& what) {
   throw rigid::Error(fmt::format("{}(): argument '{}' {}", arg.function, arg.name, what));
 }
-
-}  // namespace detail
 
 /// The argument as a float64 array of any shape; `expected` (e.g. "(n, 3)") is the shape the
 /// messages name.
 inline RealArray real_array(const py::handle& value, const Arg& arg, std::string_view expected,
                             Finite finite = Finite::kRequired) {
-  py::array a;
-  try {
+  // (py::array's default constructor would allocate an empty numpy array: 35 ns per call)
+  const py::array a = [&]() -> py::array {
     if (py::isinstance<py::array>(value)) {
-      a = py::reinterpret_borrow<py::array>(value);  // the common case: no conversion call
-    } else {
+      return py::reinterpret_borrow<py::array>(value);  // the common case: no conversion call
+    }
+    try {
       // numpy.asarray, looked up once (kept for the life of the process, never destroyed after
       // the interpreter is gone)
       static const auto* asarray = new py::object(py::module_::import("numpy").attr("asarray"));
-      a = (*asarray)(value);
+      return (*asarray)(value);
+    } catch (const py::error_already_set&) {
+      // numpy refuses ragged nested sequences ("inhomogeneous shape")
+      refuse(arg, fmt::format("must be an array of numbers of shape {}; got a {} that is not "
+                              "rectangular",
+                              expected, type_name(value)));
     }
-  } catch (const py::error_already_set&) {
-    // numpy refuses ragged nested sequences ("inhomogeneous shape")
-    detail::refuse(arg, fmt::format("must be an array of numbers of shape {}; got a {} that is not "
-                                    "rectangular",
-                                    expected, detail::type_name(value)));
-  }
+  }();
   const char kind = a.dtype().kind();
   if (a.ndim() == 0 && kind != 'f' && kind != 'i' && kind != 'u' && kind != 'c' && kind != 'b') {
     // None, a dict, a str: not an array at all
     throw py::type_error(
         fmt::format("{}(): argument '{}' must be an array of numbers of shape {}; got {}",
-                    arg.function, arg.name, expected, detail::type_name(value)));
+                    arg.function, arg.name, expected, type_name(value)));
   }
   if (kind != 'f' && kind != 'i' && kind != 'u') {
-    detail::refuse(arg,
-                   fmt::format("must hold real numbers (a float or integer dtype) of shape {}; "
-                               "got dtype {}",
-                               expected, py::str(a.dtype()).cast<std::string>()));
+    refuse(arg, fmt::format("must hold real numbers (a float or integer dtype) of shape {}; "
+                            "got dtype {}",
+                            expected, py::str(a.dtype()).cast<std::string>()));
   }
   RealArray out = RealArray::ensure(a);
   if (!out) {
     PyErr_Clear();
-    detail::refuse(arg, fmt::format("must be an array of real numbers of shape {}", expected));
+    refuse(arg, fmt::format("must be an array of real numbers of shape {}", expected));
   }
   if (finite == Finite::kRequired) {
     const double* d = out.data();
@@ -118,7 +120,7 @@ inline RealArray real_array(const py::handle& value, const Arg& arg, std::string
         }
         for (std::size_t j = 0; j < ix.size(); ++j)
           index += fmt::format("{}{}", j ? ", " : "", ix[j]);
-        detail::refuse(arg, fmt::format("must be finite; got {} at [{}]", d[k], index));
+        refuse(arg, fmt::format("must be finite; got {} at [{}]", d[k], index));
       }
     }
   }
@@ -135,7 +137,7 @@ inline Eigen::MatrixXd matrix(const py::handle& value, const Arg& arg, Eigen::In
                   cols < 0 ? std::string(cols_name) : std::to_string(cols));
   const RealArray a = real_array(value, arg, expected, finite);
   if (a.ndim() != 2 || (rows >= 0 && a.shape(0) != rows) || (cols >= 0 && a.shape(1) != cols)) {
-    detail::refuse(arg, fmt::format("must have shape {}; got {}", expected, detail::shape_text(a)));
+    refuse(arg, fmt::format("must have shape {}; got {}", expected, shape_text(a)));
   }
   Eigen::MatrixXd m(a.shape(0), a.shape(1));
   const auto v = a.unchecked<2>();
@@ -151,26 +153,65 @@ inline Eigen::VectorXd vector(const py::handle& value, const Arg& arg, Eigen::In
       fmt::format("({},)", n < 0 ? std::string(n_name) : std::to_string(n));
   const RealArray a = real_array(value, arg, expected, finite);
   if (a.ndim() != 1 || (n >= 0 && a.shape(0) != n)) {
-    detail::refuse(arg, fmt::format("must have shape {}; got {}", expected, detail::shape_text(a)));
+    refuse(arg, fmt::format("must have shape {}; got {}", expected, shape_text(a)));
   }
   Eigen::VectorXd v(a.shape(0));
   for (py::ssize_t i = 0; i < a.shape(0); ++i) v(i) = a.data()[i];
   return v;
 }
 
+/// A vector of fixed length N ((3,) for a 3-vector), without a heap allocation.
+template <int N>
+Eigen::Matrix<double, N, 1> fixed_vector(const py::handle& value, const Arg& arg,
+                                         Finite finite = Finite::kRequired) {
+  const std::string expected = fmt::format("({},)", N);
+  const RealArray a = real_array(value, arg, expected, finite);
+  if (a.ndim() != 1 || a.shape(0) != N) {
+    refuse(arg, fmt::format("must have shape {}; got {}", expected, shape_text(a)));
+  }
+  return Eigen::Map<const Eigen::Matrix<double, N, 1>>(a.data());
+}
+
+/// A matrix of fixed shape (R, C), row-major as numpy prints it, without a heap allocation.
+template <int R, int C>
+Eigen::Matrix<double, R, C> fixed_matrix(const py::handle& value, const Arg& arg,
+                                         Finite finite = Finite::kRequired) {
+  const std::string expected = fmt::format("({}, {})", R, C);
+  const RealArray a = real_array(value, arg, expected, finite);
+  if (a.ndim() != 2 || a.shape(0) != R || a.shape(1) != C) {
+    refuse(arg, fmt::format("must have shape {}; got {}", expected, shape_text(a)));
+  }
+  using RowMajor = Eigen::Matrix<double, R, C, C == 1 ? Eigen::ColMajor : Eigen::RowMajor>;
+  return Eigen::Map<const RowMajor>(a.data());
+}
+
 inline Eigen::Vector3d vector3(const py::handle& value, const Arg& arg,
                                Finite finite = Finite::kRequired) {
-  return vector(value, arg, 3, finite);
+  return fixed_vector<3>(value, arg, finite);
 }
 
 inline Eigen::Vector4d vector4(const py::handle& value, const Arg& arg,
                                Finite finite = Finite::kRequired) {
-  return vector(value, arg, 4, finite);
+  return fixed_vector<4>(value, arg, finite);
 }
 
 inline Eigen::Matrix3d matrix3(const py::handle& value, const Arg& arg,
                                Finite finite = Finite::kRequired) {
-  return matrix(value, arg, 3, 3, finite);
+  return fixed_matrix<3, 3>(value, arg, finite);
+}
+
+/// A square matrix of shape (n, n), any n (an empty one is the library's to refuse); `n_name` names
+/// n in messages ("n", "n+1").
+inline Eigen::MatrixXd square_matrix(const py::handle& value, const Arg& arg,
+                                     Finite finite = Finite::kRequired,
+                                     std::string_view n_name = "n") {
+  const std::string expected = fmt::format("({0}, {0})", n_name);
+  const RealArray a = real_array(value, arg, expected, finite);
+  if (a.ndim() != 2 || a.shape(0) != a.shape(1)) {
+    refuse(arg, fmt::format("must have shape {}; got {}", expected, shape_text(a)));
+  }
+  using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  return Eigen::Map<const RowMajor>(a.data(), a.shape(0), a.shape(1));
 }
 
 /// A list of numbers of shape (n,), as std::vector (masses, output times).
@@ -191,8 +232,7 @@ inline Eigen::MatrixXd points(const py::handle& value, const Arg& arg, Eigen::In
     std::string hint;
     if (a.ndim() == 2 && a.shape(0) == d)
       hint = fmt::format(" (one point per row: pass {}.T for points as columns)", arg.name);
-    detail::refuse(
-        arg, fmt::format("must have shape {}; got {}{}", expected, detail::shape_text(a), hint));
+    refuse(arg, fmt::format("must have shape {}; got {}{}", expected, shape_text(a), hint));
   }
   Eigen::MatrixXd m(d, a.shape(0));
   const auto v = a.unchecked<2>();
@@ -227,7 +267,7 @@ inline std::string path(const py::handle& value, const Arg& arg) {
   if (!py::isinstance<py::str>(value) && !py::isinstance(value, os.attr("PathLike"))) {
     throw py::type_error(
         fmt::format("{}(): argument '{}' must be a path (str or pathlib.Path); got {}",
-                    arg.function, arg.name, detail::type_name(value)));
+                    arg.function, arg.name, type_name(value)));
   }
   const py::object p = os.attr("fspath")(value);
   if (!py::isinstance<py::str>(p)) {

@@ -46,7 +46,7 @@ void bind_integrate(py::module_& m) {
             throw rigid::Error(fmt::format(
                 "{}(): rhs(t, y) must return dy/dt of shape ({},), like y0; got shape {} "
                 "at t = {} s",
-                f, n, cv::detail::shape_text(a), t));
+                f, n, cv::shape_text(a), t));
           }
           dydt = Eigen::Map<const Eigen::VectorXd>(a.data(), n);
         };

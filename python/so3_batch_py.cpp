@@ -14,6 +14,7 @@
 #include "rigid/common/error.hpp"
 #include "rigid/common/format.hpp"
 #include "rigid/lie.hpp"
+#include "rotation_vector.hpp"
 
 namespace py = pybind11;
 
@@ -102,12 +103,6 @@ RotationArgument rotation_argument(const BatchArray& b, QuaternionOrder o,
   return r;
 }
 
-void require_finite_vector(const V3& v, std::string_view what) {
-  if (!v.allFinite())
-    throw rigid::Error(
-        fmt::format("{} {} has a non-finite component", what, rigid::to_string(v.transpose())));
-}
-
 }  // namespace
 
 void bind_so3_batch(py::module_& m) {
@@ -136,19 +131,13 @@ void bind_so3_batch(py::module_& m) {
           throw rigid::Error(
               fmt::format("so3.exp(): output is '{}', expected 'quaternion' or 'matrix'", output));
         }
-        const BatchArray w = batch_argument(omega, fn, "omega", {3});
+        const BatchArray w = batch_argument(omega, {fn, "omega"}, {3});
         const bool as_matrix = output == "matrix";
         auto out =
             as_matrix ? batch_result(w.n, w.single, {3, 3}) : batch_result(w.n, w.single, {4});
         double* dst = out.mutable_data();
         for_each_row(w.n, w.single, fn, "omega", [&](py::ssize_t i) {
-          const V3 v = read_vector(w.row(i));
-          require_finite_vector(v, "rotation vector");
-          const SO3d R = SO3d::exp(v);
-          if (!R.quaternion().allFinite()) {
-            throw rigid::Error(fmt::format("rotation vector {} is too long: |ω|² overflows",
-                                           rigid::to_string(v.transpose())));
-          }
+          const SO3d R = rigid::python::exp_of_rotation_vector(read_vector(w.row(i)));
           if (as_matrix) {
             write_matrix(R, dst + 9 * i);
           } else {
@@ -167,7 +156,7 @@ void bind_so3_batch(py::module_& m) {
       [](const py::object& q, const std::string& order) {
         constexpr std::string_view fn = "so3.log";
         const QuaternionOrder o = parse_order(fn, order);
-        const BatchArray a = batch_argument(q, fn, "q", {4});
+        const BatchArray a = batch_argument(q, {fn, "q"}, {4});
         auto out = batch_result(a.n, a.single, {3});
         double* dst = out.mutable_data();
         for_each_row(a.n, a.single, fn, "q", [&](py::ssize_t i) {
@@ -185,8 +174,8 @@ void bind_so3_batch(py::module_& m) {
       [](const py::object& a, const py::object& b, const std::string& order) {
         constexpr std::string_view fn = "so3.compose";
         const QuaternionOrder o = parse_order(fn, order);
-        const BatchArray A = batch_argument(a, fn, "a", {4});
-        const BatchArray B = batch_argument(b, fn, "b", {4});
+        const BatchArray A = batch_argument(a, {fn, "a"}, {4});
+        const BatchArray B = batch_argument(b, {fn, "b"}, {4});
         const py::ssize_t n = broadcast_rows(fn, "a", A, "b", B);
         const RotationArgument ra = rotation_argument(A, o, fn, "a");
         const RotationArgument rb = rotation_argument(B, o, fn, "b");
@@ -213,8 +202,8 @@ void bind_so3_batch(py::module_& m) {
       [](const py::object& q, const py::object& v, const std::string& order) {
         constexpr std::string_view fn = "so3.act";
         const QuaternionOrder o = parse_order(fn, order);
-        const BatchArray Q = batch_argument(q, fn, "q", {4});
-        const BatchArray Vs = batch_argument(v, fn, "v", {3});
+        const BatchArray Q = batch_argument(q, {fn, "q"}, {4});
+        const BatchArray Vs = batch_argument(v, {fn, "v"}, {3});
         const py::ssize_t n = broadcast_rows(fn, "q", Q, "v", Vs);
         const RotationArgument rq = rotation_argument(Q, o, fn, "q");
         auto out = batch_result(n, Q.single && Vs.single, {3});
@@ -239,7 +228,7 @@ void bind_so3_batch(py::module_& m) {
       [](const py::object& q, const std::string& order) {
         constexpr std::string_view fn = "so3.inverse";
         const QuaternionOrder o = parse_order(fn, order);
-        const BatchArray a = batch_argument(q, fn, "q", {4});
+        const BatchArray a = batch_argument(q, {fn, "q"}, {4});
         auto out = batch_result(a.n, a.single, {4});
         double* dst = out.mutable_data();
         for_each_row(a.n, a.single, fn, "q", [&](py::ssize_t i) {
@@ -255,7 +244,7 @@ void bind_so3_batch(py::module_& m) {
       [](const py::object& q, const std::string& order) {
         constexpr std::string_view fn = "so3.to_matrix";
         const QuaternionOrder o = parse_order(fn, order);
-        const BatchArray a = batch_argument(q, fn, "q", {4});
+        const BatchArray a = batch_argument(q, {fn, "q"}, {4});
         auto out = batch_result(a.n, a.single, {3, 3});
         double* dst = out.mutable_data();
         for_each_row(a.n, a.single, fn, "q",
@@ -273,7 +262,7 @@ void bind_so3_batch(py::module_& m) {
         if (!(tol >= 0.0))
           throw rigid::Error(
               fmt::format("so3.from_matrix(): tol is {}, expected a tolerance >= 0", tol));
-        const BatchArray a = batch_argument(R, fn, "R", {3, 3});
+        const BatchArray a = batch_argument(R, {fn, "R"}, {3, 3});
         auto out = batch_result(a.n, a.single, {4});
         double* dst = out.mutable_data();
         for_each_row(a.n, a.single, fn, "R", [&](py::ssize_t i) {
@@ -294,7 +283,7 @@ void bind_so3_batch(py::module_& m) {
         constexpr std::string_view fn = "so3.from_euler";
         const QuaternionOrder o = parse_order(fn, order);
         const rigid::EulerConvention conv = rigid::EulerConvention::parse(sequence, intrinsic);
-        const BatchArray a = batch_argument(angles, fn, "angles", {3});
+        const BatchArray a = batch_argument(angles, {fn, "angles"}, {3});
         auto out = batch_result(a.n, a.single, {4});
         double* dst = out.mutable_data();
         for_each_row(a.n, a.single, fn, "angles", [&](py::ssize_t i) {
@@ -317,7 +306,7 @@ void bind_so3_batch(py::module_& m) {
         constexpr std::string_view fn = "so3.to_euler";
         const QuaternionOrder o = parse_order(fn, order);
         const rigid::EulerConvention conv = rigid::EulerConvention::parse(sequence, intrinsic);
-        const BatchArray a = batch_argument(q, fn, "q", {4});
+        const BatchArray a = batch_argument(q, {fn, "q"}, {4});
         auto out = batch_result(a.n, a.single, {3});
         double* dst = out.mutable_data();
         for_each_row(a.n, a.single, fn, "q", [&](py::ssize_t i) {

@@ -24,6 +24,23 @@ CUBE = rigid.mesh.TriangleMesh(CUBE_V, CUBE_F)
 Q1 = np.array([1.0, 0, 0, 0])
 W = np.array([0.1, 1.0, 0.2])
 I3 = np.array([1.0, 2.0, 2.5])
+# Lie-group samples: a rotation of the plane, of space (a rotation by 0.7 rad about (0, 0.6, 0.8)),
+# of R^4, motions, and Lie-algebra matrices (hat of a tangent vector, built by hand)
+ROT2 = np.array([[np.cos(0.4), -np.sin(0.4)], [np.sin(0.4), np.cos(0.4)]])
+SO2_R = rigid.SO2.from_angle(0.4)
+SE2_X = rigid.SE2(SO2_R, [0.5, -1.0])
+SE2_HAT = np.array([[0, -0.3, 0.1], [0.3, 0, 0.2], [0, 0, 0.0]])
+SO3_HAT = np.array([[0, -0.2, 1.0], [0.2, 0, -0.1], [-1.0, 0.1, 0]])
+SO3_R = rigid.SO3.from_axis_angle([0.0, 0.6, 0.8], 0.7)
+ROT3 = SO3_R.matrix()
+SE3_X = rigid.SE3(SO3_R, [0.5, -1.0, 2.0])
+SE3_HAT = np.vstack([np.hstack([SO3_HAT, [[1.0], [2.0], [3.0]]]), np.zeros((1, 4))])
+XI6 = np.array([0.1, -0.2, 0.3, 0.4, -0.5, 0.6])
+SOn_R = rigid.SOn.exp(XI6)  # n = 4: 6 = 4·3/2 coordinates
+SOn_HAT = np.triu(np.arange(1.0, 17.0).reshape(4, 4), 1)
+SOn_HAT = SOn_HAT - SOn_HAT.T
+SEn_X = rigid.SEn(rigid.SOn.exp([0.1, 0.2, 0.3]), [1.0, 2.0, 3.0])  # n = 3
+SEn_HAT = np.vstack([np.hstack([SO3_HAT, [[1.0], [2.0], [3.0]]]), np.zeros((1, 4))])
 
 # (function as named in messages, argument, expected shape, call with the argument x, a good x,
 #  whether NaN is refused)
@@ -100,6 +117,61 @@ CASES = [
     ("System.mass_matrix_and_forces", "q_dot", "(1,)", lambda x: SYSTEM.mass_matrix_and_forces(0.0, [0.1], x), [0.2], True),
     ("System.energy", "q", "(1,)", lambda x: SYSTEM.energy(0.0, x, [0.0]), [0.1], True),
     ("System.simulate", "q0", "(1,)", lambda x: SYSTEM.simulate(0.01, q0=x)["q"], [0.1], True),
+    # the Lie groups (python/lie_py.cpp)
+    ("rigid.SO2.from_matrix", "R", "(2, 2)", lambda x: rigid.SO2.from_matrix(x).angle(), ROT2, True),
+    ("rigid.SO2.vee", "matrix", "(2, 2)", rigid.SO2.vee, [[0, -0.3], [0.3, 0.0]], True),
+    ("SO2.__mul__", "other", "(2,)", lambda x: SO2_R * x, [1.0, 2.0], True),
+    ("rigid.SE2", "t", "(2,)", lambda x: rigid.SE2(SO2_R, x).matrix(), [1.0, 2.0], True),
+    ("rigid.SE2.exp", "xi", "(3,)", lambda x: rigid.SE2.exp(x).matrix(), [0.1, 0.2, 0.3], True),
+    ("rigid.SE2.hat", "xi", "(3,)", rigid.SE2.hat, [0.1, 0.2, 0.3], True),
+    ("rigid.SE2.vee", "matrix", "(3, 3)", rigid.SE2.vee, SE2_HAT, True),
+    ("rigid.SE2.from_matrix", "T", "(3, 3)", lambda x: rigid.SE2.from_matrix(x).matrix(), SE2_X.matrix(), True),
+    ("rigid.SE2.right_jacobian", "xi", "(3,)", rigid.SE2.right_jacobian, [0.1, 0.2, 0.3], True),
+    ("rigid.SE2.left_jacobian_inverse", "xi", "(3,)", rigid.SE2.left_jacobian_inverse, [0.1, 0.2, 0.3], True),
+    ("SE2.act_vector", "v", "(2,)", SE2_X.act_vector, [1.0, 2.0], True),
+    ("SE2.__mul__", "other", "(2,)", lambda x: SE2_X * x, [1.0, 2.0], True),
+    ("rigid.SO3.exp", "omega", "(3,)", lambda x: rigid.SO3.exp(x).quaternion(), W, False),  # NaN: below
+    ("rigid.SO3.hat", "omega", "(3,)", rigid.SO3.hat, W, True),
+    ("rigid.SO3.vee", "matrix", "(3, 3)", rigid.SO3.vee, SO3_HAT, True),
+    ("rigid.SO3.from_matrix", "R", "(3, 3)", lambda x: rigid.SO3.from_matrix(x).quaternion(), ROT3, True),
+    ("rigid.SO3.from_axis_angle", "axis", "(3,)", lambda x: rigid.SO3.from_axis_angle(x, 0.5).quaternion(),
+     [0.0, 0.6, 0.8], True),
+    ("rigid.SO3.from_euler", "angles", "(3,)", lambda x: rigid.SO3.from_euler(x).quaternion(), [0.1, 0.2, 0.3], False),
+    ("rigid.SO3.right_jacobian", "omega", "(3,)", rigid.SO3.right_jacobian, W, True),
+    ("rigid.SO3.left_jacobian", "omega", "(3,)", rigid.SO3.left_jacobian, W, True),
+    ("rigid.SO3.right_jacobian_inverse", "omega", "(3,)", rigid.SO3.right_jacobian_inverse, W, True),
+    ("rigid.SO3.left_jacobian_inverse", "omega", "(3,)", rigid.SO3.left_jacobian_inverse, W, True),
+    ("SO3.__mul__", "other", "(3,)", lambda x: SO3_R * x, [1.0, 2.0, 3.0], True),
+    ("rigid.SE3", "t", "(3,)", lambda x: rigid.SE3(SO3_R, x).matrix(), [1.0, 2.0, 3.0], True),
+    ("rigid.SE3.exp", "xi", "(6,)", lambda x: rigid.SE3.exp(x).matrix(), XI6, True),
+    ("rigid.SE3.hat", "xi", "(6,)", rigid.SE3.hat, XI6, True),
+    ("rigid.SE3.vee", "matrix", "(4, 4)", rigid.SE3.vee, SE3_HAT, True),
+    ("rigid.SE3.from_matrix", "T", "(4, 4)", lambda x: rigid.SE3.from_matrix(x).matrix(), SE3_X.matrix(), True),
+    ("rigid.SE3.right_jacobian", "xi", "(6,)", rigid.SE3.right_jacobian, XI6, True),
+    ("rigid.SE3.left_jacobian", "xi", "(6,)", rigid.SE3.left_jacobian, XI6, True),
+    ("rigid.SE3.right_jacobian_inverse", "xi", "(6,)", rigid.SE3.right_jacobian_inverse, XI6, True),
+    ("rigid.SE3.left_jacobian_inverse", "xi", "(6,)", rigid.SE3.left_jacobian_inverse, XI6, True),
+    ("SE3.__mul__", "other", "(3,)", lambda x: SE3_X * x, [1.0, 2.0, 3.0], True),
+    ("rigid.SOn.exp", "omega", "(n(n-1)/2,)", lambda x: rigid.SOn.exp(x).matrix(), XI6, True),
+    ("rigid.SOn.hat", "omega", "(n(n-1)/2,)", rigid.SOn.hat, XI6, True),
+    ("rigid.SOn.ad", "omega", "(n(n-1)/2,)", rigid.SOn.ad, XI6, True),
+    ("rigid.SOn.vee", "matrix", "(n, n)", rigid.SOn.vee, SOn_HAT, True),
+    ("rigid.SOn.from_matrix", "R", "(n, n)", lambda x: rigid.SOn.from_matrix(x).matrix(), SOn_R.matrix(), True),
+    ("rigid.SOn.right_jacobian", "omega", "(n(n-1)/2,)", rigid.SOn.right_jacobian, XI6, True),
+    ("rigid.SOn.left_jacobian_inverse", "omega", "(n(n-1)/2,)", rigid.SOn.left_jacobian_inverse, XI6, True),
+    ("SOn.__mul__", "other", "(4,)", lambda x: SOn_R * x, [1.0, 2.0, 3.0, 4.0], True),
+    ("rigid.SEn", "t", "(4,)", lambda x: rigid.SEn(SOn_R, x).matrix(), [1.0, 2.0, 3.0, 4.0], True),
+    ("rigid.SEn.exp", "xi", "(n(n+1)/2,)", lambda x: rigid.SEn.exp(x).matrix(), XI6, True),
+    ("rigid.SEn.hat", "xi", "(n(n+1)/2,)", rigid.SEn.hat, XI6, True),
+    ("rigid.SEn.ad", "xi", "(n(n+1)/2,)", rigid.SEn.ad, XI6, True),
+    ("rigid.SEn.vee", "matrix", "(n+1, n+1)", rigid.SEn.vee, SEn_HAT, True),
+    ("rigid.SEn.from_matrix", "T", "(n+1, n+1)", lambda x: rigid.SEn.from_matrix(x).matrix(), SEn_X.matrix(), True),
+    ("rigid.SEn.left_jacobian", "xi", "(n(n+1)/2,)", rigid.SEn.left_jacobian, XI6, True),
+    ("rigid.SEn.right_jacobian_inverse", "xi", "(n(n+1)/2,)", rigid.SEn.right_jacobian_inverse, XI6, True),
+    ("SEn.act_vector", "v", "(3,)", SEn_X.act_vector, [1.0, 2.0, 3.0], True),
+    ("SEn.__mul__", "other", "(3,)", lambda x: SEn_X * x, [1.0, 2.0, 3.0], True),
+    ("rigid.check_orthogonal", "M", "(n, n)", lambda x: rigid.check_orthogonal(x).defect, ROT3, True),
+    ("rigid.nearest_rotation", "M", "(n, n)", rigid.nearest_rotation, ROT3 + 1e-3, True),
 ]
 IDS = [f"{c[0]}-{c[1]}" for c in CASES]
 # arguments whose None is the default (no frame, the COM, the system's initial state)
@@ -248,3 +320,62 @@ def test_catalogue_keywords_must_be_numbers(bad):
         rigid.mass.solid_box(density=1.0, lx=bad, ly=1.0, lz=1.0)
     # numpy scalars are numbers
     assert rigid.mass.cylinder(mass=np.float32(2.0), radius=np.int64(1), height=0.5).mass == 2.0
+
+
+@pytest.mark.parametrize("omega, tail", [
+    ([0.0, np.nan, 0.0], "rotation vector [0, nan, 0] has a non-finite component"),
+    ([0.0, 0.0, -np.inf], "rotation vector [0, 0, -inf] has a non-finite component"),
+    ([1e200, 0.0, 0.0], "rotation vector [1e+200, 0, 0] is too long: |ω|² overflows"),
+])
+def test_scalar_so3_exp_refuses_what_the_batch_refuses_in_its_words(omega, tail):
+    # SO3.exp of such a vector would be NaN: refused, as rigid.so3.exp refuses a single element
+    with pytest.raises(rigid.Error) as scalar:
+        rigid.SO3.exp(np.array(omega))
+    with pytest.raises(rigid.Error) as batch:
+        rigid.so3.exp(np.array(omega))
+    assert str(scalar.value) == "rigid.SO3.exp(): argument 'omega': " + tail
+    assert str(batch.value) == "so3.exp(): argument 'omega': " + tail
+
+
+def test_mul_of_a_lie_group_refuses_another_group_as_a_type_error():
+    # `*` takes an element of the same group or an array; anything else is no array of numbers
+    with pytest.raises(TypeError, match=prefix("SO3.__mul__", "other")
+                       + re.escape(" must be an array of numbers of shape (3,); got SE3")):
+        SO3_R * SE3_X
+    with pytest.raises(TypeError, match=prefix("SE2.__mul__", "other") + r" .* got SO2"):
+        SE2_X * SO2_R
+    # SOn acts on vectors of its own n
+    with pytest.raises(rigid.Error, match=prefix("SOn.__mul__", "other") + re.escape(" must have shape (4,); got (3,)")):
+        SOn_R * np.ones(3)
+    with pytest.raises(rigid.Error, match=prefix("rigid.SEn", "t") + re.escape(" must have shape (4,); got (3,)")):
+        rigid.SEn(SOn_R, np.ones(3))
+
+
+def test_square_matrices_are_required_where_n_is_free():
+    with pytest.raises(rigid.Error, match=prefix("rigid.SOn.from_matrix", "R") + re.escape(" must have shape (n, n); got (3, 4)")):
+        rigid.SOn.from_matrix(np.zeros((3, 4)))
+    with pytest.raises(rigid.Error, match=prefix("rigid.SEn.vee", "matrix") + re.escape(" must have shape (n+1, n+1); got (4, 3)")):
+        rigid.SEn.vee(np.zeros((4, 3)))
+    with pytest.raises(rigid.Error, match=prefix("rigid.check_orthogonal", "M") + re.escape(" must have shape (n, n); got (2, 3)")):
+        rigid.check_orthogonal(np.zeros((2, 3)))
+    # a tangent vector whose length is no n(n-1)/2 is the library's to refuse, as before
+    with pytest.raises(rigid.Error, match="tangent vector has 4 components"):
+        rigid.SOn.exp(np.zeros(4))
+
+
+def test_batch_arguments_are_read_by_the_same_converter():
+    # rigid.so3 takes (N, k) or (k,) through convert.hpp: the same refusals, in the same words,
+    # as the scalar functions (with the batch's expected shape)
+    with pytest.raises(TypeError, match=re.escape("so3.exp(): argument 'omega' must be an array of numbers of shape "
+                                                  "(N, 3) or (3,); got NoneType")):
+        rigid.so3.exp(None)
+    with pytest.raises(rigid.Error, match=re.escape("so3.act(): argument 'v' must hold real numbers (a float or integer "
+                                                    "dtype) of shape (N, 3) or (3,); got dtype complex128")):
+        rigid.so3.act(Q1, np.ones(3, complex))
+    with pytest.raises(rigid.Error, match=re.escape("so3.compose(): argument 'b' must be an array of numbers of shape "
+                                                    "(N, 4) or (4,); got a list that is not rectangular")):
+        rigid.so3.compose(Q1, [[1, 0, 0, 0], [1, 0, 0]])
+    # and the same conversions: a strided, read-only int8 array gives the numbers of its float64 copy
+    v = np.repeat(np.array([[1, 2, 3]], np.int8), 2, axis=1)[:, ::2]
+    v.flags.writeable = False
+    assert np.array_equal(rigid.so3.act(Q1, v), rigid.so3.act(Q1, np.array([[1.0, 2.0, 3.0]])))

@@ -146,3 +146,30 @@ def test_new_group_errors():
         rigid.SO2.from_complex(0.0, 0.0)
     with pytest.raises(rigid.Error, match=r"last row of the homogeneous matrix is \[1, 0, 1\]"):
         rigid.SE2.from_matrix(np.array([[1.0, 0, 0], [0, 1, 0], [1, 0, 1]]))
+
+
+def test_mul_composes_elements_and_acts_on_arrays():
+    # one __mul__ per group, dispatching on its operand; compared with products of matrices.
+    # Tolerance 1e-14: the quaternion (or complex) product and the matrix product round
+    # differently, by a few ulps of |x| ≈ 3.7.
+    x3 = np.array([1.0, 2.0, 3.0])
+    R, S = rigid.SO3.exp([0.3, -0.2, 0.9]), rigid.SO3.exp([-1.0, 0.5, 0.1])
+    assert isinstance(R * S, rigid.SO3)
+    assert np.abs((R * S).matrix() - R.matrix() @ S.matrix()).max() < 1e-14
+    for x in (x3, x3.tolist(), tuple(x3), x3.astype(np.int8), np.repeat(x3, 2)[::2]):
+        assert np.abs(R * x - R.matrix() @ x3).max() < 1e-14
+    X = rigid.SE3(R, [0.5, -1.0, 2.0])
+    assert isinstance(X * X, rigid.SE3)
+    assert np.abs((X * X).matrix() - X.matrix() @ X.matrix()).max() < 1e-14
+    assert np.abs(X * [1, 2, 3] - (R.matrix() @ x3 + [0.5, -1.0, 2.0])).max() < 1e-14
+    P = rigid.SO2.from_angle(0.4)
+    assert isinstance(P * P, rigid.SO2)
+    assert np.abs(P * [1, 2] - P.matrix() @ [1.0, 2.0]).max() < 1e-14
+    Y = rigid.SE2(P, [1.0, -2.0])
+    assert np.abs(Y * [1, 2] - (P.matrix() @ [1.0, 2.0] + [1.0, -2.0])).max() < 1e-14
+    Q = rigid.SOn.exp([0.1, -0.2, 0.3, 0.4, -0.5, 0.6])
+    assert isinstance(Q * Q, rigid.SOn)
+    assert np.abs(Q * [1, 2, 3, 4] - Q.matrix() @ [1.0, 2, 3, 4]).max() < 1e-14
+    Z = rigid.SEn(Q, [1, 2, 3, 4])
+    assert isinstance(Z * Z, rigid.SEn)
+    assert np.abs(Z * [1, 0, 0, 0] - (Q.matrix()[:, 0] + [1.0, 2, 3, 4])).max() < 1e-14
