@@ -40,12 +40,13 @@ test-asan: deps
 	ctest --preset asan
 
 # One model run from several threads at once, under ThreadSanitizer: a Lagrangian system
-# (per-run workspaces) and scenes (immutable models); builds only those two test binaries.
+# (per-run workspaces), scenes (immutable models) and sweeps (the runs of a coordinate scene
+# share one derivation); builds only those two test binaries.
 test-tsan: deps
 	cmake --preset tsan >/dev/null
 	cmake --build --preset tsan --target rigid_lagrange_tests rigid_scene_tests
 	TSAN_OPTIONS=halt_on_error=1 build/tsan/bin/rigid_lagrange_tests --gtest_brief=1 --gtest_filter='Workspace.*'
-	TSAN_OPTIONS=halt_on_error=1 build/tsan/bin/rigid_scene_tests --gtest_brief=1 --gtest_filter='ModelThreads.*'
+	TSAN_OPTIONS=halt_on_error=1 build/tsan/bin/rigid_scene_tests --gtest_brief=1 --gtest_filter='ModelThreads.*:SweepRun.*'
 
 asan: test-asan
 

@@ -246,6 +246,65 @@ TEST(SweepRun, RowsAreBitwiseTheSameOnOneOrThreeThreadsAndFailuresAreRows) {
   fs::remove_all(dir);
 }
 
+constexpr const char* kRod = R"toml(
+gravity = [0, 0, "-g"]
+[parameters]
+g = 9.81
+m = 0.5
+L = 1.0
+[[coordinates]]
+name = "theta"
+initial = 0.8
+[[bodies]]
+name = "rod"
+primitive = "thin_rod"
+length = "L"
+mass = "m"
+position = ["-(L/2)*sin(theta)", 0, "-(L/2)*cos(theta)"]
+rotation = [{axis = [0, 1, 0], angle = "-theta"}]
+[simulation]
+t_end = 0.5
+integrator = "rk4"
+dt = 1e-3
+output_dt = 0.05
+)toml";
+
+// A coordinate scene's runs share one derivation of its equations (and run it from several
+// threads at once: also under ThreadSanitizer, `make test-tsan`). Each run uses its own values:
+// its initial energy is the closed form E(0) = −m g (L/2) cos θ0 of its m and L (to 1e-12
+// relative: one evaluation of the energy at t = 0). A refused value is that run's error row,
+// also when it is the first run's (the runs then derive their own equations).
+TEST(SweepRun, ACoordinateScenesRunsShareItsEquationsAndUseTheirOwnValues) {
+  const fs::path dir = temp_dir("rod");
+  const fs::path scene = dir / "rod.toml";
+  std::ofstream(scene) << kRod;
+  for (const char* m_axis : {"m=0.5:2:3", "m=-1:2:4"}) {
+    const SweepIdentity id{.scene = scene, .set = {}, .integrator = "",
+                           .spec = {.grid = {parse_grid_axis("L=0.5:2:3"), parse_grid_axis(m_axis)}}};
+    std::vector<std::size_t> all(run_count(id.spec));
+    std::iota(all.begin(), all.end(), 0);
+    const auto one = run_sweep(id, all, {.threads = 1});
+    const auto three = run_sweep(id, all, {.threads = 3});
+    ASSERT_EQ(one.size(), all.size());
+    for (std::size_t i = 0; i < one.size(); ++i) EXPECT_EQ(row_to_json(one[i]), row_to_json(three[i])) << i;
+    for (const SweepRow& row : one) {
+      const double L = row.values[0], m = row.values[1];
+      if (m <= 0) {
+        EXPECT_THAT(row.error, ::testing::HasSubstr("mass")) << "m = " << m;
+        continue;
+      }
+      ASSERT_TRUE(row.error.empty()) << row.error;
+      double e0 = std::nan("");
+      for (const auto& [name, value] : row.results) {
+        if (name == "energy_initial") e0 = value;
+      }
+      const double expected = -m * 9.81 * (L / 2) * std::cos(0.8);
+      EXPECT_NEAR(e0, expected, 1e-12 * std::abs(expected)) << "L = " << L << ", m = " << m;
+    }
+  }
+  fs::remove_all(dir);
+}
+
 TEST(SweepRun, ACancelledSweepStopsWithCancelled) {
   const fs::path dir = temp_dir("cancel");
   const fs::path scene = dir / "racket.toml";
