@@ -12,6 +12,7 @@
 
 #include "rigid/mass/primitives.hpp"
 #include "support/expect_error.hpp"
+#include "support/scenes.hpp"
 #include "support/tolerance.hpp"
 
 namespace rigid::scene {
@@ -394,36 +395,14 @@ namespace {
 
 // A model built with `like` shares like's derived equations but runs with its own parameter
 // values, initial state and settings (what a sweep does for each run). Checked against the closed
-// form of the initial energy (a rod of mass m, length l, pivoted at its end: E = ½ (m l²/3) θ̇²
-// − m g (l/2) cos θ), which like's values would miss, and against a model derived afresh: rk4 at
+// form of the initial energy (test::kRodPendulum: E = ½ (m L²/3) θ̇² − m g (L/2) cos θ), which
+// like's values would miss, and against a model derived afresh: rk4 at
 // a fixed step with equations derived twice differs only by the order of floating-point
 // operations (GiNaC orders terms by symbol serial numbers), 1e-12 over 1500 steps of O(1) angles.
 TEST(Model, SharesTheEquationsOfALikeModelAndRunsWithItsOwnValues) {
-  constexpr std::string_view kRod = R"toml(
-gravity = [0, 0, "-g"]
-[parameters]
-g = 9.81
-l = 1.0
-m = 0.5
-[[coordinates]]
-name = "theta"
-initial = 1.0
-[[bodies]]
-name = "rod"
-primitive = "thin_rod"
-length = "l"
-mass = "m"
-position = ["-(l/2)*sin(theta)", 0, "-(l/2)*cos(theta)"]
-rotation = [{axis = [0, 1, 0], angle = "-theta"}]
-[simulation]
-t_end = 2
-integrator = "rk4"
-dt = 1e-3
-output_dt = 0.01
-)toml";
-  const Model like(parse_scene(kRod, "rod.toml"));
-  Scene changed = parse_scene(kRod, "rod.toml");
-  apply_overrides(changed, {"l=1.7", "m=2.5", "theta.initial=0.3", "theta.velocity=0.2", "simulation.t_end=1.5"});
+  const Model like(parse_scene(test::kRodPendulum, "rod.toml"));
+  Scene changed = parse_scene(test::kRodPendulum, "rod.toml");
+  apply_overrides(changed, {"L=1.7", "m=2.5", "theta.initial=0.3", "theta.velocity=0.2", "simulation.t_end=1.5"});
   const Model shared(changed, like);
   const Model fresh(changed);
   const RunResult a = shared.run();
@@ -473,27 +452,7 @@ t_end = 1
 TEST(ModelThreads, OneModelRunsOnSeveralThreadsAtOnce) {
   // a coordinate scene and a free-body scene, each run by four threads at once: every run is
   // bitwise the run done alone (a Model is immutable; runs keep their state to themselves)
-  const Model coordinates = model_of(R"toml(
-gravity = [0, 0, "-g"]
-[parameters]
-g = 9.81
-l = 1.0
-[[coordinates]]
-name = "theta"
-initial = 1.0
-[[bodies]]
-name = "rod"
-primitive = "thin_rod"
-length = "l"
-mass = 0.5
-position = ["-(l/2)*sin(theta)", 0, "-(l/2)*cos(theta)"]
-rotation = [{axis = [0, 1, 0], angle = "-theta"}]
-[simulation]
-t_end = 2
-integrator = "rk4"
-dt = 1e-3
-output_dt = 0.01
-)toml");
+  const Model coordinates = model_of(test::kRodPendulum);
   const Model free = model_of(R"toml(
 [[bodies]]
 name = "racket"

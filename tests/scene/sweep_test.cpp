@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "support/expect_error.hpp"
+#include "support/scenes.hpp"
 
 namespace rigid::scene {
 namespace {
@@ -246,29 +247,6 @@ TEST(SweepRun, RowsAreBitwiseTheSameOnOneOrThreeThreadsAndFailuresAreRows) {
   fs::remove_all(dir);
 }
 
-constexpr const char* kRod = R"toml(
-gravity = [0, 0, "-g"]
-[parameters]
-g = 9.81
-m = 0.5
-L = 1.0
-[[coordinates]]
-name = "theta"
-initial = 0.8
-[[bodies]]
-name = "rod"
-primitive = "thin_rod"
-length = "L"
-mass = "m"
-position = ["-(L/2)*sin(theta)", 0, "-(L/2)*cos(theta)"]
-rotation = [{axis = [0, 1, 0], angle = "-theta"}]
-[simulation]
-t_end = 0.5
-integrator = "rk4"
-dt = 1e-3
-output_dt = 0.05
-)toml";
-
 // A coordinate scene's runs share one derivation of its equations (and run it from several
 // threads at once: also under ThreadSanitizer, `make test-tsan`). Each run uses its own values:
 // its initial energy is the closed form E(0) = −m g (L/2) cos θ0 of its m and L (to 1e-12
@@ -277,9 +255,9 @@ output_dt = 0.05
 TEST(SweepRun, ACoordinateScenesRunsShareItsEquationsAndUseTheirOwnValues) {
   const fs::path dir = temp_dir("rod");
   const fs::path scene = dir / "rod.toml";
-  std::ofstream(scene) << kRod;
+  std::ofstream(scene) << test::kRodPendulum;
   for (const char* m_axis : {"m=0.5:2:3", "m=-1:2:4"}) {
-    const SweepIdentity id{.scene = scene, .set = {}, .integrator = "",
+    const SweepIdentity id{.scene = scene, .set = {"theta.initial=0.8", "simulation.t_end=0.5"}, .integrator = "",
                            .spec = {.grid = {parse_grid_axis("L=0.5:2:3"), parse_grid_axis(m_axis)}}};
     std::vector<std::size_t> all(run_count(id.spec));
     std::iota(all.begin(), all.end(), 0);
