@@ -1,9 +1,11 @@
 #pragma once
 
 /// Sweeps: one scene run many times, each run with its own overrides (`name=value`, as
-/// `--set` takes them), over a cartesian grid or a Monte Carlo sample. A run is
-/// `load_model(scene, set + its overrides)` then `Model::run`; its row holds the swept values,
-/// the metrics and diagnostics of its summary, or the error that stopped it.
+/// `--set` takes them), over a cartesian grid or a Monte Carlo sample. A run is the scene (read
+/// once) with `set` and its overrides applied, built into a Model, then `Model::run`; its row
+/// holds the swept values, the metrics and diagnostics of its summary, or the error that stopped
+/// it. Overrides change values only, so a coordinate scene's equations are derived once, for the
+/// first of the runs, and shared by the models of all (Model(scene, like)).
 ///
 /// What makes a sweep reproducible, byte for byte, whatever the threads, processes or shards:
 ///  - a run's values depend only on (spec, seed, run index) — counter-based sampling;
@@ -182,8 +184,9 @@ void check_overrides(const SweepIdentity& identity);
 
 /// Runs the runs `indices` on a pool of options.threads threads (each takes the next index from
 /// an atomic counter) and returns their rows sorted by index. A run that throws rigid::Error is
-/// a row with its error. Models are built and destroyed one at a time (the symbolic derivation
-/// is single-threaded); runs go in parallel.
+/// a row with its error. Models are built and destroyed one at a time (the symbolic side is
+/// single-threaded); runs go in parallel. A coordinate scene is derived once, before the runs,
+/// from the overrides of indices.front(); when that model is refused, every run derives its own.
 /// @throws rigid::Cancelled when options.cancel stopped it (rows already passed to on_row stay).
 [[nodiscard]] std::vector<SweepRow> run_sweep(const SweepIdentity& identity, std::span<const std::size_t> indices,
                                               const SweepRunOptions& options);
