@@ -9,6 +9,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <cmath>
 #include <random>
 #include <string>
 #include <string_view>
@@ -24,6 +25,12 @@ namespace cv = rigid::python::convert;
 void bind_so3_batch(py::module_& m);  // so3_batch_py.cpp: rigid.so3
 
 namespace {
+
+// An angle (rad) from Python, refused when it is NaN or infinite (the rotation would be NaN).
+double finite_angle(double theta, const rigid::python::convert::Arg& arg) {
+  if (!std::isfinite(theta)) rigid::python::convert::refuse(arg, fmt::format("must be finite; got {}", theta));
+  return theta;
+}
 
 // The docstrings the groups share, filled in with the group's name, its tangent coordinates
 // and its matrix form; conventions of [Sola2018] as in include/rigid/lie/*.hpp.
@@ -177,16 +184,21 @@ void bind_lie(py::module_& m) {
       "Rotation in 2-D, stored as a unit complex number c + i s; tangent: the angle (float, rad)")
       .def_static("identity", &SO2d::identity, dso2.identity.c_str())
       .def_static(
-          "exp", [](double theta) { return SO2d::exp(T1(theta)); }, py::arg("theta"),
-          "angle (rad, counter-clockwise) -> rotation")
-      .def_static("from_angle", &SO2d::from_angle, py::arg("theta"), dso2.from_angle.c_str())
+          "exp",
+          [](double theta) { return SO2d::exp(T1(finite_angle(theta, {"rigid.SO2.exp", "theta"}))); },
+          py::arg("theta"), "angle (rad, counter-clockwise) -> rotation; refuses a non-finite angle")
+      .def_static(
+          "from_angle",
+          [](double theta) { return SO2d::from_angle(finite_angle(theta, {"rigid.SO2.from_angle", "theta"})); },
+          py::arg("theta"), dso2.from_angle.c_str())
       .def_static("from_complex", &SO2d::from_complex, py::arg("c"), py::arg("s"),
                   dso2.from_complex.c_str())
       .def_static("from_matrix",
                   on_matrix_tol<2, 2>("rigid.SO2.from_matrix", "R", &SO2d::from_matrix),
                   py::arg("R"), py::arg("tol") = 1e-9, dso2.from_matrix.c_str())
       .def_static(
-          "hat", [](double theta) { return SO2d::hat(T1(theta)); }, py::arg("theta"),
+          "hat", [](double theta) { return SO2d::hat(T1(finite_angle(theta, {"rigid.SO2.hat", "theta"}))); },
+          py::arg("theta"),
           dso2.hat.c_str())
       .def_static("vee",
                   on_matrix<2, 2>("rigid.SO2.vee", "matrix",

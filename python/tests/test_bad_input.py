@@ -379,3 +379,14 @@ def test_batch_arguments_are_read_by_the_same_converter():
     v = np.repeat(np.array([[1, 2, 3]], np.int8), 2, axis=1)[:, ::2]
     v.flags.writeable = False
     assert np.array_equal(rigid.so3.act(Q1, v), rigid.so3.act(Q1, np.array([[1.0, 2.0, 3.0]])))
+
+
+# An angle is a float, not an array: NaN and infinity are refused by name, as array arguments are
+# (the rotation of a NaN angle would be NaN in every entry).
+@pytest.mark.parametrize("function", ["exp", "from_angle", "hat"])
+@pytest.mark.parametrize("theta", [float("nan"), float("inf"), -float("inf")])
+def test_so2_angles_must_be_finite(function, theta):
+    with pytest.raises(rigid.Error, match=rf"rigid\.SO2\.{function}\(\): argument 'theta' must be finite"):
+        getattr(rigid.SO2, function)(theta)
+    # a finite angle still works: exp(π/2) rotates x onto y
+    assert np.allclose(rigid.SO2.exp(np.pi / 2).matrix(), [[0, -1], [1, 0]], atol=1e-15)
