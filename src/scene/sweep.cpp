@@ -473,14 +473,22 @@ JournalContents read_journal(const fs::path& directory) {
   return parse_journal(p).contents;
 }
 
+namespace {
+
+// The overrides of one run: the sweep's `set`, then each swept name with the run's value.
+std::vector<std::string> run_overrides(const SweepIdentity& id, const std::vector<std::string>& names,
+                                       const std::vector<double>& values) {
+  std::vector<std::string> set = id.set;
+  for (std::size_t k = 0; k < names.size(); ++k) set.push_back(override_text(names[k], values[k]));
+  return set;
+}
+
+}  // namespace
+
 void check_overrides(const SweepIdentity& id) {
   check_spec(id.spec);
   Scene s = load_scene(id.scene);
-  std::vector<std::string> set = id.set;
-  const auto names = swept_names(id.spec);
-  const auto values = run_values(id.spec, 0);
-  for (std::size_t k = 0; k < names.size(); ++k) set.push_back(override_text(names[k], values[k]));
-  apply_overrides(s, set);
+  apply_overrides(s, run_overrides(id, swept_names(id.spec), run_values(id.spec, 0)));
 }
 
 std::vector<SweepRow> run_sweep(const SweepIdentity& id, std::span<const std::size_t> indices,
@@ -490,11 +498,7 @@ std::vector<SweepRow> run_sweep(const SweepIdentity& id, std::span<const std::si
   std::atomic<std::size_t> next{0};
   std::atomic<bool> stopped{false};
   std::mutex report;
-  auto overrides_of = [&](const std::vector<double>& values) {
-    std::vector<std::string> set = id.set;
-    for (std::size_t k = 0; k < names.size(); ++k) set.push_back(override_text(names[k], values[k]));
-    return set;
-  };
+  auto overrides_of = [&](const std::vector<double>& values) { return run_overrides(id, names, values); };
 
   // The scene is read once; a run is that scene with its overrides. The overrides change values
   // only (apply_overrides), so a coordinate scene's equations are derived once, before the runs,
