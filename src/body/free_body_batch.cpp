@@ -13,7 +13,13 @@ void step_free_bodies(FreeBodyMethod method, std::span<const Eigen::Vector3d> I_
   RIGID_REQUIRE(std::isfinite(h) && h > 0, "step h must be positive and finite, got {} s", h);
   // One kernel for one body and for many: step_free_body's splitting path is already the
   // merged half-angle kernel (free_body_integrators.cpp), so there is no second copy here.
-  for (std::size_t b = 0; b < states.size(); ++b) states[b] = step_free_body(method, I_B[b], states[b], h);
+  for (std::size_t b = 0; b < states.size(); ++b) {
+    try {
+      states[b] = step_free_body(method, I_B[b], states[b], h);
+    } catch (const Error& e) {
+      RIGID_THROW("body {}: {}", b, e.what());  // an implicit step that did not converge
+    }
+  }
 }
 
 }  // namespace rigid::body

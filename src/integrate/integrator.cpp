@@ -55,7 +55,10 @@ struct OdeintSystem {
 // Newton iteration on k = (y1 - y0)/h: (1 - h/2 J) δk = f(t + h/2, y0 + h/2 k) - k, with a
 // forward-difference Jacobian J ≈ ∂f/∂y. J and its LU factors are kept from step to step and
 // refreshed when the step size changes or the iteration converges slowly (> 4 iterations)
-// or fails; the fixed point does not depend on J, only the speed of convergence does.
+// or fails; the fixed point does not depend on J, only the speed of convergence does. A step
+// whose iteration does not converge, with the kept Jacobian and then with a fresh one, is
+// refused with h, the residual of the implicit equation and the tolerance (the march puts the
+// step number and t in front).
 class ImplicitMidpoint {
  public:
   ImplicitMidpoint(const Problem& p, const Options& o, std::size_t* evals)
@@ -69,7 +72,7 @@ class ImplicitMidpoint {
     J_.resize(n, n);
   }
 
-  void step(double t, double h, Eigen::VectorXd& y, std::size_t step_index) {
+  void step(double t, double h, Eigen::VectorXd& y) {
     const double tm = t + 0.5 * h;
     // explicit predictor k = f(t + h/2, y0)
     p_.rhs(tm, y, f0_);
@@ -85,10 +88,14 @@ class ImplicitMidpoint {
       }
       refresh(tm, h, y);  // a stale Jacobian may be the cause: retry once with a fresh one
     }
-    detail::throw_error("integrate",
-                        fmt::format("implicit midpoint: Newton iteration did not converge in {} "
-                                    "iterations at step {}, t = {} s; reduce dt = {} s",
-                                    o_.max_newton, step_index, t, h));
+    detail::throw_error(
+        "integrate",
+        fmt::format("implicit midpoint: the Newton iteration did not converge in {} iterations "
+                    "(with the kept Jacobian, then with a fresh one): h = {} s; the residual of "
+                    "the implicit equation, |y1 − y0 − h f(t + h/2, (y0 + y1)/2)|∞ = {:.3g}, and "
+                    "the last correction {:.3g} are above the tolerance {:.3g} (newton_tol · "
+                    "max(1, |y0|∞)); use a smaller step dt",
+                    o_.max_newton, h, residual_, correction_, o_.newton_tol * scale_of(y)));
   }
 
  private:
@@ -108,17 +115,24 @@ class ImplicitMidpoint {
     h_ = h;
   }
 
-  // iterations used, or -1 when not converged
+  static double scale_of(const Eigen::VectorXd& y) {
+    return std::max(1.0, y.lpNorm<Eigen::Infinity>());
+  }
+
+  // iterations used, or -1 when not converged (residual_ and correction_ then say how far)
   int newton(double tm, double h, const Eigen::VectorXd& y) {
     double prev = std::numeric_limits<double>::infinity();
-    const double scale = std::max(1.0, y.lpNorm<Eigen::Infinity>());
+    const double scale = scale_of(y);
     for (int it = 1; it <= o_.max_newton; ++it) {
       ym_ = y + 0.5 * h * k_;
       p_.rhs(tm, ym_, f_);
       ++*evals_;
+      // residual of y1 = y0 + h k in y1 − y0 − h f(t + h/2, (y0 + y1)/2) = −h (f − k)
+      residual_ = h * (f_ - k_).lpNorm<Eigen::Infinity>();
       dk_ = lu_.solve(f_ - k_);
       k_ += dk_;
       const double size = h * dk_.lpNorm<Eigen::Infinity>();
+      correction_ = size;
       if (!std::isfinite(size)) return -1;
       // converged at the tolerance, or stalled at round-off just above it
       if (size <= o_.newton_tol * scale || (size >= prev && size <= 1e3 * o_.newton_tol * scale)) {
@@ -137,6 +151,8 @@ class ImplicitMidpoint {
   Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
   bool have_jacobian_ = false;
   double h_ = 0.0;
+  double residual_ = 0.0;    // of the last iterate evaluated
+  double correction_ = 0.0;  // the last Newton correction h |δk|∞
 };
 
 MarchControl control_of(const Options& o) {
@@ -173,9 +189,7 @@ Solution run_fixed(const Problem& p, const Options& o) {
   ImplicitMidpoint midpoint(p, o, &sol.rhs_evaluations);
 
   bool have_accel = false;  // Störmer–Verlet reuses a(t1, q1) as the next step's a(t0, q0)
-  std::size_t step_index = 0;
   auto step = [&](double t, double h) {
-    ++step_index;
     switch (o.method) {
       case Method::kRk4:
         Eigen::Map<Eigen::VectorXd>(x.data(), n) = y;
@@ -183,7 +197,7 @@ Solution run_fixed(const Problem& p, const Options& o) {
         y = Eigen::Map<const Eigen::VectorXd>(x.data(), n);
         break;
       case Method::kImplicitMidpoint:
-        midpoint.step(t, h, y, step_index);
+        midpoint.step(t, h, y);
         break;
       case Method::kStormerVerlet:
         // v_{1/2} = v0 + h/2 a(t0, q0); q1 = q0 + h v_{1/2}; v1 = v_{1/2} + h/2 a(t1, q1)
@@ -345,6 +359,12 @@ Solution integrate(const Problem& problem, const Options& options) {
                     std::isfinite(options.atol),
                 "tolerances must be positive and finite, got rtol = {}, atol = {}", options.rtol,
                 options.atol);
+  RIGID_REQUIRE(
+      options.method != Method::kImplicitMidpoint ||
+          (options.max_newton >= 1 && std::isfinite(options.newton_tol) && options.newton_tol > 0),
+      "the implicit midpoint needs max_newton ≥ 1 and a positive, finite newton_tol, got {} "
+      "and {}",
+      options.max_newton, options.newton_tol);
   RIGID_REQUIRE(options.method != Method::kDopri5 || options.rtol >= kMinRelativeTolerance,
                 "dopri5 relative tolerance rtol = {} is below what double precision can deliver; "
                 "expected rtol ≥ {:.3g} (10 ε)",

@@ -69,6 +69,10 @@ void throw_nonfinite(const NonFinite& bad, std::size_t step, double t, double h)
                           step, t, who, bad.value, h));
 }
 
+void throw_in_step(const Error& e, std::size_t step, double t) {
+  throw Error(fmt::format("at step {} from t = {} s: {}", step, t, e.what()));
+}
+
 void poll(const MarchControl& control, double t) {
   if (control.cancel != nullptr && control.cancel->load(std::memory_order_relaxed)) {
     throw Cancelled(fmt::format("cancelled at t = {} s; nothing was written", t));

@@ -112,10 +112,18 @@ void step_implicit_midpoint(Network& net, double h, const MidpointOptions& optio
       break;
     }
   }
-  RIGID_REQUIRE(converged,
-                "the Newton iteration of the implicit midpoint did not converge in {} iterations at "
-                "h = {} s: last correction {} m, tolerance {} m; use a smaller step",
-                options.max_iterations, h, last, options.tolerance * scale);
+  if (!converged) [[unlikely]] {
+    // how far from a solution the last iterate is: the residual of G(P) = 0
+    const Eigen::Matrix3Xd Pm = Eigen::Map<const Eigen::Matrix3Xd>(P.data(), 3, n / 3);
+    const double residual =
+        (P - p0 - 0.5 * h * v0 - 0.25 * h * h * minv.cwiseProduct(forces_flat(net, Pm)))
+            .lpNorm<Eigen::Infinity>();
+    RIGID_THROW(
+        "the Newton iteration of the implicit midpoint did not converge in {} iterations at "
+        "h = {} s: last correction {} m, tolerance {} m; residual of the implicit equation "
+        "|P − p0 − ½h v0 − ¼h² M⁻¹ f(P)| = {:.3g} m at the last iterate; use a smaller step",
+        options.max_iterations, h, last, options.tolerance * scale, residual);
+  }
   const Eigen::Matrix3Xd Pm = Eigen::Map<const Eigen::Matrix3Xd>(P.data(), 3, n / 3);
   const Eigen::VectorXd vbar = v0 + 0.5 * h * minv.cwiseProduct(forces_flat(net, Pm));
   const Eigen::VectorXd p1 = p0 + h * vbar;

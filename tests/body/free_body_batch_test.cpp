@@ -63,5 +63,23 @@ TEST(FreeBodyBatch, RejectsMismatchedSpansAndBadStep) {
                      "step h must be positive and finite, got -0.1 s");
 }
 
+TEST(FreeBodyBatch, NamesTheBodyWhoseImplicitStepDoesNotConverge) {
+  // body 1 is the racket spun at 3 rad/s with h = 1 s (h |ω| max(I)/min(I) = 9): its midpoint
+  // step does not converge and is refused naming the body; body 0 (ω ten times smaller, 0.9)
+  // converges and was stepped, body 2 was not
+  const std::vector<Eigen::Vector3d> I(3, Eigen::Vector3d(1, 2, 3));
+  std::vector<FreeBodyState> s(3);
+  s[0].w_B = Eigen::Vector3d(0.001, 0.3, 0.001);
+  s[1].w_B = Eigen::Vector3d(0.01, 3, 0.01);
+  s[2].w_B = s[0].w_B;
+  const std::vector<FreeBodyState> before = s;
+  EXPECT_RIGID_ERROR(step_free_bodies(FreeBodyMethod::kLiePoissonMidpoint, I, s, 1.0),
+                     "step_free_bodies(): body 1: step_free_body(): the Lie–Poisson midpoint step "
+                     "(midpoint) did not converge: h = 1 s");
+  EXPECT_NE(s[0].w_B, before[0].w_B);
+  EXPECT_EQ(s[1].w_B, before[1].w_B);
+  EXPECT_EQ(s[2].w_B, before[2].w_B);
+}
+
 }  // namespace
 }  // namespace rigid::body

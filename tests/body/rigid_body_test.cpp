@@ -309,6 +309,19 @@ TEST(RigidBody, DivergenceIsRefusedNamingTheComponent) {
                      "non-finite state at step");
 }
 
+TEST(RigidBody, ImplicitFreeFlowThatDoesNotConvergeIsRefusedNamingTheStep) {
+  // the drift's free rotation by the Lie–Poisson midpoint, racket spun at 3 rad/s about its
+  // middle principal axis: the first step, of 0.5 s, converges (38 iterations, measured), the
+  // second, of 1 s (h |ω| max(I)/min(I) = 9), does not
+  const RigidBody body(1.0, kIfull, Eigen::Vector3d(0, 0, -9.81));
+  RigidBodyState s;
+  s.w_B = kQ * Eigen::Vector3d(0.01, 3, 0.01);
+  EXPECT_RIGID_ERROR((void)simulate_rigid_body(body, RigidBodyMethod::kSplitting2, s, 1.0,
+                                               {0.5, 1.5}, FreeBodyMethod::kLiePoissonMidpoint),
+                     "at step 2 from t = 0.5 s: step_free_body(): the Lie–Poisson midpoint step "
+                     "(midpoint) did not converge: h = 1 s");
+}
+
 TEST(RigidBody, FormatsStateAndWrench) {
   RigidBodyState s;
   s.p_WC = Eigen::Vector3d(1, 2.5, -3);

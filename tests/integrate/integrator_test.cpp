@@ -124,6 +124,56 @@ TEST(Integrator, StopsOnNonFiniteStateNamingTheComponent) {
   EXPECT_RIGID_ERROR((void)integrate(p, Options{.method = Method::kRk4, .dt = 0.1}), "x = ");
 }
 
+// y' = y², y(0) = 1 by the implicit midpoint: y1 = y0 + h m², m = (y0 + y1)/2, so
+// m = y0 + (h/2) m², a quadratic with the root m = (1 − √(1 − 2 h y0))/h (the one that tends
+// to y0 as h → 0) when 2 h y0 ≤ 1 and no real root otherwise.
+Problem blow_up(double t_end) {
+  Problem p;
+  p.rhs = [](double, const Eigen::VectorXd& y, Eigen::VectorXd& d) { d[0] = y[0] * y[0]; };
+  p.y0 = Eigen::VectorXd::Constant(1, 1.0);
+  p.t_end = t_end;
+  return p;
+}
+
+double midpoint_step_of_blow_up(double y0, double h) {
+  const double m = (1.0 - std::sqrt(1.0 - 2.0 * h * y0)) / h;
+  return 2.0 * m - y0;
+}
+
+TEST(Integrator, ImplicitMidpointThatDoesNotConvergeIsRefused) {
+  // steps of 1/8 s (exact binary times): 2 h y0 = 0.25, 0.29, …, 0.68 at the first six steps
+  // (a solution exists), 1.055 at the seventh (y0 = 4.22, from t = 0.75 s): no solution, so no
+  // Newton iteration converges and the step is refused
+  const Problem p = blow_up(1.0);
+  const Options o{.method = Method::kImplicitMidpoint, .dt = 0.125};
+  EXPECT_RIGID_ERROR(
+      (void)integrate(p, o),
+      "at step 7 from t = 0.75 s: integrate(): implicit midpoint: the Newton iteration "
+      "did not converge in 30 iterations (with the kept Jacobian, then with a fresh "
+      "one): h = 0.125 s; the residual of the implicit equation, |y1 − y0 − h f(t + h/2, "
+      "(y0 + y1)/2)|∞ = ");
+  EXPECT_RIGID_ERROR((void)integrate(p, o), "above the tolerance");
+  EXPECT_RIGID_ERROR((void)integrate(p, o), "use a smaller step dt");
+  EXPECT_RIGID_ERROR(
+      (void)integrate(p, Options{.method = Method::kImplicitMidpoint, .max_newton = 0}),
+      "the implicit midpoint needs max_newton ≥ 1 and a positive, finite newton_tol, "
+      "got 0 and 1e-14");
+}
+
+TEST(Integrator, ImplicitMidpointStepsThatConvergeSolveTheirEquation) {
+  // the first three steps of the run above, each against the root of its quadratic: Newton
+  // stops when its correction is ≤ newton_tol · max(1, |y0|) ≤ 1.4e-14, and the simplified
+  // iteration contracts by ≈ 0.01 here (J at y0 against J at the midpoint), so the error left
+  // is far below that; the closed form rounds to a few ulps of y ≈ 1.4 (its 1 − √(1 − 2 h y0)
+  // cancels to 0.13 of 1, ≈ 8 ulps): 2e-14
+  const Solution s =
+      integrate(blow_up(0.375), Options{.method = Method::kImplicitMidpoint, .dt = 0.125});
+  ASSERT_EQ(s.y.size(), 4u);
+  for (std::size_t k = 1; k < 4; ++k) {
+    EXPECT_NEAR(s.y[k][0], midpoint_step_of_blow_up(s.y[k - 1][0], 0.125), 2e-14) << "step " << k;
+  }
+}
+
 // rtol = 1e-300 never advanced (dopri5's error estimate is round-off, the step shrank to
 // nothing) and, sampling every step, grew by 65 MB/s: tolerances below 10 ε are refused.
 TEST(Integrator, Dopri5RefusesToleranceBelowDoublePrecision) {

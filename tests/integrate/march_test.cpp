@@ -3,6 +3,7 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
@@ -143,6 +144,32 @@ TEST(March, OnStepSeesEveryStepInOrder) {
   EXPECT_EQ(spans.back().second, 1.0);
   // t0 + j·h against the previous step's t + h: equal up to round-off
   for (std::size_t i = 1; i < spans.size(); ++i) EXPECT_NEAR(spans[i].first, spans[i - 1].second, 1e-15);
+}
+
+TEST(March, AnErrorOfAStepNamesTheStepAndItsStart) {
+  // an implicit step that does not converge (or any rigid::Error of a step) gets the place in
+  // front once, here, for every stepping client; other exceptions pass unchanged
+  const TimeGrid g = TimeGrid::uniform(0.0, 1.0, 0.5);
+  int steps = 0;
+  auto failing = [&](double, double) {
+    if (++steps == 4) throw Error("the step did not converge");
+  };
+  EXPECT_RIGID_ERROR((void)march(g, 0.25, failing, kNoNonFinite, [](std::size_t, double) {}),
+                     "at step 4 from t = 0.75 s: the step did not converge");
+  EXPECT_THAT(
+      [&] {
+        (void)march(
+            g, 0.25, [](double, double) { throw Cancelled("cancelled at t = 0 s"); }, kNoNonFinite,
+            [](std::size_t, double) {});
+      },
+      ::testing::ThrowsMessage<Cancelled>(::testing::StrEq("cancelled at t = 0 s")));
+  EXPECT_THAT(
+      [&] {
+        (void)march(
+            g, 0.25, [](double, double) { throw std::runtime_error("not ours"); }, kNoNonFinite,
+            [](std::size_t, double) {});
+      },
+      ::testing::ThrowsMessage<std::runtime_error>(::testing::StrEq("not ours")));
 }
 
 }  // namespace

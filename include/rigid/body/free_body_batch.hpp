@@ -16,7 +16,9 @@ namespace rigid::body {
 
 /// Advances every `states[i]` by one step h (s) of `method` with principal moments
 /// `I_B[i]` (kg·m²), bitwise equal to `step_free_body(method, I_B[i], states[i], h)`.
-/// @throws rigid::Error if the spans differ in length or h is not positive and finite.
+/// @throws rigid::Error if the spans differ in length or h is not positive and finite, or the
+/// step of a body does not converge (midpoint, moser_veselov: step_free_body's error with
+/// "body i: " in front; the bodies before i have been stepped, body i and those after it not).
 /// Moments and states are not checked per body (this is the hot loop): pass moments > 0.
 void step_free_bodies(FreeBodyMethod method, std::span<const Eigen::Vector3d> I_B,
                       std::span<FreeBodyState> states, double h);

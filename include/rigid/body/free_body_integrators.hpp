@@ -12,7 +12,7 @@
 /// | kSplitting2 (Strang)    | 2     | L_W exactly (each sub-flow is a rotation), |L|, |q| = 1 |
 /// | kSplitting4 (Yoshida)   | 4     | as kSplitting2; symplectic, energy error bounded        |
 /// | kSplitting6 (Yoshida)   | 6     | as kSplitting2; symplectic, energy error bounded        |
-/// | kLiePoissonMidpoint     | 2     | |L| and energy (quadratic invariants) to solver tolerance |
+/// | kLiePoissonMidpoint     | 2     | |L| and energy (quadratic invariants) to round-off      |
 /// | kRkmk4 (Lie-group RK)   | 4     | |q| = 1 / RᵀR = 1 to round-off (update by exp); energy, |L| drift O(h⁴) |
 /// | kMoserVeselov           | 2     | L_W, |L| and energy ½ L·I⁻¹L to round-off; symplectic   |
 ///
@@ -74,6 +74,15 @@ enum class FreeBodyMethod {
 [[nodiscard]] int order_of(FreeBodyMethod method);
 
 /// One step of size h (s) with principal moments I_B (kg·m²).
+///
+/// The implicit methods (kLiePoissonMidpoint, kMoserVeselov) solve their equation by
+/// fixed-point iteration, which contracts for h |ω| max(I)/min(I) < 1. Their iteration stops
+/// when an update is below about one ulp of the solution; one that has not stopped after 100
+/// iterations is accepted only if the residual of the implicit equation is at round-off,
+/// 16 ε times the magnitudes of its terms (it stalled just above the stopping rule).
+/// @throws rigid::Error for a midpoint or Moser–Veselov step that does not converge, naming the
+/// method, h, |ω|, the residual reached relative to |L| and the tolerance, with the remedy
+/// (a smaller step). rigid::integrate::march puts the step number and t in front.
 [[nodiscard]] FreeBodyState step_free_body(FreeBodyMethod method, const Eigen::Vector3d& I_B,
                                            const FreeBodyState& state, double h);
 
@@ -98,7 +107,8 @@ struct FreeBodyTrajectory {
 /// `h_max` (s). Every step is checked for a non-finite state.
 /// @throws rigid::Error if I_B fails rigid::check_rotational_moments, h_max is not positive and
 /// finite, the output times are not ascending and finite, the state diverges (naming the
-/// component and t), or `control` cancels the run (rigid::Cancelled).
+/// component and t), a step of an implicit method does not converge (step_free_body's error,
+/// with the step number and t in front), or `control` cancels the run (rigid::Cancelled).
 [[nodiscard]] FreeBodyTrajectory simulate_free_body(FreeBodyMethod method,
                                                     const Eigen::Vector3d& I_B,
                                                     const FreeBodyState& initial, double h_max,

@@ -155,8 +155,9 @@ enum class RigidBodyMethod { kSplitting2, kRk4 };
 /// One step from time t (s) with step h (s). `free_method` is the free-body stepper of the
 /// drift of kSplitting2 (default kSplitting2; kSplitting4/6 make the free rotation more
 /// accurate, the method stays order 2 with loads); ignored by kRk4.
-/// @throws rigid::Error if h is not positive and finite, the state is not finite, or a load
-/// returns a non-finite wrench.
+/// @throws rigid::Error if h is not positive and finite, the state is not finite, a load
+/// returns a non-finite wrench, or the drift's implicit `free_method` (midpoint,
+/// moser_veselov) does not converge (step_free_body).
 [[nodiscard]] RigidBodyState step_rigid_body(
     const RigidBody& body, RigidBodyMethod method, double t, const RigidBodyState& state,
     double h, FreeBodyMethod free_method = FreeBodyMethod::kSplitting2);
@@ -173,7 +174,9 @@ struct RigidBodyTrajectory {
 /// `h_max` (s), every step checked for a non-finite state.
 /// @throws rigid::Error on a non-positive h_max, unordered or non-finite output times, a
 /// non-finite initial state, a diverging state (naming the component and t), a load that
-/// returns a non-finite wrench; rigid::Cancelled from `control`.
+/// returns a non-finite wrench, a free rotation by an implicit `free_method` that does not
+/// converge (step_free_body; a step's error has "at step N from t = … s: " in front);
+/// rigid::Cancelled from `control`.
 [[nodiscard]] RigidBodyTrajectory simulate_rigid_body(
     const RigidBody& body, RigidBodyMethod method, const RigidBodyState& initial, double h_max,
     const std::vector<double>& output_times, FreeBodyMethod free_method = FreeBodyMethod::kSplitting2,

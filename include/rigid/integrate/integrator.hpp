@@ -64,8 +64,10 @@ struct Options {
   double rtol = 1e-10;       ///< dopri5 relative tolerance, ≥ kMinRelativeTolerance
   double atol = 1e-10;       ///< dopri5 absolute tolerance, > 0
   double output_dt = 0.0;    ///< spacing of output samples; 0: every step (and t_end)
-  int max_newton = 30;       ///< implicit midpoint: Newton iterations per step
-  double newton_tol = 1e-14; ///< implicit midpoint: relative correction at convergence
+  int max_newton = 30;       ///< implicit midpoint: Newton iterations per try (≥ 1)
+  /// implicit midpoint: converged when the Newton correction h |δk|∞ is at most
+  /// newton_tol · max(1, |y0|∞), or stalled (not decreasing) within 1e3 times that; > 0
+  double newton_tol = 1e-14;
   std::size_t max_steps = 500'000'000;
   /// Progress reports and cancellation (polled after every output and every
   /// MarchControl::kPollSteps steps; every step of dopri5).
@@ -82,10 +84,13 @@ struct Solution {
 
 /// Integrates `problem` with `options`. Every step is checked for a non-finite state.
 /// @throws rigid::Error for bad options (non-positive dt, t_end ≤ t0, a dopri5 rtol below
-///         kMinRelativeTolerance, ...), a dopri5 step that underflows (kStepFloor) or fails
-///         to be accepted, more than control.max_outputs rows of dopri5 every-step output, a non-finite
-///         state (naming the step, t and the component), a diverging Newton iteration, or
-///         whatever the right-hand side throws; rigid::Cancelled from options.control.
+///         kMinRelativeTolerance, max_newton < 1 or newton_tol ≤ 0 for the implicit midpoint, ...),
+///         a dopri5 step that underflows (kStepFloor) or fails to be accepted, more than
+///         control.max_outputs rows of dopri5 every-step output, a non-finite state (naming the
+///         step, t and the component), an implicit-midpoint step whose Newton iteration does not
+///         converge (naming h, the residual of the implicit equation and the tolerance), or
+///         whatever the right-hand side throws (an error of a fixed step has "at step N from t = …
+///         s: " in front, see rigid::integrate::march); rigid::Cancelled from options.control.
 [[nodiscard]] Solution integrate(const Problem& problem, const Options& options);
 
 }  // namespace rigid::integrate

@@ -8,6 +8,9 @@
 ///    equal steps no longer than h_max,
 ///  - the finiteness check of every state component after every step (the error names the
 ///    body or system, the component, the step and t),
+///  - where a step that fails is: an error thrown by a step (an implicit solve that does not
+///    converge, a load that returns a non-finite wrench) is rethrown with the step and its
+///    start time in front, so that no stepping code has to know them,
 ///  - progress reports and cancellation (`MarchControl`).
 /// Adaptive methods (dopri5) choose their own steps but share the output times, the check
 /// and the control.
@@ -121,6 +124,10 @@ struct MarchStats {
 /// <component> = <value>; the motion diverged: reduce the step (h = … s) or check the model".
 [[noreturn]] void throw_nonfinite(const NonFinite& bad, std::size_t step, double t, double h);
 
+/// Rethrows the error `e` that step number `step` (counted from 1) starting at time t threw,
+/// with the place in front: "at step N from t = … s: <e.what()>".
+[[noreturn]] void throw_in_step(const Error& e, std::size_t step, double t);
+
 /// Polls `control` at time t: calls progress, and throws rigid::Cancelled when the cancel
 /// flag is set ("cancelled at t = … s").
 void poll(const MarchControl& control, double t);
@@ -143,8 +150,10 @@ void poll(const MarchControl& control, double t);
 /// Steps between outputs follow TimeGrid::steps_in; the time inside an interval is
 /// before(k) + j·h. Returns the number of steps.
 /// @throws rigid::Error for a non-positive or non-finite h_max, a step count above
-/// control.max_steps, a non-finite state (throw_nonfinite), whatever `step` or `observe`
-/// throws, and rigid::Cancelled from `control`.
+/// control.max_steps, a non-finite state (throw_nonfinite), whatever `observe` throws, a
+/// rigid::Error that `step` throws with "at step N from t = … s: " in front (throw_in_step;
+/// anything else `step` throws, rigid::Cancelled included, passes unchanged), and
+/// rigid::Cancelled from `control`.
 template <typename Step, typename FindNonFinite, typename Observe>
 MarchStats march(const TimeGrid& grid, double h_max, Step&& step, FindNonFinite&& find_nonfinite,
                  Observe&& observe, const MarchControl& control = {}) {
@@ -158,7 +167,13 @@ MarchStats march(const TimeGrid& grid, double h_max, Step&& step, FindNonFinite&
     const double h = n > 0 ? (t1 - t0) / static_cast<double>(n) : 0.0;
     for (std::size_t j = 0; j < n; ++j) {
       const double t = t0 + static_cast<double>(j) * h;
-      step(t, h);
+      try {
+        step(t, h);
+      } catch (const Cancelled&) {
+        throw;
+      } catch (const Error& e) {
+        throw_in_step(e, stats.steps + 1, t);  // the place, once for every stepping client
+      }
       ++stats.steps;
       if (auto bad = find_nonfinite()) [[unlikely]] {
         throw_nonfinite(*bad, stats.steps, j + 1 == n ? t1 : t + h, h);

@@ -49,8 +49,10 @@ struct MidpointOptions {
 /// One implicit-midpoint step (Newton on the 3N stage positions with the exact stiffness
 /// matrix): A-stable, so h is not limited by √(m/k); keeps the linear and angular momentum of
 /// the network exactly (they are linear/quadratic invariants) up to the Newton tolerance.
-/// @throws rigid::Error if Newton does not converge (the message gives the last correction,
-/// the tolerance and h) or the iteration turns non-finite; the network is left unchanged.
+/// @throws rigid::Error if Newton does not converge (the message gives h, the last correction,
+/// the tolerance and the residual of the implicit equation at the last iterate) or the
+/// iteration turns non-finite; the network is left unchanged. simulate_network's march puts
+/// the step number and t in front.
 void step_implicit_midpoint(Network& net, double h, const MidpointOptions& options = {});
 
 /// Total energy (J): kinetic + spring potential.
