@@ -46,7 +46,7 @@ test-tsan: deps
 	cmake --preset tsan >/dev/null
 	cmake --build --preset tsan --target rigid_lagrange_tests rigid_scene_tests
 	TSAN_OPTIONS=halt_on_error=1 build/tsan/bin/rigid_lagrange_tests --gtest_brief=1 --gtest_filter='Workspace.*'
-	TSAN_OPTIONS=halt_on_error=1 build/tsan/bin/rigid_scene_tests --gtest_brief=1 --gtest_filter='ModelThreads.*:SweepRun.*'
+	TSAN_OPTIONS=halt_on_error=1 build/tsan/bin/rigid_scene_tests --gtest_brief=1 --gtest_filter='ModelThreads.*:SweepRun.*:SymbolicThreads.*'
 
 asan: test-asan
 

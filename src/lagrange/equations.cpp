@@ -12,6 +12,7 @@
 
 #include "detail/canonical.hpp"
 #include "detail/symbolic.hpp"
+#include "detail/symbolic_lock.hpp"
 #include "detail/system_impl.hpp"
 #include "rigid/lagrange/system.hpp"
 
@@ -35,10 +36,8 @@ bool in_angle(const ex& e, const symbol& x) {
   return false;
 }
 
-}  // namespace
-
-Equations System::equations() const {
-  const Impl& s = *impl_;
+// The equations printed from the derived expressions (GiNaC; the caller holds the lock).
+Equations print_equations(const System::Impl& s) {
   const auto n = static_cast<std::size_t>(s.n);
   const std::size_t m = s.g.size();
   SymbolOrder order;
@@ -184,6 +183,17 @@ Equations System::equations() const {
   }
   eq.energy_text = eq.jacobi_integral.text;
   eq.cyclic = s.cyclic_names;
+  return eq;
+}
+
+}  // namespace
+
+Equations System::equations() const {
+  detail::SymbolicLock lock;
+  if (!impl_->equations) impl_->equations = print_equations(*impl_);
+  Equations eq = *impl_->equations;
+  // the parameters' current values (set_parameter may have changed them since)
+  for (std::size_t k = 0; k < eq.parameters.size(); ++k) eq.parameters[k].value = impl_->param_values[k];
   return eq;
 }
 

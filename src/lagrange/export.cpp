@@ -17,6 +17,7 @@
 
 #include "rigid/common/did_you_mean.hpp"
 #include "rigid/common/error.hpp"
+#include "detail/symbolic_lock.hpp"
 #include "detail/system_impl.hpp"
 #include "detail/tape.hpp"
 
@@ -423,6 +424,7 @@ const System::Impl& exportable(const System& system) {
 }  // namespace
 
 std::string emit_cpp(const System& system, const ExportOptions& options) {
+  detail::SymbolicLock lock;  // the functions' tapes are compiled from the expressions
   const System::Impl& s = exportable(system);
   const std::vector<std::string> params = identifiers(s.param_names, false);
   const std::string ns = namespace_name(options.name);
@@ -471,6 +473,7 @@ std::string emit_cpp(const System& system, const ExportOptions& options) {
 }
 
 std::string emit_python(const System& system, const ExportOptions& options) {
+  detail::SymbolicLock lock;  // the functions' tapes are compiled from the expressions
   const System::Impl& s = exportable(system);
   const std::vector<std::string> params = identifiers(s.param_names, true);
   std::string out = header_comment(s, options, "#");

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <ginac/ginac.h>
 
+#include "detail/symbolic_lock.hpp"
 #include "detail/parser.hpp"
 #include "detail/symbolic.hpp"
 #include "rigid/lagrange/system.hpp"
@@ -15,6 +16,7 @@ namespace rigid::lagrange {
 
 std::vector<std::string> free_body_equations(const std::vector<Parameter>& parameters,
                                              const FreeBodyEquationsSpec& body, bool latex) {
+  detail::SymbolicLock lock;
   using GiNaC::ex;
   using GiNaC::symbol;
   std::map<std::string, ex> names;

@@ -20,6 +20,7 @@
 #include "rigid/common/did_you_mean.hpp"
 #include "rigid/common/error.hpp"
 #include "rigid/common/wording.hpp"
+#include "detail/symbolic_lock.hpp"
 #include "detail/symbolic.hpp"
 #include "detail/system_impl.hpp"
 #include "detail/tape.hpp"
@@ -283,6 +284,8 @@ const char* to_string(Stability stability) {
 }
 
 NormalModes normal_modes(const System& system, const LinearizeOptions& options) {
+  // the derivatives of M and f are taken and compiled here (GiNaC)
+  detail::SymbolicLock lock;
   // the System's compiled model, through a workspace's owner (the System stays immutable)
   Workspace workspace = system.make_workspace();
   const Impl& s = *Workspace::Access::impl(workspace)->owner;

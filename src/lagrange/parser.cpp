@@ -1,9 +1,12 @@
 #include "detail/parser.hpp"
+#include "detail/symbolic.hpp"
+#include "detail/symbolic_lock.hpp"
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <new>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string_view>
@@ -361,13 +364,55 @@ GiNaC::ex parse_expression(const Expression& expression,
 
 namespace rigid::lagrange {
 
+namespace {
+
+// The value of an expression that is a parameter's name alone or negated (`L`, ` -g `), without
+// a parse and without the symbolic core: what a sweep's run evaluates most, lock-free. GiNaC
+// gives the same double: a parameter enters it as the floating-point number it holds, and
+// negating a double is exact (zeros and subnormals are left to GiNaC: the sign of a zero, the
+// underflow CLN reports). The last parameter of a
+// name is the one a parse sees. Anything else (an unknown name, a non-finite value, any other
+// expression) returns nothing and takes the general path, with its messages.
+std::optional<double> value_of_name(std::string_view text, const std::vector<Parameter>& parameters) {
+  const auto first = text.find_first_not_of(" \t");
+  if (first == std::string_view::npos) return std::nullopt;
+  const auto last = text.find_last_not_of(" \t");
+  text = text.substr(first, last - first + 1);
+  const bool negated = text.front() == '-';
+  if (negated) text.remove_prefix(1);
+  if (text.empty() || !(std::isalpha(static_cast<unsigned char>(text.front())) || text.front() == '_')) {
+    return std::nullopt;
+  }
+  for (char c : text) {
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_')) return std::nullopt;
+  }
+  if (detail::reserved_names().count(std::string(text)) > 0) return std::nullopt;  // pi, sin, …
+  for (auto p = parameters.rbegin(); p != parameters.rend(); ++p) {
+    if (p->name != text) continue;
+    if (!std::isnormal(p->value)) return std::nullopt;  // 0, subnormal, inf, NaN: GiNaC's way
+    return negated ? -p->value : p->value;
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
 double evaluate_constant(const Expression& expression, const std::vector<Parameter>& parameters,
                          std::string_view context) {
+  if (const auto v = value_of_name(expression.text, parameters)) return *v;
+  detail::SymbolicLock lock;
   if (expression.text.find_first_not_of(" \t") == std::string::npos) {
     detail::throw_at(expression, 0, context, "empty expression; expected a number, a name or '('");
   }
   std::map<std::string, GiNaC::ex> names;
-  for (const Parameter& p : parameters) names[p.name] = GiNaC::numeric(p.value);
+  for (const Parameter& p : parameters) {
+    try {
+      names[p.name] = GiNaC::numeric(p.value);
+    } catch (const std::exception& e) {  // a subnormal value: CLN's floats stop at 2.2e-308
+      detail::throw_at(expression, 0, context,
+                       fmt::format("parameter '{}' = {:.17g} {}", p.name, p.value, detail::reason_of_library_failure(e)));
+    }
+  }
   const GiNaC::ex parsed = detail::parse_expression(expression, names, context);
   GiNaC::ex value;
   try {

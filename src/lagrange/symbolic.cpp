@@ -1,8 +1,14 @@
 #include "detail/symbolic.hpp"
+#include "detail/symbolic_lock.hpp"
+#include "rigid/lagrange/symbolic_core.hpp"
 
 #include "detail/canonical.hpp"
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <mutex>
 #include <cctype>
 #include <cmath>
 #include <sstream>
@@ -201,4 +207,41 @@ Mat3 rodrigues(const Eigen::Vector3d& a, const ex& theta) {
 }
 
 
+namespace {
+
+std::recursive_mutex g_symbolic_mutex;
+thread_local int t_symbolic_depth = 0;  // this thread's nested entries
+std::atomic<std::uint64_t> g_symbolic_entries{0};
+std::atomic<std::int64_t> g_symbolic_nanoseconds{0};
+
+}  // namespace
+
+SymbolicLock::SymbolicLock() {
+  g_symbolic_mutex.lock();
+  if (t_symbolic_depth++ == 0) {
+    outermost_ = true;
+    since_ = std::chrono::steady_clock::now();
+  }
+}
+
+SymbolicLock::~SymbolicLock() {
+  if (outermost_) {
+    const auto held = std::chrono::steady_clock::now() - since_;
+    g_symbolic_nanoseconds.fetch_add(std::chrono::duration_cast<std::chrono::nanoseconds>(held).count(),
+                                     std::memory_order_relaxed);
+    g_symbolic_entries.fetch_add(1, std::memory_order_relaxed);
+  }
+  --t_symbolic_depth;
+  g_symbolic_mutex.unlock();
+}
+
 }  // namespace rigid::lagrange::detail
+
+namespace rigid::lagrange {
+
+SymbolicCoreUsage symbolic_core_usage() {
+  return {detail::g_symbolic_entries.load(std::memory_order_relaxed),
+          1e-9 * static_cast<double>(detail::g_symbolic_nanoseconds.load(std::memory_order_relaxed))};
+}
+
+}  // namespace rigid::lagrange

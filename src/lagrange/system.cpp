@@ -12,6 +12,7 @@
 #include "rigid/common/format.hpp"
 #include "detail/parser.hpp"
 #include "detail/symbolic.hpp"
+#include "detail/symbolic_lock.hpp"
 #include "detail/system_impl.hpp"
 #include "detail/tape.hpp"
 #include "detail/velocity_constraints.hpp"
@@ -83,11 +84,13 @@ std::string System::Impl::state_text(double time, const Eigen::VectorXd& qv) con
   return s + ")";
 }
 
-System::System(const SystemSpec& spec) : impl_(std::make_unique<Impl>()) {
-  Impl& s = *impl_;
+namespace {
+
+// Parses, assembles, derives and compiles `spec` into `s` (under the symbolic lock).
+void derive(System::Impl& s, const SystemSpec& spec) {
   s.n = static_cast<int>(spec.coordinates.size());
   s.m = static_cast<int>(spec.constraints.size());
-  RIGID_REQUIRE(s.n > 0, "a system needs at least one coordinate, got none");
+  RIGID_REQUIRE_AS("System", s.n > 0, "a system needs at least one coordinate, got none");
 
   // symbol table, with every name checked once
   std::map<std::string, ex> names;
@@ -103,7 +106,7 @@ System::System(const SystemSpec& spec) : impl_(std::make_unique<Impl>()) {
     names[name] = value;
   };
   for (const Parameter& p : spec.parameters) {
-    RIGID_REQUIRE(std::isfinite(p.value), "parameter '{}' must be finite, got {}", p.name, p.value);
+    RIGID_REQUIRE_AS("System", std::isfinite(p.value), "parameter '{}' must be finite, got {}", p.name, p.value);
     s.params.emplace_back(p.name, tex_name(p.name));
     s.param_names.push_back(p.name);
     s.param_values.push_back(p.value);
@@ -113,7 +116,7 @@ System::System(const SystemSpec& spec) : impl_(std::make_unique<Impl>()) {
   s.qd0.resize(s.n);
   for (int i = 0; i < s.n; ++i) {
     const Coordinate& c = spec.coordinates[static_cast<std::size_t>(i)];
-    RIGID_REQUIRE(std::isfinite(c.initial) && std::isfinite(c.velocity),
+    RIGID_REQUIRE_AS("System", std::isfinite(c.initial) && std::isfinite(c.velocity),
                   "coordinate '{}': initial value {} and velocity {} must be finite", c.name,
                   c.initial, c.velocity);
     s.coord_names.push_back(c.name);
@@ -181,7 +184,7 @@ System::System(const SystemSpec& spec) : impl_(std::make_unique<Impl>()) {
   std::vector<ex> pose_outputs;                         // per body: p_WB (3), R_WB row-major (9)
   for (const Body& b : spec.bodies) {
     const std::string ctx = fmt::format("body '{}'", b.name);
-    RIGID_REQUIRE(b.name.empty() || !poses.count(b.name), "body name '{}' is used twice",
+    RIGID_REQUIRE_AS("System", b.name.empty() || !poses.count(b.name), "body name '{}' is used twice",
                   b.name);
     Vec3 p;
     // an empty position component means 0
@@ -195,7 +198,7 @@ System::System(const SystemSpec& spec) : impl_(std::make_unique<Impl>()) {
     for (std::size_t j = 0; j < b.rotations.size(); ++j) {
       const AxisRotation& r = b.rotations[j];
       const double norm = r.axis.norm();
-      RIGID_REQUIRE(std::isfinite(norm) && norm > 0, "{} rotation {}: the axis must be a "
+      RIGID_REQUIRE_AS("System", std::isfinite(norm) && norm > 0, "{} rotation {}: the axis must be a "
                     "non-zero finite vector, got ({}, {}, {})", ctx, j, r.axis.x(), r.axis.y(),
                     r.axis.z());
       const Eigen::Vector3d a = r.axis / norm;
@@ -258,7 +261,7 @@ System::System(const SystemSpec& spec) : impl_(std::make_unique<Impl>()) {
   };
   for (std::size_t j = 0; j < spec.springs.size(); ++j) {
     const Spring& sp = spec.springs[j];
-    RIGID_REQUIRE(!sp.body_a.empty(), "spring {}: body_a must name a body", j);
+    RIGID_REQUIRE_AS("System", !sp.body_a.empty(), "spring {}: body_a must name a body", j);
     const Vec3 a = world_point(sp.body_a, sp.point_a_B, j, "body_a");
     const Vec3 b = world_point(sp.body_b, sp.point_b_B, j, "body_b");
     const ex k = parse(sp.stiffness, fmt::format("spring {} stiffness", j), false);
@@ -296,7 +299,7 @@ System::System(const SystemSpec& spec) : impl_(std::make_unique<Impl>()) {
     if (it == s.coord_names.end()) {
       std::string known;
       for (const auto& c : s.coord_names) known += (known.empty() ? "" : ", ") + c;
-      RIGID_THROW("force on '{}': no coordinate of that name; coordinates: {}", F.name, known);
+      rigid::detail::throw_error("System", fmt::format("force on '{}': no coordinate of that name; coordinates: {}", F.name, known));
     }
     const auto i = static_cast<std::size_t>(it - s.coord_names.begin());
     Q[i] += parse(F.expression, fmt::format("force on '{}'", F.name), true);
@@ -313,9 +316,9 @@ System::System(const SystemSpec& spec) : impl_(std::make_unique<Impl>()) {
   for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t j = 0; j < n; ++j) s.M[i * n + j] = d(s.p[i], s.qd[j]);
     if (s.M[i * n + i].expand().is_zero()) {
-      RIGID_THROW("the Lagrangian is not quadratic in the velocity '{}_dot' (∂²L/∂{}_dot² ≡ 0), "
+      rigid::detail::throw_error("System", fmt::format("the Lagrangian is not quadratic in the velocity '{}_dot' (∂²L/∂{}_dot² ≡ 0), "
                   "so the mass matrix is singular; L = {}", s.coord_names[i], s.coord_names[i],
-                  to_text(s.L));
+                  to_text(s.L)));
     }
     ex fi = d(s.L, s.q[i]) - d(s.p[i], s.t) + Q[i];
     for (std::size_t j = 0; j < n; ++j) fi -= d(s.p[i], s.q[j]) * s.qd[j];
@@ -328,8 +331,8 @@ System::System(const SystemSpec& spec) : impl_(std::make_unique<Impl>()) {
   // constraints: G = ∂g/∂q, ġ = G q̇ + ∂g/∂t, γ = −(∂ġ/∂q q̇ + ∂ġ/∂t)
   std::vector<bool> constrained(n, false);
   for (const NamedExpression& con : spec.constraints) {
-    RIGID_REQUIRE(is_identifier(con.name), "constraint name '{}' is not a valid name", con.name);
-    RIGID_REQUIRE(std::find(s.constraint_names.begin(), s.constraint_names.end(), con.name) ==
+    RIGID_REQUIRE_AS("System", is_identifier(con.name), "constraint name '{}' is not a valid name", con.name);
+    RIGID_REQUIRE_AS("System", std::find(s.constraint_names.begin(), s.constraint_names.end(), con.name) ==
                       s.constraint_names.end(),
                   "constraint name '{}' is used twice", con.name);
     const ex gk = parse(con.expression, fmt::format("constraint '{}'", con.name), false).expand();
@@ -339,7 +342,7 @@ System::System(const SystemSpec& spec) : impl_(std::make_unique<Impl>()) {
       s.G.push_back(Gki);
       if (!Gki.is_zero()) depends = constrained[i] = true;
     }
-    RIGID_REQUIRE(depends, "constraint '{}' = {} does not depend on any coordinate; it is either "
+    RIGID_REQUIRE_AS("System", depends, "constraint '{}' = {} does not depend on any coordinate; it is either "
                   "always or never satisfied", con.name, to_text(gk));
     const ex ck = dt(gk).expand();
     ex gamma = -d(ck, s.t);
@@ -403,9 +406,28 @@ System::System(const SystemSpec& spec) : impl_(std::make_unique<Impl>()) {
   s.check_masses(s.param_values, "for the parameters' values");
 }
 
-System::~System() = default;
+}  // namespace
+
+System::System(const SystemSpec& spec) {
+  detail::SymbolicLock lock;
+  // built aside, so that a throw destroys the partial expressions while the lock is held
+  auto impl = std::make_unique<Impl>();
+  derive(*impl, spec);
+  impl_ = std::move(impl);
+}
+
+// The expressions of a System are destroyed under the symbolic lock (their nodes are shared
+// with every other expression of the process).
+System::~System() {
+  detail::SymbolicLock lock;
+  impl_.reset();
+}
 System::System(System&&) noexcept = default;
-System& System::operator=(System&&) noexcept = default;
+System& System::operator=(System&& other) noexcept {
+  detail::SymbolicLock lock;
+  impl_ = std::move(other.impl_);
+  return *this;
+}
 
 int System::num_coordinates() const { return impl_->n; }
 int System::num_constraints() const { return impl_->m; }

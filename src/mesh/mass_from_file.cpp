@@ -9,27 +9,31 @@
 
 namespace rigid::mesh {
 
+PreparedMesh prepare_mesh_file(const std::string& path, double scale, const RepairOptions& options,
+                               bool fill) {
+  detail::ReadResult read = detail::read_mesh(path, scale);
+  RepairReport first = detail::repair_mesh(read.mesh, options, read.vertices_distinct);
+  if (!fill || first.boundary_edges == 0) {
+    return {std::move(read.mesh), std::move(first), std::nullopt, std::nullopt};
+  }
+  HoleFillReport filled = fill_holes(read.mesh);
+  RepairReport after = repair_mesh(read.mesh, options);
+  return {std::move(read.mesh), std::move(after), std::move(filled), std::move(first)};
+}
+
+MeshFileMass measure_prepared_mesh(const PreparedMesh& prepared, const MassSpec& spec) {
+  MeshMassResult mass = mesh_mass_properties(prepared.mesh, spec, prepared.repair);
+  return {prepared.repair, prepared.filled, prepared.before_fill, std::move(mass)};
+}
+
 MeshFileMass mesh_mass_from_file(const std::string& path, double scale, const MassSpec& spec,
                                  const RepairOptions& options) {
-  detail::ReadResult read = detail::read_mesh(path, scale);
-  RepairReport report = detail::repair_mesh(read.mesh, options, read.vertices_distinct);
-  MeshMassResult mass = mesh_mass_properties(read.mesh, spec, report);
-  return {std::move(report), std::nullopt, std::nullopt, std::move(mass)};
+  return measure_prepared_mesh(prepare_mesh_file(path, scale, options, false), spec);
 }
 
 MeshFileMass mesh_mass_from_file(const std::string& path, double scale, const MassSpec& spec,
                                  const RepairOptions& options, bool fill) {
-  if (!fill) return mesh_mass_from_file(path, scale, spec, options);
-  detail::ReadResult read = detail::read_mesh(path, scale);
-  RepairReport first = detail::repair_mesh(read.mesh, options, read.vertices_distinct);
-  if (first.boundary_edges == 0) {
-    MeshMassResult mass = mesh_mass_properties(read.mesh, spec, first);
-    return {std::move(first), std::nullopt, std::nullopt, std::move(mass)};
-  }
-  HoleFillReport filled = fill_holes(read.mesh);
-  RepairReport after = repair_mesh(read.mesh, options);
-  MeshMassResult mass = mesh_mass_properties(read.mesh, spec, after);
-  return {std::move(after), std::move(filled), std::move(first), std::move(mass)};
+  return measure_prepared_mesh(prepare_mesh_file(path, scale, options, fill), spec);
 }
 
 std::vector<std::string> MeshFileMass::warnings() const {

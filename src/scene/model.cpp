@@ -106,8 +106,14 @@ lagrange::BodyMass named_constants(const std::string& body, const MassProperties
   return b;
 }
 
+// A mesh body's file as read and repaired; null for other bodies. A model built like another
+// (a sweep's run) takes the other's when file, units and hole filling are the same, so a sweep
+// reads each mesh file once and only measures it again for its run's mass or density.
+using SharedMesh = std::shared_ptr<const mesh::PreparedMesh>;
+
 BodyMass mass_of(const Body& b, const std::vector<lagrange::Parameter>& params,
-                 std::vector<lagrange::Parameter>& derived, std::vector<std::string>& warnings) {
+                 std::vector<lagrange::Parameter>& derived, std::vector<std::string>& warnings,
+                 SharedMesh& prepared) {
   const MassSpec& m = b.mass;
   const std::string ctx = fmt::format("body '{}'", b.name);
   switch (m.kind) {
@@ -145,8 +151,11 @@ BodyMass mass_of(const Body& b, const std::vector<lagrange::Parameter>& params,
       spec.shell = m.shell;
       if (m.thickness) spec.thickness = value_of(*m.thickness, params, ctx + " thickness");
       MassProperties numeric = at_location(m.where, ctx, [&] {
-        const mesh::MeshFileMass r =
-            mesh::mesh_mass_from_file(m.mesh_file.string(), mesh::unit_scale(m.units), spec, {}, m.fill_holes);
+        if (!prepared) {
+          prepared = std::make_shared<const mesh::PreparedMesh>(
+              mesh::prepare_mesh_file(m.mesh_file.string(), mesh::unit_scale(m.units), {}, m.fill_holes));
+        }
+        const mesh::MeshFileMass r = mesh::measure_prepared_mesh(*prepared, spec);
         for (const auto& w : r.warnings()) warnings.push_back(fmt::format("{}: {}", ctx, word_for(Surface::kScene, w)));
         return r.mass.properties;
       });
@@ -268,6 +277,7 @@ struct Model::Impl {
   std::vector<lagrange::Parameter> params;   // the scene's, then the derived constants
   std::size_t scene_params = 0;              // how many of params the scene wrote
   std::vector<ModelBody> bodies;
+  std::vector<SharedMesh> meshes;  // per body: its mesh as read (null for other bodies)
   std::vector<std::string> warnings;
   Eigen::Vector3d gravity = Eigen::Vector3d::Zero();
   // simulation settings (validated)
@@ -609,8 +619,19 @@ Model::Model(const Scene& scene, const Model* like) : impl_(std::make_unique<Imp
   m.gravity = vector_of(scene.gravity, m.params, "gravity");
   std::vector<lagrange::Parameter> derived;
   std::vector<lagrange::BodyMass> masses;
-  for (const Body& b : scene.bodies) {
-    BodyMass bm = mass_of(b, m.params, derived, m.warnings);
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    const Body& b = scene.bodies[i];
+    SharedMesh prepared;
+    if (like != nullptr && b.mass.kind == MassSpec::Kind::kMesh && i < like->impl_->meshes.size() &&
+        like->impl_->meshes[i]) {
+      const MassSpec& other = like->impl_->scene.bodies[i].mass;
+      if (other.kind == MassSpec::Kind::kMesh && other.mesh_file == b.mass.mesh_file &&
+          other.units == b.mass.units && other.fill_holes == b.mass.fill_holes) {
+        prepared = like->impl_->meshes[i];
+      }
+    }
+    BodyMass bm = mass_of(b, m.params, derived, m.warnings, prepared);
+    m.meshes.push_back(std::move(prepared));
     m.bodies.push_back({b.name, bm.numeric, b.free, bm.sizes});
     masses.push_back(std::move(bm.symbolic));
   }

@@ -178,10 +178,6 @@ void write_all(int fd, std::string_view bytes, const fs::path& path) {
   }
 }
 
-// GiNaC (the symbolic derivation inside a Model's construction, and the expressions a Model
-// holds) is not thread-safe: models are built and destroyed under this lock; runs are not.
-std::mutex g_symbolic;
-
 }  // namespace
 
 GridAxis parse_grid_axis(std::string_view text) {
@@ -502,13 +498,13 @@ std::vector<SweepRow> run_sweep(const SweepIdentity& id, std::span<const std::si
 
   // The scene is read once; a run is that scene with its overrides. The overrides change values
   // only (apply_overrides), so a coordinate scene's equations are derived once, before the runs,
-  // for the slice's first run, and every run's model shares them (Model(scene, like)): no run
-  // pays for the derivation. When that first model cannot be built (its values are refused),
-  // each run builds its own and records its own error, as without the prototype.
+  // for the slice's first run, and every run's model shares them (Model(scene, like)), as it
+  // shares every mesh file as read: no run pays for the derivation or reads a mesh. When that
+  // first model cannot be built (its values are refused), each run builds its own and records
+  // its own error, as without the prototype.
   const Scene base = load_scene(id.scene);
   std::shared_ptr<const Model> prototype;
-  if (!base.is_free_body_scene() && !indices.empty()) {
-    std::lock_guard lock(g_symbolic);
+  if (!indices.empty()) {
     try {
       Scene first = base;
       apply_overrides(first, overrides_of(run_values(id.spec, indices.front())));
@@ -517,15 +513,6 @@ std::vector<SweepRow> run_sweep(const SweepIdentity& id, std::span<const std::si
       prototype.reset();
     }
   }
-  // the prototype's GiNaC expressions are released under the lock too, however this returns
-  struct ReleaseUnderLock {
-    std::shared_ptr<const Model>& model;
-    ~ReleaseUnderLock() {
-      std::lock_guard lock(g_symbolic);
-      model.reset();
-    }
-  } release_prototype{prototype};
-
   auto one_run = [&](std::size_t slot) {
     SweepRow& row = rows[slot];
     row.index = indices[slot];
@@ -533,7 +520,6 @@ std::vector<SweepRow> run_sweep(const SweepIdentity& id, std::span<const std::si
     std::optional<Model> model;
     try {
       {
-        std::lock_guard lock(g_symbolic);
         Scene scene = base;
         apply_overrides(scene, overrides_of(row.values));
         if (prototype) {
@@ -553,8 +539,6 @@ std::vector<SweepRow> run_sweep(const SweepIdentity& id, std::span<const std::si
         (void)io::write_run(options.keep_trajectories / fmt::format("{:05}", row.index), result, formats);
       }
     } catch (const Cancelled&) {
-      std::lock_guard lock(g_symbolic);
-      model.reset();
       throw;
     } catch (const Error& e) {
       row.results.clear();
@@ -566,10 +550,7 @@ std::vector<SweepRow> run_sweep(const SweepIdentity& id, std::span<const std::si
       row.results.clear();
       row.error = "out of memory: the run needs more memory than is available; lower its trajectory's size";
     }
-    {
-      std::lock_guard lock(g_symbolic);
-      model.reset();
-    }
+    model.reset();
     std::lock_guard lock(report);
     if (options.on_row) options.on_row(row);
   };

@@ -1,7 +1,9 @@
 // The expression parser at its limits: nesting, length, powers of numbers, and the failures of
 // GiNaC/CLN, each refused with its position and without the library's own text.
 #include <chrono>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -9,6 +11,7 @@
 
 #include "support/tolerance.hpp"
 
+#include "rigid/lagrange/symbolic_core.hpp"
 #include "rigid/lagrange/system.hpp"
 #include "support/expect_error.hpp"
 
@@ -119,6 +122,28 @@ TEST(Parser, LibraryFailuresAreWordedWithTheirPosition) {
   for (const std::string& m : {log0, under, error_of("0^0"), error_of("9^9^9"), error_of("asin(2)")}) {
     expect_no_raw_text(m);
   }
+}
+
+// A name alone or negated is read without the symbolic core (what a sweep's run evaluates
+// most); it must give the very bits of the general path, which "(x)" and "-(x)" still take.
+TEST(EvaluateConstant, NamesAreReadWithoutTheSymbolicCoreAndExactlyAsParsed) {
+  for (double v : {1.0, -2.5, 0.1, 9.81, 2.3e-308, -1e308, 3.0e-5, 123456789.123}) {
+    const std::vector<Parameter> params{{"x", 7.0}, {"x", v}};  // the last of a name counts
+    const SymbolicCoreUsage before = symbolic_core_usage();
+    const double by_name = eval(" x ", params), negated = eval("-x", params);
+    EXPECT_EQ(symbolic_core_usage().entries, before.entries) << v;
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(by_name), std::bit_cast<std::uint64_t>(eval("(x)", params))) << v;
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(by_name), std::bit_cast<std::uint64_t>(v));
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(negated), std::bit_cast<std::uint64_t>(eval("-(x)", params))) << v;
+    (void)eval("x", params);
+    EXPECT_EQ(symbolic_core_usage().entries, before.entries + 2) << "only the two parenthesised forms";
+  }
+  // what is not a known, finite, nonzero name goes the general way, with its messages
+  EXPECT_DOUBLE_EQ(eval("pi"), M_PI);
+  EXPECT_EQ(eval("-x", {{"x", 0.0}}), 0.0);
+  EXPECT_EQ(error_of("x", {{"x", 1e-310}}), error_of("(x)", {{"x", 1e-310}}));  // a subnormal alike
+  EXPECT_NE(error_of("y", {{"x", 1.0}}).find("y"), std::string::npos);
+  EXPECT_NE(error_of("x", {{"x", INFINITY}}).find("parameter 'x' = inf overflows"), std::string::npos);
 }
 
 }  // namespace

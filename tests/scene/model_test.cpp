@@ -254,13 +254,10 @@ output_dt = 0.25
   EXPECT_NEAR(T(T.rows() - 1, T.column("energy")), T(0, T.column("energy")), 1e-9);
 }
 
-// A mesh body: a unit cube written as STL, whose inertia the mesh module computes, against
-// the box primitive.
-TEST(Model, MeshBodyFromAFileNextToTheScene) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "rigid_model_test";
-  std::filesystem::create_directories(dir);
+// A unit cube (in the file's units) as an ASCII STL.
+void write_cube_stl(const std::filesystem::path& file) {
   {
-    std::ofstream stl(dir / "cube.stl");
+    std::ofstream stl(file);
     const int f[12][3][3] = {
         {{0, 0, 0}, {0, 1, 0}, {1, 1, 0}}, {{0, 0, 0}, {1, 1, 0}, {1, 0, 0}},
         {{0, 0, 1}, {1, 0, 1}, {1, 1, 1}}, {{0, 0, 1}, {1, 1, 1}, {0, 1, 1}},
@@ -276,6 +273,14 @@ TEST(Model, MeshBodyFromAFileNextToTheScene) {
     }
     stl << "endsolid cube\n";
   }
+}
+
+// A mesh body: a unit cube written as STL, whose inertia the mesh module computes, against
+// the box primitive.
+TEST(Model, MeshBodyFromAFileNextToTheScene) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "rigid_model_test";
+  std::filesystem::create_directories(dir);
+  write_cube_stl(dir / "cube.stl");
   const Model m = model_of(R"toml(
 [[coordinates]]
 name = "x"
@@ -293,6 +298,44 @@ t_end = 1
   EXPECT_NEAR(m.bodies()[0].mass.mass(), box.mass(), 1e-15);
   EXPECT_TRUE(m.bodies()[0].mass.com().isApprox(Eigen::Vector3d::Constant(0.005), 1e-13));
   EXPECT_TRUE(m.bodies()[0].mass.inertia_com().isApprox(box.inertia_com(), 1e-12));
+  std::filesystem::remove_all(dir);
+}
+
+// A model built like another (a sweep's run) takes the other's mesh as read: with the file gone,
+// it still builds, for another density, the very numbers a model reading the file gives.
+TEST(Model, BuiltLikeAnotherReadsNoMeshFile) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "rigid_model_like_mesh";
+  std::filesystem::create_directories(dir);
+  write_cube_stl(dir / "cube.stl");
+  const Scene scene = parse_scene(R"toml(
+[parameters]
+rho = 1000
+[[bodies]]
+name = "cube"
+free = true
+mesh = "cube.stl"
+units = "cm"
+density = "rho"
+angular_velocity = [0.1, 2, 0.1]
+[simulation]
+t_end = 0.1
+)toml",
+                                  dir / "scene.toml");
+  const Model like(scene);
+  Scene denser = scene;
+  apply_overrides(denser, {"rho=2500"});
+  const Model read(denser);  // reads the file
+  std::filesystem::remove(dir / "cube.stl");
+  EXPECT_RIGID_ERROR((void)Model(denser), "cube.stl");
+  const Model shared(denser, like);
+  const MassProperties& a = shared.bodies()[0].mass;
+  const MassProperties& b = read.bodies()[0].mass;
+  EXPECT_EQ(a.mass(), b.mass());  // the same operations on the same mesh: bit for bit
+  EXPECT_EQ(a.com(), b.com());
+  EXPECT_EQ(a.inertia_com(), b.inertia_com());
+  // ρV against 2.5 (1000 V): two roundings apart at most
+  EXPECT_DOUBLE_EQ(a.mass(), 2.5 * like.bodies()[0].mass.mass());
+  EXPECT_EQ(shared.run().trajectory.data(), read.run().trajectory.data());
   std::filesystem::remove_all(dir);
 }
 

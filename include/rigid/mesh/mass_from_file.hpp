@@ -24,6 +24,28 @@ struct MeshFileMass {
   [[nodiscard]] std::vector<std::string> warnings() const;
 };
 
+/// A mesh file read and repaired (and, with fill_holes, filled) once, so that it can be measured
+/// for any number of MassSpecs without reading the file again (a sweep over a mesh body's
+/// density or mass). The mesh is what mesh_mass_from_file measures, bit for bit.
+struct PreparedMesh {
+  TriangleMesh mesh;     ///< after repair (and filling), in metres
+  RepairReport repair;   ///< of `mesh`
+  std::optional<HoleFillReport> filled;      ///< as MeshFileMass::filled
+  std::optional<RepairReport> before_fill;   ///< as MeshFileMass::before_fill
+};
+
+/// read_mesh(path, scale) and repair_mesh (then, with `fill_holes` and an open mesh,
+/// fill_holes and repair again): the first half of mesh_mass_from_file.
+/// @throws rigid::Error as read_mesh and fill_holes do.
+[[nodiscard]] PreparedMesh prepare_mesh_file(const std::string& path, double scale,
+                                             const RepairOptions& options = {},
+                                             bool fill_holes = false);
+
+/// The second half: the mass properties of a prepared mesh for `spec`, with its reports; the
+/// same result, bit for bit, as mesh_mass_from_file with the same arguments.
+/// @throws rigid::Error as mesh_mass_properties does.
+[[nodiscard]] MeshFileMass measure_prepared_mesh(const PreparedMesh& prepared, const MassSpec& spec);
+
 /// One line on what fill_holes did: holes, triangles added, patch areas.
 [[nodiscard]] std::string describe(const HoleFillReport& filled);
 

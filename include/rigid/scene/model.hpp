@@ -67,10 +67,12 @@ class Model {
   ///   whose rotation is undefined (a principal moment 0), an unknown integrator.
   explicit Model(const Scene& scene);
   /// A model of `scene` that shares the equations already derived for `like` instead of deriving
-  /// them again (what a sweep does for each run). `scene` must differ from like.scene() only in
-  /// what apply_overrides changes: parameter values, initial conditions, [simulation] settings,
-  /// a free body's initial state. Runs and check() use this model's values; system() is like's
-  /// System, whose own default values are like's.
+  /// them again, and every mesh file `like` read (same file, units and hole filling) instead of
+  /// reading it again: what a sweep does for each run. `scene` must differ from like.scene() only
+  /// in what apply_overrides changes: parameter values, initial conditions, [simulation]
+  /// settings, a free body's initial state. Runs and check() use this model's values (a mesh is
+  /// measured again for this model's mass or density, with the result mesh_mass_from_file
+  /// gives); system() is like's System, whose own default values are like's.
   /// @throws rigid::Error as Model(scene), and when the names of the parameters, coordinates or
   ///   bodies differ from like's.
   Model(const Scene& scene, const Model& like);

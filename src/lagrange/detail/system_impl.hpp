@@ -3,6 +3,7 @@
 // The compiled model behind rigid::lagrange::System (system.cpp derives it, evaluate.cpp
 // evaluates and simulates it) and the per-run scratch behind rigid::lagrange::Workspace.
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,9 @@ struct System::Impl {
   std::vector<GiNaC::symbol> mu;
   std::vector<GiNaC::ex> A, a, eta, cv;
   detail::Tape vel;
+  // the printed equations, made by the first equations() call (under the symbolic lock, which
+  // guards this cache too) and returned by every later one
+  mutable std::optional<Equations> equations;
 
   [[nodiscard]] std::size_t num_inputs() const {
     return static_cast<std::size_t>(2 * n + 1) + param_values.size();
