@@ -17,6 +17,9 @@
 
 #include <benchmark/benchmark.h>
 
+#include "mesh/mesh_builders.hpp"
+#include "rigid/lagrange/symbolic_core.hpp"
+#include "rigid/mesh/read_mesh.hpp"
 #include "rigid/scene/model.hpp"
 #include "rigid/scene/scene.hpp"
 #include "rigid/scene/sweep.hpp"
@@ -60,6 +63,28 @@ integrator = "dopri5"
 tolerance = 1e-10
 output_dt = 0.005
 )toml";
+
+// A free body whose shape is a 199,808-triangle UV sphere of radius 0.1 m in a binary STL
+// (written once), its density swept: each run measures the mesh for its density.
+constexpr const char* kMeshBody = R"toml(
+[parameters]
+rho = 1000
+[[bodies]]
+name = "ball"
+free = true
+mesh = "rigid_sweep_bench_sphere.stl"
+density = "rho"
+angular_velocity = [0.1, 2, 0.1]
+[simulation]
+t_end = 0.1
+dt = 0.01
+output_dt = 0.05
+)toml";
+
+void write_sphere_once() {
+  const auto file = std::filesystem::temp_directory_path() / "rigid_sweep_bench_sphere.stl";
+  if (!std::filesystem::exists(file)) rigid::mesh::write_stl_binary(rigid::test::uv_sphere(0.1, 224), file.string());
+}
 
 // The sweep of the scene `text` (written to a temporary file named after `name`) over `axis`.
 rigid::scene::SweepIdentity sweep_of(const std::string& name, const char* text, const char* axis) {
@@ -112,6 +137,41 @@ void BM_Sweep_modelRun(benchmark::State& st, const char* text) {
     benchmark::DoNotOptimize(result.trajectory.data().data());
   }
 }
+
+// The serial work per run of a sweep: the time the symbolic core's lock (the one lock a run could
+// wait for) was held, per run, beyond what the prototype (derivation, mesh read) took: a sweep of
+// `2·count` runs against one of `count`, on 2 threads. Counter "serial_us" (µs per run) and
+// "entries" (symbolic-core entries per run); the Amdahl bound at P cores is
+// 1 / (s + (1 − s)/P) with s = serial / (serial + parallel per run).
+void BM_Sweep_serialPerRun(benchmark::State& st, const char* name, const char* text, const char* axis) {
+  write_sphere_once();
+  const auto small = sweep_of(name, text, (std::string(axis) + "16").c_str());
+  const auto large = sweep_of(name, text, (std::string(axis) + "32").c_str());
+  double serial = 0.0, entries = 0.0, runs = 0.0;
+  for (auto _ : st) {
+    for (const auto* id : {&small, &large}) {
+      std::vector<std::size_t> all(rigid::scene::run_count(id->spec));
+      std::iota(all.begin(), all.end(), 0);
+      const auto before = rigid::lagrange::symbolic_core_usage();
+      const auto rows = rigid::scene::run_sweep(*id, all, {.threads = 2});
+      benchmark::DoNotOptimize(rows.data());
+      const auto after = rigid::lagrange::symbolic_core_usage();
+      const double sign = id == &small ? -1.0 : 1.0;
+      serial += sign * (after.seconds_held - before.seconds_held);
+      entries += sign * static_cast<double>(after.entries - before.entries);
+    }
+    runs += 16.0;
+  }
+  st.counters["serial_us"] = 1e6 * serial / runs;
+  st.counters["entries"] = entries / runs;
+}
+
+BENCHMARK_CAPTURE(BM_Sweep_serialPerRun, pendulum, "pendulums", kSmallPendulum, "L=0.5:2:")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Sweep_serialPerRun, racket, "rackets", kSmallRacket, "I2=1.95:2.05:")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Sweep_serialPerRun, mesh, "meshs", kMeshBody, "rho=900:1100:")->Unit(benchmark::kMillisecond);
+// A sweep of the mesh body: 8 runs on 1 and 2 threads (the file read once, by the prototype).
+BENCHMARK_CAPTURE(BM_Sweep_runs, mesh_x8, "mesh", kMeshBody, "rho=900:1100:8")
+    ->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);
 
 BENCHMARK_CAPTURE(BM_Sweep_runs, racket_10s_x32, "racket", kSmallRacket, "I2=1.95:2.05:32")
     ->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);

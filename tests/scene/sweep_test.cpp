@@ -15,6 +15,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "rigid/lagrange/symbolic_core.hpp"
 #include "support/expect_error.hpp"
 #include "support/scenes.hpp"
 
@@ -279,6 +280,32 @@ TEST(SweepRun, ACoordinateScenesRunsShareItsEquationsAndUseTheirOwnValues) {
       const double expected = -m * 9.81 * (L / 2) * std::cos(0.8);
       EXPECT_NEAR(e0, expected, 1e-12 * std::abs(expected)) << "L = " << L << ", m = " << m;
     }
+  }
+  fs::remove_all(dir);
+}
+
+// The serial work of a sweep's run, bounded: no run enters the symbolic core (the one lock of
+// the process), whatever the number of runs; only the prototype does (derivation, mesh-free
+// here). Counted, not timed: entries of a 2-run and of an 8-run sweep are the same.
+TEST(SweepRun, NoRunEntersTheSymbolicCore) {
+  const fs::path dir = temp_dir("serial");
+  std::ofstream(dir / "racket.toml") << kRacket;
+  std::ofstream(dir / "rod.toml") << test::kRodPendulum;
+  const std::vector<std::pair<fs::path, const char*>> cases{{dir / "racket.toml", "I2=2:2.5:"},
+                                                            {dir / "rod.toml", "L=0.5:2:"}};
+  for (const auto& [scene, axis] : cases) {
+    std::vector<std::uint64_t> entries;
+    for (int runs : {2, 8}) {
+      const SweepIdentity id{.scene = scene, .set = {"simulation.t_end=0.2"}, .integrator = "",
+                             .spec = {.grid = {parse_grid_axis(fmt::format("{}{}", axis, runs))}}};
+      std::vector<std::size_t> all(run_count(id.spec));
+      std::iota(all.begin(), all.end(), 0);
+      const std::uint64_t before = lagrange::symbolic_core_usage().entries;
+      const auto rows = run_sweep(id, all, {.threads = 2});
+      for (const SweepRow& row : rows) EXPECT_TRUE(row.error.empty()) << row.error;
+      entries.push_back(lagrange::symbolic_core_usage().entries - before);
+    }
+    EXPECT_EQ(entries[0], entries[1]) << scene;
   }
   fs::remove_all(dir);
 }

@@ -269,8 +269,9 @@ struct BodyPose {
 /// Scratch space for evaluating a System: inputs, outputs and factorizations of one run or one
 /// thread. A System is immutable once built (but for set_parameter); every evaluation writes
 /// only into a Workspace, so one System may be evaluated and simulated from several threads at
-/// once, each with its own Workspace. The symbolic side (equations(), construction) uses
-/// GiNaC, which is not thread-safe: call it from one thread at a time.
+/// once, each with its own Workspace. The symbolic side (construction, destruction, equations())
+/// uses GiNaC behind the library's one symbolic lock: it may be called from any thread, one
+/// call at a time (rigid/lagrange/symbolic_core.hpp counts them).
 class Workspace {
  public:
   Workspace(Workspace&&) noexcept;
@@ -352,7 +353,8 @@ class System {
   /// A workspace for evaluating this System (with its current parameter values).
   [[nodiscard]] Workspace make_workspace() const;
 
-  /// The equations for printing.
+  /// The equations for printing, made by the first call and kept (parameters with their
+  /// current values). Any thread may call it.
   [[nodiscard]] Equations equations() const;
 
   /// Evaluates M(q, t) (n × n) and f(q, q̇, t) + Q (n).
