@@ -209,7 +209,12 @@ Mat3 rodrigues(const Eigen::Vector3d& a, const ex& theta) {
 
 namespace {
 
-std::recursive_mutex g_symbolic_mutex;
+// made on first use and never destroyed: a System kept in a static (a test's, Python's at exit)
+// may be built before this file's statics or destroyed, under the lock, after them
+std::recursive_mutex& symbolic_mutex() {
+  static auto* mutex = new std::recursive_mutex;
+  return *mutex;
+}
 thread_local int t_symbolic_depth = 0;  // this thread's nested entries
 std::atomic<std::uint64_t> g_symbolic_entries{0};
 std::atomic<std::int64_t> g_symbolic_nanoseconds{0};
@@ -217,7 +222,7 @@ std::atomic<std::int64_t> g_symbolic_nanoseconds{0};
 }  // namespace
 
 SymbolicLock::SymbolicLock() {
-  g_symbolic_mutex.lock();
+  symbolic_mutex().lock();
   if (t_symbolic_depth++ == 0) {
     outermost_ = true;
     since_ = std::chrono::steady_clock::now();
@@ -232,7 +237,7 @@ SymbolicLock::~SymbolicLock() {
     g_symbolic_entries.fetch_add(1, std::memory_order_relaxed);
   }
   --t_symbolic_depth;
-  g_symbolic_mutex.unlock();
+  symbolic_mutex().unlock();
 }
 
 }  // namespace rigid::lagrange::detail
