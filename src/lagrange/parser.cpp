@@ -370,8 +370,7 @@ namespace {
 // a parse and without the symbolic core: what a sweep's run evaluates most, lock-free. GiNaC
 // gives the same double: a parameter enters it as the floating-point number it holds, and
 // negating a double is exact (zeros and subnormals are left to GiNaC: the sign of a zero, the
-// underflow CLN reports). The last parameter of a
-// name is the one a parse sees. Anything else (an unknown name, a non-finite value, any other
+// underflow CLN reports). The last parameter of a name is the one a parse sees. Anything else (an unknown name, a non-finite value, any other
 // expression) returns nothing and takes the general path, with its messages.
 std::optional<double> value_of_name(std::string_view text, const std::vector<Parameter>& parameters) {
   const auto first = text.find_first_not_of(" \t");
@@ -380,15 +379,10 @@ std::optional<double> value_of_name(std::string_view text, const std::vector<Par
   text = text.substr(first, last - first + 1);
   const bool negated = text.front() == '-';
   if (negated) text.remove_prefix(1);
-  if (text.empty() || !(std::isalpha(static_cast<unsigned char>(text.front())) || text.front() == '_')) {
-    return std::nullopt;
-  }
-  for (char c : text) {
-    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_')) return std::nullopt;
-  }
-  if (detail::reserved_names().count(std::string(text)) > 0) return std::nullopt;  // pi, sin, …
+  const std::string name(text);
+  if (!detail::is_identifier(name) || detail::reserved_names().count(name) > 0) return std::nullopt;  // pi, sin, …
   for (auto p = parameters.rbegin(); p != parameters.rend(); ++p) {
-    if (p->name != text) continue;
+    if (p->name != name) continue;
     if (!std::isnormal(p->value)) return std::nullopt;  // 0, subnormal, inf, NaN: GiNaC's way
     return negated ? -p->value : p->value;
   }
@@ -408,7 +402,7 @@ double evaluate_constant(const Expression& expression, const std::vector<Paramet
   for (const Parameter& p : parameters) {
     try {
       names[p.name] = GiNaC::numeric(p.value);
-    } catch (const std::exception& e) {  // a subnormal value: CLN's floats stop at 2.2e-308
+    } catch (const std::exception& e) {  // inf, NaN or a subnormal: outside CLN's double-floats
       detail::throw_at(expression, 0, context,
                        fmt::format("parameter '{}' = {:.17g} {}", p.name, p.value, detail::reason_of_library_failure(e)));
     }
