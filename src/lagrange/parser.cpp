@@ -370,8 +370,9 @@ namespace {
 // a parse and without the symbolic core: what a sweep's run evaluates most, lock-free. GiNaC
 // gives the same double: a parameter enters it as the floating-point number it holds, and
 // negating a double is exact (zeros and subnormals are left to GiNaC: the sign of a zero, the
-// underflow CLN reports). The last parameter of a name is the one a parse sees. Anything else (an unknown name, a non-finite value, any other
-// expression) returns nothing and takes the general path, with its messages.
+// underflow CLN reports). The last parameter of a name is the one a parse sees. Anything else
+// (an unknown name, a non-finite value, any other expression) returns nothing and takes the
+// general path, with its messages.
 std::optional<double> value_of_name(std::string_view text, const std::vector<Parameter>& parameters) {
   const auto first = text.find_first_not_of(" \t");
   if (first == std::string_view::npos) return std::nullopt;
@@ -380,7 +381,9 @@ std::optional<double> value_of_name(std::string_view text, const std::vector<Par
   const bool negated = text.front() == '-';
   if (negated) text.remove_prefix(1);
   const std::string name(text);
-  if (!detail::is_identifier(name) || detail::reserved_names().count(name) > 0) return std::nullopt;  // pi, sin, …
+  if (!detail::is_identifier(name) || detail::reserved_names().count(name) > 0) {
+    return std::nullopt;  // not a name, or pi, sin, …
+  }
   for (auto p = parameters.rbegin(); p != parameters.rend(); ++p) {
     if (p->name != name) continue;
     if (!std::isnormal(p->value)) return std::nullopt;  // 0, subnormal, inf, NaN: GiNaC's way
