@@ -33,6 +33,11 @@ namespace {
 
 using rigid::scene::Model;
 
+// A run's schema as Python sees it: the JSON summary.json holds, as dicts and lists.
+py::object to_python(const rigid::io::RunSchema& schema) {
+  return py::module_::import("json").attr("loads")(rigid::io::schema_json(schema));
+}
+
 py::dict to_python(const rigid::io::RunResult& r) {
   const rigid::io::Table& t = r.trajectory;
   py::dict columns;
@@ -45,7 +50,7 @@ py::dict to_python(const rigid::io::RunResult& r) {
   const rigid::io::RunSummary& s = r.summary;
   py::dict summary;
   summary["scene"] = s.scene;
-  summary["kind"] = s.kind;
+  summary["kind"] = std::string(rigid::io::to_string(s.kind));
   summary["integrator"] = s.integrator;
   summary["t_end"] = s.t_end;
   summary["dt"] = s.dt;
@@ -72,6 +77,7 @@ py::dict to_python(const rigid::io::RunResult& r) {
   py::dict out;
   out["columns"] = columns;
   out["summary"] = summary;
+  out["schema"] = to_python(r.schema);
   return out;
 }
 
@@ -303,9 +309,13 @@ void bind_scene(py::module_& m) {
           "A scene from TOML text (what a scene file holds): errors start with name:line:col "
           "(name default '<string>'), and mesh paths are relative to name's directory (the "
           "current directory by default); `set` as in rigid.Scene(path, set).")
-      .def_property_readonly("kind", [](const Model& mo) {
-        return mo.kind() == rigid::scene::SceneKind::kCoordinates ? "coordinates" : "free_bodies";
-      }, "'coordinates' (a Lagrangian system of generalized coordinates) or 'free_bodies'.")
+      .def_property_readonly("kind", [](const Model& mo) { return std::string(rigid::io::to_string(mo.kind())); },
+                             "'coordinates' (a Lagrangian system of generalized coordinates) or 'free_bodies'.")
+      .def_property_readonly("schema", [](const Model& mo) { return to_python(mo.schema()); },
+                             "What a run returns, known before it runs: {'kind', 'columns': [{'name', "
+                             "'quantity', 'owner', 'component', 'unit'}, ...] in the order of run()'s "
+                             "columns, 'parameters' / 'diagnostics' / 'metrics': {name: SI unit}} "
+                             "('' when dimensionless or not stated; docs/scene-format.md).")
       .def_property_readonly("parameters", [](const Model& mo) {
         py::dict d;
         for (const auto& p : mo.parameters()) d[py::str(p.name)] = p.value;
@@ -350,8 +360,8 @@ void bind_scene(py::module_& m) {
       .def("run", &run, py::arg("integrator") = std::string{}, py::arg("output") = py::none(),
            py::arg("formats") = std::vector<std::string>{}, py::arg("max_memory") = py::none(),
            py::arg("report") = py::none(), py::arg("report_frames") = py::none(),
-           "Simulates to t_end: {'columns': {name: numpy array}, 'summary': {...}} with the columns "
-           "of docs/scene-format.md; summary['metrics'] holds the scene's [[output.metrics]] as "
+           "Simulates to t_end: {'columns': {name: numpy array}, 'summary': {...}, 'schema': "
+           "Scene.schema} with the columns of docs/scene-format.md; summary['metrics'] holds the scene's [[output.metrics]] as "
            "{name: {'value', 'unit', 'note'}} (value NaN, with a note, when the event did not happen). "
            "With `output` (a directory), also writes the files `rigid run` "
            "writes (trajectory.csv, trajectory.npy, summary.json; `formats` as in the scene's "
@@ -365,7 +375,7 @@ void bind_scene(py::module_& m) {
            "2000) caps the frames the page keeps.")
       .def("__repr__", [](const Model& mo) {
         return fmt::format("Scene('{}', kind='{}', t_end={} s)", mo.scene().file.string(),
-                           mo.kind() == rigid::scene::SceneKind::kCoordinates ? "coordinates" : "free_bodies",
+                           rigid::io::to_string(mo.kind()),
                            mo.t_end());
       });
 }

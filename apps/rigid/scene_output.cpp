@@ -39,7 +39,7 @@ std::string describe_run(const std::string& scene_file, const scene::Model& mode
                          const scene::RunResult& result) {
   const scene::RunSummary& s = result.summary;
   std::string out = fmt::format("{}: {} scene, {} bodies\n", scene_file,
-                                s.kind == "coordinates" ? "generalized-coordinate" : "free-body",
+                                s.kind == rigid::io::RunKind::kCoordinates ? "generalized-coordinate" : "free-body",
                                 model.bodies().size());
   out += fmt::format("{} to t = {:.6g} s: {} steps", s.integrator, s.t_end, s.steps);
   if (s.rhs_evaluations > 0) out += fmt::format(", {} right-hand sides", s.rhs_evaluations);

@@ -15,8 +15,10 @@
 #include <unistd.h>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
+#include "detail/schema_json.hpp"
 #include "detail/temporary.hpp"
 #include "rigid/common/did_you_mean.hpp"
 #include "rigid/common/error.hpp"
@@ -59,7 +61,7 @@ std::string summary_json(const RunResult& result) {
   const RunSummary& s = result.summary;
   nlohmann::ordered_json j;
   j["scene"] = s.scene;
-  j["kind"] = s.kind;
+  j["kind"] = to_string(s.kind);
   j["integrator"] = s.integrator;
   j["t_end"] = s.t_end;
   j["dt"] = s.dt;
@@ -94,6 +96,12 @@ std::string summary_json(const RunResult& result) {
     for (std::size_t c = 0; c < t.columns().size(); ++c) j["final"][t.columns()[c]] = t(t.rows() - 1, c);
   }
   j["warnings"] = s.warnings;
+  if (!result.schema.columns.empty()) {
+    RIGID_REQUIRE(result.schema.column_names() == t.columns(),
+                  "the run's schema names the columns {}, its trajectory has {}",
+                  fmt::join(result.schema.column_names(), ", "), fmt::join(t.columns(), ", "));
+    j["schema"] = detail::schema_to_json(result.schema);
+  }
   // nlohmann prints doubles in their shortest round-trip form
   return j.dump(2) + "\n";
 }

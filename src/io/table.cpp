@@ -29,6 +29,22 @@ void Table::add_row(std::span<const double> row) {
   data_.insert(data_.end(), row.begin(), row.end());
 }
 
+Table Table::select(std::span<const std::size_t> indices) const {
+  std::vector<std::string> names;
+  names.reserve(indices.size());
+  for (const std::size_t c : indices) {
+    RIGID_REQUIRE(c < columns_.size(), "column index {} is out of range; the table has {} columns", c, columns_.size());
+    names.push_back(columns_[c]);
+  }
+  Table out(std::move(names));  // refuses a repeated column
+  const std::size_t n = columns_.size(), count = rows();
+  out.data_.reserve(count * indices.size());
+  for (std::size_t r = 0; r < count; ++r) {
+    for (const std::size_t c : indices) out.data_.push_back(data_[r * n + c]);
+  }
+  return out;
+}
+
 std::size_t Table::column(std::string_view name) const {
   const auto it = std::find(columns_.begin(), columns_.end(), name);
   RIGID_REQUIRE(it != columns_.end(), "no column '{}'; the columns are {}", name,

@@ -3,9 +3,11 @@
 #include <sstream>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
 #include "rigid/common/error.hpp"
+#include "rigid/io/run_schema.hpp"
 #include "rigid/io/table.hpp"
 #include "rigid/report/report.hpp"
 
@@ -14,7 +16,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-nlohmann::json read_summary(const fs::path& directory) {
+nlohmann::ordered_json read_summary(const fs::path& directory) {
   const fs::path file = directory / io::file_name(io::OutputFormat::kJson);
   std::error_code ec;
   if (!fs::is_directory(directory, ec)) {
@@ -30,7 +32,7 @@ nlohmann::json read_summary(const fs::path& directory) {
   std::ifstream in(file, std::ios::binary);
   std::stringstream text;
   text << in.rdbuf();
-  nlohmann::json j = nlohmann::json::parse(text.str(), nullptr, false);
+  nlohmann::ordered_json j = nlohmann::ordered_json::parse(text.str(), nullptr, false);
   if (j.is_discarded() || !j.is_object()) {
     throw Error(fmt::format("'{}' is not a run summary: it is not a JSON object", file.string()));
   }
@@ -39,7 +41,7 @@ nlohmann::json read_summary(const fs::path& directory) {
 
 // summary[key] as T, or a refusal naming the key.
 template <class T>
-T field(const nlohmann::json& j, const char* key, const fs::path& file, T fallback, bool required) {
+T field(const nlohmann::ordered_json& j, const char* key, const fs::path& file, T fallback, bool required) {
   const auto it = j.find(key);
   if (it == j.end() || it->is_null()) {
     if (!required) return fallback;
@@ -56,7 +58,7 @@ T field(const nlohmann::json& j, const char* key, const fs::path& file, T fallba
 }  // namespace
 
 io::RunResult read_run(const fs::path& directory) {
-  const nlohmann::json j = read_summary(directory);
+  const nlohmann::ordered_json j = read_summary(directory);
   const fs::path summary = directory / io::file_name(io::OutputFormat::kJson);
   const fs::path csv = directory / io::file_name(io::OutputFormat::kCsv);
   std::error_code ec;
@@ -69,7 +71,12 @@ io::RunResult read_run(const fs::path& directory) {
   r.trajectory = io::read_csv(csv);
   io::RunSummary& s = r.summary;
   s.scene = field<std::string>(j, "scene", summary, "", true);
-  s.kind = field<std::string>(j, "kind", summary, "", true);
+  const std::string kind = field<std::string>(j, "kind", summary, "", true);
+  try {
+    s.kind = io::parse_run_kind(kind);
+  } catch (const Error& e) {
+    throw Error(fmt::format("'{}': \"kind\": {}", summary.string(), e.what()));
+  }
   s.integrator = field<std::string>(j, "integrator", summary, "", true);
   s.t_end = field<double>(j, "t_end", summary, 0.0, false);
   s.dt = field<double>(j, "dt", summary, 0.0, false);
@@ -87,11 +94,21 @@ io::RunResult read_run(const fs::path& directory) {
     }
   }
   s.warnings = field<std::vector<std::string>>(j, "warnings", summary, {}, false);
+  // a run written before runs carried their schema has none: the report takes the model's
+  if (const auto it = j.find("schema"); it != j.end()) {
+    r.schema = io::parse_schema_json(it->dump(), summary.string());
+    if (r.schema.column_names() != r.trajectory.columns()) {
+      throw Error(fmt::format("'{}' and '{}' disagree: the schema names the columns {}, the trajectory has {}; "
+                              "expected the files of one run",
+                              summary.string(), csv.string(), fmt::join(r.schema.column_names(), ", "),
+                              fmt::join(r.trajectory.columns(), ", ")));
+    }
+  }
   return r;
 }
 
 fs::path scene_of_run(const fs::path& directory) {
-  const nlohmann::json j = read_summary(directory);
+  const nlohmann::ordered_json j = read_summary(directory);
   const fs::path summary = directory / io::file_name(io::OutputFormat::kJson);
   const std::string scene = field<std::string>(j, "scene", summary, "", false);
   if (scene.empty()) {

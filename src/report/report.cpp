@@ -10,10 +10,12 @@
 #include <sstream>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
 #include "report/detail/assets.hpp"
 #include "rigid/common/error.hpp"
+#include "rigid/io/run_schema.hpp"
 #include "rigid/io/table.hpp"
 #include "rigid/mass/primitive_table.hpp"
 #include "rigid/mesh/read_mesh.hpp"
@@ -139,25 +141,20 @@ json mesh_json(const mesh::TriangleMesh& m) {
               {"quantised", false}};
 }
 
-// Which plot a trajectory column belongs to, and its unit.
-std::pair<std::string, std::string> group_of(const std::string& column, const scene::Model& model) {
-  auto ends = [&](std::string_view s) { return column.ends_with(s); };
-  if (model.kind() == scene::SceneKind::kCoordinates) {
-    const auto& q = model.system().coordinate_names();
-    for (const std::string& c : q) {
-      if (column == c) return {"coordinates", ""};
-      if (column == c + "_dot") return {"velocities", ""};
-    }
-    if (column.starts_with("lambda_") || column.starts_with("mu_")) return {"multipliers", ""};
-    if (ends("residual")) return {"residuals", ""};
-    if (column == "energy" || column == "jacobi") return {"other", "J"};
-    return {"other", ""};
+// Which plot a trajectory column belongs to, by its quantity.
+std::string_view group_of(const io::Column& column) {
+  using Q = io::Quantity;
+  switch (column.quantity) {
+    case Q::kCoordinate: return "coordinates";
+    case Q::kCoordinateRate:
+    case Q::kVelocity:
+    case Q::kAngularVelocity: return "velocities";
+    case Q::kMultiplier:
+    case Q::kVelocityMultiplier: return "multipliers";
+    case Q::kConstraintResidual:
+    case Q::kVelocityConstraintResidual: return "residuals";
+    default: return "other";
   }
-  if (ends(".vx") || ends(".vy") || ends(".vz")) return {"velocities", "m/s"};
-  if (ends(".wx") || ends(".wy") || ends(".wz")) return {"velocities", "rad/s"};
-  if (ends(".Lx") || ends(".Ly") || ends(".Lz")) return {"other", "kg·m²/s"};
-  if (column == "energy") return {"other", "J"};
-  return {"other", ""};
 }
 
 // |x − x0| / |x0|, or |x − x0| (then `absolute` is set) when |x0| is not larger than the
@@ -172,17 +169,6 @@ std::vector<double> relative_change(const std::vector<double>& x, bool& absolute
   std::vector<double> out(x.size());
   for (std::size_t i = 0; i < x.size(); ++i) out[i] = std::abs(x[i] - x0) / (absolute ? 1.0 : std::abs(x0));
   return out;
-}
-
-std::string unit_of_parameter(const std::string& name) {
-  if (name.ends_with("_mass")) return "kg";
-  for (const char* s : {"_com_x", "_com_y", "_com_z"}) {
-    if (name.ends_with(s)) return "m";
-  }
-  for (const char* s : {"_ixx", "_iyy", "_izz", "_ixy", "_ixz", "_iyz"}) {
-    if (name.ends_with(s)) return "kg·m²";
-  }
-  return "";
 }
 
 std::string html_escape(std::string_view s) {
@@ -246,15 +232,32 @@ std::string report_json(const scene::Model& model, const io::RunResult& result, 
     return std::find(table.columns().begin(), table.columns().end(), name) != table.columns().end();
   };
 
+  // what each column is: the run's own schema (summary.json's, or the model's for a run made
+  // here), every column of the table in it
+  const io::RunSchema& schema = result.schema.columns.empty() ? model.schema() : result.schema;
+  auto info = [&](const std::string& name) -> const io::Column& {
+    const io::Column* c = schema.find(name);
+    if (c == nullptr) {
+      throw Error(fmt::format("the run's column '{}' is not one the scene '{}' makes (its columns: {}); the "
+                              "scene changed since the run: run it again",
+                              name, sc.file.string(), fmt::join(schema.column_names(), ", ")));
+    }
+    return *c;
+  };
+  for (const std::string& c : table.columns()) (void)info(c);
+  using Q = io::Quantity;
+
   json j;
   j["rigid_report"] = 1;
   const std::string name = sc.file.stem().string();
   j["scene"] = {{"name", name}, {"file", s.scene.empty() ? sc.file.string() : s.scene},
                 {"description", description_of(sc.file)}};
-  j["kind"] = model.kind() == scene::SceneKind::kCoordinates ? "coordinates" : "free_bodies";
+  j["kind"] = io::to_string(model.kind());
   json params = json::array();
-  for (const lagrange::Parameter& p : model.parameters()) {
-    params.push_back({{"name", p.name}, {"value", p.value}, {"unit", unit_of_parameter(p.name)}});
+  const std::vector<io::Scalar>& units = model.schema().parameters;
+  for (std::size_t k = 0; k < model.parameters().size(); ++k) {
+    const lagrange::Parameter& p = model.parameters()[k];
+    params.push_back({{"name", p.name}, {"value", p.value}, {"unit", units.at(k).unit}});
   }
   j["parameters"] = params;
   j["integrator"] = {{"method", s.integrator}, {"dt", s.dt},       {"tolerance", s.tolerance},
@@ -307,17 +310,19 @@ std::string report_json(const scene::Model& model, const io::RunResult& result, 
   json frame_bodies = json::array();
   for (const scene::ModelBody& mb : model.bodies()) {
     const std::string& n = mb.name;
+    static constexpr const char* kXyz[3] = {"x", "y", "z"};
+    static constexpr const char* kWxyz[4] = {"w", "x", "y", "z"};
     std::array<std::vector<double>, 7> pose;
-    static constexpr const char* kPose[7] = {"x", "y", "z", "qw", "qx", "qy", "qz"};
-    for (std::size_t k = 0; k < 7; ++k) pose[k] = column(n + "." + kPose[k]);
-    const bool twist = has(n + ".wx");
+    for (std::size_t k = 0; k < 3; ++k) pose[k] = column(io::body_column(Q::kPosition, n, kXyz[k]).name);
+    for (std::size_t k = 0; k < 4; ++k) pose[3 + k] = column(io::body_column(Q::kOrientation, n, kWxyz[k]).name);
+    const io::Column* wx = schema.find(Q::kAngularVelocity, n, "x");
+    const bool twist = wx != nullptr && has(wx->name);
     std::array<std::vector<double>, 3> w, L;
     if (twist) {
-      static constexpr const char* kW[3] = {"wx", "wy", "wz"};
-      static constexpr const char* kL[3] = {"Lx", "Ly", "Lz"};
       for (std::size_t k = 0; k < 3; ++k) {
-        w[k] = column(n + "." + kW[k]);
-        L[k] = has(n + "." + kL[k]) ? column(n + "." + kL[k]) : std::vector<double>{};
+        w[k] = column(io::body_column(Q::kAngularVelocity, n, kXyz[k]).name);
+        const std::string Lk = io::body_column(Q::kAngularMomentum, n, kXyz[k]).name;
+        L[k] = has(Lk) ? column(Lk) : std::vector<double>{};
       }
     }
     std::vector<double> position, quaternion, omega, momentum;
@@ -344,22 +349,20 @@ std::string report_json(const scene::Model& model, const io::RunResult& result, 
   // series: every trajectory column but t and the poses, on the frames' times; then the
   // relative changes of the energy and of each free body's |L|
   json series = json::array();
-  std::vector<std::string> pose_columns;
-  for (const scene::ModelBody& mb : model.bodies()) {
-    for (const char* c : {"x", "y", "z", "qw", "qx", "qy", "qz"}) pose_columns.push_back(mb.name + "." + c);
-  }
+  const io::Column* energy = nullptr;
   for (const std::string& c : table.columns()) {
-    if (c == "t" || std::find(pose_columns.begin(), pose_columns.end(), c) != pose_columns.end()) continue;
-    const auto [group, unit] = group_of(c, model);
-    series.push_back({{"group", group}, {"name", c}, {"unit", unit}, {"column", c}, {"values", f32(column(c))}});
+    const io::Column& col = info(c);
+    if (col.quantity == Q::kEnergy) energy = &col;
+    if (col.quantity == Q::kTime || col.quantity == Q::kPosition || col.quantity == Q::kOrientation) continue;
+    series.push_back({{"group", group_of(col)}, {"name", c}, {"unit", col.unit}, {"column", c}, {"values", f32(column(c))}});
   }
-  if (has("energy")) {
+  if (energy != nullptr) {
     bool absolute = false;
-    const std::vector<double> e = relative_change(column("energy"), absolute);
+    const std::vector<double> e = relative_change(column(energy->name), absolute);
     series.push_back({{"group", "energy_error"},
                       {"name", absolute ? "|E − E(0)|" : "|E − E(0)| / |E(0)|"},
-                      {"unit", absolute ? "J" : ""},
-                      {"column", "energy"},
+                      {"unit", absolute ? energy->unit : ""},
+                      {"column", energy->name},
                       {"values", f32(e)}});
   }
   for (const scene::ModelBody& mb : model.bodies()) {
@@ -368,15 +371,17 @@ std::string report_json(const scene::Model& model, const io::RunResult& result, 
     // pivot and turns with gravity's torque, so it has no such series
     bool top = false;
     for (const scene::Body& b : sc.bodies) top = top || (b.name == n && b.pivot.has_value());
-    if (!mb.free || top || !has(n + ".Lx")) continue;
-    const std::vector<double> Lx = column(n + ".Lx"), Ly = column(n + ".Ly"), Lz = column(n + ".Lz");
+    const io::Column* Lc = schema.find(Q::kAngularMomentum, n, "x");
+    if (!mb.free || top || Lc == nullptr || !has(Lc->name)) continue;
+    const std::vector<double> Lx = column(Lc->name), Ly = column(schema.find(Q::kAngularMomentum, n, "y")->name),
+                              Lz = column(schema.find(Q::kAngularMomentum, n, "z")->name);
     std::vector<double> norm(Lx.size());
     for (std::size_t f = 0; f < norm.size(); ++f) norm[f] = std::sqrt(Lx[f] * Lx[f] + Ly[f] * Ly[f] + Lz[f] * Lz[f]);
     bool absolute = false;
     const std::vector<double> e = relative_change(norm, absolute);
     series.push_back({{"group", "L_error"},
                       {"name", n + (absolute ? " |L − L(0)|" : " ||L| − |L(0)|| / |L(0)|")},
-                      {"unit", absolute ? "kg·m²/s" : ""},
+                      {"unit", absolute ? Lc->unit : ""},
                       {"column", n + ".L"},
                       {"values", f32(e)}});
   }

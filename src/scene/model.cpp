@@ -79,11 +79,11 @@ std::string paren(const std::string& s) { return "(" + s + ")"; }
 
 // Names for the constants of a body that the scene did not write (a mesh file's mass
 // properties, a tetrahedron's): <body>_mass, <body>_com_x, …, <body>_ixx, …; zero entries
-// stay 0. The names are added to `derived` with their values.
+// stay 0. The names are added to `derived` with their values, and their SI units to `units`.
 lagrange::BodyMass named_constants(const std::string& body, const MassProperties& mp,
                                    const std::vector<lagrange::Parameter>& taken,
-                                   std::vector<lagrange::Parameter>& derived) {
-  auto name = [&](const std::string& suffix, double value) -> lagrange::Expression {
+                                   std::vector<lagrange::Parameter>& derived, std::vector<std::string>& units) {
+  auto name = [&](const std::string& suffix, double value, const char* unit) -> lagrange::Expression {
     if (value == 0.0) return lagrange::Expression("0");
     std::string n = body + "_" + suffix;
     auto used = [&](const std::string& x) {
@@ -92,16 +92,17 @@ lagrange::BodyMass named_constants(const std::string& body, const MassProperties
     };
     while (used(n)) n += "_";
     derived.push_back({n, value});
+    units.emplace_back(unit);
     return lagrange::Expression(n);
   };
   lagrange::BodyMass b;
-  b.mass = name("mass", mp.mass());
+  b.mass = name("mass", mp.mass(), "kg");
   static constexpr const char* kCom[3] = {"com_x", "com_y", "com_z"};
-  for (std::size_t k = 0; k < 3; ++k) b.com[k] = name(kCom[k], mp.com()[static_cast<Eigen::Index>(k)]);
+  for (std::size_t k = 0; k < 3; ++k) b.com[k] = name(kCom[k], mp.com()[static_cast<Eigen::Index>(k)], "m");
   const Eigen::Matrix3d& I = mp.inertia_com();
   for (std::size_t k = 0; k < 6; ++k) {
     const auto& [element, row, col] = lagrange::BodyMass::kInertiaElements[k];
-    b.inertia[k] = name(element, I(row, col));
+    b.inertia[k] = name(element, I(row, col), "kg·m²");
   }
   return b;
 }
@@ -112,8 +113,8 @@ lagrange::BodyMass named_constants(const std::string& body, const MassProperties
 using SharedMesh = std::shared_ptr<const mesh::PreparedMesh>;
 
 BodyMass mass_of(const Body& b, const std::vector<lagrange::Parameter>& params,
-                 std::vector<lagrange::Parameter>& derived, std::vector<std::string>& warnings,
-                 SharedMesh& prepared) {
+                 std::vector<lagrange::Parameter>& derived, std::vector<std::string>& derived_units,
+                 std::vector<std::string>& warnings, SharedMesh& prepared) {
   const MassSpec& m = b.mass;
   const std::string ctx = fmt::format("body '{}'", b.name);
   switch (m.kind) {
@@ -133,7 +134,7 @@ BodyMass mass_of(const Body& b, const std::vector<lagrange::Parameter>& params,
           if (entry.size_index(key) == entry.size_index(size.name)) evaluated.emplace_back(size.name, v);
         }
       }
-      if (entry.formulas.mass.empty()) return {numeric, named_constants(b.name, numeric, params, derived), evaluated};
+      if (entry.formulas.mass.empty()) return {numeric, named_constants(b.name, numeric, params, derived, derived_units), evaluated};
       // the closed forms with the sizes as the file wrote them, in the entry's order
       std::vector<std::string> sizes(entry.sizes.size());
       for (const auto& [key, e] : m.dimensions) sizes[*entry.size_index(key)] = e.text;
@@ -159,7 +160,7 @@ BodyMass mass_of(const Body& b, const std::vector<lagrange::Parameter>& params,
         for (const auto& w : r.warnings()) warnings.push_back(fmt::format("{}: {}", ctx, word_for(Surface::kScene, w)));
         return r.mass.properties;
       });
-      return {numeric, named_constants(b.name, numeric, params, derived), {}};
+      return {numeric, named_constants(b.name, numeric, params, derived, derived_units), {}};
     }
     case MassSpec::Kind::kExplicit: {
       const double mass = value_of(*m.mass, params, ctx + " inertia mass");
@@ -254,10 +255,6 @@ void push_pose(std::vector<double>& row, const Eigen::Vector3d& p, const SO3d& R
   row.insert(row.end(), {p.x(), p.y(), p.z(), q(0), q(1), q(2), q(3)});
 }
 
-void add_pose_columns(std::vector<std::string>& cols, const std::string& body) {
-  for (const char* c : {"x", "y", "z", "qw", "qx", "qy", "qz"}) cols.push_back(body + "." + c);
-}
-
 // Largest |x_k − x_0| over the samples.
 double max_change(const std::vector<double>& x) {
   double m = 0;
@@ -276,6 +273,8 @@ struct Model::Impl {
   SceneKind kind = SceneKind::kCoordinates;
   std::vector<lagrange::Parameter> params;   // the scene's, then the derived constants
   std::size_t scene_params = 0;              // how many of params the scene wrote
+  std::vector<std::string> param_units;      // per parameter: "" for the scene's (it states none),
+                                             // kg, m, kg·m² for the derived constants
   std::vector<ModelBody> bodies;
   std::vector<SharedMesh> meshes;  // per body: its mesh as read (null for other bodies)
   std::vector<std::string> warnings;
@@ -289,7 +288,11 @@ struct Model::Impl {
   Eigen::VectorXd q0, q_dot0;
   // free bodies
   std::vector<FreeBody> free;
-  // metrics: the column each reads (index in columns()), and how many leading columns are
+  // what a run produces: every column the model computes (full), and what run() returns after
+  // [output] quantities selects columns (`kept`: their indices in full)
+  io::RunSchema full_schema, schema;
+  std::vector<std::size_t> kept;
+  // metrics: the column each reads (index in full_schema), and how many leading columns are
   // functions of the state alone (what a step can evaluate)
   std::vector<std::size_t> metric_columns;
   std::size_t probe_size = 0;
@@ -326,29 +329,100 @@ struct Model::Impl {
     at_location(at, "[simulation]", [&] { return integrate::TimeGrid::uniform(0.0, t_end, spacing); });
   }
 
-  // The columns of a run's trajectory (before [output] quantities selects some).
-  [[nodiscard]] std::vector<std::string> columns() const {
-    std::vector<std::string> cols{"t"};
+  // The schema of a run (before [output] quantities selects columns): the trajectory's columns,
+  // the parameters, the diagnostics; check_metrics adds the metrics' units.
+  [[nodiscard]] io::RunSchema make_schema() const {
+    using Q = io::Quantity;
+    io::RunSchema s;
+    s.kind = kind;
+    auto scalar = [&](Q q, std::string name, std::string owner) {
+      s.columns.push_back({std::move(name), q, std::move(owner), "", std::string(io::unit_of(q))});
+    };
+    auto vector = [&](Q q, const std::string& body) {
+      for (const char* c : {"x", "y", "z"}) s.columns.push_back(io::body_column(q, body, c));
+    };
+    auto pose = [&](const std::string& body) {
+      vector(Q::kPosition, body);
+      for (const char* c : {"w", "x", "y", "z"}) s.columns.push_back(io::body_column(Q::kOrientation, body, c));
+    };
+    auto diagnostic = [&](std::string name, Q q) { s.diagnostics.push_back({std::move(name), std::string(io::unit_of(q))}); };
+    scalar(Q::kTime, "t", "");
     if (kind == SceneKind::kCoordinates) {
-      for (const auto& c : system->coordinate_names()) cols.push_back(c);
-      for (const auto& c : system->coordinate_names()) cols.push_back(c + "_dot");
-      for (const auto& b : system->body_names()) add_pose_columns(cols, b);
-      cols.push_back("energy");
-      cols.push_back("jacobi");
-      for (const auto& c : system->constraint_names()) cols.push_back("lambda_" + c);
-      if (!system->constraint_names().empty()) cols.push_back("constraint_residual");
-      for (const auto& c : system->velocity_constraint_names()) cols.push_back("mu_" + c);
-      if (system->num_velocity_constraints() > 0) cols.push_back("velocity_constraint_residual");
-      for (const auto& c : system->cyclic_coordinates()) cols.push_back("p_" + c);
+      const lagrange::System& sys = *system;
+      for (const auto& c : sys.coordinate_names()) scalar(Q::kCoordinate, c, c);
+      for (const auto& c : sys.coordinate_names()) scalar(Q::kCoordinateRate, c + "_dot", c);
+      for (const auto& b : sys.body_names()) pose(b);
+      scalar(Q::kEnergy, "energy", "");
+      scalar(Q::kJacobi, "jacobi", "");
+      for (const auto& c : sys.constraint_names()) scalar(Q::kMultiplier, "lambda_" + c, c);
+      if (!sys.constraint_names().empty()) scalar(Q::kConstraintResidual, "constraint_residual", "");
+      for (const auto& c : sys.velocity_constraint_names()) scalar(Q::kVelocityMultiplier, "mu_" + c, c);
+      if (sys.num_velocity_constraints() > 0) {
+        scalar(Q::kVelocityConstraintResidual, "velocity_constraint_residual", "");
+      }
+      for (const auto& c : sys.cyclic_coordinates()) scalar(Q::kConjugateMomentum, "p_" + c, c);
+      for (const char* d : {"energy_initial", "energy_final", "energy_max_change"}) diagnostic(d, Q::kEnergy);
+      diagnostic("jacobi_max_change", Q::kJacobi);
+      if (!sys.constraint_names().empty()) {
+        diagnostic("constraint_residual_max", Q::kConstraintResidual);
+        diagnostic("constraint_velocity_residual_max", Q::kConstraintResidual);
+      }
+      if (sys.num_velocity_constraints() > 0) {
+        diagnostic("velocity_constraint_residual_max", Q::kVelocityConstraintResidual);
+      }
+      for (const auto& c : sys.cyclic_coordinates()) diagnostic("p_" + c + "_max_change", Q::kConjugateMomentum);
     } else {
       for (const FreeBody& f : free) {
-        add_pose_columns(cols, f.name);
-        for (const char* c : {"vx", "vy", "vz", "wx", "wy", "wz", "Lx", "Ly", "Lz"}) cols.push_back(f.name + "." + c);
+        pose(f.name);
+        vector(Q::kVelocity, f.name);
+        vector(Q::kAngularVelocity, f.name);
+        vector(Q::kAngularMomentum, f.name);
       }
-      cols.push_back("energy");
+      scalar(Q::kEnergy, "energy", "");
+      for (const char* d : {"energy_initial", "energy_final", "energy_max_change"}) diagnostic(d, Q::kEnergy);
+      for (const FreeBody& f : free) {
+        diagnostic(f.name + (f.top ? ".L_vertical_max_change" : ".L_norm_max_change"), Q::kAngularMomentum);
+        s.diagnostics.push_back({f.name + ".orthonormality_max", ""});
+      }
     }
-    return cols;
+    for (std::size_t k = 0; k < params.size(); ++k) s.parameters.push_back({params[k].name, param_units[k]});
+    return s;
   }
+
+  // The schema of what run() returns: [output] quantities (shell patterns, fnmatch) select
+  // columns, `t` first. A pattern that matches nothing is an error that lists the columns.
+  void select_columns() {
+    const Output& out = scene.output;
+    const std::vector<std::string> cols = full_schema.column_names();
+    kept.clear();
+    if (out.quantities.empty()) {
+      for (std::size_t c = 0; c < cols.size(); ++c) kept.push_back(c);
+      schema = full_schema;
+      return;
+    }
+    std::vector<bool> keep(cols.size(), false);
+    keep[0] = true;  // t
+    for (const std::string& p : out.quantities) {
+      bool any = false;
+      for (std::size_t c = 0; c < cols.size(); ++c) {
+        if (fnmatch(p.c_str(), cols[c].c_str(), 0) == 0) keep[c] = any = true;
+      }
+      if (!any) {
+        std::string msg = fmt::format("[output] quantities: '{}' matches no column", p);
+        if (auto g = did_you_mean(p, cols)) msg += fmt::format("; did you mean '{}'?", *g);
+        detail::throw_error_at(out.quantities_where, msg + fmt::format(" (columns: {})", fmt::join(cols, ", ")));
+      }
+    }
+    std::vector<std::string> names;
+    for (std::size_t c = 0; c < cols.size(); ++c) {
+      if (!keep[c]) continue;
+      kept.push_back(c);
+      names.push_back(cols[c]);
+    }
+    schema = full_schema.select(names);
+  }
+
+  [[nodiscard]] std::vector<std::string> columns() const { return full_schema.column_names(); }
 
   [[nodiscard]] std::uint64_t max_memory(const RunOptions& o) const {
     if (o.max_memory) return *o.max_memory;
@@ -515,27 +589,14 @@ struct Model::Impl {
     }
   }
 
-  // The unit of a column: s, m, J, ... ("" for a coordinate, whose unit the scene does not say,
-  // and for the quaternions).
-  [[nodiscard]] std::string unit_of(const std::string& column) const {
-    if (column == "t") return "s";
-    if (column == "energy" || column == "jacobi") return "J";
-    const auto dot = column.rfind('.');
-    if (dot == std::string::npos) return "";
-    const std::string c = column.substr(dot + 1);
-    if (c == "x" || c == "y" || c == "z") return "m";
-    if (c == "vx" || c == "vy" || c == "vz") return "m/s";
-    if (c == "wx" || c == "wy" || c == "wz") return "rad/s";
-    if (c == "Lx" || c == "Ly" || c == "Lz") return "kg·m²/s";
-    return "";
-  }
-
   // Every metric's column is checked against the run's columns, at the metric's line.
+  // Their units go into the schema.
   void check_metrics() {
     const std::vector<std::string> cols = columns();
     probe_size = cols.size();
     if (kind == SceneKind::kCoordinates) {
-      probe_size = static_cast<std::size_t>(std::find(cols.begin(), cols.end(), "jacobi") - cols.begin()) + 1;
+      const io::Column* jacobi = full_schema.find(io::Quantity::kJacobi, "", "");
+      probe_size = static_cast<std::size_t>(jacobi - full_schema.columns.data()) + 1;
     }
     for (const MetricSpec& m : scene.output.metrics) {
       const std::string what = fmt::format("[[output.metrics]] '{}'", m.name);
@@ -551,6 +612,7 @@ struct Model::Impl {
                                              what, m.column, did_you_mean_hint(m.column, takes), fmt::join(takes, ", ")));
         }
         metric_columns.push_back(0);
+        full_schema.metrics.push_back({m.name, m.unit_given ? m.unit : ""});
         continue;
       }
       const auto it = std::find(cols.begin(), cols.end(), m.column);
@@ -567,7 +629,21 @@ struct Model::Impl {
                         what, m.column, fmt::join(cols.begin(), cols.begin() + static_cast<std::ptrdiff_t>(probe_size), ", ")));
       }
       metric_columns.push_back(index);
+      using K = MetricSpec::Kind;
+      const bool time = m.kind == K::kCrossing || m.kind == K::kPeriod || (m.kind == K::kExtremum && !m.report_value);
+      full_schema.metrics.push_back({m.name, m.unit_given ? m.unit
+                                             : time       ? std::string(io::unit_of(io::Quantity::kTime))
+                                                          : full_schema.columns[index].unit});
     }
+  }
+
+  // The unit of a drift's absolute change: the energy's or the Jacobi integral's, or a body's
+  // angular momentum's.
+  [[nodiscard]] std::string drift_unit(const std::string& drift) const {
+    for (const io::Column& c : full_schema.columns) {
+      if (c.name == drift || (c.quantity == io::Quantity::kAngularMomentum && c.owner + ".L" == drift)) return c.unit;
+    }
+    return "";
   }
 
   // The metrics of a run from the recorder, with their units, and the drifts from the samples:
@@ -579,10 +655,8 @@ struct Model::Impl {
     std::vector<io::Metric> out = recorder.finish();
     for (std::size_t i = 0; i < out.size(); ++i) {
       const MetricSpec& m = scene.output.metrics[i];
-      using K = MetricSpec::Kind;
-      const bool time = m.kind == K::kCrossing || m.kind == K::kPeriod || (m.kind == K::kExtremum && !m.report_value);
-      out[i].unit = m.unit_given ? m.unit : time ? "s" : m.kind == K::kDrift ? "" : unit_of(m.column);
-      if (m.kind != K::kDrift) continue;
+      out[i].unit = full_schema.metrics[i].unit;
+      if (m.kind != MetricSpec::Kind::kDrift) continue;
       for (const auto& [name, x] : drift) {
         if (name != m.column || x.empty()) continue;
         const double change = max_change(x);
@@ -590,7 +664,7 @@ struct Model::Impl {
           out[i].value = change / std::abs(x.front());
         } else {
           out[i].value = change;
-          out[i].unit = m.column == "energy" || m.column == "jacobi" ? "J" : "kg·m²/s";
+          out[i].unit = drift_unit(m.column);
           out[i].note = fmt::format("{} at t = 0 ({:.3g}) is not larger than its change: the absolute change",
                                     m.column, x.front());
         }
@@ -618,6 +692,7 @@ Model::Model(const Scene& scene, const Model* like) : impl_(std::make_unique<Imp
   m.scene_params = m.params.size();
   m.gravity = vector_of(scene.gravity, m.params, "gravity");
   std::vector<lagrange::Parameter> derived;
+  std::vector<std::string> derived_units;
   std::vector<lagrange::BodyMass> masses;
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     const Body& b = scene.bodies[i];
@@ -630,12 +705,14 @@ Model::Model(const Scene& scene, const Model* like) : impl_(std::make_unique<Imp
         prepared = like->impl_->meshes[i];
       }
     }
-    BodyMass bm = mass_of(b, m.params, derived, m.warnings, prepared);
+    BodyMass bm = mass_of(b, m.params, derived, derived_units, m.warnings, prepared);
     m.meshes.push_back(std::move(prepared));
     m.bodies.push_back({b.name, bm.numeric, b.free, bm.sizes});
     masses.push_back(std::move(bm.symbolic));
   }
   m.params.insert(m.params.end(), derived.begin(), derived.end());
+  m.param_units.assign(m.scene_params, "");
+  m.param_units.insert(m.param_units.end(), derived_units.begin(), derived_units.end());
   m.read_simulation();
   if (m.kind == SceneKind::kCoordinates && like != nullptr) {
     // the equations of `like`, whose scene differs from this one only in values: checked as far
@@ -663,7 +740,9 @@ Model::Model(const Scene& scene, const Model* like) : impl_(std::make_unique<Imp
   } else {
     m.build_free_bodies(masses);
   }
+  m.full_schema = m.make_schema();
   m.check_metrics();
+  m.select_columns();
   (void)integrator();  // an unknown [simulation] integrator is an error of the scene
 }
 
@@ -677,6 +756,7 @@ const Scene& Model::scene() const { return impl_->scene; }
 const std::vector<lagrange::Parameter>& Model::parameters() const { return impl_->params; }
 const std::vector<ModelBody>& Model::bodies() const { return impl_->bodies; }
 const std::vector<std::string>& Model::warnings() const { return impl_->warnings; }
+const io::RunSchema& Model::schema() const { return impl_->schema; }
 
 const lagrange::System& Model::system() const {
   RIGID_REQUIRE(impl_->system, "a scene of free bodies has no coordinate system");
@@ -778,7 +858,7 @@ std::string Model::equations(lagrange::EquationFormat format) const {
   }
   if (format == lagrange::EquationFormat::kJson) {
     nlohmann::ordered_json j;
-    j["kind"] = "free_bodies";
+    j["kind"] = io::to_string(SceneKind::kFreeBodies);
     j["bodies"] = bodies;
     if (!note.empty()) j["note"] = note;
     return j.dump(2) + "\n";
@@ -807,44 +887,6 @@ void Model::check(const RunOptions& options) const {
   }
 }
 
-namespace {
-
-// The columns of `table` that match one of `patterns` (shell patterns, fnmatch), with `t`
-// first. A pattern that matches nothing is an error that lists the columns.
-io::Table select_columns(const io::Table& table, const std::vector<std::string>& patterns,
-                         const SourceLocation& where) {
-  const auto& cols = table.columns();
-  std::vector<bool> keep(cols.size(), false);
-  keep[0] = true;  // t
-  for (const std::string& p : patterns) {
-    bool any = false;
-    for (std::size_t c = 0; c < cols.size(); ++c) {
-      if (fnmatch(p.c_str(), cols[c].c_str(), 0) == 0) keep[c] = any = true;
-    }
-    if (!any) {
-      std::string msg = fmt::format("[output] quantities: '{}' matches no column", p);
-      if (auto g = did_you_mean(p, cols)) msg += fmt::format("; did you mean '{}'?", *g);
-      detail::throw_error_at(where, msg + fmt::format(" (columns: {})", fmt::join(cols, ", ")));
-    }
-  }
-  std::vector<std::string> names;
-  for (std::size_t c = 0; c < cols.size(); ++c) {
-    if (keep[c]) names.push_back(cols[c]);
-  }
-  io::Table out(names);
-  std::vector<double> row;
-  for (std::size_t k = 0; k < table.rows(); ++k) {
-    row.clear();
-    for (std::size_t c = 0; c < cols.size(); ++c) {
-      if (keep[c]) row.push_back(table(k, c));
-    }
-    out.add_row(row);
-  }
-  return out;
-}
-
-}  // namespace
-
 RunResult Model::run(const RunOptions& options) const {
   const Method method = impl_->parse_method(options.integrator);
   RunOptions o = options;
@@ -859,8 +901,16 @@ RunResult Model::run(const RunOptions& options) const {
   r.summary.samples = r.trajectory.rows();
   for (const auto& p : impl_->params) r.summary.parameters.emplace_back(p.name, p.value);
   r.summary.warnings = impl_->warnings;
-  const Output& out = impl_->scene.output;
-  if (!out.quantities.empty()) r.trajectory = select_columns(r.trajectory, out.quantities, out.quantities_where);
+  // the schema is the model's, published before the run: a run that disagreed with it is a defect
+  const io::RunSchema& full = impl_->full_schema;
+  RIGID_REQUIRE(r.trajectory.columns().size() == full.columns.size() &&
+                    r.summary.diagnostics.size() == full.diagnostics.size() &&
+                    r.summary.metrics.size() == full.metrics.size(),
+                "the run's outputs ({} columns, {} diagnostics, {} metrics) differ from its schema's ({}, {}, {})",
+                r.trajectory.columns().size(), r.summary.diagnostics.size(), r.summary.metrics.size(),
+                full.columns.size(), full.diagnostics.size(), full.metrics.size());
+  if (impl_->kept.size() != full.columns.size()) r.trajectory = r.trajectory.select(impl_->kept);
+  r.schema = impl_->schema;
   return r;
 }
 
@@ -959,7 +1009,7 @@ RunResult Model::Impl::run_coordinates(const Method& method, const RunOptions& o
   }
 
   RunSummary& s = r.summary;
-  s.kind = "coordinates";
+  s.kind = SceneKind::kCoordinates;
   s.dt = dt;
   s.tolerance = so.method == integrate::Method::kDopri5 ? tolerance : 0.0;
   s.steps = tr.steps;
@@ -1125,7 +1175,7 @@ RunResult Model::Impl::run_free(const Method& method, const RunOptions& o) const
   }
 
   RunSummary& s = r.summary;
-  s.kind = "free_bodies";
+  s.kind = SceneKind::kFreeBodies;
   s.dt = dt;
   s.steps = steps;
   s.diagnostics.emplace_back("energy_initial", energy.front());

@@ -218,3 +218,28 @@ def test_eom_prints_short_numbers_and_the_scene_parameter_names(run, scene):
         assert same_equations(changed, text), f"'{p}' entered as a number:\n{text}\nwith {p} changed:\n{changed}"
     appearing = [p for p in used if re.search(rf"(?<![A-Za-z_\d]){re.escape(p)}(?![A-Za-z_\d])", text)]
     assert len(appearing) >= len(used) - 1, (used, text)  # at most one cancels (a rolling radius)
+
+
+@pytest.mark.parametrize("example", ["double_pendulum", "tennis_racket", "atwood", "heavy_top"])
+def test_the_run_schema_is_one_through_every_surface(example, run, tmp_path):
+    """The schema a Scene publishes before running is its run's, is the one `rigid run` writes
+    into summary.json, and names the columns of trajectory.csv in order; the report page's series
+    take their units from it."""
+    scene = rigid.Scene(str(EXAMPLES / f"{example}.toml"))
+    schema = scene.schema
+    out = scene.run(output=str(tmp_path / "py"))
+    assert out["schema"] == schema
+    assert [c["name"] for c in schema["columns"]] == list(out["columns"])
+    assert list(schema["diagnostics"]) == list(out["summary"]["diagnostics"])
+    assert list(schema["metrics"]) == list(out["summary"]["metrics"])
+    run("run", EXAMPLES / f"{example}.toml", "-o", tmp_path / "cli", "-q", check=True)
+    summary = json.loads((tmp_path / "cli" / "summary.json").read_text())
+    assert summary["schema"] == schema
+    assert json.loads((tmp_path / "py" / "summary.json").read_text())["schema"] == schema
+    header = (tmp_path / "cli" / "trajectory.csv").read_text().split("\n", 1)[0].split(",")
+    assert header == [c["name"] for c in schema["columns"]]
+    # units by quantity, as docs/scene-format.md states them
+    units = {"time": "s", "position": "m", "velocity": "m/s", "angular_velocity": "rad/s",
+             "angular_momentum": "kg·m²/s", "energy": "J", "jacobi": "J"}
+    for c in schema["columns"]:
+        assert c["unit"] == units.get(c["quantity"], ""), c

@@ -26,7 +26,7 @@ RunResult sample_run() {
   const double rows[3][2] = {{0.0, 1.0}, {0.5, 0.1}, {1.0, -0.2}};
   for (const auto& row : rows) r.trajectory.add_row(row);
   r.summary.scene = "s.toml";
-  r.summary.kind = "coordinates";
+  r.summary.kind = rigid::io::RunKind::kCoordinates;
   r.summary.integrator = "rk4";
   r.summary.t_end = 1.0;
   r.summary.dt = 0.1;

@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "rigid/io/run_schema.hpp"
 #include "rigid/io/table.hpp"
 
 namespace rigid::io {
@@ -29,7 +30,7 @@ struct Metric {
 /// What a run measured, for summary.json and the printed summary. Units SI.
 struct RunSummary {
   std::string scene;       ///< the scene file (as given), or empty
-  std::string kind;        ///< "coordinates" or "free_bodies"
+  RunKind kind = RunKind::kCoordinates;
   std::string integrator;  ///< the method that ran
   double t_end = 0;        ///< s
   double dt = 0;           ///< largest fixed step or initial adaptive step (s)
@@ -45,10 +46,12 @@ struct RunSummary {
   std::vector<Metric> metrics;  ///< the scene's [outputs] metrics, in file order
 };
 
-/// A run's trajectory (one row per output time, column `t` first) and its summary.
+/// A run's trajectory (one row per output time, column `t` first), its summary, and its schema
+/// (what each column is; empty columns when the run was not made by a model).
 struct RunResult {
   Table trajectory{{"t"}};
   RunSummary summary;
+  RunSchema schema;
 };
 
 /// The files a run can write.
@@ -63,7 +66,10 @@ enum class OutputFormat { kCsv, kNpy, kJson };
 
 /// summary.json: scene, kind, integrator and its statistics, wall time, parameters,
 /// diagnostics, metrics (`"metrics": {name: {"value": v, "unit": u}}`, plus `"note"` when the
-/// value is NaN because its event did not happen; a NaN value is written as null), the columns of the trajectory and the values of its last row, warnings.
+/// value is NaN because its event did not happen; a NaN value is written as null), the columns
+/// of the trajectory and the values of its last row, warnings, and the run's schema
+/// (schema_json) when it has one.
+/// @throws rigid::Error when the schema's columns are not the trajectory's.
 /// Doubles in their shortest round-trip form.
 [[nodiscard]] std::string summary_json(const RunResult& result);
 

@@ -29,6 +29,9 @@ class Table {
   }
   /// Index of the column called `name`. @throws rigid::Error listing the columns if absent.
   [[nodiscard]] std::size_t column(std::string_view name) const;
+  /// The columns at `indices`, in that order, with every row.
+  /// @throws rigid::Error for an index out of range or repeated.
+  [[nodiscard]] Table select(std::span<const std::size_t> indices) const;
 
  private:
   std::vector<std::string> columns_;

@@ -28,7 +28,9 @@
 
 namespace rigid::scene {
 
-enum class SceneKind { kCoordinates, kFreeBodies };
+/// What a scene's model integrates: generalized coordinates, or free bodies (io::RunKind, the
+/// kind its runs record).
+using SceneKind = io::RunKind;
 
 using RunSummary = io::RunSummary;
 using RunResult = io::RunResult;
@@ -92,6 +94,11 @@ class Model {
   [[nodiscard]] const std::vector<ModelBody>& bodies() const;
   /// Warnings found while building (e.g. a mesh that was repaired).
   [[nodiscard]] const std::vector<std::string>& warnings() const;
+  /// What run() returns, known before it runs: every column of the trajectory after [output]
+  /// quantities (quantity, body or other owner, component, unit), the parameters' units (the
+  /// scene's state none; the derived constants' are kg, m, kg·m²), the diagnostics' and the
+  /// metrics' units (a drift whose absolute change is reported instead says so in its run).
+  [[nodiscard]] const io::RunSchema& schema() const;
 
   /// The integrator a run uses: `requested` if not empty, else [simulation] integrator,
   /// else the default of the kind (dopri5 for coordinates, splitting4 for free bodies).
