@@ -28,7 +28,8 @@ namespace {
 
 // An angle (rad) from Python, refused when it is NaN or infinite (the rotation would be NaN).
 double finite_angle(double theta, const rigid::python::convert::Arg& arg) {
-  if (!std::isfinite(theta)) rigid::python::convert::refuse(arg, fmt::format("must be finite; got {}", theta));
+  if (!std::isfinite(theta))
+    rigid::python::convert::refuse(arg, fmt::format("must be finite; got {}", theta));
   return theta;
 }
 
@@ -95,21 +96,24 @@ GroupDocs group_docs(const std::string& g, const std::string& tangent, const std
   return d;
 }
 
+// The helpers below keep `function` and `name` (for the refusals) by value: the bindings build
+// them from the group's name ("rigid.SE2" + ".exp").
+
 // f(x) for the argument x read as a vector of length N.
 template <int N, class F>
-auto on_vector(std::string_view function, std::string_view name, F f) {
+auto on_vector(std::string function, std::string name, F f) {
   return [=](const py::object& x) { return f(cv::fixed_vector<N>(x, {function, name})); };
 }
 
 // f(x) for the argument x read as an R × C matrix.
 template <int R, int C, class F>
-auto on_matrix(std::string_view function, std::string_view name, F f) {
+auto on_matrix(std::string function, std::string name, F f) {
   return [=](const py::object& x) { return f(cv::fixed_matrix<R, C>(x, {function, name})); };
 }
 
 // f(x, tol) for the argument x read as an R × C matrix (from_matrix).
 template <int R, int C, class F>
-auto on_matrix_tol(std::string_view function, std::string_view name, F f) {
+auto on_matrix_tol(std::string function, std::string name, F f) {
   return [=](const py::object& x, double tol) {
     return f(cv::fixed_matrix<R, C>(x, {function, name}), tol);
   };
@@ -118,7 +122,7 @@ auto on_matrix_tol(std::string_view function, std::string_view name, F f) {
 // f(x) for the argument x read as a vector of any length (`dim` names it: "n(n-1)/2"); the
 // library checks that the length belongs to a group.
 template <class F>
-auto on_tangent(std::string_view function, std::string_view name, std::string_view dim, F f) {
+auto on_tangent(std::string function, std::string name, std::string dim, F f) {
   return [=](const py::object& x) {
     return f(cv::vector(x, {function, name}, -1, cv::Finite::kRequired, dim));
   };
@@ -126,11 +130,57 @@ auto on_tangent(std::string_view function, std::string_view name, std::string_vi
 
 // f(x, tol) for the argument x read as a square matrix of any size (`size` names it).
 template <class F>
-auto on_square_tol(std::string_view function, std::string_view name, std::string_view size, F f) {
+auto on_square_tol(std::string function, std::string name, std::string size, F f) {
   return [=](const py::object& x, double tol) {
     return f(cv::square_matrix(x, {function, name}, cv::Finite::kRequired, size), tol);
   };
 }
+
+// How a group of fixed size reads its arguments: tangent coordinates of D entries (named
+// `tangent`: "omega" or "xi"), matrices M × M (SO2, SE2, SO3, SE3).
+template <int D, int M>
+struct FixedSize {
+  const char* tangent;
+
+  template <class F>
+  auto tangent_arg(std::string function, F f) const {
+    return on_vector<D>(std::move(function), tangent, f);
+  }
+  template <class F>
+  auto matrix_tol_arg(std::string function, std::string name, F f) const {
+    return on_matrix_tol<M, M>(std::move(function), std::move(name), f);
+  }
+  // vee(matrix) of an M × M matrix
+  template <class G>
+  void def_vee(py::class_<G>& cls, const std::string& prefix, const std::string& doc) const {
+    cls.def_static("vee", on_matrix<M, M>(prefix + ".vee", "matrix", &G::vee), py::arg("matrix"),
+                   doc.c_str());
+  }
+};
+
+// How a group of any n reads its arguments (SOn, SEn): tangent coordinates of any length
+// (`dim` names it: "n(n-1)/2"), square matrices of any size (`size` names it: "n", "n+1"); the
+// library checks that the sizes belong to a group.
+struct AnySize {
+  const char* tangent;
+  const char* dim;
+  const char* size;
+
+  template <class F>
+  auto tangent_arg(std::string function, F f) const {
+    return on_tangent(std::move(function), tangent, dim, f);
+  }
+  template <class F>
+  auto matrix_tol_arg(std::string function, std::string name, F f) const {
+    return on_square_tol(std::move(function), std::move(name), size, f);
+  }
+  // vee(matrix, tol): the matrix is checked to be in the algebra within tol
+  template <class G>
+  void def_vee(py::class_<G>& cls, const std::string& prefix, const std::string& doc) const {
+    cls.def_static("vee", on_square_tol(prefix + ".vee", "matrix", size, &G::vee),
+                   py::arg("matrix"), py::arg("tol") = 1e-9, doc.c_str());
+  }
+};
 
 // a * other: the product with another element of G, or G acting on an array of length n
 // (a point for motions, a vector for rotations). `function` ("SO3.__mul__") names `*` in
@@ -163,359 +213,293 @@ py::object multiply_fixed(const G& a, const py::object& other, std::string_view 
   return py::cast(V(a * cv::fixed_vector<N>(other, {function, "other"})));
 }
 
-}  // namespace
+// __mul__ of a group of fixed size: composition, or the action on a vector of length N.
+// `function` is a string literal ("SO3.__mul__"), kept by view.
+template <class G, int N>
+void def_mul_fixed(py::class_<G>& cls, std::string_view function, const char* doc) {
+  cls.def(
+      "__mul__",
+      [function](const G& a, const py::object& other) {
+        return multiply_fixed<G, N>(a, other, function);
+      },
+      py::arg("other"), py::is_operator(), doc);
+}
 
-void bind_lie(py::module_& m) {
-  using rigid::SE2d;
-  using rigid::SE3d;
-  using rigid::SEn;
+// `count` elements drawn by draw(rng) from a std::mt19937_64 seeded with `seed` (sample).
+template <class G, class Draw>
+std::vector<G> draw_samples(std::uint64_t seed, int count, Draw draw) {
+  std::mt19937_64 rng(seed);
+  std::vector<G> out;
+  for (int i = 0; i < count; ++i) out.push_back(draw(rng));
+  return out;
+}
+
+// The methods every group binds alike, on its elements: the matrix, the adjoint, the inverse
+// and the geodesic interpolation.
+template <class G>
+void bind_element_methods(py::class_<G>& cls, const GroupDocs& d) {
+  cls.def("matrix", &G::matrix, d.matrix.c_str())
+      .def("adjoint", &G::adjoint, d.adjoint.c_str())
+      .def("inverse", &G::inverse, d.inverse.c_str())
+      .def("interpolate", &G::interpolate, py::arg("other"), py::arg("s"), d.interpolate.c_str());
+}
+
+// from_matrix(M, tol) of every group; `name` is the matrix argument ("R" or "T").
+template <class G, class Size>
+void bind_from_matrix(py::class_<G>& cls, const std::string& prefix, const Size& size,
+                      const char* name, const GroupDocs& d) {
+  cls.def_static("from_matrix", size.matrix_tol_arg(prefix + ".from_matrix", name, &G::from_matrix),
+                 py::arg(name), py::arg("tol") = 1e-9, d.from_matrix.c_str());
+}
+
+// The maps on tangent coordinates every group but SO2 (whose tangent is one float) binds alike:
+// hat, vee and the four Jacobians of exp ([Sola2018]).
+template <class G, class Size>
+void bind_tangent_maps(py::class_<G>& cls, const std::string& prefix, const Size& size,
+                       const GroupDocs& d) {
+  const py::arg xi(size.tangent);
+  cls.def_static("hat", size.tangent_arg(prefix + ".hat", &G::hat), xi, d.hat.c_str());
+  size.def_vee(cls, prefix, d.vee);
+  cls.def_static("right_jacobian", size.tangent_arg(prefix + ".right_jacobian", &G::right_jacobian),
+                 xi, d.right_jacobian.c_str())
+      .def_static("left_jacobian", size.tangent_arg(prefix + ".left_jacobian", &G::left_jacobian),
+                  xi, d.left_jacobian.c_str())
+      .def_static("right_jacobian_inverse",
+                  size.tangent_arg(prefix + ".right_jacobian_inverse", &G::right_jacobian_inverse),
+                  xi, d.right_jacobian_inverse.c_str())
+      .def_static("left_jacobian_inverse",
+                  size.tangent_arg(prefix + ".left_jacobian_inverse", &G::left_jacobian_inverse),
+                  xi, d.left_jacobian_inverse.c_str());
+}
+
+// What the groups of any n (SOn, SEn) add: identity(n), the small adjoint ad, dimension_of(n),
+// and the properties n and dimension of an element.
+template <class G>
+void bind_any_dimension(py::class_<G>& cls, const std::string& prefix, const AnySize& size,
+                        const GroupDocs& d) {
+  cls.def_static("identity", &G::identity, py::arg("n"), d.identity.c_str())
+      .def_static("ad", size.tangent_arg(prefix + ".ad", &G::ad), py::arg(size.tangent),
+                  d.ad.c_str())
+      .def_static("dimension_of", &G::dimension_of, py::arg("n"), d.dimension_of.c_str())
+      .def_property_readonly("n", &G::n, d.n.c_str())
+      .def_property_readonly("dimension", &G::dimension, d.dimension.c_str());
+}
+
+// The parts of a rigid motion (SE2, SEn, SE3): p -> R p + t.
+template <class G>
+void bind_motion_parts(py::class_<G>& cls, const GroupDocs& d) {
+  cls.def("rotation", &G::rotation, d.rotation.c_str())
+      .def("translation", &G::translation, d.translation.c_str());
+}
+
+void bind_so2(py::module_& m) {
   using rigid::SO2d;
-  using rigid::SO3d;
-  using rigid::SOn;
-  using V2 = Eigen::Vector2d;
-  using V3 = Eigen::Vector3d;
-  using VX = Eigen::VectorXd;
-  using cv::fixed_vector;
   using T1 = SO2d::Tangent;
-
-  const GroupDocs dso2 = group_docs("SO(2)", "theta (rad, counter-clockwise)", "2×2 rotation matrix R", false);
-  py::class_<SO2d>(
+  const GroupDocs d =
+      group_docs("SO(2)", "theta (rad, counter-clockwise)", "2×2 rotation matrix R", false);
+  py::class_<SO2d> cls(
       m, "SO2",
-      "Rotation in 2-D, stored as a unit complex number c + i s; tangent: the angle (float, rad)")
-      .def_static("identity", &SO2d::identity, dso2.identity.c_str())
+      "Rotation in 2-D, stored as a unit complex number c + i s; tangent: the angle (float, rad)");
+  cls.def_static("identity", &SO2d::identity, d.identity.c_str())
       .def_static(
           "exp",
-          [](double theta) { return SO2d::exp(T1(finite_angle(theta, {"rigid.SO2.exp", "theta"}))); },
-          py::arg("theta"), "angle (rad, counter-clockwise) -> rotation; refuses a non-finite angle")
+          [](double theta) {
+            return SO2d::exp(T1(finite_angle(theta, {"rigid.SO2.exp", "theta"})));
+          },
+          py::arg("theta"),
+          "angle (rad, counter-clockwise) -> rotation; refuses a non-finite angle")
       .def_static(
           "from_angle",
-          [](double theta) { return SO2d::from_angle(finite_angle(theta, {"rigid.SO2.from_angle", "theta"})); },
-          py::arg("theta"), dso2.from_angle.c_str())
+          [](double theta) {
+            return SO2d::from_angle(finite_angle(theta, {"rigid.SO2.from_angle", "theta"}));
+          },
+          py::arg("theta"), d.from_angle.c_str())
       .def_static("from_complex", &SO2d::from_complex, py::arg("c"), py::arg("s"),
-                  dso2.from_complex.c_str())
-      .def_static("from_matrix",
-                  on_matrix_tol<2, 2>("rigid.SO2.from_matrix", "R", &SO2d::from_matrix),
-                  py::arg("R"), py::arg("tol") = 1e-9, dso2.from_matrix.c_str())
-      .def_static(
-          "hat", [](double theta) { return SO2d::hat(T1(finite_angle(theta, {"rigid.SO2.hat", "theta"}))); },
-          py::arg("theta"),
-          dso2.hat.c_str())
+                  d.from_complex.c_str());
+  bind_from_matrix(cls, "rigid.SO2", FixedSize<1, 2>{"theta"}, "R", d);
+  cls.def_static(
+         "hat",
+         [](double theta) {
+           return SO2d::hat(T1(finite_angle(theta, {"rigid.SO2.hat", "theta"})));
+         },
+         py::arg("theta"), d.hat.c_str())
       .def_static("vee",
                   on_matrix<2, 2>("rigid.SO2.vee", "matrix",
                                   [](const Eigen::Matrix2d& W) { return SO2d::vee(W)(0); }),
-                  py::arg("matrix"), dso2.vee.c_str())
+                  py::arg("matrix"), d.vee.c_str())
       .def_static(
           "sample",
           [](std::uint64_t seed, int n) {
-            std::mt19937_64 rng(seed);
-            std::vector<SO2d> out;
-            for (int i = 0; i < n; ++i) out.push_back(SO2d::sample(rng));
-            return out;
+            return draw_samples<SO2d>(seed, n,
+                                      [](std::mt19937_64& rng) { return SO2d::sample(rng); });
           },
           py::arg("seed"), py::arg("n"), "n Haar-uniform rotations from a seeded std::mt19937_64")
-      .def_readonly_static("dimension", &SO2d::kDim, dso2.dimension.c_str())
+      .def_readonly_static("dimension", &SO2d::kDim, d.dimension.c_str())
       .def(
           "log", [](const SO2d& R) { return R.log()(0); }, "angle in (-pi, pi]")
-      .def("angle", &SO2d::angle, dso2.angle.c_str())
-      .def("matrix", &SO2d::matrix, dso2.matrix.c_str())
-      .def("adjoint", &SO2d::adjoint, dso2.adjoint.c_str())
-      .def("homogeneous", &SO2d::homogeneous, dso2.homogeneous.c_str())
+      .def("angle", &SO2d::angle, d.angle.c_str())
+      .def("homogeneous", &SO2d::homogeneous, d.homogeneous.c_str())
       .def(
-          "complex", [](const SO2d& R) { return V2(R.real(), R.imag()); }, "(c, s)")
-      .def("inverse", &SO2d::inverse, dso2.inverse.c_str())
-      .def("interpolate", &SO2d::interpolate, py::arg("other"), py::arg("s"),
-           dso2.interpolate.c_str())
+          "complex", [](const SO2d& R) { return Eigen::Vector2d(R.real(), R.imag()); }, "(c, s)")
       .def("is_approx", &SO2d::is_approx, py::arg("other"), py::arg("tol") = 1e-12,
-           dso2.is_approx.c_str())
-      .def(
-          "__mul__",
-          [](const SO2d& a, const py::object& other) {
-            return multiply_fixed<SO2d, 2>(a, other, "SO2.__mul__");
-          },
-          py::arg("other"), py::is_operator(),
-          "Composition self * other (other: an SO2), or the rotated vector R v (other: shape "
-          "(2,)).")
-      .def("__repr__", [](const SO2d& R) { return fmt::format("SO2(angle={})", R.angle()); });
+           d.is_approx.c_str());
+  bind_element_methods(cls, d);
+  def_mul_fixed<SO2d, 2>(cls, "SO2.__mul__",
+                         "Composition self * other (other: an SO2), or the rotated vector R v "
+                         "(other: shape (2,)).");
+  cls.def("__repr__", [](const SO2d& R) { return fmt::format("SO2(angle={})", R.angle()); });
+}
 
-  const GroupDocs dse2 = group_docs("SE(2)", "(rho_x, rho_y, theta) (m, m, rad)", "3×3 homogeneous matrix [[R, t], [0, 1]]", true);
-  py::class_<SE2d>(m, "SE2",
-                   "Rigid motion of the plane (R, t): p -> R p + t; tangent (rho_x, rho_y, theta)")
-      .def(py::init([](const SO2d& R, const py::object& t) {
-             return SE2d(R, fixed_vector<2>(t, {"rigid.SE2", "t"}));
-           }),
-           py::arg("R"), py::arg("t"), dse2.init.c_str())
-      .def_static("identity", &SE2d::identity, dse2.identity.c_str())
-      .def_static("exp", on_vector<3>("rigid.SE2.exp", "xi", &SE2d::exp), py::arg("xi"),
-                  dse2.exp.c_str())
-      .def_static("hat", on_vector<3>("rigid.SE2.hat", "xi", &SE2d::hat), py::arg("xi"),
-                  dse2.hat.c_str())
-      .def_static("vee", on_matrix<3, 3>("rigid.SE2.vee", "matrix", &SE2d::vee), py::arg("matrix"),
-                  dse2.vee.c_str())
-      .def_static("from_matrix",
-                  on_matrix_tol<3, 3>("rigid.SE2.from_matrix", "T", &SE2d::from_matrix),
-                  py::arg("T"), py::arg("tol") = 1e-9, dse2.from_matrix.c_str())
-      .def_static("right_jacobian",
-                  on_vector<3>("rigid.SE2.right_jacobian", "xi", &SE2d::right_jacobian),
-                  py::arg("xi"), dse2.right_jacobian.c_str())
-      .def_static("left_jacobian",
-                  on_vector<3>("rigid.SE2.left_jacobian", "xi", &SE2d::left_jacobian),
-                  py::arg("xi"), dse2.left_jacobian.c_str())
-      .def_static(
-          "right_jacobian_inverse",
-          on_vector<3>("rigid.SE2.right_jacobian_inverse", "xi", &SE2d::right_jacobian_inverse),
-          py::arg("xi"), dse2.right_jacobian_inverse.c_str())
-      .def_static(
-          "left_jacobian_inverse",
-          on_vector<3>("rigid.SE2.left_jacobian_inverse", "xi", &SE2d::left_jacobian_inverse),
-          py::arg("xi"), dse2.left_jacobian_inverse.c_str())
-      .def_static(
-          "sample",
-          [](std::uint64_t seed, int n, double half_extent) {
-            std::mt19937_64 rng(seed);
-            std::vector<SE2d> out;
-            for (int i = 0; i < n; ++i) out.push_back(SE2d::sample(rng, half_extent));
-            return out;
-          },
-          py::arg("seed"), py::arg("n"), py::arg("half_extent") = 1.0, dse2.sample.c_str())
-      .def_readonly_static("dimension", &SE2d::kDim, dse2.dimension.c_str())
-      .def("log", &SE2d::log, dse2.log.c_str())
-      .def("rotation", &SE2d::rotation, dse2.rotation.c_str())
-      .def("translation", &SE2d::translation, dse2.translation.c_str())
-      .def("matrix", &SE2d::matrix, dse2.matrix.c_str())
-      .def("homogeneous", &SE2d::homogeneous, dse2.homogeneous.c_str())
-      .def("adjoint", &SE2d::adjoint, dse2.adjoint.c_str())
-      .def("inverse", &SE2d::inverse, dse2.inverse.c_str())
-      .def("interpolate", &SE2d::interpolate, py::arg("other"), py::arg("s"),
-           dse2.interpolate.c_str())
+void bind_se2(py::module_& m) {
+  using rigid::SE2d;
+  const GroupDocs d = group_docs("SE(2)", "(rho_x, rho_y, theta) (m, m, rad)",
+                                 "3×3 homogeneous matrix [[R, t], [0, 1]]", true);
+  const FixedSize<3, 3> size{"xi"};
+  py::class_<SE2d> cls(
+      m, "SE2", "Rigid motion of the plane (R, t): p -> R p + t; tangent (rho_x, rho_y, theta)");
+  cls.def(py::init([](const rigid::SO2d& R, const py::object& t) {
+            return SE2d(R, cv::fixed_vector<2>(t, {"rigid.SE2", "t"}));
+          }),
+          py::arg("R"), py::arg("t"), d.init.c_str())
+      .def_static("identity", &SE2d::identity, d.identity.c_str())
+      .def_static("exp", size.tangent_arg("rigid.SE2.exp", &SE2d::exp), py::arg("xi"),
+                  d.exp.c_str());
+  bind_tangent_maps(cls, "rigid.SE2", size, d);
+  bind_from_matrix(cls, "rigid.SE2", size, "T", d);
+  cls.def_static(
+         "sample",
+         [](std::uint64_t seed, int n, double half_extent) {
+           return draw_samples<SE2d>(
+               seed, n, [&](std::mt19937_64& rng) { return SE2d::sample(rng, half_extent); });
+         },
+         py::arg("seed"), py::arg("n"), py::arg("half_extent") = 1.0, d.sample.c_str())
+      .def_readonly_static("dimension", &SE2d::kDim, d.dimension.c_str())
+      .def("log", &SE2d::log, d.log.c_str())
+      .def("homogeneous", &SE2d::homogeneous, d.homogeneous.c_str())
       .def(
           "act_vector",
-          [](const SE2d& X, const py::object& v) -> V2 {
-            return X.act_vector(fixed_vector<2>(v, {"SE2.act_vector", "v"}));
+          [](const SE2d& X, const py::object& v) -> Eigen::Vector2d {
+            return X.act_vector(cv::fixed_vector<2>(v, {"SE2.act_vector", "v"}));
           },
-          py::arg("v"), dse2.act_vector.c_str())
-      .def(
-          "__mul__",
-          [](const SE2d& a, const py::object& other) {
-            return multiply_fixed<SE2d, 2>(a, other, "SE2.__mul__");
-          },
-          py::arg("other"), py::is_operator(),
-          "Composition self * other (other: an SE2), or the moved point R p + t (other: shape "
-          "(2,)).")
-      .def("__repr__", [](const SE2d& X) {
-        return fmt::format("SE2(angle={}, translation={})", X.rotation().angle(), rigid::to_string(X.translation().transpose()));
-      });
+          py::arg("v"), d.act_vector.c_str());
+  bind_motion_parts(cls, d);
+  bind_element_methods(cls, d);
+  def_mul_fixed<SE2d, 2>(cls, "SE2.__mul__",
+                         "Composition self * other (other: an SE2), or the moved point R p + t "
+                         "(other: shape (2,)).");
+  cls.def("__repr__", [](const SE2d& X) {
+    return fmt::format("SE2(angle={}, translation={})", X.rotation().angle(),
+                       rigid::to_string(X.translation().transpose()));
+  });
+}
 
-  const GroupDocs dson = group_docs("SO(n)", "omega in R^(n(n-1)/2) (rad; basis as in hat)", "n×n rotation matrix R", false);
-  py::class_<SOn>(m, "SOn",
-                  "Rotation of R^n for any n >= 2 (n x n matrix); tangent in R^(n(n-1)/2), basis "
-                  "as in SOn::hat")
-      .def_static("identity", &SOn::identity, py::arg("n"), dson.identity.c_str())
-      .def_static("exp", on_tangent("rigid.SOn.exp", "omega", "n(n-1)/2", &SOn::exp),
-                  py::arg("omega"), "so(n) coordinates -> rotation (n from the size)")
-      .def_static("hat", on_tangent("rigid.SOn.hat", "omega", "n(n-1)/2", &SOn::hat),
-                  py::arg("omega"), dson.hat.c_str())
-      .def_static("vee", on_square_tol("rigid.SOn.vee", "matrix", "n", &SOn::vee),
-                  py::arg("matrix"), py::arg("tol") = 1e-9, dson.vee.c_str())
-      .def_static("ad", on_tangent("rigid.SOn.ad", "omega", "n(n-1)/2", &SOn::ad), py::arg("omega"),
-                  dson.ad.c_str())
-      .def_static("from_matrix",
-                  on_square_tol("rigid.SOn.from_matrix", "R", "n", &SOn::from_matrix), py::arg("R"),
-                  py::arg("tol") = 1e-9, dson.from_matrix.c_str())
-      .def_static("dimension_of", &SOn::dimension_of, py::arg("n"), dson.dimension_of.c_str())
-      .def_static("right_jacobian",
-                  on_tangent("rigid.SOn.right_jacobian", "omega", "n(n-1)/2", &SOn::right_jacobian),
-                  py::arg("omega"), dson.right_jacobian.c_str())
-      .def_static("left_jacobian",
-                  on_tangent("rigid.SOn.left_jacobian", "omega", "n(n-1)/2", &SOn::left_jacobian),
-                  py::arg("omega"), dson.left_jacobian.c_str())
-      .def_static("right_jacobian_inverse",
-                  on_tangent("rigid.SOn.right_jacobian_inverse", "omega", "n(n-1)/2",
-                             &SOn::right_jacobian_inverse),
-                  py::arg("omega"), dson.right_jacobian_inverse.c_str())
-      .def_static("left_jacobian_inverse",
-                  on_tangent("rigid.SOn.left_jacobian_inverse", "omega", "n(n-1)/2",
-                             &SOn::left_jacobian_inverse),
-                  py::arg("omega"), dson.left_jacobian_inverse.c_str())
-      .def_static(
-          "sample",
-          [](int dim, std::uint64_t seed, int count) {
-            std::mt19937_64 rng(seed);
-            std::vector<SOn> out;
-            for (int i = 0; i < count; ++i) out.push_back(SOn::sample(dim, rng));
-            return out;
-          },
-          py::arg("n"), py::arg("seed"), py::arg("count"),
-          "count Haar-uniform rotations of R^n (seeded)")
-      .def("log", &SOn::log, dson.log.c_str())
+void bind_son(py::module_& m) {
+  using rigid::SOn;
+  const GroupDocs d = group_docs("SO(n)", "omega in R^(n(n-1)/2) (rad; basis as in hat)",
+                                 "n×n rotation matrix R", false);
+  const AnySize size{"omega", "n(n-1)/2", "n"};
+  py::class_<SOn> cls(
+      m, "SOn",
+      "Rotation of R^n for any n >= 2 (n x n matrix); tangent in R^(n(n-1)/2), basis "
+      "as in SOn::hat");
+  bind_any_dimension(cls, "rigid.SOn", size, d);
+  cls.def_static("exp", size.tangent_arg("rigid.SOn.exp", &SOn::exp), py::arg("omega"),
+                 "so(n) coordinates -> rotation (n from the size)");
+  bind_tangent_maps(cls, "rigid.SOn", size, d);
+  bind_from_matrix(cls, "rigid.SOn", size, "R", d);
+  cls.def_static(
+         "sample",
+         [](int dim, std::uint64_t seed, int count) {
+           return draw_samples<SOn>(seed, count,
+                                    [&](std::mt19937_64& rng) { return SOn::sample(dim, rng); });
+         },
+         py::arg("n"), py::arg("seed"), py::arg("count"),
+         "count Haar-uniform rotations of R^n (seeded)")
+      .def("log", &SOn::log, d.log.c_str())
       .def("angles", &SOn::angles, "rotation angles of the planes, descending, in [0, pi]")
-      .def("matrix", &SOn::matrix, dson.matrix.c_str())
-      .def("homogeneous", &SOn::homogeneous, dson.homogeneous.c_str())
-      .def("adjoint", &SOn::adjoint, dson.adjoint.c_str())
-      .def_property_readonly("n", &SOn::n, dson.n.c_str())
-      .def_property_readonly("dimension", &SOn::dimension, dson.dimension.c_str())
-      .def("inverse", &SOn::inverse, dson.inverse.c_str())
-      .def("interpolate", &SOn::interpolate, py::arg("other"), py::arg("s"),
-           dson.interpolate.c_str())
+      .def("homogeneous", &SOn::homogeneous, d.homogeneous.c_str())
       .def("is_approx", &SOn::is_approx, py::arg("other"), py::arg("tol") = 1e-12,
-           dson.is_approx.c_str())
-      .def(
-          "__mul__",
-          [](const SOn& a, const py::object& other) {
-            return multiply(a, other, "SOn.__mul__", a.n(),
-                            [&](const VX& v) -> VX { return a * v; });
-          },
-          py::arg("other"), py::is_operator(),
-          "Composition self * other (other: an SOn of the same n), or the rotated vector R v "
-          "(other: shape (n,)).")
+           d.is_approx.c_str());
+  bind_element_methods(cls, d);
+  cls.def(
+         "__mul__",
+         [](const SOn& a, const py::object& other) {
+           return multiply(a, other, "SOn.__mul__", a.n(),
+                           [&](const Eigen::VectorXd& v) -> Eigen::VectorXd { return a * v; });
+         },
+         py::arg("other"), py::is_operator(),
+         "Composition self * other (other: an SOn of the same n), or the rotated vector R v "
+         "(other: shape (n,)).")
       .def("__repr__", [](const SOn& R) {
         return fmt::format("SOn(n={}, matrix={})", R.n(), rigid::to_string(R.matrix()));
       });
+}
 
-  const GroupDocs dsen = group_docs("SE(n)", "(rho, omega) in R^(n(n+1)/2) (m, rad)", "(n+1)×(n+1) homogeneous matrix [[R, t], [0, 1]]", true);
-  py::class_<SEn>(m, "SEn",
-                  "Rigid motion of R^n (R, t) for any n >= 2; tangent (rho, omega) in R^(n(n+1)/2)")
-      .def(py::init([](const SOn& R, const py::object& t) {
-             return SEn(R, cv::vector(t, {"rigid.SEn", "t"}, R.n()));
-           }),
-           py::arg("R"), py::arg("t"), dsen.init.c_str())
-      .def_static("identity", &SEn::identity, py::arg("n"), dsen.identity.c_str())
-      .def_static("exp", on_tangent("rigid.SEn.exp", "xi", "n(n+1)/2", &SEn::exp), py::arg("xi"),
-                  dsen.exp.c_str())
-      .def_static("hat", on_tangent("rigid.SEn.hat", "xi", "n(n+1)/2", &SEn::hat), py::arg("xi"),
-                  dsen.hat.c_str())
-      .def_static("vee", on_square_tol("rigid.SEn.vee", "matrix", "n+1", &SEn::vee),
-                  py::arg("matrix"), py::arg("tol") = 1e-9, dsen.vee.c_str())
-      .def_static("ad", on_tangent("rigid.SEn.ad", "xi", "n(n+1)/2", &SEn::ad), py::arg("xi"),
-                  dsen.ad.c_str())
-      .def_static("from_matrix",
-                  on_square_tol("rigid.SEn.from_matrix", "T", "n+1", &SEn::from_matrix),
-                  py::arg("T"), py::arg("tol") = 1e-9, dsen.from_matrix.c_str())
-      .def_static("dimension_of", &SEn::dimension_of, py::arg("n"), dsen.dimension_of.c_str())
-      .def_static("right_jacobian",
-                  on_tangent("rigid.SEn.right_jacobian", "xi", "n(n+1)/2", &SEn::right_jacobian),
-                  py::arg("xi"), dsen.right_jacobian.c_str())
-      .def_static("left_jacobian",
-                  on_tangent("rigid.SEn.left_jacobian", "xi", "n(n+1)/2", &SEn::left_jacobian),
-                  py::arg("xi"), dsen.left_jacobian.c_str())
-      .def_static("right_jacobian_inverse",
-                  on_tangent("rigid.SEn.right_jacobian_inverse", "xi", "n(n+1)/2",
-                             &SEn::right_jacobian_inverse),
-                  py::arg("xi"), dsen.right_jacobian_inverse.c_str())
-      .def_static("left_jacobian_inverse",
-                  on_tangent("rigid.SEn.left_jacobian_inverse", "xi", "n(n+1)/2",
-                             &SEn::left_jacobian_inverse),
-                  py::arg("xi"), dsen.left_jacobian_inverse.c_str())
-      .def_static(
-          "sample",
-          [](int dim, std::uint64_t seed, int count, double half_extent) {
-            std::mt19937_64 rng(seed);
-            std::vector<SEn> out;
-            for (int i = 0; i < count; ++i) out.push_back(SEn::sample(dim, rng, half_extent));
-            return out;
-          },
-          py::arg("n"), py::arg("seed"), py::arg("count"), py::arg("half_extent") = 1.0,
-          dsen.sample.c_str())
-      .def("log", &SEn::log, dsen.log.c_str())
-      .def("rotation", &SEn::rotation, dsen.rotation.c_str())
-      .def("translation", &SEn::translation, dsen.translation.c_str())
-      .def("matrix", &SEn::matrix, dsen.matrix.c_str())
-      .def("homogeneous", &SEn::homogeneous, dsen.homogeneous.c_str())
-      .def("adjoint", &SEn::adjoint, dsen.adjoint.c_str())
-      .def_property_readonly("n", &SEn::n, dsen.n.c_str())
-      .def_property_readonly("dimension", &SEn::dimension, dsen.dimension.c_str())
-      .def("inverse", &SEn::inverse, dsen.inverse.c_str())
-      .def("interpolate", &SEn::interpolate, py::arg("other"), py::arg("s"),
-           dsen.interpolate.c_str())
+void bind_sen(py::module_& m) {
+  using rigid::SEn;
+  using VX = Eigen::VectorXd;
+  const GroupDocs d = group_docs("SE(n)", "(rho, omega) in R^(n(n+1)/2) (m, rad)",
+                                 "(n+1)×(n+1) homogeneous matrix [[R, t], [0, 1]]", true);
+  const AnySize size{"xi", "n(n+1)/2", "n+1"};
+  py::class_<SEn> cls(
+      m, "SEn", "Rigid motion of R^n (R, t) for any n >= 2; tangent (rho, omega) in R^(n(n+1)/2)");
+  cls.def(py::init([](const rigid::SOn& R, const py::object& t) {
+            return SEn(R, cv::vector(t, {"rigid.SEn", "t"}, R.n()));
+          }),
+          py::arg("R"), py::arg("t"), d.init.c_str());
+  bind_any_dimension(cls, "rigid.SEn", size, d);
+  cls.def_static("exp", size.tangent_arg("rigid.SEn.exp", &SEn::exp), py::arg("xi"), d.exp.c_str());
+  bind_tangent_maps(cls, "rigid.SEn", size, d);
+  bind_from_matrix(cls, "rigid.SEn", size, "T", d);
+  cls.def_static(
+         "sample",
+         [](int dim, std::uint64_t seed, int count, double half_extent) {
+           return draw_samples<SEn>(seed, count, [&](std::mt19937_64& rng) {
+             return SEn::sample(dim, rng, half_extent);
+           });
+         },
+         py::arg("n"), py::arg("seed"), py::arg("count"), py::arg("half_extent") = 1.0,
+         d.sample.c_str())
+      .def("log", &SEn::log, d.log.c_str())
+      .def("homogeneous", &SEn::homogeneous, d.homogeneous.c_str())
       .def(
           "act_vector",
           [](const SEn& X, const py::object& v) -> VX {
             return X.act_vector(cv::vector(v, {"SEn.act_vector", "v"}, X.n()));
           },
-          py::arg("v"), dsen.act_vector.c_str())
-      .def(
-          "__mul__",
-          [](const SEn& a, const py::object& other) {
-            return multiply(a, other, "SEn.__mul__", a.n(),
-                            [&](const VX& p) -> VX { return a * p; });
-          },
-          py::arg("other"), py::is_operator(),
-          "Composition self * other (other: an SEn of the same n), or the moved point R p + t "
-          "(other: shape (n,)).")
+          py::arg("v"), d.act_vector.c_str());
+  bind_motion_parts(cls, d);
+  bind_element_methods(cls, d);
+  cls.def(
+         "__mul__",
+         [](const SEn& a, const py::object& other) {
+           return multiply(a, other, "SEn.__mul__", a.n(),
+                           [&](const VX& p) -> VX { return a * p; });
+         },
+         py::arg("other"), py::is_operator(),
+         "Composition self * other (other: an SEn of the same n), or the moved point R p + t "
+         "(other: shape (n,)).")
       .def("__repr__", [](const SEn& X) {
         return fmt::format("SEn(n={}, matrix={})", X.n(), rigid::to_string(X.matrix()));
       });
+}
 
-  const GroupDocs dso3 = group_docs("SO(3)", "omega (rotation vector: axis · angle, rad)", "3×3 rotation matrix R_AB (v_A = R_AB v_B)", false);
-  py::class_<SO3d>(m, "SO3", "Rotation in 3-D, stored as a unit quaternion (w, x, y, z)")
-      .def_static("identity", &SO3d::identity, dso3.identity.c_str())
-      .def_static(
-          "exp",
-          [](const py::object& omega) {
-            constexpr cv::Arg arg{"rigid.SO3.exp", "omega"};
-            const V3 w = fixed_vector<3>(omega, arg, cv::Finite::kAllowed);
-            try {
-              return rigid::python::exp_of_rotation_vector(w);
-            } catch (const rigid::Error& e) {  // as rigid.so3.exp words it
-              throw rigid::Error(
-                  fmt::format("{}(): argument '{}': {}", arg.function, arg.name, e.what()));
-            }
-          },
-          py::arg("omega"), "rotation vector (rad) -> rotation; refuses a non-finite omega")
-      .def_static("hat", on_vector<3>("rigid.SO3.hat", "omega", &SO3d::hat), py::arg("omega"),
-                  dso3.hat.c_str())
-      .def_static("vee", on_matrix<3, 3>("rigid.SO3.vee", "matrix", &SO3d::vee), py::arg("matrix"),
-                  dso3.vee.c_str())
-      .def_static("from_matrix",
-                  on_matrix_tol<3, 3>("rigid.SO3.from_matrix", "R", &SO3d::from_matrix),
-                  py::arg("R"), py::arg("tol") = 1e-9, dso3.from_matrix.c_str())
-      .def_static(
-          "from_quaternion", &SO3d::from_quaternion, py::arg("w"), py::arg("x"), py::arg("y"),
-          py::arg("z"),
-          "The rotation of the quaternion (w, x, y, z), normalised; raises rigid.Error if it is "
-          "not finite or its norm is below 1e-12.")
-      .def_static(
-          "from_axis_angle",
-          [](const py::object& axis, double angle) {
-            return SO3d::from_axis_angle(
-                fixed_vector<3>(axis, {"rigid.SO3.from_axis_angle", "axis"}), angle);
-          },
-          py::arg("axis"), py::arg("angle"), dso3.from_axis_angle.c_str())
-      .def_static("right_jacobian",
-                  on_vector<3>("rigid.SO3.right_jacobian", "omega", &SO3d::right_jacobian),
-                  py::arg("omega"), dso3.right_jacobian.c_str())
-      .def_static("left_jacobian",
-                  on_vector<3>("rigid.SO3.left_jacobian", "omega", &SO3d::left_jacobian),
-                  py::arg("omega"), dso3.left_jacobian.c_str())
-      .def_static(
-          "right_jacobian_inverse",
-          on_vector<3>("rigid.SO3.right_jacobian_inverse", "omega", &SO3d::right_jacobian_inverse),
-          py::arg("omega"), dso3.right_jacobian_inverse.c_str())
-      .def_static(
-          "left_jacobian_inverse",
-          on_vector<3>("rigid.SO3.left_jacobian_inverse", "omega", &SO3d::left_jacobian_inverse),
-          py::arg("omega"), dso3.left_jacobian_inverse.c_str())
-      .def_static(
-          "sample",
-          [](std::uint64_t seed, int n) {
-            std::mt19937_64 rng(seed);
-            std::vector<SO3d> out;
-            for (int i = 0; i < n; ++i) out.push_back(SO3d::sample(rng));
-            return out;
-          },
-          py::arg("seed"), py::arg("n"), "n Haar-uniform rotations from a seeded std::mt19937_64")
-      .def_static(
-          "from_euler",
-          [](const py::object& angles, const std::string& seq, bool intrinsic) {
-            // NaN passes here: the library refuses it in the words of rigid.so3.from_euler and
-            // the CLI (tests/cli/test_rotation_seam.py)
-            const V3 a =
-                fixed_vector<3>(angles, {"rigid.SO3.from_euler", "angles"}, cv::Finite::kAllowed);
-            return rigid::from_euler(a, rigid::EulerConvention::parse(seq, intrinsic));
-          },
-          py::arg("angles"), py::arg("sequence") = "ZYX", py::arg("intrinsic") = true,
-          "The rotation of Euler angles (rad) about the axes of `sequence` (any of the 12, e.g. "
-          "'ZYX', 'ZXZ'; "
-          "intrinsic: about the moving axes, else about the fixed axes).")
+// SO3's Euler-angle conversions (any of the 12 sequences, intrinsic or extrinsic).
+void bind_so3_euler(py::class_<rigid::SO3d>& cls) {
+  using rigid::SO3d;
+  cls.def_static(
+         "from_euler",
+         [](const py::object& angles, const std::string& seq, bool intrinsic) {
+           // NaN passes here: the library refuses it in the words of rigid.so3.from_euler and
+           // the CLI (tests/cli/test_rotation_seam.py)
+           const Eigen::Vector3d a = cv::fixed_vector<3>(angles, {"rigid.SO3.from_euler", "angles"},
+                                                         cv::Finite::kAllowed);
+           return rigid::from_euler(a, rigid::EulerConvention::parse(seq, intrinsic));
+         },
+         py::arg("angles"), py::arg("sequence") = "ZYX", py::arg("intrinsic") = true,
+         "The rotation of Euler angles (rad) about the axes of `sequence` (any of the 12, e.g. "
+         "'ZYX', 'ZXZ'; "
+         "intrinsic: about the moving axes, else about the fixed axes).")
       .def(
           "to_euler",
           [](const SO3d& R, const std::string& seq, bool intrinsic) {
@@ -523,83 +507,99 @@ void bind_lie(py::module_& m) {
           },
           py::arg("sequence") = "ZYX", py::arg("intrinsic") = true,
           "The Euler angles (rad) of this rotation for `sequence` and intrinsic/extrinsic, as "
-          "from_euler takes them.")
-      .def("log", &SO3d::log, dso3.log.c_str())
-      .def("angle", &SO3d::angle, dso3.angle.c_str())
-      .def("matrix", &SO3d::matrix, dso3.matrix.c_str())
-      .def("adjoint", &SO3d::adjoint, dso3.adjoint.c_str())
-      .def("homogeneous", &SO3d::homogeneous, dso3.homogeneous.c_str())
+          "from_euler takes them.");
+}
+
+void bind_so3(py::module_& m) {
+  using rigid::SO3d;
+  const GroupDocs d = group_docs("SO(3)", "omega (rotation vector: axis · angle, rad)",
+                                 "3×3 rotation matrix R_AB (v_A = R_AB v_B)", false);
+  const FixedSize<3, 3> size{"omega"};
+  py::class_<SO3d> cls(m, "SO3", "Rotation in 3-D, stored as a unit quaternion (w, x, y, z)");
+  cls.def_static("identity", &SO3d::identity, d.identity.c_str())
+      .def_static(
+          "exp",
+          [](const py::object& omega) {
+            constexpr cv::Arg arg{"rigid.SO3.exp", "omega"};
+            const Eigen::Vector3d w = cv::fixed_vector<3>(omega, arg, cv::Finite::kAllowed);
+            try {
+              return rigid::python::exp_of_rotation_vector(w);
+            } catch (const rigid::Error& e) {  // as rigid.so3.exp words it
+              throw rigid::Error(
+                  fmt::format("{}(): argument '{}': {}", arg.function, arg.name, e.what()));
+            }
+          },
+          py::arg("omega"), "rotation vector (rad) -> rotation; refuses a non-finite omega");
+  bind_tangent_maps(cls, "rigid.SO3", size, d);
+  bind_from_matrix(cls, "rigid.SO3", size, "R", d);
+  cls.def_static(
+         "from_quaternion", &SO3d::from_quaternion, py::arg("w"), py::arg("x"), py::arg("y"),
+         py::arg("z"),
+         "The rotation of the quaternion (w, x, y, z), normalised; raises rigid.Error if it is "
+         "not finite or its norm is below 1e-12.")
+      .def_static(
+          "from_axis_angle",
+          [](const py::object& axis, double angle) {
+            return SO3d::from_axis_angle(
+                cv::fixed_vector<3>(axis, {"rigid.SO3.from_axis_angle", "axis"}), angle);
+          },
+          py::arg("axis"), py::arg("angle"), d.from_axis_angle.c_str())
+      .def_static(
+          "sample",
+          [](std::uint64_t seed, int n) {
+            return draw_samples<SO3d>(seed, n,
+                                      [](std::mt19937_64& rng) { return SO3d::sample(rng); });
+          },
+          py::arg("seed"), py::arg("n"), "n Haar-uniform rotations from a seeded std::mt19937_64");
+  bind_so3_euler(cls);
+  cls.def("log", &SO3d::log, d.log.c_str())
+      .def("angle", &SO3d::angle, d.angle.c_str())
+      .def("homogeneous", &SO3d::homogeneous, d.homogeneous.c_str())
       .def("quaternion", &SO3d::quaternion, "(w, x, y, z)")
-      .def("inverse", &SO3d::inverse, dso3.inverse.c_str())
-      .def("interpolate", &SO3d::interpolate, py::arg("other"), py::arg("s"),
-           dso3.interpolate.c_str())
       .def("is_approx", &SO3d::is_approx, py::arg("other"), py::arg("tol") = 1e-12,
-           dso3.is_approx.c_str())
-      .def(
-          "__mul__",
-          [](const SO3d& a, const py::object& other) {
-            return multiply_fixed<SO3d, 3>(a, other, "SO3.__mul__");
-          },
-          py::arg("other"), py::is_operator(),
-          "Composition self * other (R_AC = R_AB * R_BC; other: an SO3), or the rotated vector "
-          "R v (v_A = R_AB v_B; other: shape (3,)).")
-      .def("__repr__", [](const SO3d& R) {
-        return "SO3(quaternion wxyz=" + rigid::to_string(R.quaternion().transpose()) + ")";
-      });
+           d.is_approx.c_str());
+  bind_element_methods(cls, d);
+  def_mul_fixed<SO3d, 3>(cls, "SO3.__mul__",
+                         "Composition self * other (R_AC = R_AB * R_BC; other: an SO3), or the "
+                         "rotated vector R v (v_A = R_AB v_B; other: shape (3,)).");
+  cls.def("__repr__", [](const SO3d& R) {
+    return "SO3(quaternion wxyz=" + rigid::to_string(R.quaternion().transpose()) + ")";
+  });
+}
 
-  const GroupDocs dse3 = group_docs("SE(3)", "(rho, omega) (m, rad; translation part first)", "4×4 homogeneous matrix [[R, t], [0, 1]]", true);
-  py::class_<SE3d>(m, "SE3", "Rigid motion (R, t): p -> R p + t; tangent (rho, omega)")
-      .def(py::init([](const SO3d& R, const py::object& t) {
-             return SE3d(R, fixed_vector<3>(t, {"rigid.SE3", "t"}));
-           }),
-           py::arg("R"), py::arg("t"), dse3.init.c_str())
-      .def_static("identity", &SE3d::identity, dse3.identity.c_str())
-      .def_static("exp", on_vector<6>("rigid.SE3.exp", "xi", &SE3d::exp), py::arg("xi"),
-                  dse3.exp.c_str())
-      .def_static("hat", on_vector<6>("rigid.SE3.hat", "xi", &SE3d::hat), py::arg("xi"),
-                  dse3.hat.c_str())
-      .def_static("vee", on_matrix<4, 4>("rigid.SE3.vee", "matrix", &SE3d::vee), py::arg("matrix"),
-                  dse3.vee.c_str())
-      .def_static("from_matrix",
-                  on_matrix_tol<4, 4>("rigid.SE3.from_matrix", "T", &SE3d::from_matrix),
-                  py::arg("T"), py::arg("tol") = 1e-9, dse3.from_matrix.c_str())
-      .def_static("right_jacobian",
-                  on_vector<6>("rigid.SE3.right_jacobian", "xi", &SE3d::right_jacobian),
-                  py::arg("xi"), dse3.right_jacobian.c_str())
-      .def_static("left_jacobian",
-                  on_vector<6>("rigid.SE3.left_jacobian", "xi", &SE3d::left_jacobian),
-                  py::arg("xi"), dse3.left_jacobian.c_str())
-      .def_static(
-          "right_jacobian_inverse",
-          on_vector<6>("rigid.SE3.right_jacobian_inverse", "xi", &SE3d::right_jacobian_inverse),
-          py::arg("xi"), dse3.right_jacobian_inverse.c_str())
-      .def_static(
-          "left_jacobian_inverse",
-          on_vector<6>("rigid.SE3.left_jacobian_inverse", "xi", &SE3d::left_jacobian_inverse),
-          py::arg("xi"), dse3.left_jacobian_inverse.c_str())
-      .def("log", &SE3d::log, dse3.log.c_str())
-      .def("rotation", &SE3d::rotation, dse3.rotation.c_str())
-      .def("translation", &SE3d::translation, dse3.translation.c_str())
-      .def("matrix", &SE3d::matrix, dse3.matrix.c_str())
-      .def("adjoint", &SE3d::adjoint, dse3.adjoint.c_str())
-      .def("inverse", &SE3d::inverse, dse3.inverse.c_str())
-      .def("interpolate", &SE3d::interpolate, py::arg("other"), py::arg("s"),
-           dse3.interpolate.c_str())
-      .def(
-          "__mul__",
-          [](const SE3d& a, const py::object& other) {
-            return multiply_fixed<SE3d, 3>(a, other, "SE3.__mul__");
-          },
-          py::arg("other"), py::is_operator(),
-          "Composition self * other (X_AC = X_AB * X_BC; other: an SE3), or the moved point "
-          "R p + t (other: shape (3,)).")
-      .def("__repr__", [](const SE3d& X) {
-        return "SE3(quaternion wxyz=" + rigid::to_string(X.rotation().quaternion().transpose()) +
-               ", translation=" + rigid::to_string(X.translation().transpose()) + ")";
-      });
+// SE3 binds no homogeneous (its matrix is the homogeneous one), no sample and no act_vector.
+void bind_se3(py::module_& m) {
+  using rigid::SE3d;
+  const GroupDocs d = group_docs("SE(3)", "(rho, omega) (m, rad; translation part first)",
+                                 "4×4 homogeneous matrix [[R, t], [0, 1]]", true);
+  const FixedSize<6, 4> size{"xi"};
+  py::class_<SE3d> cls(m, "SE3", "Rigid motion (R, t): p -> R p + t; tangent (rho, omega)");
+  cls.def(py::init([](const rigid::SO3d& R, const py::object& t) {
+            return SE3d(R, cv::fixed_vector<3>(t, {"rigid.SE3", "t"}));
+          }),
+          py::arg("R"), py::arg("t"), d.init.c_str())
+      .def_static("identity", &SE3d::identity, d.identity.c_str())
+      .def_static("exp", size.tangent_arg("rigid.SE3.exp", &SE3d::exp), py::arg("xi"),
+                  d.exp.c_str());
+  bind_tangent_maps(cls, "rigid.SE3", size, d);
+  bind_from_matrix(cls, "rigid.SE3", size, "T", d);
+  cls.def("log", &SE3d::log, d.log.c_str());
+  bind_motion_parts(cls, d);
+  bind_element_methods(cls, d);
+  def_mul_fixed<SE3d, 3>(cls, "SE3.__mul__",
+                         "Composition self * other (X_AC = X_AB * X_BC; other: an SE3), or the "
+                         "moved point R p + t (other: shape (3,)).");
+  cls.def("__repr__", [](const SE3d& X) {
+    return "SE3(quaternion wxyz=" + rigid::to_string(X.rotation().quaternion().transpose()) +
+           ", translation=" + rigid::to_string(X.translation().transpose()) + ")";
+  });
+}
 
-  py::class_<rigid::OrthogonalityReport>(m, "OrthogonalityReport",
-                                              "How far a matrix M is from O(n) and SO(n): check_orthogonal(M, tol).")
+// check_orthogonal with its report, and nearest_rotation: matrices that may not be rotations.
+void bind_orthogonality(py::module_& m) {
+  py::class_<rigid::OrthogonalityReport>(
+      m, "OrthogonalityReport",
+      "How far a matrix M is from O(n) and SO(n): check_orthogonal(M, tol).")
       .def_readonly("defect", &rigid::OrthogonalityReport::defect, "max |MᵀM − I| (entrywise).")
       .def_readonly("determinant", &rigid::OrthogonalityReport::determinant, "det M.")
       .def_readonly("orthogonal", &rigid::OrthogonalityReport::orthogonal,
@@ -607,8 +607,9 @@ void bind_lie(py::module_& m) {
       .def_readonly("rotation", &rigid::OrthogonalityReport::rotation,
                     "True if also det M > 0 (M in SO(n)).")
       .def("__repr__", [](const rigid::OrthogonalityReport& r) {
-        return fmt::format("OrthogonalityReport(defect={}, determinant={}, orthogonal={}, rotation={})", r.defect,
-                           r.determinant, r.orthogonal ? "True" : "False", r.rotation ? "True" : "False");
+        return fmt::format(
+            "OrthogonalityReport(defect={}, determinant={}, orthogonal={}, rotation={})", r.defect,
+            r.determinant, r.orthogonal ? "True" : "False", r.rotation ? "True" : "False");
       });
   m.def("check_orthogonal",
         on_square_tol("rigid.check_orthogonal", "M", "n", &rigid::check_orthogonal), py::arg("M"),
@@ -619,5 +620,18 @@ void bind_lie(py::module_& m) {
         return rigid::nearest_rotation(cv::square_matrix(M, {"rigid.nearest_rotation", "M"}));
       },
       py::arg("M"), "closest SO(n) matrix (SVD)");
+}
+
+}  // namespace
+
+// The classes in the order their signatures need them: SE2 takes an SO2, SEn an SOn, SE3 an SO3.
+void bind_lie(py::module_& m) {
+  bind_so2(m);
+  bind_se2(m);
+  bind_son(m);
+  bind_sen(m);
+  bind_so3(m);
+  bind_se3(m);
+  bind_orthogonality(m);
   bind_so3_batch(m);
 }
