@@ -78,6 +78,8 @@ void write_matrix(const SO3d& R, double* out) {
 
 V3 read_vector(const double* p) { return {p[0], p[1], p[2]}; }
 
+void write_vector(const V3& v, double* out) { out[0] = v(0), out[1] = v(1), out[2] = v(2); }
+
 // A single rotation argument broadcast over the rows of the other: read once, so that a
 // refusal names the argument without a row.
 struct RotationArgument {
@@ -103,25 +105,26 @@ RotationArgument rotation_argument(const BatchArray& b, QuaternionOrder o,
   return r;
 }
 
-}  // namespace
+// Row i of the result is write(row i of the argument `name`): the loop of every function of
+// one batch argument. The argument's elements have shape `in_element`, the result's
+// `out_element`; write(in, out) reads one element and writes one (with the GIL released for
+// large N: it must not touch Python objects).
+template <class Write>
+py::array_t<double> map_rows(std::string_view fn, const py::object& argument, std::string_view name,
+                             std::initializer_list<py::ssize_t> in_element,
+                             std::initializer_list<py::ssize_t> out_element, const Write& write) {
+  const BatchArray a = batch_argument(argument, {fn, name}, in_element);
+  py::ssize_t out_size = 1;
+  for (py::ssize_t k : out_element) out_size *= k;
+  auto out = batch_result(a.n, a.single, out_element);
+  double* dst = out.mutable_data();
+  for_each_row(a.n, a.single, fn, name,
+               [&](py::ssize_t i) { write(a.row(i), dst + out_size * i); });
+  return out;
+}
 
-void bind_so3_batch(py::module_& m) {
-  auto so3 = m.def_submodule(
-      "so3",
-      "SO(3) on arrays of N rotations, looped in C++ (no Python loop; the GIL is released from "
-      "4096 rows on and the rows are split over the cores from 32768 on; Ctrl-C "
-      "interrupts).\n\n"
-      "Rotations are unit quaternions of shape (N, 4) in the order given by the keyword `order` "
-      "('wxyz', the default, or 'xyzw' as SciPy); any nonzero quaternion is normalised (as "
-      "SO3.from_quaternion, to within an ulp). Rotation vectors and Euler angles are (N, 3) in "
-      "rad, matrices "
-      "(N, 3, 3) with R @ v rotating v. A single element ((4,), (3,), (3, 3)) gives a single "
-      "result; in compose and act a single element is combined with every row of the other "
-      "argument. Each element is computed by the same code as the rigid.SO3 method: the same "
-      "numbers, to an ulp where a quaternion is normalised. Bad input (shape, dtype, a non-finite "
-      "or zero quaternion, a "
-      "matrix that is not a rotation) raises rigid.Error naming the argument and the row.");
-
+// rigid.so3.exp and rigid.so3.log: rotation vectors to rotations and back.
+void bind_exp_and_log(py::module_& so3) {
   so3.def(
       "exp",
       [](const py::object& omega, const std::string& output, const std::string& order) {
@@ -131,20 +134,15 @@ void bind_so3_batch(py::module_& m) {
           throw rigid::Error(
               fmt::format("so3.exp(): output is '{}', expected 'quaternion' or 'matrix'", output));
         }
-        const BatchArray w = batch_argument(omega, {fn, "omega"}, {3});
-        const bool as_matrix = output == "matrix";
-        auto out =
-            as_matrix ? batch_result(w.n, w.single, {3, 3}) : batch_result(w.n, w.single, {4});
-        double* dst = out.mutable_data();
-        for_each_row(w.n, w.single, fn, "omega", [&](py::ssize_t i) {
-          const SO3d R = rigid::python::exp_of_rotation_vector(read_vector(w.row(i)));
-          if (as_matrix) {
-            write_matrix(R, dst + 9 * i);
-          } else {
-            write_rotation(R, dst + 4 * i, o);
-          }
-        });
-        return out;
+        const auto rotation_of = [](const double* w) {
+          return rigid::python::exp_of_rotation_vector(read_vector(w));
+        };
+        if (output == "matrix") {
+          return map_rows(fn, omega, "omega", {3}, {3, 3},
+                          [&](const double* w, double* R) { write_matrix(rotation_of(w), R); });
+        }
+        return map_rows(fn, omega, "omega", {3}, {4},
+                        [&](const double* w, double* q) { write_rotation(rotation_of(w), q, o); });
       },
       py::arg("omega"), py::kw_only(), py::arg("output") = "quaternion", py::arg("order") = "wxyz",
       "Exponential map: rotation vectors omega (N, 3), axis times angle in rad (right hand), to "
@@ -156,19 +154,17 @@ void bind_so3_batch(py::module_& m) {
       [](const py::object& q, const std::string& order) {
         constexpr std::string_view fn = "so3.log";
         const QuaternionOrder o = parse_order(fn, order);
-        const BatchArray a = batch_argument(q, {fn, "q"}, {4});
-        auto out = batch_result(a.n, a.single, {3});
-        double* dst = out.mutable_data();
-        for_each_row(a.n, a.single, fn, "q", [&](py::ssize_t i) {
-          const V3 w = read_rotation(a.row(i), o).log();
-          dst[3 * i] = w(0), dst[3 * i + 1] = w(1), dst[3 * i + 2] = w(2);
+        return map_rows(fn, q, "q", {4}, {3}, [&](const double* in, double* w) {
+          write_vector(read_rotation(in, o).log(), w);
         });
-        return out;
       },
       py::arg("q"), py::kw_only(), py::arg("order") = "wxyz",
       "Logarithm: quaternions (N, 4) to rotation vectors (N, 3) in rad with angle in [0, π] "
       "(accurate near 0 and π). As SO3.from_quaternion(*q[i]).log().");
+}
 
+// rigid.so3.compose, rigid.so3.act and rigid.so3.inverse: the group operations.
+void bind_group_operations(py::module_& so3) {
   so3.def(
       "compose",
       [](const py::object& a, const py::object& b, const std::string& order) {
@@ -214,8 +210,7 @@ void bind_so3_batch(py::module_& m) {
           if (!x.allFinite())
             throw RowError{"v", fmt::format("vector {} has a non-finite component",
                                             rigid::to_string(x.transpose()))};
-          const V3 y = R * x;
-          dst[3 * i] = y(0), dst[3 * i + 1] = y(1), dst[3 * i + 2] = y(2);
+          write_vector(R * x, dst + 3 * i);
         });
         return out;
       },
@@ -228,28 +223,24 @@ void bind_so3_batch(py::module_& m) {
       [](const py::object& q, const std::string& order) {
         constexpr std::string_view fn = "so3.inverse";
         const QuaternionOrder o = parse_order(fn, order);
-        const BatchArray a = batch_argument(q, {fn, "q"}, {4});
-        auto out = batch_result(a.n, a.single, {4});
-        double* dst = out.mutable_data();
-        for_each_row(a.n, a.single, fn, "q", [&](py::ssize_t i) {
-          write_rotation(read_rotation(a.row(i), o).inverse(), dst + 4 * i, o);
+        return map_rows(fn, q, "q", {4}, {4}, [&](const double* in, double* out) {
+          write_rotation(read_rotation(in, o).inverse(), out, o);
         });
-        return out;
       },
       py::arg("q"), py::kw_only(), py::arg("order") = "wxyz",
       "Inverse rotations (conjugate quaternions, normalised) (N, 4). As SO3.inverse().");
+}
 
+// rigid.so3.to_matrix and rigid.so3.from_matrix: quaternions to rotation matrices and back.
+void bind_matrix_conversions(py::module_& so3) {
   so3.def(
       "to_matrix",
       [](const py::object& q, const std::string& order) {
         constexpr std::string_view fn = "so3.to_matrix";
         const QuaternionOrder o = parse_order(fn, order);
-        const BatchArray a = batch_argument(q, {fn, "q"}, {4});
-        auto out = batch_result(a.n, a.single, {3, 3});
-        double* dst = out.mutable_data();
-        for_each_row(a.n, a.single, fn, "q",
-                     [&](py::ssize_t i) { write_matrix(read_rotation(a.row(i), o), dst + 9 * i); });
-        return out;
+        return map_rows(fn, q, "q", {4}, {3, 3}, [&](const double* in, double* R) {
+          write_matrix(read_rotation(in, o), R);
+        });
       },
       py::arg("q"), py::kw_only(), py::arg("order") = "wxyz",
       "Rotation matrices (N, 3, 3) of quaternions (N, 4). As SO3.matrix().");
@@ -262,20 +253,19 @@ void bind_so3_batch(py::module_& m) {
         if (!(tol >= 0.0))
           throw rigid::Error(
               fmt::format("so3.from_matrix(): tol is {}, expected a tolerance >= 0", tol));
-        const BatchArray a = batch_argument(R, {fn, "R"}, {3, 3});
-        auto out = batch_result(a.n, a.single, {4});
-        double* dst = out.mutable_data();
-        for_each_row(a.n, a.single, fn, "R", [&](py::ssize_t i) {
-          const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> M(a.row(i));
-          write_rotation(SO3d::from_matrix(M, tol), dst + 4 * i, o);
+        return map_rows(fn, R, "R", {3, 3}, {4}, [&](const double* in, double* q) {
+          const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> M(in);
+          write_rotation(SO3d::from_matrix(M, tol), q, o);
         });
-        return out;
       },
       py::arg("R"), py::kw_only(), py::arg("tol") = 1e-9, py::arg("order") = "wxyz",
       "Quaternions (N, 4) of rotation matrices (N, 3, 3). As SO3.from_matrix(R[i], tol): refuses a "
       "matrix with max|RᵀR − I| > tol or det R < 0 (use rigid.nearest_rotation first for a "
       "matrix that is only roughly orthonormal).");
+}
 
+// rigid.so3.from_euler, rigid.so3.to_euler and rigid.so3.sequences: Euler angles.
+void bind_euler_conversions(py::module_& so3) {
   so3.def(
       "from_euler",
       [](const py::object& angles, const std::string& sequence, bool intrinsic,
@@ -283,13 +273,9 @@ void bind_so3_batch(py::module_& m) {
         constexpr std::string_view fn = "so3.from_euler";
         const QuaternionOrder o = parse_order(fn, order);
         const rigid::EulerConvention conv = rigid::EulerConvention::parse(sequence, intrinsic);
-        const BatchArray a = batch_argument(angles, {fn, "angles"}, {3});
-        auto out = batch_result(a.n, a.single, {4});
-        double* dst = out.mutable_data();
-        for_each_row(a.n, a.single, fn, "angles", [&](py::ssize_t i) {
-          write_rotation(rigid::from_euler(read_vector(a.row(i)), conv), dst + 4 * i, o);
+        return map_rows(fn, angles, "angles", {3}, {4}, [&](const double* in, double* q) {
+          write_rotation(rigid::from_euler(read_vector(in), conv), q, o);
         });
-        return out;
       },
       py::arg("angles"), py::arg("sequence") = "ZYX", py::kw_only(), py::arg("intrinsic") = true,
       py::arg("order") = "wxyz",
@@ -306,14 +292,9 @@ void bind_so3_batch(py::module_& m) {
         constexpr std::string_view fn = "so3.to_euler";
         const QuaternionOrder o = parse_order(fn, order);
         const rigid::EulerConvention conv = rigid::EulerConvention::parse(sequence, intrinsic);
-        const BatchArray a = batch_argument(q, {fn, "q"}, {4});
-        auto out = batch_result(a.n, a.single, {3});
-        double* dst = out.mutable_data();
-        for_each_row(a.n, a.single, fn, "q", [&](py::ssize_t i) {
-          const V3 e = rigid::to_euler(read_rotation(a.row(i), o), conv);
-          dst[3 * i] = e(0), dst[3 * i + 1] = e(1), dst[3 * i + 2] = e(2);
+        return map_rows(fn, q, "q", {4}, {3}, [&](const double* in, double* e) {
+          write_vector(rigid::to_euler(read_rotation(in, o), conv), e);
         });
-        return out;
       },
       py::arg("q"), py::arg("sequence") = "ZYX", py::kw_only(), py::arg("intrinsic") = true,
       py::arg("order") = "wxyz",
@@ -327,4 +308,29 @@ void bind_so3_batch(py::module_& m) {
     for (std::string_view s : rigid::euler_sequences()) l.append(std::string(s));
     return py::tuple(l);
   }();
+}
+
+}  // namespace
+
+void bind_so3_batch(py::module_& m) {
+  auto so3 = m.def_submodule(
+      "so3",
+      "SO(3) on arrays of N rotations, looped in C++ (no Python loop; the GIL is released from "
+      "4096 rows on and the rows are split over the cores from 32768 on; Ctrl-C "
+      "interrupts).\n\n"
+      "Rotations are unit quaternions of shape (N, 4) in the order given by the keyword `order` "
+      "('wxyz', the default, or 'xyzw' as SciPy); any nonzero quaternion is normalised (as "
+      "SO3.from_quaternion, to within an ulp). Rotation vectors and Euler angles are (N, 3) in "
+      "rad, matrices "
+      "(N, 3, 3) with R @ v rotating v. A single element ((4,), (3,), (3, 3)) gives a single "
+      "result; in compose and act a single element is combined with every row of the other "
+      "argument. Each element is computed by the same code as the rigid.SO3 method: the same "
+      "numbers, to an ulp where a quaternion is normalised. Bad input (shape, dtype, a non-finite "
+      "or zero quaternion, a "
+      "matrix that is not a rotation) raises rigid.Error naming the argument and the row.");
+
+  bind_exp_and_log(so3);
+  bind_group_operations(so3);
+  bind_matrix_conversions(so3);
+  bind_euler_conversions(so3);
 }
