@@ -19,8 +19,8 @@ namespace {
 using rigid::lagrange::AxisRotation;
 
 // q or q_dot of a system: shape (n,) with n its number of coordinates, finite.
-Eigen::VectorXd coordinates_arg(const rigid::lagrange::System& s, const py::handle& value, std::string_view function,
-                                std::string_view name) {
+Eigen::VectorXd coordinates_arg(const rigid::lagrange::System& s, const py::handle& value,
+                                std::string_view function, std::string_view name) {
   return cv::vector(value, {function, name}, s.num_coordinates());
 }
 using rigid::lagrange::Body;
@@ -38,26 +38,35 @@ Body body_from_dict(const py::dict& d, std::size_t index) {
   for (auto item : d) {
     const auto key = item.first.cast<std::string>();
     if (key != "name" && key != "mass" && key != "position" && key != "rotations") {
-      throw rigid::Error(fmt::format("lagrange.System(): unknown body key '{}'; expected name, "
-                                     "mass, position, rotations", key));
+      throw rigid::Error(
+          fmt::format("lagrange.System(): unknown body key '{}'; expected name, "
+                      "mass, position, rotations",
+                      key));
     }
   }
   if (!d.contains("mass")) {
     throw rigid::Error("lagrange.System(): a body needs 'mass' (a rigid.MassProperties)");
   }
   Body b{d.contains("name") ? d["name"].cast<std::string>() : fmt::format("body{}", index),
-         d["mass"].cast<rigid::MassProperties>(), {}, {}};
+         d["mass"].cast<rigid::MassProperties>(),
+         {},
+         {}};
   if (d.contains("position")) {
     const auto p = d["position"].cast<std::vector<std::string>>();
     if (p.size() != 3) {
-      throw rigid::Error(fmt::format("lagrange.System(): body '{}' position needs 3 expressions, "
-                                     "got {}", b.name, p.size()));
+      throw rigid::Error(
+          fmt::format("lagrange.System(): body '{}' position needs 3 expressions, "
+                      "got {}",
+                      b.name, p.size()));
     }
-    for (int k = 0; k < 3; ++k) b.position[static_cast<std::size_t>(k)] = p[static_cast<std::size_t>(k)];
+    for (int k = 0; k < 3; ++k)
+      b.position[static_cast<std::size_t>(k)] = p[static_cast<std::size_t>(k)];
   }
   if (d.contains("rotations")) {
-    for (const auto& [axis, angle] : d["rotations"].cast<std::vector<std::pair<py::object, std::string>>>()) {
-      b.rotations.push_back(AxisRotation{cv::vector3(axis, {"rigid.lagrange.System", "bodies[].rotations[].axis"}), angle});
+    for (const auto& [axis, angle] :
+         d["rotations"].cast<std::vector<std::pair<py::object, std::string>>>()) {
+      b.rotations.push_back(AxisRotation{
+          cv::vector3(axis, {"rigid.lagrange.System", "bodies[].rotations[].axis"}), angle});
     }
   }
   return b;
@@ -67,23 +76,31 @@ rigid::lagrange::Spring spring_from_dict(const py::dict& d) {
   rigid::lagrange::Spring sp;
   for (auto item : d) {
     const auto key = item.first.cast<std::string>();
-    if (key == "body_a") sp.body_a = item.second.cast<std::string>();
-    else if (key == "point_a") sp.point_a_B = cv::vector3(item.second, {"rigid.lagrange.System", "springs[].point_a"});
-    else if (key == "body_b") sp.body_b = item.second.cast<std::string>();
-    else if (key == "point_b") sp.point_b_B = cv::vector3(item.second, {"rigid.lagrange.System", "springs[].point_b"});
-    else if (key == "stiffness") sp.stiffness = py::str(item.second).cast<std::string>();
-    else if (key == "rest_length") sp.rest_length = py::str(item.second).cast<std::string>();
+    if (key == "body_a")
+      sp.body_a = item.second.cast<std::string>();
+    else if (key == "point_a")
+      sp.point_a_B = cv::vector3(item.second, {"rigid.lagrange.System", "springs[].point_a"});
+    else if (key == "body_b")
+      sp.body_b = item.second.cast<std::string>();
+    else if (key == "point_b")
+      sp.point_b_B = cv::vector3(item.second, {"rigid.lagrange.System", "springs[].point_b"});
+    else if (key == "stiffness")
+      sp.stiffness = py::str(item.second).cast<std::string>();
+    else if (key == "rest_length")
+      sp.rest_length = py::str(item.second).cast<std::string>();
     else {
-      throw rigid::Error(fmt::format("lagrange.System(): unknown spring key '{}'; expected "
-                                     "body_a, point_a, body_b, point_b, stiffness, rest_length",
-                                     key));
+      throw rigid::Error(
+          fmt::format("lagrange.System(): unknown spring key '{}'; expected "
+                      "body_a, point_a, body_b, point_b, stiffness, rest_length",
+                      key));
     }
   }
   return sp;
 }
 
 // {'name', 'coefficients': {coordinate: expression}, 'term': expression} (numbers allowed).
-rigid::lagrange::VelocityConstraint velocity_constraint_from_dict(const py::dict& d, std::size_t index) {
+rigid::lagrange::VelocityConstraint velocity_constraint_from_dict(const py::dict& d,
+                                                                  std::size_t index) {
   rigid::lagrange::VelocityConstraint vc;
   vc.name = fmt::format("velocity_constraint{}", index + 1);
   for (auto item : d) {
@@ -92,41 +109,83 @@ rigid::lagrange::VelocityConstraint velocity_constraint_from_dict(const py::dict
       vc.name = item.second.cast<std::string>();
     } else if (key == "coefficients") {
       for (auto c : item.second.cast<py::dict>()) {
-        vc.coefficients.push_back({c.first.cast<std::string>(), py::str(c.second).cast<std::string>()});
+        vc.coefficients.push_back(
+            {c.first.cast<std::string>(), py::str(c.second).cast<std::string>()});
       }
     } else if (key == "term") {
       vc.term = py::str(item.second).cast<std::string>();
     } else {
-      throw rigid::Error(fmt::format("lagrange.System(): unknown velocity constraint key '{}'; "
-                                     "expected name, coefficients, term", key));
+      throw rigid::Error(
+          fmt::format("lagrange.System(): unknown velocity constraint key '{}'; "
+                      "expected name, coefficients, term",
+                      key));
     }
   }
   return vc;
 }
 
-}  // namespace
+using rigid::lagrange::Equations;
 
-void bind_lagrange(py::module_& root) {
-  py::module_ m = root.def_submodule(
-      "lagrange", "Euler–Lagrange equations derived symbolically, compiled, and integrated.");
+// {name: value} of parameters, in declaration order.
+py::dict parameters_dict(const std::vector<rigid::lagrange::Parameter>& parameters) {
+  py::dict d;
+  for (const auto& p : parameters) d[py::str(p.name)] = p.value;
+  return d;
+}
 
-  py::class_<rigid::lagrange::Printed>(m, "Printed", "One quantity as text (SymPy-parsable) and LaTeX.")
+// Equations.symbols: [{'name', 'latex', 'role', 'unit'}].
+py::list symbols_as_dicts(const Equations& e) {
+  py::list out;
+  for (const auto& s : e.symbols) {
+    py::dict d;
+    d["name"] = s.name;
+    d["latex"] = s.latex;
+    d["role"] = s.role;
+    d["unit"] = s.unit;
+    out.append(d);
+  }
+  return out;
+}
+
+// Equations[key]: the keys of the dict that Equations replaced.
+py::object legacy_equations_item(const Equations& e, const std::string& key) {
+  if (key == "lagrangian") return py::cast(e.lagrangian_text);
+  if (key == "lagrangian_latex") return py::cast(e.lagrangian_latex);
+  if (key == "text") return py::cast(e.text);
+  if (key == "latex") return py::cast(e.latex);
+  if (key == "constraints") return py::cast(e.constraints_text);
+  if (key == "constraints_latex") return py::cast(e.constraints_latex);
+  if (key == "jacobi_integral") return py::cast(e.energy_text);
+  if (key == "cyclic") return py::cast(e.cyclic);
+  throw py::key_error(
+      fmt::format("'{}'; keys: lagrangian, lagrangian_latex, text, latex, "
+                  "constraints, constraints_latex, jacobi_integral, cyclic "
+                  "(or use the attributes)",
+                  key));
+}
+
+void bind_printed(py::module_& m) {
+  py::class_<rigid::lagrange::Printed>(m, "Printed",
+                                       "One quantity as text (SymPy-parsable) and LaTeX.")
       .def_readonly("text", &rigid::lagrange::Printed::text, "Plain text that SymPy parses.")
       .def_readonly("latex", &rigid::lagrange::Printed::latex, "LaTeX.")
       .def("__str__", [](const rigid::lagrange::Printed& p) { return p.text; })
-      .def("__repr__", [](const rigid::lagrange::Printed& p) { return "Printed('" + p.text + "')"; });
-  using rigid::lagrange::Equations;
-  py::class_<Equations>(m, "Equations",
-                        "The derived equations: L, T, V, the mass matrix M(q), the forcing f(q, q_dot) "
-                        "(inertial + potential + generalized), the constraints and their Jacobian, the "
-                        "conserved quantities and the symbols, each quantity a Printed (text, latex).")
+      .def("__repr__",
+           [](const rigid::lagrange::Printed& p) { return "Printed('" + p.text + "')"; });
+}
+
+// rigid.lagrange.Equations: every derived quantity as text and LaTeX.
+void bind_equations(py::module_& m) {
+  py::class_<Equations>(
+      m, "Equations",
+      "The derived equations: L, T, V, the mass matrix M(q), the forcing f(q, q_dot) "
+      "(inertial + potential + generalized), the constraints and their Jacobian, the "
+      "conserved quantities and the symbols, each quantity a Printed (text, latex).")
       .def_readonly("coordinates", &Equations::coordinates,
                     "The generalized coordinates' names, in order.")
-      .def_property_readonly("parameters", [](const Equations& e) {
-        py::dict d;
-        for (const auto& p : e.parameters) d[py::str(p.name)] = p.value;
-        return d;
-      }, "{name: value} in declaration order")
+      .def_property_readonly(
+          "parameters", [](const Equations& e) { return parameters_dict(e.parameters); },
+          "{name: value} in declaration order")
       .def_readonly("constraint_names", &Equations::constraint_names,
                     "The holonomic constraints' names, in order.")
       .def_readonly("lagrangian", &Equations::lagrangian, "L = T − V (J).")
@@ -157,135 +216,187 @@ void bind_lagrange(py::module_& root) {
       .def_readonly("cyclic", &Equations::cyclic, "The cyclic coordinates (L independent of them).")
       .def_readonly("cyclic_momenta", &Equations::cyclic_momenta,
                     "∂L/∂q̇ of each cyclic coordinate (conserved), one Printed each.")
-      .def_property_readonly("symbols", [](const Equations& e) {
-        py::list out;
-        for (const auto& s : e.symbols) {
-          py::dict d;
-          d["name"] = s.name;
-          d["latex"] = s.latex;
-          d["role"] = s.role;
-          d["unit"] = s.unit;
-          out.append(d);
-        }
-        return out;
-      }, "Every symbol of the equations: [{'name', 'latex', 'role', 'unit'}] (role: coordinate, "
-         "velocity, parameter, ...; SI unit when known).")
+      .def_property_readonly("symbols", &symbols_as_dicts,
+                             "Every symbol of the equations: [{'name', 'latex', 'role', 'unit'}] "
+                             "(role: coordinate, velocity, parameter, ...; SI unit when known).")
       .def_readonly("text", &Equations::text, "the equations, one text line per coordinate")
       .def_readonly("latex", &Equations::latex, "the equations, one LaTeX line per coordinate")
-      .def("format", [](const Equations& e, const std::string& format) {
-             return rigid::lagrange::format_equations(e, rigid::lagrange::parse_equation_format(format));
-           }, py::arg("format") = "text",
-           "The document `rigid eom --format` prints: 'text', 'latex' or 'json'.")
+      .def(
+          "format",
+          [](const Equations& e, const std::string& format) {
+            return rigid::lagrange::format_equations(
+                e, rigid::lagrange::parse_equation_format(format));
+          },
+          py::arg("format") = "text",
+          "The document `rigid eom --format` prints: 'text', 'latex' or 'json'.")
       // the keys of the dict this method returned before
-      .def("__getitem__", [](const Equations& e, const std::string& key) -> py::object {
-        if (key == "lagrangian") return py::cast(e.lagrangian_text);
-        if (key == "lagrangian_latex") return py::cast(e.lagrangian_latex);
-        if (key == "text") return py::cast(e.text);
-        if (key == "latex") return py::cast(e.latex);
-        if (key == "constraints") return py::cast(e.constraints_text);
-        if (key == "constraints_latex") return py::cast(e.constraints_latex);
-        if (key == "jacobi_integral") return py::cast(e.energy_text);
-        if (key == "cyclic") return py::cast(e.cyclic);
-        throw py::key_error(fmt::format("'{}'; keys: lagrangian, lagrangian_latex, text, latex, "
-                                        "constraints, constraints_latex, jacobi_integral, cyclic "
-                                        "(or use the attributes)", key));
-      })
+      .def("__getitem__", &legacy_equations_item)
       .def("__repr__", [](const Equations& e) {
         std::string out = "Equations(\n";
         for (const auto& line : e.text) out += "  " + line + "\n";
         return out + ")";
       });
+}
 
-  py::class_<System>(m, "System",
-                     "A Lagrangian system: L = lagrangian + Σ bodies (T − V_gravity) − Σ "
-                     "potentials, with generalized forces and holonomic constraints.")
-      .def(py::init([](const std::vector<std::tuple<std::string, double, double>>& coordinates,
-                       const py::dict& parameters,
-                       const std::string& lagrangian, const std::vector<py::dict>& bodies,
-                       const py::object& gravity,
-                       const std::vector<std::pair<std::string, std::string>>& potentials,
-                       const std::vector<std::pair<std::string, std::string>>& forces,
-                       const std::vector<std::pair<std::string, std::string>>& constraints,
-                       const std::vector<py::dict>& springs,
-                       const std::vector<py::dict>& velocity_constraints) {
-             SystemSpec spec;
-             // in the dict's order: the equations print parameters in declaration order
-             for (const auto& [name, value] : parameters) {
-               spec.parameters.push_back({name.cast<std::string>(), value.cast<double>()});
-             }
-             for (const auto& [name, q0, v0] : coordinates) spec.coordinates.push_back({name, q0, v0});
-             spec.lagrangian = lagrangian;
-             for (std::size_t i = 0; i < bodies.size(); ++i) {
-               spec.bodies.push_back(body_from_dict(bodies[i], i));
-             }
-             spec.gravity_W = rigid::lagrange::Vector3Expression(cv::vector3(gravity, {"rigid.lagrange.System", "gravity"}));
-             spec.potentials = named(potentials);
-             spec.forces = named(forces);
-             spec.constraints = named(constraints);
-             for (const py::dict& sp : springs) spec.springs.push_back(spring_from_dict(sp));
-             for (std::size_t i = 0; i < velocity_constraints.size(); ++i) {
-               spec.velocity_constraints.push_back(velocity_constraint_from_dict(velocity_constraints[i], i));
-             }
-             return System(spec);
-           }),
-           py::arg("coordinates"), py::arg("parameters") = py::dict(),
-           py::arg("lagrangian") = "", py::arg("bodies") = std::vector<py::dict>{},
-           py::arg("gravity") = py::make_tuple(0.0, 0.0, 0.0),
-           py::arg("potentials") = std::vector<std::pair<std::string, std::string>>{},
-           py::arg("forces") = std::vector<std::pair<std::string, std::string>>{},
-           py::arg("constraints") = std::vector<std::pair<std::string, std::string>>{},
-           py::arg("springs") = std::vector<py::dict>{},
-           py::arg("velocity_constraints") = std::vector<py::dict>{},
-           "coordinates: [(name, q0, q_dot0)]; parameters: {name: value}; bodies: [{'name', "
-           "'mass': rigid.MassProperties, 'position': [3 expressions], 'rotations': [(axis, "
-           "angle expression)]}]; potentials/forces/constraints: [(name, expression)] (a force's "
-           "name is its coordinate); springs: [{'body_a', 'point_a', 'body_b' (omit: world), "
-           "'point_b', 'stiffness', 'rest_length'}]; velocity_constraints: [{'name', "
-           "'coefficients': {coordinate: A_i(q, t)}, 'term': a(q, t)}] for Σ A_i q̇_i + a = 0.")
-      .def_property_readonly("coordinate_names", &System::coordinate_names,
-                             "The generalized coordinates, in order.")
+// The System that rigid.lagrange.System(...) describes: coordinates, parameters, bodies and the
+// dicts of springs and velocity constraints read into a SystemSpec.
+System system_from_python(const std::vector<std::tuple<std::string, double, double>>& coordinates,
+                          const py::dict& parameters, const std::string& lagrangian,
+                          const std::vector<py::dict>& bodies, const py::object& gravity,
+                          const std::vector<std::pair<std::string, std::string>>& potentials,
+                          const std::vector<std::pair<std::string, std::string>>& forces,
+                          const std::vector<std::pair<std::string, std::string>>& constraints,
+                          const std::vector<py::dict>& springs,
+                          const std::vector<py::dict>& velocity_constraints) {
+  SystemSpec spec;
+  // in the dict's order: the equations print parameters in declaration order
+  for (const auto& [name, value] : parameters) {
+    spec.parameters.push_back({name.cast<std::string>(), value.cast<double>()});
+  }
+  for (const auto& [name, q0, v0] : coordinates) spec.coordinates.push_back({name, q0, v0});
+  spec.lagrangian = lagrangian;
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    spec.bodies.push_back(body_from_dict(bodies[i], i));
+  }
+  spec.gravity_W = rigid::lagrange::Vector3Expression(
+      cv::vector3(gravity, {"rigid.lagrange.System", "gravity"}));
+  spec.potentials = named(potentials);
+  spec.forces = named(forces);
+  spec.constraints = named(constraints);
+  for (const py::dict& sp : springs) spec.springs.push_back(spring_from_dict(sp));
+  for (std::size_t i = 0; i < velocity_constraints.size(); ++i) {
+    spec.velocity_constraints.push_back(velocity_constraint_from_dict(velocity_constraints[i], i));
+  }
+  return System(spec);
+}
+
+// The samples of a run as a dict of numpy arrays (rows are samples) and name lists.
+py::dict trajectory_dict(const rigid::lagrange::Trajectory& tr) {
+  py::dict d;
+  d["t"] = tr.t;
+  d["q"] = tr.q;
+  d["q_dot"] = tr.q_dot;
+  d["lambda"] = tr.lambda;
+  d["energy"] = tr.energy;
+  d["jacobi"] = tr.jacobi;
+  d["cyclic_momenta"] = tr.cyclic_momenta;
+  d["residual"] = tr.residual;
+  d["velocity_residual"] = tr.velocity_residual;
+  d["coordinate_names"] = tr.coordinate_names;
+  d["constraint_names"] = tr.constraint_names;
+  d["cyclic_names"] = tr.cyclic_names;
+  d["steps"] = tr.steps;
+  d["mu"] = tr.mu;
+  d["velocity_constraint_residual"] = tr.velocity_constraint_residual;
+  d["velocity_constraint_names"] = tr.velocity_constraint_names;
+  return d;
+}
+
+// System.simulate: integrates from (q0, q_dot0), the declared initial state where None.
+py::dict simulate_to_dict(const System& s, double t_end, const std::string& method, double dt,
+                          double tolerance, double output_dt, double stabilization,
+                          bool project_initial, const py::object& q0, const py::object& q_dot0) {
+  rigid::python::Interruptible interrupt;
+  rigid::lagrange::SimulationOptions o{.t_end = t_end,
+                                       .method = rigid::integrate::parse_method(method),
+                                       .dt = dt,
+                                       .tolerance = tolerance,
+                                       .output_dt = output_dt,
+                                       .stabilization = stabilization,
+                                       .project_initial = project_initial,
+                                       .parameters = {},
+                                       .control = interrupt.control()};
+  const Eigen::VectorXd q_start =
+      q0.is_none() ? s.initial_q() : coordinates_arg(s, q0, "System.simulate", "q0");
+  const Eigen::VectorXd qd_start = q_dot0.is_none()
+                                       ? s.initial_q_dot()
+                                       : coordinates_arg(s, q_dot0, "System.simulate", "q_dot0");
+  // a System is immutable and each run has its own workspace: other Python threads
+  // may run while this one integrates
+  rigid::lagrange::Trajectory tr;
+  {
+    py::gil_scoped_release release;
+    tr = s.simulate(o, q_start, qd_start);
+  }
+  return trajectory_dict(tr);
+}
+
+// What a System is made of: its coordinates, constraints, bodies, initial state and
+// parameters, the compiled tape, the printed equations and the exported source.
+void bind_system_description(py::class_<System>& cls) {
+  cls.def_property_readonly("coordinate_names", &System::coordinate_names,
+                            "The generalized coordinates, in order.")
       .def_property_readonly("constraint_names", &System::constraint_names,
                              "The holonomic constraints, in order.")
       .def_property_readonly("cyclic_coordinates", &System::cyclic_coordinates,
                              "Coordinates L does not depend on (their momenta are conserved).")
       .def_property_readonly("velocity_constraint_names", &System::velocity_constraint_names,
                              "The velocity (non-holonomic) constraints, in order.")
-      .def("velocity_constraint_residual",
-           [](const System& s, double t, const py::object& q, const py::object& q_dot) {
-             const char* f = "System.velocity_constraint_residual";
-             return s.velocity_constraint_residual(t, coordinates_arg(s, q, f, "q"), coordinates_arg(s, q_dot, f, "q_dot"));
-           },
-           py::arg("t"), py::arg("q"), py::arg("q_dot"),
-           "A(q, t) q̇ + a(q, t) at time t (s), q and q̇ of shape (n,): one entry per velocity constraint.")
       .def_property_readonly("body_names", &System::body_names, "Names of the bodies, in order.")
-      .def_property_readonly("initial_q", &System::initial_q, "q(0) from the coordinates' declarations, shape (n,).")
+      .def_property_readonly("initial_q", &System::initial_q,
+                             "q(0) from the coordinates' declarations, shape (n,).")
       .def_property_readonly("initial_q_dot", &System::initial_q_dot, "q̇(0), shape (n,).")
-      .def_property_readonly("parameters",
-                             [](const System& s) {
-                               py::dict d;
-                               for (const auto& p : s.parameters()) d[py::str(p.name)] = p.value;
-                               return d;
-                             },
-                             "{name: value} of the parameters, in declaration order.")
+      .def_property_readonly(
+          "parameters", [](const System& s) { return parameters_dict(s.parameters()); },
+          "{name: value} of the parameters, in declaration order.")
+      .def_property_readonly(
+          "tape_size", &System::tape_size,
+          "Instructions in the compiled tape that evaluates M, f and the constraints.")
+      .def("set_parameter", &System::set_parameter, py::arg("name"), py::arg("value"),
+           "Sets a parameter's value (SI units) for later evaluations and runs; the equations keep "
+           "its name.")
+      .def("equations", &System::equations,
+           "The equations, printed canonically (the same on every run) and simplified: a "
+           "rigid.lagrange.Equations with each quantity as text and LaTeX.")
+      .def(
+          "emit",
+          [](const System& s, const std::string& language, const std::string& name) {
+            rigid::lagrange::ExportOptions o;
+            o.name = name;
+            return rigid::lagrange::emit(s, rigid::lagrange::parse_language(language), o);
+          },
+          py::arg("language"), py::arg("name") = "model",
+          "The equations of motion (M, f, G, γ) as one dependency-free source file: language "
+          "'c++' (a header, <cmath> only, namespace `name`) or 'python' (a module, math only); "
+          "parameters are named arguments with the current values as defaults.");
+}
+
+// A System evaluated at (t, q) or (t, q, q̇): constraint residuals, energies and body poses.
+void bind_system_evaluations(py::class_<System>& cls) {
+  cls.def(
+         "velocity_constraint_residual",
+         [](const System& s, double t, const py::object& q, const py::object& q_dot) {
+           const char* f = "System.velocity_constraint_residual";
+           return s.velocity_constraint_residual(t, coordinates_arg(s, q, f, "q"),
+                                                 coordinates_arg(s, q_dot, f, "q_dot"));
+         },
+         py::arg("t"), py::arg("q"), py::arg("q_dot"),
+         "A(q, t) q̇ + a(q, t) at time t (s), q and q̇ of shape (n,): one entry per velocity "
+         "constraint.")
       .def(
           "energy",
           [](const System& s, double t, const py::object& q, const py::object& q_dot) {
             const char* f = "System.energy";
-            return s.energy(t, coordinates_arg(s, q, f, "q"), coordinates_arg(s, q_dot, f, "q_dot"));
+            return s.energy(t, coordinates_arg(s, q, f, "q"),
+                            coordinates_arg(s, q_dot, f, "q_dot"));
           },
-          py::arg("t"), py::arg("q"), py::arg("q_dot"), "T + V (J) at time t (s) and (q, q̇), each shape (n,).")
+          py::arg("t"), py::arg("q"), py::arg("q_dot"),
+          "T + V (J) at time t (s) and (q, q̇), each shape (n,).")
       .def(
           "jacobi_integral",
           [](const System& s, double t, const py::object& q, const py::object& q_dot) {
             const char* f = "System.jacobi_integral";
-            return s.jacobi_integral(t, coordinates_arg(s, q, f, "q"), coordinates_arg(s, q_dot, f, "q_dot"));
+            return s.jacobi_integral(t, coordinates_arg(s, q, f, "q"),
+                                     coordinates_arg(s, q_dot, f, "q_dot"));
           },
           py::arg("t"), py::arg("q"), py::arg("q_dot"),
-          "The Jacobi integral h = Σ q̇ ∂L/∂q̇ − L (J) at (t, q, q̇); conserved when L does not depend on t.")
+          "The Jacobi integral h = Σ q̇ ∂L/∂q̇ − L (J) at (t, q, q̇); conserved when L does not "
+          "depend on t.")
       .def(
           "constraint_residual",
           [](const System& s, double t, const py::object& q) {
-            return s.constraint_residual(t, coordinates_arg(s, q, "System.constraint_residual", "q"));
+            return s.constraint_residual(t,
+                                         coordinates_arg(s, q, "System.constraint_residual", "q"));
           },
           py::arg("t"), py::arg("q"), "g(q, t) of the holonomic constraints (one entry each).")
       .def(
@@ -303,30 +414,31 @@ void bind_lagrange(py::module_& root) {
             return out;
           },
           py::arg("t"), py::arg("q"),
-          "{body: {'p_world': origin of B in W (m), 'q_wxyz': R_WB, 'R_WB': (3, 3)}} at (t, q).")
-      .def_property_readonly("tape_size", &System::tape_size,
-                             "Instructions in the compiled tape that evaluates M, f and the constraints.")
-      .def("set_parameter", &System::set_parameter, py::arg("name"), py::arg("value"),
-           "Sets a parameter's value (SI units) for later evaluations and runs; the equations keep its name.")
-      .def("equations", &System::equations,
-           "The equations, printed canonically (the same on every run) and simplified: a "
-           "rigid.lagrange.Equations with each quantity as text and LaTeX.")
-      .def(
-          "mass_matrix_and_forces",
-          [](const System& s, double t, const py::object& q_arg, const py::object& q_dot_arg) {
-            const Eigen::VectorXd q = coordinates_arg(s, q_arg, "System.mass_matrix_and_forces", "q");
-            const Eigen::VectorXd q_dot = coordinates_arg(s, q_dot_arg, "System.mass_matrix_and_forces", "q_dot");
-            Eigen::MatrixXd M;
-            Eigen::VectorXd f;
-            s.mass_matrix_and_forces(t, q, q_dot, M, f);
-            return py::make_tuple(M, f);
-          },
-          py::arg("t"), py::arg("q"), py::arg("q_dot"), "(M, f) at (t, q, q̇).")
+          "{body: {'p_world': origin of B in W (m), 'q_wxyz': R_WB, 'R_WB': (3, 3)}} at (t, q).");
+}
+
+// The terms of the equations of motion at (t, q, q̇): M and f, the constraint terms G and γ,
+// and the accelerations with the multipliers.
+void bind_system_dynamics(py::class_<System>& cls) {
+  cls.def(
+         "mass_matrix_and_forces",
+         [](const System& s, double t, const py::object& q_arg, const py::object& q_dot_arg) {
+           const Eigen::VectorXd q =
+               coordinates_arg(s, q_arg, "System.mass_matrix_and_forces", "q");
+           const Eigen::VectorXd q_dot =
+               coordinates_arg(s, q_dot_arg, "System.mass_matrix_and_forces", "q_dot");
+           Eigen::MatrixXd M;
+           Eigen::VectorXd f;
+           s.mass_matrix_and_forces(t, q, q_dot, M, f);
+           return py::make_tuple(M, f);
+         },
+         py::arg("t"), py::arg("q"), py::arg("q_dot"), "(M, f) at (t, q, q̇).")
       .def(
           "constraint_terms",
           [](const System& s, double t, const py::object& q_arg, const py::object& q_dot_arg) {
             const Eigen::VectorXd q = coordinates_arg(s, q_arg, "System.constraint_terms", "q");
-            const Eigen::VectorXd q_dot = coordinates_arg(s, q_dot_arg, "System.constraint_terms", "q_dot");
+            const Eigen::VectorXd q_dot =
+                coordinates_arg(s, q_dot_arg, "System.constraint_terms", "q_dot");
             Eigen::MatrixXd G;
             Eigen::VectorXd gamma;
             rigid::lagrange::Workspace w = s.make_workspace();
@@ -336,69 +448,44 @@ void bind_lagrange(py::module_& root) {
           py::arg("t"), py::arg("q"), py::arg("q_dot"),
           "(G, γ) at (t, q, q̇): the constraint Jacobian ∂g/∂q (m × n) and γ with G q̈ = γ.")
       .def(
-          "emit",
-          [](const System& s, const std::string& language, const std::string& name) {
-            rigid::lagrange::ExportOptions o;
-            o.name = name;
-            return rigid::lagrange::emit(s, rigid::lagrange::parse_language(language), o);
-          },
-          py::arg("language"), py::arg("name") = "model",
-          "The equations of motion (M, f, G, γ) as one dependency-free source file: language "
-          "'c++' (a header, <cmath> only, namespace `name`) or 'python' (a module, math only); "
-          "parameters are named arguments with the current values as defaults.")
-      .def(
           "accelerations",
           [](const System& s, double t, const py::object& q_arg, const py::object& q_dot_arg) {
             const Eigen::VectorXd q = coordinates_arg(s, q_arg, "System.accelerations", "q");
-            const Eigen::VectorXd q_dot = coordinates_arg(s, q_dot_arg, "System.accelerations", "q_dot");
+            const Eigen::VectorXd q_dot =
+                coordinates_arg(s, q_dot_arg, "System.accelerations", "q_dot");
             Eigen::VectorXd qdd, lambda;
             s.accelerations(t, q, q_dot, qdd, lambda);
             return py::make_tuple(qdd, lambda);
           },
           py::arg("t"), py::arg("q"), py::arg("q_dot"),
           "(q̈, λ) at (t, q, q̇); λ holds the holonomic multipliers, then the velocity "
-          "constraints' μ.")
-      .def(
-          "simulate",
-          [](const System& s, double t_end, const std::string& method, double dt,
-             double tolerance, double output_dt, double stabilization, bool project_initial,
-             const py::object& q0, const py::object& q_dot0) {
-            rigid::python::Interruptible interrupt;
-            rigid::lagrange::SimulationOptions o{
-                .t_end = t_end, .method = rigid::integrate::parse_method(method), .dt = dt,
-                .tolerance = tolerance, .output_dt = output_dt, .stabilization = stabilization,
-                .project_initial = project_initial, .parameters = {}, .control = interrupt.control()};
-            const Eigen::VectorXd q_start = q0.is_none() ? s.initial_q() : coordinates_arg(s, q0, "System.simulate", "q0");
-            const Eigen::VectorXd qd_start =
-                q_dot0.is_none() ? s.initial_q_dot() : coordinates_arg(s, q_dot0, "System.simulate", "q_dot0");
-            // a System is immutable and each run has its own workspace: other Python threads
-            // may run while this one integrates
-            rigid::lagrange::Trajectory tr;
-            {
-              py::gil_scoped_release release;
-              tr = s.simulate(o, q_start, qd_start);
-            }
-            py::dict d;
-            d["t"] = tr.t;
-            d["q"] = tr.q;
-            d["q_dot"] = tr.q_dot;
-            d["lambda"] = tr.lambda;
-            d["energy"] = tr.energy;
-            d["jacobi"] = tr.jacobi;
-            d["cyclic_momenta"] = tr.cyclic_momenta;
-            d["residual"] = tr.residual;
-            d["velocity_residual"] = tr.velocity_residual;
-            d["coordinate_names"] = tr.coordinate_names;
-            d["constraint_names"] = tr.constraint_names;
-            d["cyclic_names"] = tr.cyclic_names;
-            d["steps"] = tr.steps;
-            d["mu"] = tr.mu;
-            d["velocity_constraint_residual"] = tr.velocity_constraint_residual;
-            d["velocity_constraint_names"] = tr.velocity_constraint_names;
-            return d;
-          },
-          py::arg("t_end"), py::arg("method") = "dopri5", py::arg("dt") = 1e-3,
-          py::arg("tolerance") = 1e-10, py::arg("output_dt") = 0.0,
+          "constraints' μ.");
+}
+
+// rigid.lagrange.System: derived once, then evaluated and integrated.
+void bind_system(py::module_& m) {
+  py::class_<System> cls(m, "System",
+                         "A Lagrangian system: L = lagrangian + Σ bodies (T − V_gravity) − Σ "
+                         "potentials, with generalized forces and holonomic constraints.");
+  cls.def(py::init(&system_from_python), py::arg("coordinates"), py::arg("parameters") = py::dict(),
+          py::arg("lagrangian") = "", py::arg("bodies") = std::vector<py::dict>{},
+          py::arg("gravity") = py::make_tuple(0.0, 0.0, 0.0),
+          py::arg("potentials") = std::vector<std::pair<std::string, std::string>>{},
+          py::arg("forces") = std::vector<std::pair<std::string, std::string>>{},
+          py::arg("constraints") = std::vector<std::pair<std::string, std::string>>{},
+          py::arg("springs") = std::vector<py::dict>{},
+          py::arg("velocity_constraints") = std::vector<py::dict>{},
+          "coordinates: [(name, q0, q_dot0)]; parameters: {name: value}; bodies: [{'name', "
+          "'mass': rigid.MassProperties, 'position': [3 expressions], 'rotations': [(axis, "
+          "angle expression)]}]; potentials/forces/constraints: [(name, expression)] (a force's "
+          "name is its coordinate); springs: [{'body_a', 'point_a', 'body_b' (omit: world), "
+          "'point_b', 'stiffness', 'rest_length'}]; velocity_constraints: [{'name', "
+          "'coefficients': {coordinate: A_i(q, t)}, 'term': a(q, t)}] for Σ A_i q̇_i + a = 0.");
+  bind_system_description(cls);
+  bind_system_evaluations(cls);
+  bind_system_dynamics(cls);
+  cls.def("simulate", &simulate_to_dict, py::arg("t_end"), py::arg("method") = "dopri5",
+          py::arg("dt") = 1e-3, py::arg("tolerance") = 1e-10, py::arg("output_dt") = 0.0,
           py::arg("stabilization") = 10.0, py::arg("project_initial") = false,
           py::arg("q0") = py::none(), py::arg("q_dot0") = py::none(),
           "Integrates; returns a dict of numpy arrays (rows are samples): t, q, q_dot, lambda, "
@@ -406,7 +493,19 @@ void bind_lagrange(py::module_& root) {
           "velocity_constraint_residual.")
       .def("__repr__", [](const System& s) {
         return fmt::format("System(coordinates=[{}], constraints=[{}], velocity_constraints=[{}])",
-                           fmt::join(s.coordinate_names(), ", "), fmt::join(s.constraint_names(), ", "),
+                           fmt::join(s.coordinate_names(), ", "),
+                           fmt::join(s.constraint_names(), ", "),
                            fmt::join(s.velocity_constraint_names(), ", "));
       });
+}
+
+}  // namespace
+
+void bind_lagrange(py::module_& root) {
+  py::module_ m = root.def_submodule(
+      "lagrange", "Euler–Lagrange equations derived symbolically, compiled, and integrated.");
+
+  bind_printed(m);
+  bind_equations(m);
+  bind_system(m);
 }
