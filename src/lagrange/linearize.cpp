@@ -272,26 +272,11 @@ Eigen::VectorXcd normalised(Eigen::VectorXcd v, const Eigen::MatrixXd& M) {
   return v;
 }
 
-}  // namespace
 
-const char* to_string(Stability stability) {
-  switch (stability) {
-    case Stability::kStable: return "stable";
-    case Stability::kMarginal: return "marginal";
-    case Stability::kUnstable: return "unstable";
-  }
-  return "";
-}
-
-NormalModes normal_modes(const System& system, const LinearizeOptions& options) {
-  // the derivatives of M and f are taken and compiled here (GiNaC)
-  detail::SymbolicLock lock;
-  // the System's compiled model, through a workspace's owner (the System stays immutable)
-  Workspace workspace = system.make_workspace();
-  const Impl& s = *Workspace::Access::impl(workspace)->owner;
-  const int n = s.n;
-  const auto nu = static_cast<std::size_t>(n);
-
+// Refuses a system whose linearisation this does not form: velocity constraints, or equations
+// that change with time.
+void require_holonomic_and_autonomous(const System& system, const Impl& s) {
+  const auto nu = static_cast<std::size_t>(s.n);
   // rolling (velocity) constraints restrict the motions, not the configurations: their
   // linearisation needs the reduced (Chaplygin/Voronets) equations, which this does not form
   if (system.num_velocity_constraints() > 0) {
@@ -311,8 +296,10 @@ NormalModes normal_modes(const System& system, const LinearizeOptions& options) 
           s.coord_names[i]));
     }
   }
+}
 
-  // parameters for this call
+// The parameters' values for this call: the System's, with the options' values in place.
+std::vector<double> parameters_for_call(const Impl& s, const LinearizeOptions& options) {
   std::vector<double> params = s.param_values;
   for (const Parameter& p : options.parameters) {
     const std::size_t k = s.parameter_index(p.name);
@@ -320,10 +307,12 @@ NormalModes normal_modes(const System& system, const LinearizeOptions& options) 
     params[k] = p.value;
   }
   if (!options.parameters.empty()) s.check_masses(params, "for the parameters of the linearisation");
-  RIGID_REQUIRE_AS(kWho, options.max_iterations > 0, "max_iterations must be positive, got {}",
-                   options.max_iterations);
+  return params;
+}
 
-  // ignorable coordinates: cyclic, and no equation depends on them
+// Ignorable coordinates: cyclic, and no equation depends on them.
+std::vector<bool> ignorable_coordinates(const Impl& s) {
+  const auto nu = static_cast<std::size_t>(s.n);
   std::vector<bool> ignorable(nu, false);
   for (int c : s.cyclic_index) {
     bool appears = false;
@@ -333,9 +322,20 @@ NormalModes normal_modes(const System& system, const LinearizeOptions& options) 
     }
     ignorable[static_cast<std::size_t>(c)] = !appears;
   }
+  return ignorable;
+}
 
-  // the point: given values, else the initial state; rates only for ignorable coordinates
-  Eigen::VectorXd q = s.q0, qd = Eigen::VectorXd::Zero(n);
+// The point to start from, and which coordinates the caller holds at a given value.
+struct StartPoint {
+  Eigen::VectorXd q, qd;
+  std::vector<bool> held;
+};
+
+// The point: given values, else the initial state; rates only for ignorable coordinates.
+StartPoint start_point(const Impl& s, const LinearizeOptions& options,
+                       const std::vector<bool>& ignorable) {
+  const auto nu = static_cast<std::size_t>(s.n);
+  Eigen::VectorXd q = s.q0, qd = Eigen::VectorXd::Zero(s.n);
   for (std::size_t i = 0; i < nu; ++i) {
     if (ignorable[i]) qd[static_cast<Eigen::Index>(i)] = s.qd0[static_cast<Eigen::Index>(i)];
   }
@@ -375,64 +375,82 @@ NormalModes normal_modes(const System& system, const LinearizeOptions& options) 
         "(<name>_dot)",
         v.name, did_you_mean_hint(v.name, names), fmt::join(s.coord_names, ", ")));
   }
+  return {q, qd, held};
+}
 
-  Linearization lin(s);
-  NormalModes out;
-  out.coordinate_names = s.coord_names;
+// The coordinates by role: the reduced ones (not ignorable), the ignorable (cyclic) ones, and
+// the unknowns of the search (reduced and not held).
+struct Partition {
   std::vector<int> reduced, cyc, unknowns;
-  for (int i = 0; i < n; ++i) {
+};
+
+// Sorts the coordinates into their roles, and names the ignorable and reduced ones in `out`.
+Partition partition_coordinates(const Impl& s, const std::vector<bool>& ignorable,
+                                const std::vector<bool>& held, NormalModes& out) {
+  Partition part;
+  for (int i = 0; i < s.n; ++i) {
     const auto iu = static_cast<std::size_t>(i);
-    (ignorable[iu] ? cyc : reduced).push_back(i);
+    (ignorable[iu] ? part.cyc : part.reduced).push_back(i);
     if (ignorable[iu]) out.ignorable_names.push_back(s.coord_names[iu]);
     else out.reduced_names.push_back(s.coord_names[iu]);
-    if (!ignorable[iu] && !held[iu]) unknowns.push_back(i);
+    if (!ignorable[iu] && !held[iu]) part.unknowns.push_back(i);
   }
+  return part;
+}
 
-  // the search: Newton from the start, else continuation from the start
-  lin.evaluate(q, qd, params);
-  RIGID_REQUIRE_AS(kWho, lin.f.allFinite() && lin.M.allFinite() && lin.g.allFinite() && lin.G.allFinite(),
-                   "the equations are not finite at the start ({}); give the point with its "
-                   "coordinates' values",
-                   point_text(s, q));
-  // multipliers that balance the forces best (least squares): λ = −(G Gᵀ)⁻¹ G f
-  auto best_multipliers = [&] {
-    if (s.m == 0) return Eigen::VectorXd(0);
-    return Eigen::VectorXd((lin.G * lin.G.transpose()).completeOrthogonalDecomposition().solve(-lin.G * lin.f));
-  };
-  Eigen::VectorXd lambda = best_multipliers();
-  // what 0 is measured against: the forces at the start and the stiffness times the size of q
-  const double force_scale = std::max(
+// Multipliers that balance the forces best (least squares): λ = −(G Gᵀ)⁻¹ G f.
+Eigen::VectorXd best_multipliers(const Impl& s, const Linearization& lin) {
+  if (s.m == 0) return Eigen::VectorXd(0);
+  return Eigen::VectorXd((lin.G * lin.G.transpose()).completeOrthogonalDecomposition().solve(-lin.G * lin.f));
+}
+
+// What 0 is measured against: the forces at the start and the stiffness times the size of q.
+double force_scale_at(const Impl& s, const Linearization& lin, const Eigen::VectorXd& q,
+                      const Eigen::VectorXd& lambda) {
+  return std::max(
       {lin.f.lpNorm<Eigen::Infinity>(),
        lin.K.cwiseAbs().rowwise().sum().maxCoeff() * std::max(1.0, q.lpNorm<Eigen::Infinity>()),
        (s.m ? (lin.G.transpose() * lambda).lpNorm<Eigen::Infinity>() : 0.0), 1e-300});
-  const double length_scale = std::max(1.0, q.lpNorm<Eigen::Infinity>());
-  if (!unknowns.empty()) {
-    out.searched = true;
-    Search search{lin, params, unknowns, qd, options.max_iterations};
-    search.force_scale = force_scale;
-    search.length_scale = length_scale;
-    Eigen::VectorXd found = q, found_lambda = lambda;
-    bool ok = search.newton(found, found_lambda);
-    if (!ok) {
-      found = q;
-      found_lambda = lambda;
-      ok = search.continuation(found, found_lambda);
-    }
-    out.iterations = search.iterations;
-    if (!ok) {
-      lin.evaluate(found, qd, params);
-      rigid::detail::throw_error(kWho, fmt::format(
-          "no equilibrium found from ({}): the search ended at ({}) after {} iterations with "
-          "generalized forces of up to {}{}; give the equilibrium's coordinates with {}",
-          point_text(s, q), point_text(s, found), search.iterations,
-          (entries(lin.f, unknowns) + columns(lin.G, unknowns).transpose() * found_lambda).lpNorm<Eigen::Infinity>(),
-          s.m ? fmt::format(" and constraints violated by up to {}", lin.g.lpNorm<Eigen::Infinity>()) : "",
-          setting("at", "name=value")));
-    }
-    q = found;
-  }
+}
 
-  // the point must be an equilibrium (or steady motion) in every equation, on the constraints
+// Searches the unknown coordinates (and the multipliers) for the point: Newton from the
+// start, else continuation from the start; moves q there, or refuses with where it ended.
+void search_point(const Impl& s, Linearization& lin, const std::vector<double>& params,
+                  const std::vector<int>& unknowns, Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                  const Eigen::VectorXd& lambda, int max_iterations, double force_scale,
+                  double length_scale, NormalModes& out) {
+  out.searched = true;
+  Search search{lin, params, unknowns, qd, max_iterations};
+  search.force_scale = force_scale;
+  search.length_scale = length_scale;
+  Eigen::VectorXd found = q, found_lambda = lambda;
+  bool ok = search.newton(found, found_lambda);
+  if (!ok) {
+    found = q;
+    found_lambda = lambda;
+    ok = search.continuation(found, found_lambda);
+  }
+  out.iterations = search.iterations;
+  if (!ok) {
+    lin.evaluate(found, qd, params);
+    rigid::detail::throw_error(kWho, fmt::format(
+        "no equilibrium found from ({}): the search ended at ({}) after {} iterations with "
+        "generalized forces of up to {}{}; give the equilibrium's coordinates with {}",
+        point_text(s, q), point_text(s, found), search.iterations,
+        (entries(lin.f, unknowns) + columns(lin.G, unknowns).transpose() * found_lambda).lpNorm<Eigen::Infinity>(),
+        s.m ? fmt::format(" and constraints violated by up to {}", lin.g.lpNorm<Eigen::Infinity>()) : "",
+        setting("at", "name=value")));
+  }
+  q = found;
+}
+
+// Checks that q (with the rates qd) is an equilibrium or steady motion in every equation, on
+// the constraints, with a positive definite M there; leaves lin evaluated at the point, the
+// multipliers in `lambda` and max |q̈| in out.residual.
+void require_equilibrium(const Impl& s, Linearization& lin, const std::vector<double>& params,
+                         const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                         const std::vector<bool>& held, bool steady, double force_scale,
+                         double length_scale, Eigen::VectorXd& lambda, NormalModes& out) {
   lin.evaluate(q, qd, params);
   Eigen::LLT<Eigen::MatrixXd> llt(lin.M);
   if (llt.info() != Eigen::Success) {
@@ -448,37 +466,250 @@ NormalModes normal_modes(const System& system, const LinearizeOptions& options) 
           "them to the search",
           point_text(s, q), s.constraint_names[static_cast<std::size_t>(worst)], lin.g[worst]));
     }
-    Eigen::JacobiSVD<Eigen::MatrixXd> svd(lin.G);
-    const Eigen::VectorXd sv = svd.singularValues();
-    if (!(sv[sv.size() - 1] > 1e-10 * sv[0])) {
+    // the singular values, descending: G (m × n, m ≥ 1) has full row rank when the smallest
+    // is not negligible against the largest
+    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(lin.G);
+    const double smallest = svd.singularValues().tail<1>()(0), largest = svd.singularValues().head<1>()(0);
+    if (!(smallest > 1e-10 * largest)) {
       rigid::detail::throw_error(kWho, fmt::format(
           "the constraints' gradients ∂g/∂q are dependent at ({}); the constraint manifold has no "
           "tangent space of dimension n − m there (G = {})",
           point_text(s, q), fmt::join(lin.G.reshaped<Eigen::RowMajor>(), ", ")));
     }
-    lambda = best_multipliers();
+    lambda = best_multipliers(s, lin);
   }
   const Eigen::VectorXd f_total = lin.f + lin.G.transpose() * lambda;
   const Eigen::VectorXd acc = llt.solve(f_total);
   out.residual = acc.lpNorm<Eigen::Infinity>();
-  {
-    const double k = lin.K.cwiseAbs().rowwise().sum().maxCoeff() +
-                     lin.C.cwiseAbs().rowwise().sum().maxCoeff() * std::max(1.0, qd.lpNorm<Eigen::Infinity>());
-    const double tol = 1e-9 * std::max(k * length_scale, s.m ? force_scale : 0.0);
-    Eigen::Index worst = 0;
-    const double fmax = f_total.cwiseAbs().maxCoeff(&worst);
-    if (!(fmax <= tol)) {
-      const auto w = static_cast<std::size_t>(worst);
-      rigid::detail::throw_error(kWho, fmt::format(
-          "({}) is not an equilibrium{}: the generalized force on '{}' is {}{} (its acceleration "
-          "{}); {}",
-          point_text(s, q), cyc.empty() ? "" : " or steady motion", s.coord_names[w], f_total[worst],
-          s.m ? " with the constraint forces" : "", acc[worst],
-          held[w] ? fmt::format("'{}' is held at the given value: give another or leave it to "
-                                "the search", s.coord_names[w])
-                  : "give values that balance the forces"));
-    }
+  const double k = lin.K.cwiseAbs().rowwise().sum().maxCoeff() +
+                   lin.C.cwiseAbs().rowwise().sum().maxCoeff() * std::max(1.0, qd.lpNorm<Eigen::Infinity>());
+  const double tol = 1e-9 * std::max(k * length_scale, s.m ? force_scale : 0.0);
+  Eigen::Index worst = 0;
+  const double fmax = f_total.cwiseAbs().maxCoeff(&worst);
+  if (!(fmax <= tol)) {
+    const auto w = static_cast<std::size_t>(worst);
+    rigid::detail::throw_error(kWho, fmt::format(
+        "({}) is not an equilibrium{}: the generalized force on '{}' is {}{} (its acceleration "
+        "{}); {}",
+        point_text(s, q), steady ? " or steady motion" : "", s.coord_names[w], f_total[worst],
+        s.m ? " with the constraint forces" : "", acc[worst],
+        held[w] ? fmt::format("'{}' is held at the given value: give another or leave it to "
+                              "the search", s.coord_names[w])
+                : "give values that balance the forces"));
   }
+}
+
+// Routh reduction of the ignorable coordinates (constraints do not involve them): M̃, C̃, K̃
+// over the reduced coordinates, and M_cc⁻¹ M_cr, M_cc⁻¹ C_cr for the ignorable ones' motion.
+struct RouthReduction {
+  Eigen::MatrixXd Mt, Ct, Kt;
+  Eigen::MatrixXd Mcc_inv_Mcr, Mcc_inv_Ccr;
+};
+
+// Reduces out.M, out.C, out.K by Routh (see RouthReduction).
+RouthReduction routh_reduce(const NormalModes& out, const std::vector<int>& reduced,
+                            const std::vector<int>& cyc) {
+  RouthReduction r;
+  r.Mt = rows_cols(out.M, reduced, reduced);
+  r.Ct = rows_cols(out.C, reduced, reduced);
+  r.Kt = rows_cols(out.K, reduced, reduced);
+  if (!cyc.empty()) {
+    const Eigen::LDLT<Eigen::MatrixXd> Mcc(rows_cols(out.M, cyc, cyc));
+    r.Mcc_inv_Mcr = Mcc.solve(rows_cols(out.M, cyc, reduced));
+    r.Mcc_inv_Ccr = Mcc.solve(rows_cols(out.C, cyc, reduced));
+    const Eigen::MatrixXd Mrc = rows_cols(out.M, reduced, cyc), Crc = rows_cols(out.C, reduced, cyc);
+    r.Mt -= Mrc * r.Mcc_inv_Mcr;
+    r.Ct -= Mrc * r.Mcc_inv_Ccr + Crc * r.Mcc_inv_Mcr;
+    r.Kt -= Crc * r.Mcc_inv_Ccr;
+  }
+  return r;
+}
+
+// The constraint manifold's tangent space: δq_r = N δy with G_r N = 0 (N orthonormal, from
+// the SVD of G_r); the identity without constraints.
+Eigen::MatrixXd tangent_basis(const Impl& s, const Linearization& lin,
+                              const std::vector<int>& reduced) {
+  const auto nr = static_cast<Eigen::Index>(reduced.size());
+  Eigen::MatrixXd N = Eigen::MatrixXd::Identity(nr, nr);
+  if (s.m > 0) {
+    Eigen::JacobiSVD<Eigen::MatrixXd> svd(columns(lin.G, reduced), Eigen::ComputeFullV);
+    N = svd.matrixV().rightCols(nr - s.m);
+  }
+  return N;
+}
+
+// The full shape of a reduced one: δq_r = N ψ, δq̇_c = −M_cc⁻¹ (M_cr δq̇_r + C_cr δq_r),
+// δq ∝ e^{λt}.
+struct ShapeMap {
+  int n;
+  const Eigen::MatrixXd& N;
+  const std::vector<int>& reduced;
+  const std::vector<int>& cyc;
+  const RouthReduction& routh;
+
+  [[nodiscard]] Eigen::VectorXcd operator()(const Eigen::VectorXcd& psi, std::complex<double> lambda_k) const {
+    const auto nr = static_cast<Eigen::Index>(reduced.size());
+    Eigen::VectorXcd phi = N.cast<std::complex<double>>() * psi;
+    // the sign (phase) of the shape in the coordinates: its largest component real and positive
+    Eigen::Index largest = 0;
+    phi.cwiseAbs().maxCoeff(&largest);
+    if (std::abs(phi[largest]) > 0) phi *= std::abs(phi[largest]) / phi[largest];
+    phi[largest] = std::abs(phi[largest]);
+    Eigen::VectorXcd shape = Eigen::VectorXcd::Zero(n);
+    for (Eigen::Index i = 0; i < nr; ++i) shape[reduced[static_cast<std::size_t>(i)]] = phi[i];
+    if (!cyc.empty() && std::abs(lambda_k) > 0) {
+      const Eigen::VectorXcd rate = -(routh.Mcc_inv_Mcr.cast<std::complex<double>>() * lambda_k +
+                                      routh.Mcc_inv_Ccr.cast<std::complex<double>>()) * phi;
+      for (std::size_t c = 0; c < cyc.size(); ++c) shape[cyc[c]] = rate[static_cast<Eigen::Index>(c)] / lambda_k;
+    }
+    return shape;
+  }
+};
+
+// The modes of K φ = ω² M φ with φᵀ M φ = 1 (Cholesky of M, then a symmetric eigenproblem),
+// in the tangent coordinates: their eigenvalues ±iω (or ±√−ω²) and shapes into `out`.
+void symmetric_modes(const Impl& s, const Eigen::VectorXd& q, const Eigen::MatrixXd& Mh,
+                     const Eigen::MatrixXd& Kh, const ShapeMap& full_shape, NormalModes& out) {
+  using cd = std::complex<double>;
+  const Eigen::Index nt = Mh.rows();
+  const Eigen::MatrixXd Ks = (Kh + Kh.transpose()) / 2;
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(Ks, Mh);
+  RIGID_REQUIRE_AS(kWho, es.info() == Eigen::Success, "the eigenproblem K φ = ω² M φ did not converge at ({})",
+                   point_text(s, q));
+  const Eigen::VectorXd mu = es.eigenvalues();  // ascending: the largest |μ| is at an end
+  const double zero = 1e-9 * std::max(std::abs(mu[0]), std::abs(mu[nt - 1]));
+  out.eigenvalues.resize(2 * nt);
+  for (Eigen::Index k = 0; k < nt; ++k) {
+    Mode md;
+    md.omega_squared = mu[k];
+    if (mu[k] > zero) {
+      md.eigenvalue = cd(0.0, std::sqrt(mu[k]));
+      md.stability = Stability::kStable;
+    } else if (mu[k] < -zero) {
+      md.eigenvalue = cd(std::sqrt(-mu[k]), 0.0);
+      md.stability = Stability::kUnstable;
+    } else {
+      md.eigenvalue = cd(0.0, 0.0);
+      md.stability = Stability::kMarginal;
+    }
+    md.omega = md.eigenvalue.imag();
+    md.hz = md.omega / (2 * std::numbers::pi);
+    md.growth_rate = md.eigenvalue.real();
+    const Eigen::VectorXcd psi = normalised(es.eigenvectors().col(k).cast<cd>(), Mh);
+    md.shape = full_shape(psi, md.eigenvalue);
+    out.eigenvalues[2 * k] = md.eigenvalue;
+    out.eigenvalues[2 * k + 1] = md.stability == Stability::kUnstable ? -md.eigenvalue : std::conj(md.eigenvalue);
+    out.modes.push_back(std::move(md));
+  }
+}
+
+// The modes of λ x = A x with x = (δy, δẏ), A = [0 1; −M⁻¹K −M⁻¹C] (tangent coordinates):
+// one per real eigenvalue or conjugate pair, sorted by ω; the eigenvalues sorted too.
+void state_space_modes(const Impl& s, const Eigen::VectorXd& q, const Eigen::MatrixXd& Mh,
+                       const Eigen::MatrixXd& Ch, const Eigen::MatrixXd& Kh,
+                       const ShapeMap& full_shape, NormalModes& out) {
+  using cd = std::complex<double>;
+  const Eigen::Index nt = Mh.rows();
+  const Eigen::LLT<Eigen::MatrixXd> Mr(Mh);
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(2 * nt, 2 * nt);
+  A.topRightCorner(nt, nt).setIdentity();
+  A.bottomLeftCorner(nt, nt) = -Mr.solve(Kh);
+  A.bottomRightCorner(nt, nt) = -Mr.solve(Ch);
+  Eigen::EigenSolver<Eigen::MatrixXd> es(A);
+  RIGID_REQUIRE_AS(kWho, es.info() == Eigen::Success, "the state-space eigenproblem did not converge at ({})",
+                   point_text(s, q));
+  out.eigenvalues = es.eigenvalues();
+  const double zero = 1e-6 * out.eigenvalues.cwiseAbs().maxCoeff();
+  for (Eigen::Index k = 0; k < 2 * nt; ++k) {
+    const cd ev_k = out.eigenvalues[k];
+    const bool real = std::abs(ev_k.imag()) <= zero;
+    if (!real && ev_k.imag() < 0) continue;  // its conjugate is the mode
+    Mode md;
+    md.eigenvalue = real ? cd(ev_k.real(), 0.0) : ev_k;
+    md.omega = real ? 0.0 : ev_k.imag();
+    md.hz = md.omega / (2 * std::numbers::pi);
+    md.growth_rate = ev_k.real();
+    md.omega_squared = std::numeric_limits<double>::quiet_NaN();
+    md.stability = ev_k.real() > zero       ? Stability::kUnstable
+                   : std::abs(ev_k) <= zero ? Stability::kMarginal
+                                            : Stability::kStable;
+    const Eigen::VectorXcd psi = normalised(es.eigenvectors().col(k).head(nt), Mh);
+    md.shape = full_shape(psi, md.eigenvalue);
+    out.modes.push_back(std::move(md));
+  }
+  std::stable_sort(out.modes.begin(), out.modes.end(), [](const Mode& a, const Mode& b) {
+    return a.omega != b.omega ? a.omega < b.omega : a.growth_rate > b.growth_rate;
+  });
+  std::vector<cd> ev(out.eigenvalues.begin(), out.eigenvalues.end());
+  std::stable_sort(ev.begin(), ev.end(), [](cd a, cd b) {
+    return a.real() != b.real() ? a.real() > b.real() : a.imag() > b.imag();
+  });
+  for (Eigen::Index k = 0; k < 2 * nt; ++k) out.eigenvalues[k] = ev[static_cast<std::size_t>(k)];
+}
+
+// The stability of the whole motion: unstable if a mode is, else marginal if a mode is.
+Stability overall_stability(const std::vector<Mode>& modes) {
+  Stability stability = Stability::kStable;
+  for (const Mode& md : modes) {
+    if (md.stability == Stability::kUnstable) stability = Stability::kUnstable;
+    else if (md.stability == Stability::kMarginal && stability == Stability::kStable) stability = Stability::kMarginal;
+  }
+  return stability;
+}
+
+}  // namespace
+
+const char* to_string(Stability stability) {
+  switch (stability) {
+    case Stability::kStable: return "stable";
+    case Stability::kMarginal: return "marginal";
+    case Stability::kUnstable: return "unstable";
+  }
+  return "";
+}
+
+NormalModes normal_modes(const System& system, const LinearizeOptions& options) {
+  // the derivatives of M and f are taken and compiled here (GiNaC)
+  detail::SymbolicLock lock;
+  // the System's compiled model, through a workspace's owner (the System stays immutable)
+  Workspace workspace = system.make_workspace();
+  const Impl& s = *Workspace::Access::impl(workspace)->owner;
+  require_holonomic_and_autonomous(system, s);
+
+  // parameters for this call
+  const std::vector<double> params = parameters_for_call(s, options);
+  RIGID_REQUIRE_AS(kWho, options.max_iterations > 0, "max_iterations must be positive, got {}",
+                   options.max_iterations);
+
+  const std::vector<bool> ignorable = ignorable_coordinates(s);
+  StartPoint start = start_point(s, options, ignorable);
+  Eigen::VectorXd& q = start.q;
+  const Eigen::VectorXd& qd = start.qd;
+
+  Linearization lin(s);
+  NormalModes out;
+  out.coordinate_names = s.coord_names;
+  const Partition part = partition_coordinates(s, ignorable, start.held, out);
+  const std::vector<int>& reduced = part.reduced;
+  const std::vector<int>& cyc = part.cyc;
+
+  // the search: Newton from the start, else continuation from the start
+  lin.evaluate(q, qd, params);
+  RIGID_REQUIRE_AS(kWho, lin.f.allFinite() && lin.M.allFinite() && lin.g.allFinite() && lin.G.allFinite(),
+                   "the equations are not finite at the start ({}); give the point with its "
+                   "coordinates' values",
+                   point_text(s, q));
+  Eigen::VectorXd lambda = best_multipliers(s, lin);
+  const double force_scale = force_scale_at(s, lin, q, lambda);
+  const double length_scale = std::max(1.0, q.lpNorm<Eigen::Infinity>());
+  if (!part.unknowns.empty()) {
+    search_point(s, lin, params, part.unknowns, q, qd, lambda, options.max_iterations, force_scale,
+                 length_scale, out);
+  }
+
+  // the point must be an equilibrium (or steady motion) in every equation, on the constraints
+  require_equilibrium(s, lin, params, q, qd, start.held, !cyc.empty(), force_scale, length_scale,
+                      lambda, out);
   out.q = q;
   out.q_dot = qd;
   out.constraint_names = s.constraint_names;
@@ -490,53 +721,18 @@ NormalModes normal_modes(const System& system, const LinearizeOptions& options) 
   for (int k = 0; k < s.m; ++k) out.K -= lambda[k] * lin.H[static_cast<std::size_t>(k)];
 
   // Routh reduction of the ignorable coordinates (constraints do not involve them)
-  const auto nr = static_cast<Eigen::Index>(reduced.size());
-  Eigen::MatrixXd Mt = rows_cols(out.M, reduced, reduced), Ct = rows_cols(out.C, reduced, reduced),
-                  Kt = rows_cols(out.K, reduced, reduced);
-  Eigen::MatrixXd Mcc_inv_Mcr, Mcc_inv_Ccr;
-  if (!cyc.empty()) {
-    const Eigen::LDLT<Eigen::MatrixXd> Mcc(rows_cols(out.M, cyc, cyc));
-    Mcc_inv_Mcr = Mcc.solve(rows_cols(out.M, cyc, reduced));
-    Mcc_inv_Ccr = Mcc.solve(rows_cols(out.C, cyc, reduced));
-    const Eigen::MatrixXd Mrc = rows_cols(out.M, reduced, cyc), Crc = rows_cols(out.C, reduced, cyc);
-    Mt -= Mrc * Mcc_inv_Mcr;
-    Ct -= Mrc * Mcc_inv_Ccr + Crc * Mcc_inv_Mcr;
-    Kt -= Crc * Mcc_inv_Ccr;
-  }
-  out.M_reduced = Mt;
-  out.C_reduced = Ct;
-  out.K_reduced = Kt;
+  const RouthReduction routh = routh_reduce(out, reduced, cyc);
+  out.M_reduced = routh.Mt;
+  out.C_reduced = routh.Ct;
+  out.K_reduced = routh.Kt;
 
-  // the constraint manifold's tangent space: δq_r = N δy with G_r N = 0 (N orthonormal, from
-  // the SVD of G_r); the eigenproblem is Nᵀ M̃ N, Nᵀ C̃ N, Nᵀ K̃ N
-  Eigen::MatrixXd N = Eigen::MatrixXd::Identity(nr, nr);
-  if (s.m > 0) {
-    Eigen::JacobiSVD<Eigen::MatrixXd> svd(columns(lin.G, reduced), Eigen::ComputeFullV);
-    N = svd.matrixV().rightCols(nr - s.m);
-  }
+  // the eigenproblem on the constraints' tangent space: Nᵀ M̃ N, Nᵀ C̃ N, Nᵀ K̃ N
+  const Eigen::MatrixXd N = tangent_basis(s, lin, reduced);
   out.tangent_basis = N;
-  const Eigen::MatrixXd Mh = N.transpose() * Mt * N, Ch = N.transpose() * Ct * N,
-                        Kh = N.transpose() * Kt * N;
+  const Eigen::MatrixXd Mh = N.transpose() * routh.Mt * N, Ch = N.transpose() * routh.Ct * N,
+                        Kh = N.transpose() * routh.Kt * N;
   const Eigen::Index nt = N.cols();
-
-  // the full shape of a reduced one: δq_r = N ψ, δq̇_c = −M_cc⁻¹ (M_cr δq̇_r + C_cr δq_r),
-  // δq ∝ e^{λt}
-  auto full_shape = [&](const Eigen::VectorXcd& psi, std::complex<double> lambda_k) {
-    Eigen::VectorXcd phi = N.cast<std::complex<double>>() * psi;
-    // the sign (phase) of the shape in the coordinates: its largest component real and positive
-    Eigen::Index largest = 0;
-    phi.cwiseAbs().maxCoeff(&largest);
-    if (std::abs(phi[largest]) > 0) phi *= std::abs(phi[largest]) / phi[largest];
-    phi[largest] = std::abs(phi[largest]);
-    Eigen::VectorXcd shape = Eigen::VectorXcd::Zero(n);
-    for (Eigen::Index i = 0; i < nr; ++i) shape[reduced[static_cast<std::size_t>(i)]] = phi[i];
-    if (!cyc.empty() && std::abs(lambda_k) > 0) {
-      const Eigen::VectorXcd rate = -(Mcc_inv_Mcr.cast<std::complex<double>>() * lambda_k +
-                                      Mcc_inv_Ccr.cast<std::complex<double>>()) * phi;
-      for (std::size_t c = 0; c < cyc.size(); ++c) shape[cyc[c]] = rate[static_cast<Eigen::Index>(c)] / lambda_k;
-    }
-    return shape;
-  };
+  const ShapeMap full_shape{s.n, N, reduced, cyc, routh};
 
   if (nt == 0) {
     out.eigenvalues.resize(0);
@@ -546,81 +742,12 @@ NormalModes normal_modes(const System& system, const LinearizeOptions& options) 
   const double k_norm = Kh.cwiseAbs().maxCoeff();
   const bool symmetric = (Kh - Kh.transpose()).cwiseAbs().maxCoeff() <= 1e-12 * k_norm;
   out.gyroscopic = !(Ch.cwiseAbs().maxCoeff() == 0.0 && symmetric);
-  using cd = std::complex<double>;
   if (!out.gyroscopic) {
-    // K φ = ω² M φ with φᵀ M φ = 1 (Cholesky of M, then a symmetric eigenproblem)
-    const Eigen::MatrixXd Ks = (Kh + Kh.transpose()) / 2;
-    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(Ks, Mh);
-    RIGID_REQUIRE_AS(kWho, es.info() == Eigen::Success, "the eigenproblem K φ = ω² M φ did not converge at ({})",
-                     point_text(s, q));
-    const Eigen::VectorXd mu = es.eigenvalues();  // ascending
-    const double zero = 1e-9 * mu.cwiseAbs().maxCoeff();
-    out.eigenvalues.resize(2 * nt);
-    for (Eigen::Index k = 0; k < nt; ++k) {
-      Mode md;
-      md.omega_squared = mu[k];
-      if (mu[k] > zero) {
-        md.eigenvalue = cd(0.0, std::sqrt(mu[k]));
-        md.stability = Stability::kStable;
-      } else if (mu[k] < -zero) {
-        md.eigenvalue = cd(std::sqrt(-mu[k]), 0.0);
-        md.stability = Stability::kUnstable;
-      } else {
-        md.eigenvalue = cd(0.0, 0.0);
-        md.stability = Stability::kMarginal;
-      }
-      md.omega = md.eigenvalue.imag();
-      md.hz = md.omega / (2 * std::numbers::pi);
-      md.growth_rate = md.eigenvalue.real();
-      const Eigen::VectorXcd psi = normalised(es.eigenvectors().col(k).cast<cd>(), Mh);
-      md.shape = full_shape(psi, md.eigenvalue);
-      out.eigenvalues[2 * k] = md.eigenvalue;
-      out.eigenvalues[2 * k + 1] = md.stability == Stability::kUnstable ? -md.eigenvalue : std::conj(md.eigenvalue);
-      out.modes.push_back(std::move(md));
-    }
+    symmetric_modes(s, q, Mh, Kh, full_shape, out);
   } else {
-    // λ x = A x with x = (δy, δẏ), A = [0 1; −M⁻¹K −M⁻¹C] (tangent coordinates)
-    const Eigen::LLT<Eigen::MatrixXd> Mr(Mh);
-    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(2 * nt, 2 * nt);
-    A.topRightCorner(nt, nt).setIdentity();
-    A.bottomLeftCorner(nt, nt) = -Mr.solve(Kh);
-    A.bottomRightCorner(nt, nt) = -Mr.solve(Ch);
-    Eigen::EigenSolver<Eigen::MatrixXd> es(A);
-    RIGID_REQUIRE_AS(kWho, es.info() == Eigen::Success, "the state-space eigenproblem did not converge at ({})",
-                     point_text(s, q));
-    out.eigenvalues = es.eigenvalues();
-    const double zero = 1e-6 * out.eigenvalues.cwiseAbs().maxCoeff();
-    for (Eigen::Index k = 0; k < 2 * nt; ++k) {
-      const cd ev_k = out.eigenvalues[k];
-      const bool real = std::abs(ev_k.imag()) <= zero;
-      if (!real && ev_k.imag() < 0) continue;  // its conjugate is the mode
-      Mode md;
-      md.eigenvalue = real ? cd(ev_k.real(), 0.0) : ev_k;
-      md.omega = real ? 0.0 : ev_k.imag();
-      md.hz = md.omega / (2 * std::numbers::pi);
-      md.growth_rate = ev_k.real();
-      md.omega_squared = std::numeric_limits<double>::quiet_NaN();
-      md.stability = ev_k.real() > zero       ? Stability::kUnstable
-                     : std::abs(ev_k) <= zero ? Stability::kMarginal
-                                              : Stability::kStable;
-      const Eigen::VectorXcd psi = normalised(es.eigenvectors().col(k).head(nt), Mh);
-      md.shape = full_shape(psi, md.eigenvalue);
-      out.modes.push_back(std::move(md));
-    }
-    std::stable_sort(out.modes.begin(), out.modes.end(), [](const Mode& a, const Mode& b) {
-      return a.omega != b.omega ? a.omega < b.omega : a.growth_rate > b.growth_rate;
-    });
-    std::vector<cd> ev(out.eigenvalues.begin(), out.eigenvalues.end());
-    std::stable_sort(ev.begin(), ev.end(), [](cd a, cd b) {
-      return a.real() != b.real() ? a.real() > b.real() : a.imag() > b.imag();
-    });
-    for (Eigen::Index k = 0; k < 2 * nt; ++k) out.eigenvalues[k] = ev[static_cast<std::size_t>(k)];
+    state_space_modes(s, q, Mh, Ch, Kh, full_shape, out);
   }
-  out.stability = Stability::kStable;
-  for (const Mode& md : out.modes) {
-    if (md.stability == Stability::kUnstable) out.stability = Stability::kUnstable;
-    else if (md.stability == Stability::kMarginal && out.stability == Stability::kStable) out.stability = Stability::kMarginal;
-  }
+  out.stability = overall_stability(out.modes);
   return out;
 }
 
