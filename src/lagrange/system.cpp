@@ -86,14 +86,14 @@ std::string System::Impl::state_text(double time, const Eigen::VectorXd& qv) con
 
 namespace {
 
-// Parses, assembles, derives and compiles `spec` into `s` (under the symbolic lock).
-void derive(System::Impl& s, const SystemSpec& spec) {
-  s.n = static_cast<int>(spec.coordinates.size());
-  s.m = static_cast<int>(spec.constraints.size());
-  RIGID_REQUIRE_AS("System", s.n > 0, "a system needs at least one coordinate, got none");
+// The symbol table of a System: every name an expression may use → its symbol.
+using Names = std::map<std::string, ex>;
+// Named bodies → (p_WB, R_WB), for the springs attached to them.
+using Poses = std::map<std::string, std::pair<Vec3, Mat3>>;
 
-  // symbol table, with every name checked once
-  std::map<std::string, ex> names;
+// Declares t, the parameters, the coordinates and their velocities in `s` and `names`,
+// with every name checked once.
+void declare_symbols(System::Impl& s, const SystemSpec& spec, Names& names) {
   std::map<std::string, std::string> owner;  // name → what declared it, for duplicates
   names["t"] = s.t;
   auto declare = [&](const std::string& name, const std::string& what, const ex& value) {
@@ -128,170 +128,226 @@ void derive(System::Impl& s, const SystemSpec& spec) {
     declare(c.name, "coordinate", s.q.back());
     declare(c.name + "_dot", "velocity", s.qd.back());
   }
+}
 
-  auto parse = [&](const Expression& e, const std::string& context, bool allow_velocity) {
+// Reads the expressions of a spec with the declared names, refusing at its column an
+// expression that uses what its place does not allow.
+class ExpressionReader {
+ public:
+  ExpressionReader(const System::Impl& s, const Names& names) : s_(s), names_(names) {}
+
+  // an expression of q, t, the parameters and numbers, and of q̇ if `allow_velocity`
+  [[nodiscard]] ex parse(const Expression& e, const std::string& context, bool allow_velocity) const {
     if (e.text.find_first_not_of(" \t") == std::string::npos) {
       detail::throw_at(e, 0, context, "empty expression; expected a number, a name or '('");
     }
-    ex value = detail::parse_expression(e, names, context);
+    ex value = detail::parse_expression(e, names_, context);
     if (!allow_velocity) {
-      for (int i = 0; i < s.n; ++i) {
-        if (value.has(s.qd[static_cast<std::size_t>(i)])) {
-          detail::throw_at(e, e.text.find(s.coord_names[static_cast<std::size_t>(i)] + "_dot"),
+      for (int i = 0; i < s_.n; ++i) {
+        if (value.has(s_.qd[static_cast<std::size_t>(i)])) {
+          detail::throw_at(e, e.text.find(s_.coord_names[static_cast<std::size_t>(i)] + "_dot"),
                            context, fmt::format("depends on the velocity '{}_dot'; only q and t "
                                                 "may appear here",
-                                                s.coord_names[static_cast<std::size_t>(i)]));
+                                                s_.coord_names[static_cast<std::size_t>(i)]));
         }
       }
     }
     return value;
-  };
-  // total time derivative d/dt e(q, t) = Σ ∂e/∂qᵢ q̇ᵢ + ∂e/∂t
-  auto dt = [&](const ex& e) {
-    ex r = d(e, s.t);
-    for (int i = 0; i < s.n; ++i) r += d(e, s.q[static_cast<std::size_t>(i)]) * s.qd[static_cast<std::size_t>(i)];
-    return r;
-  };
+  }
 
   // an expression of the parameters and numbers only (masses, inertias, gravity)
-  auto parse_constant = [&](const Expression& e, const std::string& context) {
+  [[nodiscard]] ex parse_constant(const Expression& e, const std::string& context) const {
     const ex value = parse(e, context, false);
-    for (int i = 0; i < s.n; ++i) {
-      if (value.has(s.q[static_cast<std::size_t>(i)])) {
-        detail::throw_at(e, e.text.find(s.coord_names[static_cast<std::size_t>(i)]), context,
+    for (int i = 0; i < s_.n; ++i) {
+      if (value.has(s_.q[static_cast<std::size_t>(i)])) {
+        detail::throw_at(e, e.text.find(s_.coord_names[static_cast<std::size_t>(i)]), context,
                          fmt::format("depends on the coordinate '{}'; a constant of the model may "
                                      "use parameters and numbers only",
-                                     s.coord_names[static_cast<std::size_t>(i)]));
+                                     s_.coord_names[static_cast<std::size_t>(i)]));
       }
     }
-    if (value.has(s.t)) {
+    if (value.has(s_.t)) {
       detail::throw_at(e, e.text.find('t'), context,
                        "depends on the time 't'; a constant of the model may use parameters and "
                        "numbers only");
     }
     return value;
-  };
-  Vec3 gravity;
-  for (int k = 0; k < 3; ++k) gravity[k] = parse_constant(spec.gravity_W[k], fmt::format("gravity[{}]", k));
+  }
 
-  // assemble T and V
-  ex T_bodies = 0, V = 0, L_given = 0;
+ private:
+  const System::Impl& s_;
+  const Names& names_;
+};
+
+// Total time derivative d/dt e(q, t) = Σ ∂e/∂qᵢ q̇ᵢ + ∂e/∂t.
+ex time_derivative(const System::Impl& s, const ex& e) {
+  ex r = d(e, s.t);
+  for (int i = 0; i < s.n; ++i) r += d(e, s.q[static_cast<std::size_t>(i)]) * s.qd[static_cast<std::size_t>(i)];
+  return r;
+}
+
+// What the bodies add to the model: T and V, and the outputs of the mass and pose tapes.
+struct BodyTerms {
+  ex T = 0, V = 0;
   std::vector<ex> mass_outputs;  // per body: mass, COM (3), inertia xx yy zz xy xz yz
-  if (spec.lagrangian.text.find_first_not_of(" \t") != std::string::npos) {
-    L_given = parse(spec.lagrangian, "Lagrangian", true).expand();
+  Poses poses;                   // body name → (p_WB, R_WB)
+  std::vector<ex> pose_outputs;  // per body: p_WB (3), R_WB row-major (9)
+};
+
+// A body's orientation R_WB and body-frame angular velocity ω_B.
+struct Orientation {
+  Mat3 R;
+  Vec3 w;
+};
+
+// R_WB = R₁ ⋯ R_k; ω_B of a product: ω ← R_jᵀ ω + a_j θ̇_j, left to right.
+Orientation body_orientation(const System::Impl& s, const ExpressionReader& reader, const Body& b,
+                             const std::string& ctx) {
+  Mat3 R = identity3();
+  Vec3 w{0, 0, 0};
+  for (std::size_t j = 0; j < b.rotations.size(); ++j) {
+    const AxisRotation& r = b.rotations[j];
+    const double norm = r.axis.norm();
+    RIGID_REQUIRE_AS("System", std::isfinite(norm) && norm > 0, "{} rotation {}: the axis must be a "
+                  "non-zero finite vector, got ({}, {}, {})", ctx, j, r.axis.x(), r.axis.y(),
+                  r.axis.z());
+    const Eigen::Vector3d a = r.axis / norm;
+    const ex theta = reader.parse(r.angle, fmt::format("{} rotation {} angle", ctx, j), false);
+    const Mat3 Rj = rodrigues(a, theta);
+    R = mat_mul(R, Rj);
+    const ex theta_dot = time_derivative(s, theta);
+    w = mat_t_vec(Rj, w);
+    for (int k = 0; k < 3; ++k) w[k] = (w[k] + number(a[k]) * theta_dot).expand();
   }
-  std::map<std::string, std::pair<Vec3, Mat3>> poses;  // body name → (p_WB, R_WB)
-  std::vector<ex> pose_outputs;                         // per body: p_WB (3), R_WB row-major (9)
-  for (const Body& b : spec.bodies) {
-    const std::string ctx = fmt::format("body '{}'", b.name);
-    RIGID_REQUIRE_AS("System", b.name.empty() || !poses.count(b.name), "body name '{}' is used twice",
-                  b.name);
-    Vec3 p;
-    // an empty position component means 0
-    for (int k = 0; k < 3; ++k) {
-      const bool empty = b.position[k].text.find_first_not_of(" \t") == std::string::npos;
-      p[k] = empty ? ex(0) : parse(b.position[k], fmt::format("{} position[{}]", ctx, k), false);
-    }
-    // R_WB = R₁ ⋯ R_k; ω_B of a product: ω ← R_jᵀ ω + a_j θ̇_j, left to right
-    Mat3 R = identity3();
-    Vec3 w{0, 0, 0};
-    for (std::size_t j = 0; j < b.rotations.size(); ++j) {
-      const AxisRotation& r = b.rotations[j];
-      const double norm = r.axis.norm();
-      RIGID_REQUIRE_AS("System", std::isfinite(norm) && norm > 0, "{} rotation {}: the axis must be a "
-                    "non-zero finite vector, got ({}, {}, {})", ctx, j, r.axis.x(), r.axis.y(),
-                    r.axis.z());
-      const Eigen::Vector3d a = r.axis / norm;
-      const ex theta = parse(r.angle, fmt::format("{} rotation {} angle", ctx, j), false);
-      const Mat3 Rj = rodrigues(a, theta);
-      R = mat_mul(R, Rj);
-      const ex theta_dot = dt(theta);
-      w = mat_t_vec(Rj, w);
-      for (int k = 0; k < 3; ++k) w[k] = (w[k] + number(a[k]) * theta_dot).expand();
-    }
-    // mass properties as expressions of the parameters (constants: no q, q̇ or t)
-    const ex mass = parse_constant(b.mass.mass, ctx + " mass");
-    Vec3 com_B;
-    for (int k = 0; k < 3; ++k) com_B[k] = parse_constant(b.mass.com[k], fmt::format("{} com[{}]", ctx, k));
-    Mat3 I;
-    for (std::size_t k = 0; k < 6; ++k) {
-      const auto& [name, row, col] = BodyMass::kInertiaElements[k];
-      I[row][col] = I[col][row] = parse_constant(b.mass.inertia[k], ctx + " " + name);
-    }
-    mass_outputs.push_back(mass);
-    for (int k = 0; k < 3; ++k) mass_outputs.push_back(com_B[k]);
-    for (const auto& e : BodyMass::kInertiaElements) mass_outputs.push_back(I[e.row][e.col]);
-    Vec3 c = mat_vec(R, com_B);
-    ex v2 = 0;
-    for (int k = 0; k < 3; ++k) {
-      c[k] = (c[k] + p[k]).expand();
-      const ex v = dt(c[k]);
-      v2 += v * v;
-    }
-    ex rot = 0;
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j)
-        if (!I[i][j].is_zero()) rot += I[i][j] * w[i] * w[j];
-    T_bodies += mass / 2 * v2 + rot / 2;
-    for (int k = 0; k < 3; ++k) {
-      if (!gravity[k].is_zero()) V -= mass * gravity[k] * c[k];
-    }
-    if (!b.name.empty()) poses.emplace(b.name, std::make_pair(p, R));
-    s.body_names.push_back(b.name.empty() ? fmt::format("body{}", s.body_names.size()) : b.name);
-    for (int k = 0; k < 3; ++k) pose_outputs.push_back(p[k]);
-    for (int i = 0; i < 3; ++i)
-      for (int k = 0; k < 3; ++k) pose_outputs.push_back(R[i][k]);
+  return {R, w};
+}
+
+// Adds body `b`: its T and its V in `gravity`, its mass properties (constants: no q, q̇ or t)
+// to the mass outputs, its pose to the pose outputs, and its name to s.body_names.
+void add_body(System::Impl& s, const ExpressionReader& reader, const Body& b, const Vec3& gravity,
+              BodyTerms& terms) {
+  const std::string ctx = fmt::format("body '{}'", b.name);
+  RIGID_REQUIRE_AS("System", b.name.empty() || !terms.poses.count(b.name), "body name '{}' is used twice",
+                b.name);
+  Vec3 p;
+  // an empty position component means 0
+  for (int k = 0; k < 3; ++k) {
+    const bool empty = b.position[k].text.find_first_not_of(" \t") == std::string::npos;
+    p[k] = empty ? ex(0) : reader.parse(b.position[k], fmt::format("{} position[{}]", ctx, k), false);
   }
-  // springs: V = ½ k (|p_a − p_b| − L)², points carried by their bodies' poses
-  auto world_point = [&](const std::string& body, const Eigen::Vector3d& point, std::size_t s_index,
-                         const char* which) {
-    const Vec3 local{number(point.x()), number(point.y()), number(point.z())};
-    if (body.empty()) return local;
-    auto it = poses.find(body);
-    if (it == poses.end()) {
-      std::string known;
-      for (const auto& [name, _] : poses) known += (known.empty() ? "" : ", ") + name;
-      rigid::detail::throw_error("System", fmt::format("spring {}: {} names the unknown body "
-                                 "'{}'; bodies: {}", s_index, which, body,
-                                 known.empty() ? "none" : known));
-    }
-    Vec3 w = mat_vec(it->second.second, local);
-    for (int k = 0; k < 3; ++k) w[k] = (w[k] + it->second.first[k]).expand();
-    return w;
-  };
+  const auto [R, w] = body_orientation(s, reader, b, ctx);
+  // mass properties as expressions of the parameters (constants: no q, q̇ or t)
+  const ex mass = reader.parse_constant(b.mass.mass, ctx + " mass");
+  Vec3 com_B;
+  for (int k = 0; k < 3; ++k) com_B[k] = reader.parse_constant(b.mass.com[k], fmt::format("{} com[{}]", ctx, k));
+  Mat3 I;
+  for (std::size_t k = 0; k < 6; ++k) {
+    const auto& [name, row, col] = BodyMass::kInertiaElements[k];
+    I[row][col] = I[col][row] = reader.parse_constant(b.mass.inertia[k], ctx + " " + name);
+  }
+  terms.mass_outputs.push_back(mass);
+  for (int k = 0; k < 3; ++k) terms.mass_outputs.push_back(com_B[k]);
+  for (const auto& e : BodyMass::kInertiaElements) terms.mass_outputs.push_back(I[e.row][e.col]);
+  Vec3 c = mat_vec(R, com_B);
+  ex v2 = 0;
+  for (int k = 0; k < 3; ++k) {
+    c[k] = (c[k] + p[k]).expand();
+    const ex v = time_derivative(s, c[k]);
+    v2 += v * v;
+  }
+  ex rot = 0;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      if (!I[i][j].is_zero()) rot += I[i][j] * w[i] * w[j];
+  terms.T += mass / 2 * v2 + rot / 2;
+  for (int k = 0; k < 3; ++k) {
+    if (!gravity[k].is_zero()) terms.V -= mass * gravity[k] * c[k];
+  }
+  if (!b.name.empty()) terms.poses.emplace(b.name, std::make_pair(p, R));
+  s.body_names.push_back(b.name.empty() ? fmt::format("body{}", s.body_names.size()) : b.name);
+  for (int k = 0; k < 3; ++k) terms.pose_outputs.push_back(p[k]);
+  for (int i = 0; i < 3; ++i)
+    for (int k = 0; k < 3; ++k) terms.pose_outputs.push_back(R[i][k]);
+}
+
+// A spring's end in the world frame: `point` carried by the pose of `body` (the world if empty).
+Vec3 world_point(const Poses& poses, const std::string& body, const Eigen::Vector3d& point,
+                 std::size_t s_index, const char* which) {
+  const Vec3 local{number(point.x()), number(point.y()), number(point.z())};
+  if (body.empty()) return local;
+  auto it = poses.find(body);
+  if (it == poses.end()) {
+    std::string known;
+    for (const auto& [name, _] : poses) known += (known.empty() ? "" : ", ") + name;
+    rigid::detail::throw_error("System", fmt::format("spring {}: {} names the unknown body "
+                               "'{}'; bodies: {}", s_index, which, body,
+                               known.empty() ? "none" : known));
+  }
+  Vec3 w = mat_vec(it->second.second, local);
+  for (int k = 0; k < 3; ++k) w[k] = (w[k] + it->second.first[k]).expand();
+  return w;
+}
+
+// Adds the springs' potentials to V: V = ½ k (|p_a − p_b| − L)², points carried by their
+// bodies' poses.
+void add_springs(const SystemSpec& spec, const ExpressionReader& reader, const Poses& poses, ex& V) {
   for (std::size_t j = 0; j < spec.springs.size(); ++j) {
     const Spring& sp = spec.springs[j];
     RIGID_REQUIRE_AS("System", !sp.body_a.empty(), "spring {}: body_a must name a body", j);
-    const Vec3 a = world_point(sp.body_a, sp.point_a_B, j, "body_a");
-    const Vec3 b = world_point(sp.body_b, sp.point_b_B, j, "body_b");
-    const ex k = parse(sp.stiffness, fmt::format("spring {} stiffness", j), false);
-    const ex rest = parse(sp.rest_length, fmt::format("spring {} rest_length", j), false);
+    const Vec3 a = world_point(poses, sp.body_a, sp.point_a_B, j, "body_a");
+    const Vec3 b = world_point(poses, sp.body_b, sp.point_b_B, j, "body_b");
+    const ex k = reader.parse(sp.stiffness, fmt::format("spring {} stiffness", j), false);
+    const ex rest = reader.parse(sp.rest_length, fmt::format("spring {} rest_length", j), false);
     ex d2 = 0;
     for (int i = 0; i < 3; ++i) d2 += GiNaC::pow(a[i] - b[i], 2);
     d2 = d2.expand();
     V += rest.is_zero() ? k / 2 * d2 : k / 2 * GiNaC::pow(GiNaC::sqrt(d2) - rest, 2);
   }
-  for (const NamedExpression& pot : spec.potentials) {
-    V += parse(pot.expression, fmt::format("potential '{}'", pot.name), false);
+}
+
+// Splits a given Lagrangian: the velocity-dependent part counts as kinetic energy (T_given),
+// the rest as −V (V_given).
+void split_given_lagrangian(const System::Impl& s, const ex& L_given, ex& T_given, ex& V_given) {
+  const ex Lg = simplify(L_given);
+  const GiNaC::exvector terms = GiNaC::is_a<GiNaC::add>(Lg) ? GiNaC::exvector(Lg.begin(), Lg.end())
+                                                            : GiNaC::exvector{Lg};
+  for (const ex& term : terms) {
+    bool has_velocity = false;
+    for (const symbol& v : s.qd) has_velocity = has_velocity || term.has(v);
+    (has_velocity ? T_given : V_given) += term;
   }
-  T_bodies = simplify(T_bodies);
+}
+
+// Sets s.T, s.V and s.L from the bodies, springs, potentials and the given Lagrangian; returns
+// the outputs of the mass and pose tapes.
+BodyTerms derive_energies(System::Impl& s, const SystemSpec& spec, const ExpressionReader& reader) {
+  Vec3 gravity;
+  for (int k = 0; k < 3; ++k) gravity[k] = reader.parse_constant(spec.gravity_W[k], fmt::format("gravity[{}]", k));
+
+  // assemble T and V
+  ex L_given = 0;
+  if (spec.lagrangian.text.find_first_not_of(" \t") != std::string::npos) {
+    L_given = reader.parse(spec.lagrangian, "Lagrangian", true).expand();
+  }
+  BodyTerms terms;
+  for (const Body& b : spec.bodies) add_body(s, reader, b, gravity, terms);
+  add_springs(spec, reader, terms.poses, terms.V);
+  for (const NamedExpression& pot : spec.potentials) {
+    terms.V += reader.parse(pot.expression, fmt::format("potential '{}'", pot.name), false);
+  }
+  terms.T = simplify(terms.T);
   // the velocity-dependent part of a given L counts as kinetic energy, the rest as −V
   ex T_given = 0, V_given = 0;
-  {
-    const ex Lg = simplify(L_given);
-    const GiNaC::exvector terms = GiNaC::is_a<GiNaC::add>(Lg) ? GiNaC::exvector(Lg.begin(), Lg.end())
-                                                              : GiNaC::exvector{Lg};
-    for (const ex& term : terms) {
-      bool has_velocity = false;
-      for (const symbol& v : s.qd) has_velocity = has_velocity || term.has(v);
-      (has_velocity ? T_given : V_given) += term;
-    }
-  }
-  s.T = T_bodies + T_given;
-  s.V = simplify(V - V_given);
+  split_given_lagrangian(s, L_given, T_given, V_given);
+  s.T = terms.T + T_given;
+  s.V = simplify(terms.V - V_given);
   s.L = simplify(s.T - s.V);
+  return terms;
+}
 
-  // generalized forces
+// Sets s.Q, the generalized forces on the coordinates; returns which coordinates have one.
+std::vector<bool> derive_generalized_forces(System::Impl& s, const SystemSpec& spec,
+                                            const ExpressionReader& reader) {
   std::vector<ex> Q(static_cast<std::size_t>(s.n), 0);
   std::vector<bool> forced(static_cast<std::size_t>(s.n), false);
   for (const NamedExpression& F : spec.forces) {
@@ -302,12 +358,16 @@ void derive(System::Impl& s, const SystemSpec& spec) {
       rigid::detail::throw_error("System", fmt::format("force on '{}': no coordinate of that name; coordinates: {}", F.name, known));
     }
     const auto i = static_cast<std::size_t>(it - s.coord_names.begin());
-    Q[i] += parse(F.expression, fmt::format("force on '{}'", F.name), true);
+    Q[i] += reader.parse(F.expression, fmt::format("force on '{}'", F.name), true);
     forced[i] = true;
   }
-
   s.Q = Q;
-  // Euler–Lagrange: p = ∂L/∂q̇, M = ∂p/∂q̇, f = ∂L/∂q − (∂p/∂q) q̇ − ∂p/∂t + Q
+  return forced;
+}
+
+// Euler–Lagrange: p = ∂L/∂q̇, M = ∂p/∂q̇, f = ∂L/∂q − (∂p/∂q) q̇ − ∂p/∂t + Q, and the
+// Jacobi integral h = q̇ᵀ p − L; refuses a singular M.
+void derive_euler_lagrange(System::Impl& s) {
   const auto n = static_cast<std::size_t>(s.n);
   s.p.resize(n);
   s.M.assign(n * n, 0);
@@ -320,22 +380,27 @@ void derive(System::Impl& s, const SystemSpec& spec) {
                   "so the mass matrix is singular; L = {}", s.coord_names[i], s.coord_names[i],
                   to_text(s.L)));
     }
-    ex fi = d(s.L, s.q[i]) - d(s.p[i], s.t) + Q[i];
+    ex fi = d(s.L, s.q[i]) - d(s.p[i], s.t) + s.Q[i];
     for (std::size_t j = 0; j < n; ++j) fi -= d(s.p[i], s.q[j]) * s.qd[j];
     s.f[i] = fi.expand();
   }
   s.h = 0;
   for (std::size_t i = 0; i < n; ++i) s.h += s.qd[i] * s.p[i];
   s.h = simplify(s.h - s.L);
+}
 
-  // constraints: G = ∂g/∂q, ġ = G q̇ + ∂g/∂t, γ = −(∂ġ/∂q q̇ + ∂ġ/∂t)
+// Holonomic constraints: g, G = ∂g/∂q, ġ = G q̇ + ∂g/∂t, γ = −(∂ġ/∂q q̇ + ∂ġ/∂t) and the
+// multipliers' symbols into `s`; returns which coordinates a constraint involves.
+std::vector<bool> derive_constraints(System::Impl& s, const SystemSpec& spec,
+                                     const ExpressionReader& reader) {
+  const auto n = static_cast<std::size_t>(s.n);
   std::vector<bool> constrained(n, false);
   for (const NamedExpression& con : spec.constraints) {
     RIGID_REQUIRE_AS("System", is_identifier(con.name), "constraint name '{}' is not a valid name", con.name);
     RIGID_REQUIRE_AS("System", std::find(s.constraint_names.begin(), s.constraint_names.end(), con.name) ==
                       s.constraint_names.end(),
                   "constraint name '{}' is used twice", con.name);
-    const ex gk = parse(con.expression, fmt::format("constraint '{}'", con.name), false).expand();
+    const ex gk = reader.parse(con.expression, fmt::format("constraint '{}'", con.name), false).expand();
     bool depends = false;
     for (std::size_t i = 0; i < n; ++i) {
       const ex Gki = d(gk, s.q[i]);
@@ -344,7 +409,7 @@ void derive(System::Impl& s, const SystemSpec& spec) {
     }
     RIGID_REQUIRE_AS("System", depends, "constraint '{}' = {} does not depend on any coordinate; it is either "
                   "always or never satisfied", con.name, to_text(gk));
-    const ex ck = dt(gk).expand();
+    const ex ck = time_derivative(s, gk).expand();
     ex gamma = -d(ck, s.t);
     for (std::size_t j = 0; j < n; ++j) gamma -= d(ck, s.q[j]) * s.qd[j];
     s.g.push_back(gk);
@@ -353,29 +418,40 @@ void derive(System::Impl& s, const SystemSpec& spec) {
     s.constraint_names.push_back(con.name);
     s.lambda.emplace_back("lambda_" + con.name, "\\lambda_{\\mathrm{" + con.name + "}}");
   }
+  return constrained;
+}
 
-  // velocity (nonholonomic) constraints A q̇ + a = 0 (velocity_constraints.cpp)
-  detail::derive_velocity_constraints(spec, s, names, constrained);
-
-  // cyclic coordinates
+// Cyclic coordinates: neither forced nor constrained, and L does not depend on them.
+void find_cyclic_coordinates(System::Impl& s, const std::vector<bool>& forced,
+                             const std::vector<bool>& constrained) {
+  const auto n = static_cast<std::size_t>(s.n);
   for (std::size_t i = 0; i < n; ++i) {
     if (!forced[i] && !constrained[i] && d(s.L, s.q[i]).expand().is_zero()) {
       s.cyclic_index.push_back(static_cast<int>(i));
       s.cyclic_names.push_back(s.coord_names[i]);
     }
   }
-  // Störmer–Verlet applies when M is constant and f does not depend on q̇ (and no constraints)
-  s.verlet_ok = s.m == 0 && s.r == 0;
-  for (std::size_t i = 0; i < n && s.verlet_ok; ++i) {
+}
+
+// Whether Störmer–Verlet applies: M constant, f not dependent on q̇, and no constraints.
+bool verlet_applies(const System::Impl& s) {
+  const auto n = static_cast<std::size_t>(s.n);
+  bool ok = s.m == 0 && s.r == 0;
+  for (std::size_t i = 0; i < n && ok; ++i) {
     for (std::size_t j = 0; j < n; ++j) {
       for (std::size_t k = 0; k < n; ++k) {
-        if (s.M[i * n + j].has(s.q[k]) || s.f[i].has(s.qd[k])) s.verlet_ok = false;
+        if (s.M[i * n + j].has(s.q[k]) || s.f[i].has(s.qd[k])) ok = false;
       }
-      if (s.M[i * n + j].has(s.t)) s.verlet_ok = false;
+      if (s.M[i * n + j].has(s.t)) ok = false;
     }
   }
+  return ok;
+}
 
-  // compile: inputs (q, q̇, t, parameters)
+// Compiles the dynamics, diagnostics and pose tapes (inputs q, q̇, t, parameters) and the
+// mass tape (inputs: the parameters).
+void compile_tapes(System::Impl& s, const BodyTerms& terms) {
+  const auto n = static_cast<std::size_t>(s.n);
   std::vector<symbol> inputs;
   inputs.insert(inputs.end(), s.q.begin(), s.q.end());
   inputs.insert(inputs.end(), s.qd.begin(), s.qd.end());
@@ -396,13 +472,41 @@ void derive(System::Impl& s, const SystemSpec& spec) {
   for (int i : s.cyclic_index) diag.add_output(s.p[static_cast<std::size_t>(i)]);
   s.diag = diag.build();
   detail::TapeBuilder pose(inputs);
-  for (const ex& e : pose_outputs) pose.add_output(e);
+  for (const ex& e : terms.pose_outputs) pose.add_output(e);
   s.pose = pose.build();
 
   std::vector<symbol> param_inputs(s.params.begin(), s.params.end());
   detail::TapeBuilder masses(param_inputs);
-  for (const ex& e : mass_outputs) masses.add_output(e);
+  for (const ex& e : terms.mass_outputs) masses.add_output(e);
   s.masses = masses.build();
+}
+
+// Parses, assembles, derives and compiles `spec` into `s` (under the symbolic lock).
+void derive(System::Impl& s, const SystemSpec& spec) {
+  s.n = static_cast<int>(spec.coordinates.size());
+  s.m = static_cast<int>(spec.constraints.size());
+  RIGID_REQUIRE_AS("System", s.n > 0, "a system needs at least one coordinate, got none");
+
+  // symbol table, with every name checked once
+  Names names;
+  declare_symbols(s, spec, names);
+  const ExpressionReader reader(s, names);
+
+  // T, V and L; generalized forces; the Euler–Lagrange equations
+  const BodyTerms terms = derive_energies(s, spec, reader);
+  const std::vector<bool> forced = derive_generalized_forces(s, spec, reader);
+  derive_euler_lagrange(s);
+
+  // constraints: G = ∂g/∂q, ġ = G q̇ + ∂g/∂t, γ = −(∂ġ/∂q q̇ + ∂ġ/∂t)
+  std::vector<bool> constrained = derive_constraints(s, spec, reader);
+  // velocity (nonholonomic) constraints A q̇ + a = 0 (velocity_constraints.cpp)
+  detail::derive_velocity_constraints(spec, s, names, constrained);
+
+  find_cyclic_coordinates(s, forced, constrained);
+  s.verlet_ok = verlet_applies(s);
+
+  // compile: inputs (q, q̇, t, parameters)
+  compile_tapes(s, terms);
   s.check_masses(s.param_values, "for the parameters' values");
 }
 
