@@ -36,10 +36,10 @@ bool in_angle(const ex& e, const symbol& x) {
   return false;
 }
 
-// The equations printed from the derived expressions (GiNaC; the caller holds the lock).
-Equations print_equations(const System::Impl& s) {
+// The order in which symbols are printed: coordinates (q, q̇, q̈ of each), multipliers (the
+// holonomic ones first), time, parameters.
+SymbolOrder symbol_order(const System::Impl& s) {
   const auto n = static_cast<std::size_t>(s.n);
-  const std::size_t m = s.g.size();
   SymbolOrder order;
   for (std::size_t i = 0; i < n; ++i) {
     order.add(s.q[i], SymbolOrder::kCoordinate, static_cast<int>(i), 0);
@@ -56,117 +56,147 @@ Equations print_equations(const System::Impl& s) {
   for (std::size_t k = 0; k < s.params.size(); ++k) {
     order.add(s.params[k], SymbolOrder::kParameter, static_cast<int>(k));
   }
-  auto both = [&](const detail::Sum& sum) {
-    return Printed{detail::print(sum, order, false), detail::print(sum, order, true)};
-  };
-  // one simplification per distinct expression (M is symmetric; f often equals a part of it)
-  std::unordered_multimap<unsigned, std::pair<ex, detail::Sum>> cache;
-  auto textbook = [&](const ex& e) -> detail::Sum {
-    const auto [lo, hi] = cache.equal_range(e.gethash());
+  return order;
+}
+
+// Simplifies expressions as a textbook does and prints them as text and LaTeX, with one
+// simplification per distinct expression (M is symmetric; f often equals a part of it).
+class Printer {
+ public:
+  explicit Printer(const System::Impl& s) : order_(symbol_order(s)) {}
+
+  // a simplified sum printed as text and LaTeX
+  [[nodiscard]] Printed both(const detail::Sum& sum) const {
+    return Printed{detail::print(sum, order_, false), detail::print(sum, order_, true)};
+  }
+  // e simplified as a textbook does (once per distinct expression)
+  [[nodiscard]] detail::Sum textbook(const ex& e) {
+    const auto [lo, hi] = cache_.equal_range(e.gethash());
     for (auto it = lo; it != hi; ++it) {
       if (it->second.first.is_equal(e)) return it->second.second;
     }
-    detail::Sum sum = detail::textbook(e, order);
-    cache.emplace(e.gethash(), std::make_pair(e, sum));
+    detail::Sum sum = detail::textbook(e, order_);
+    cache_.emplace(e.gethash(), std::make_pair(e, sum));
     return sum;
-  };
-  auto simplified = [&](const ex& e) { return both(textbook(e)); };
-
-  Equations eq;
-  eq.coordinates = s.coord_names;
-  eq.constraint_names = s.constraint_names;
-  for (std::size_t k = 0; k < s.param_names.size(); ++k) {
-    eq.parameters.push_back({s.param_names[k], s.param_values[k]});
   }
-  eq.lagrangian = simplified(s.L);
-  eq.kinetic_energy = simplified(s.T);
-  eq.potential_energy = simplified(s.V);
+  // e simplified, then printed as text and LaTeX
+  [[nodiscard]] Printed simplified(const ex& e) { return both(textbook(e)); }
 
+ private:
+  SymbolOrder order_;
+  std::unordered_multimap<unsigned, std::pair<ex, detail::Sum>> cache_;
+};
+
+// Σ_j M_ij q̈_j, collected per acceleration: the left side of equation i.
+detail::Sum accelerations_sum(const System::Impl& s, const std::vector<detail::Sum>& M_sums,
+                              std::size_t i) {
+  const auto n = static_cast<std::size_t>(s.n);
+  detail::Sum lhs_sum;
+  lhs_sum.keep_order = true;
+  for (std::size_t j = 0; j < n; ++j) {
+    const detail::Sum& c = M_sums[i * n + j];
+    if (c.terms.empty()) continue;
+    detail::Term t;
+    if (c.terms.size() == 1) {
+      t = c.terms.front();
+    } else {
+      t.sums.push_back(c);
+    }
+    t.factors.push_back(s.qdd[j]);
+    lhs_sum.terms.push_back(std::move(t));
+  }
+  return lhs_sum;
+}
+
+// Prints M, f and its parts, and the equations M q̈ = f + Gᵀλ + Aᵀμ into `eq`; returns
+// whether a generalized force acts.
+bool print_motion(const System::Impl& s, Printer& printer, Equations& eq) {
+  const auto n = static_cast<std::size_t>(s.n);
+  const std::size_t m = s.g.size();
   // f = ∂L/∂q − (∂p/∂q) q̇ − ∂p/∂t + Q: the potential part is −∂V/∂q, the generalized part Q,
   // the inertial part (from T) what remains
   bool forced = false;
   eq.mass_matrix.resize(n);
   std::vector<detail::Sum> M_sums;  // simplified once, printed in M and in the equations
-  for (std::size_t k = 0; k < n * n; ++k) M_sums.push_back(textbook(s.M[k]));
+  for (std::size_t k = 0; k < n * n; ++k) M_sums.push_back(printer.textbook(s.M[k]));
   for (std::size_t i = 0; i < n; ++i) {
-    for (std::size_t j = 0; j < n; ++j) eq.mass_matrix[i].push_back(both(M_sums[i * n + j]));
+    for (std::size_t j = 0; j < n; ++j) eq.mass_matrix[i].push_back(printer.both(M_sums[i * n + j]));
     const ex generalized = s.Q[i].expand();
     const ex potential = -d(s.V, s.q[i]);
     forced = forced || !detail::simplify(generalized).is_zero();
-    const detail::Sum f_sum = textbook(s.f[i]);
-    eq.forcing.push_back(both(f_sum));
-    eq.forcing_inertial.push_back(simplified(s.f[i] - potential - generalized));
-    eq.forcing_potential.push_back(simplified(potential));
-    eq.forcing_generalized.push_back(simplified(generalized));
+    const detail::Sum f_sum = printer.textbook(s.f[i]);
+    eq.forcing.push_back(printer.both(f_sum));
+    eq.forcing_inertial.push_back(printer.simplified(s.f[i] - potential - generalized));
+    eq.forcing_potential.push_back(printer.simplified(potential));
+    eq.forcing_generalized.push_back(printer.simplified(generalized));
 
     // Σ_j M_ij q̈_j, collected per acceleration, = f_i + Σ_k λ_k G_ki
-    detail::Sum lhs_sum;
-    lhs_sum.keep_order = true;
-    for (std::size_t j = 0; j < n; ++j) {
-      const detail::Sum& c = M_sums[i * n + j];
-      if (c.terms.empty()) continue;
-      detail::Term t;
-      if (c.terms.size() == 1) {
-        t = c.terms.front();
-      } else {
-        t.sums.push_back(c);
-      }
-      t.factors.push_back(s.qdd[j]);
-      lhs_sum.terms.push_back(std::move(t));
-    }
-    const Printed lhs = both(lhs_sum);
+    const Printed lhs = printer.both(accelerations_sum(s, M_sums, i));
     ex rhs = s.f[i];
     for (std::size_t k = 0; k < m; ++k) rhs += s.lambda[k] * s.G[k * n + i];
     for (std::size_t k = 0; k < s.mu.size(); ++k) rhs += s.mu[k] * s.A[k * n + i];  // Aᵀ μ
-    const Printed r = m == 0 && s.mu.empty() ? eq.forcing.back() : simplified(rhs);
+    const Printed r = m == 0 && s.mu.empty() ? eq.forcing.back() : printer.simplified(rhs);
     eq.equations.push_back({lhs.text + " = " + r.text, lhs.latex + " = " + r.latex});
   }
+  return forced;
+}
+
+// Prints the holonomic and velocity constraints and their matrices into `eq`; returns
+// whether L or a constraint depends on the time.
+bool print_constraints(const System::Impl& s, Printer& printer, Equations& eq) {
+  const auto n = static_cast<std::size_t>(s.n);
+  const std::size_t m = s.g.size();
   bool time_dependent = s.L.has(s.t);
   eq.constraint_jacobian.resize(m);
   for (std::size_t k = 0; k < m; ++k) {
-    eq.constraints.push_back(simplified(s.g[k]));
-    for (std::size_t i = 0; i < n; ++i) eq.constraint_jacobian[k].push_back(simplified(s.G[k * n + i]));
+    eq.constraints.push_back(printer.simplified(s.g[k]));
+    for (std::size_t i = 0; i < n; ++i) eq.constraint_jacobian[k].push_back(printer.simplified(s.G[k * n + i]));
     time_dependent = time_dependent || s.g[k].has(s.t);
   }
   eq.velocity_constraint_names = s.velocity_constraint_names;
   eq.velocity_constraint_matrix.resize(s.mu.size());
   for (std::size_t k = 0; k < s.mu.size(); ++k) {
-    eq.velocity_constraints.push_back(simplified(s.cv[k]));
+    eq.velocity_constraints.push_back(printer.simplified(s.cv[k]));
     for (std::size_t i = 0; i < n; ++i) {
-      eq.velocity_constraint_matrix[k].push_back(simplified(s.A[k * n + i]));
+      eq.velocity_constraint_matrix[k].push_back(printer.simplified(s.A[k * n + i]));
     }
     time_dependent = time_dependent || s.cv[k].has(s.t) || !detail::simplify(s.a[k]).is_zero();
   }
-  eq.jacobi_integral = simplified(s.h);
-  eq.jacobi_conserved = !time_dependent && !forced;
-  for (int i : s.cyclic_index) eq.cyclic_momenta.push_back(simplified(s.p[static_cast<std::size_t>(i)]));
+  return time_dependent;
+}
 
-  // symbols: a coordinate inside an angle is in rad; otherwise the equations do not say
+// The symbols' table: a coordinate inside an angle is in rad; otherwise the equations do not say.
+std::vector<EquationSymbol> symbols_table(const System::Impl& s) {
+  const auto n = static_cast<std::size_t>(s.n);
+  std::vector<EquationSymbol> symbols;
   auto tex = [](const symbol& x) { return x.get_TeX_name().empty() ? detail::tex_name(x.get_name()) : x.get_TeX_name(); };
   for (std::size_t i = 0; i < n; ++i) {
     bool angle = in_angle(s.L, s.q[i]);
     for (const ex& g : s.g) angle = angle || in_angle(g, s.q[i]);
     const std::string unit = angle ? "rad" : "m or rad";
-    eq.symbols.push_back({s.q[i].get_name(), tex(s.q[i]), "coordinate", unit});
-    eq.symbols.push_back({s.qd[i].get_name(), tex(s.qd[i]), "velocity", angle ? "rad/s" : "m/s or rad/s"});
-    eq.symbols.push_back({s.qdd[i].get_name(), tex(s.qdd[i]), "acceleration", angle ? "rad/s^2" : "m/s^2 or rad/s^2"});
+    symbols.push_back({s.q[i].get_name(), tex(s.q[i]), "coordinate", unit});
+    symbols.push_back({s.qd[i].get_name(), tex(s.qd[i]), "velocity", angle ? "rad/s" : "m/s or rad/s"});
+    symbols.push_back({s.qdd[i].get_name(), tex(s.qdd[i]), "acceleration", angle ? "rad/s^2" : "m/s^2 or rad/s^2"});
   }
   for (std::size_t k = 0; k < s.lambda.size(); ++k) {
-    eq.symbols.push_back({s.lambda[k].get_name(), tex(s.lambda[k]),
-                          fmt::format("multiplier of constraint '{}'", s.constraint_names[k]),
-                          "N or N·m (per unit of the constraint)"});
+    symbols.push_back({s.lambda[k].get_name(), tex(s.lambda[k]),
+                       fmt::format("multiplier of constraint '{}'", s.constraint_names[k]),
+                       "N or N·m (per unit of the constraint)"});
   }
   for (std::size_t k = 0; k < s.mu.size(); ++k) {
-    eq.symbols.push_back({s.mu[k].get_name(), tex(s.mu[k]),
-                          fmt::format("multiplier of velocity constraint '{}'", s.velocity_constraint_names[k]),
-                          "N or N·m (per unit of the constraint)"});
+    symbols.push_back({s.mu[k].get_name(), tex(s.mu[k]),
+                       fmt::format("multiplier of velocity constraint '{}'", s.velocity_constraint_names[k]),
+                       "N or N·m (per unit of the constraint)"});
   }
-  eq.symbols.push_back({"t", "t", "time", "s"});
+  symbols.push_back({"t", "t", "time", "s"});
   for (std::size_t k = 0; k < s.params.size(); ++k) {
-    eq.symbols.push_back({s.param_names[k], tex(s.params[k]), "parameter", "SI"});
+    symbols.push_back({s.param_names[k], tex(s.params[k]), "parameter", "SI"});
   }
+  return symbols;
+}
 
-  // the flat fields
+// Fills the flat fields of `eq` (text and LaTeX lists) from the printed ones.
+void fill_flat_fields(const System::Impl& s, Equations& eq) {
   eq.lagrangian_text = eq.lagrangian.text;
   eq.lagrangian_latex = eq.lagrangian.latex;
   for (const Printed& e : eq.equations) {
@@ -183,6 +213,33 @@ Equations print_equations(const System::Impl& s) {
   }
   eq.energy_text = eq.jacobi_integral.text;
   eq.cyclic = s.cyclic_names;
+}
+
+// The equations printed from the derived expressions (GiNaC; the caller holds the lock).
+Equations print_equations(const System::Impl& s) {
+  Printer printer(s);
+
+  Equations eq;
+  eq.coordinates = s.coord_names;
+  eq.constraint_names = s.constraint_names;
+  for (std::size_t k = 0; k < s.param_names.size(); ++k) {
+    eq.parameters.push_back({s.param_names[k], s.param_values[k]});
+  }
+  eq.lagrangian = printer.simplified(s.L);
+  eq.kinetic_energy = printer.simplified(s.T);
+  eq.potential_energy = printer.simplified(s.V);
+
+  const bool forced = print_motion(s, printer, eq);
+  const bool time_dependent = print_constraints(s, printer, eq);
+  eq.jacobi_integral = printer.simplified(s.h);
+  eq.jacobi_conserved = !time_dependent && !forced;
+  for (int i : s.cyclic_index) eq.cyclic_momenta.push_back(printer.simplified(s.p[static_cast<std::size_t>(i)]));
+
+  // symbols: a coordinate inside an angle is in rad; otherwise the equations do not say
+  eq.symbols = symbols_table(s);
+
+  // the flat fields
+  fill_flat_fields(s, eq);
   return eq;
 }
 
