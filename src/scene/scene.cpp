@@ -595,35 +595,47 @@ void parse_metrics(const Parser& p, const toml::node& node, std::vector<MetricSp
   }
 }
 
-Scene parse_document(const toml::table& root, const Parser& p) {
-  Scene s;
-  s.file = p.file();
-  p.check_keys(root, "the scene", kTopKeys);
-  std::vector<std::string> names;  // every name an expression may use, for clashes
-  auto claim = [&](const std::string& name, const toml::node& at, std::string_view what) {
-    if (std::find(names.begin(), names.end(), name) != names.end()) {
-      p.fail(at, fmt::format("{} '{}' is already defined; names of parameters, coordinates and "
-                             "bodies must be distinct",
-                             what, name));
-    }
-    if (name == "t") p.fail(at, fmt::format("{} may not be called 't' (that is time)", what));
-    names.push_back(name);
-  };
+// The names an expression may use (parameters, coordinates and bodies), each claimed once.
+class NameClaims {
+ public:
+  explicit NameClaims(const Parser& p) : p_(p) {}
 
-  if (auto n = root.get("parameters")) {
-    const toml::table& t = p.table(*n, "[parameters]");
-    for (auto&& [key, value] : t) {
-      const std::string name(key.str());
-      claim(name, value, "parameter");
-      s.parameters.push_back({name, p.expression(value, "parameter " + name)});
+  // claims `name` for the `what` declared at `at`; refuses a name in use, and 't' (time)
+  void claim(const std::string& name, const toml::node& at, std::string_view what) {
+    if (std::find(names_.begin(), names_.end(), name) != names_.end()) {
+      p_.fail(at, fmt::format("{} '{}' is already defined; names of parameters, coordinates and "
+                              "bodies must be distinct",
+                              what, name));
     }
-    // toml++ keeps keys sorted; the file's order is the one a reader expects (and the
-    // order in which parameters may refer to earlier ones).
-    std::stable_sort(s.parameters.begin(), s.parameters.end(), [](const Parameter& a, const Parameter& b) {
-      return std::pair(a.value.where.line, a.value.where.column) <
-             std::pair(b.value.where.line, b.value.where.column);
-    });
+    if (name == "t") p_.fail(at, fmt::format("{} may not be called 't' (that is time)", what));
+    names_.push_back(name);
   }
+
+ private:
+  const Parser& p_;
+  std::vector<std::string> names_;  // every name an expression may use, for clashes
+};
+
+// [parameters]: name = expression, in the file's order.
+void parse_parameters(const toml::table& root, const Parser& p, NameClaims& names, Scene& s) {
+  auto n = root.get("parameters");
+  if (n == nullptr) return;
+  const toml::table& t = p.table(*n, "[parameters]");
+  for (auto&& [key, value] : t) {
+    const std::string name(key.str());
+    names.claim(name, value, "parameter");
+    s.parameters.push_back({name, p.expression(value, "parameter " + name)});
+  }
+  // toml++ keeps keys sorted; the file's order is the one a reader expects (and the
+  // order in which parameters may refer to earlier ones).
+  std::stable_sort(s.parameters.begin(), s.parameters.end(), [](const Parameter& a, const Parameter& b) {
+    return std::pair(a.value.where.line, a.value.where.column) <
+           std::pair(b.value.where.line, b.value.where.column);
+  });
+}
+
+// [[coordinates]]: name, initial and velocity (both 0 when left out).
+void parse_coordinates(const toml::table& root, const Parser& p, NameClaims& names, Scene& s) {
   p.each_table(root, "coordinates", [&](const toml::table& t, std::size_t i) {
     const std::string ctx = fmt::format("[[coordinates]] entry {}", i);
     p.check_keys(t, ctx, {"name", "initial", "velocity"});
@@ -631,19 +643,23 @@ Scene parse_document(const toml::table& root, const Parser& p) {
     c.where = p.where(t.source());
     const toml::node& name = p.required(t, t.source(), "name", ctx);
     c.name = p.identifier(name, "coordinate name");
-    claim(c.name, name, "coordinate");
+    names.claim(c.name, name, "coordinate");
     c.initial = t.contains("initial") ? p.expression(*t.get("initial"), c.name + " initial")
                                       : Expression{"0", c.where, 0.0, false};
     c.velocity = t.contains("velocity") ? p.expression(*t.get("velocity"), c.name + " velocity")
                                         : Expression{"0", c.where, 0.0, false};
     s.coordinates.push_back(std::move(c));
   });
+}
+
+// [[bodies]]: a name (body<i> when left out), the mass and the pose.
+void parse_bodies(const toml::table& root, const Parser& p, NameClaims& names, Scene& s) {
   p.each_table(root, "bodies", [&](const toml::table& t, std::size_t i) {
     Body b;
     b.where = p.where(t.source());
     if (auto n = t.get("name")) {
       b.name = p.identifier(*n, "body name");
-      claim(b.name, *n, "body");
+      names.claim(b.name, *n, "body");
     } else {
       b.name = fmt::format("body{}", i);
     }
@@ -653,26 +669,29 @@ Scene parse_document(const toml::table& root, const Parser& p) {
     parse_pose(p, t, ctx, b);
     s.bodies.push_back(std::move(b));
   });
-  auto named_list = [&](std::string_view key, std::string_view name_key,
-                        std::vector<NamedExpression>& out) {
-    p.each_table(root, key, [&](const toml::table& t, std::size_t i) {
-      const std::string ctx = fmt::format("[[{}]] entry {}", key, i);
-      p.check_keys(t, ctx, {std::string(name_key), "expression"});
-      NamedExpression e;
-      if (auto n = t.get(name_key)) {
-        e.name = p.string(*n, ctx + " " + std::string(name_key));
-      } else if (name_key == "coordinate") {
-        p.fail(t.source(), ctx + " is missing 'coordinate' (the coordinate the force acts on)");
-      } else {
-        e.name = fmt::format("{}{}", key.substr(0, key.size() - 1), i);
-      }
-      e.expression = p.expression(p.required(t, t.source(), "expression", ctx), ctx + " expression");
-      out.push_back(std::move(e));
-    });
-  };
-  named_list("constraints", "name", s.constraints);
-  named_list("potentials", "name", s.potentials);
-  named_list("forces", "coordinate", s.forces);
+}
+
+// [[constraints]], [[potentials]] and [[forces]]: a name (under `name_key`) and an expression.
+void parse_named_expressions(const toml::table& root, const Parser& p, std::string_view key,
+                             std::string_view name_key, std::vector<NamedExpression>& out) {
+  p.each_table(root, key, [&](const toml::table& t, std::size_t i) {
+    const std::string ctx = fmt::format("[[{}]] entry {}", key, i);
+    p.check_keys(t, ctx, {std::string(name_key), "expression"});
+    NamedExpression e;
+    if (auto n = t.get(name_key)) {
+      e.name = p.string(*n, ctx + " " + std::string(name_key));
+    } else if (name_key == "coordinate") {
+      p.fail(t.source(), ctx + " is missing 'coordinate' (the coordinate the force acts on)");
+    } else {
+      e.name = fmt::format("{}{}", key.substr(0, key.size() - 1), i);
+    }
+    e.expression = p.expression(p.required(t, t.source(), "expression", ctx), ctx + " expression");
+    out.push_back(std::move(e));
+  });
+}
+
+// [[velocity_constraints]]: Σ A q̇ + a = 0 as coefficients per coordinate and a term.
+void parse_velocity_constraints(const toml::table& root, const Parser& p, Scene& s) {
   p.each_table(root, "velocity_constraints", [&](const toml::table& t, std::size_t i) {
     const std::string ctx = fmt::format("[[velocity_constraints]] entry {}", i);
     p.check_keys(t, ctx, {"name", "coefficients", "term"});
@@ -703,6 +722,10 @@ Scene parse_document(const toml::table& root, const Parser& p) {
     }
     s.velocity_constraints.push_back(std::move(vc));
   });
+}
+
+// [[springs]]: two bodies' points, a stiffness and a rest length (0 when left out).
+void parse_springs(const toml::table& root, const Parser& p, Scene& s) {
   p.each_table(root, "springs", [&](const toml::table& t, std::size_t i) {
     const std::string ctx = fmt::format("[[springs]] entry {}", i);
     p.check_keys(t, ctx, {"body_a", "point_a", "body_b", "point_b", "stiffness", "rest_length"});
@@ -719,6 +742,10 @@ Scene parse_document(const toml::table& root, const Parser& p) {
                                                : Expression{"0", sp.where, 0.0, false};
     s.springs.push_back(std::move(sp));
   });
+}
+
+// lagrangian = "…" (an expression string) and gravity = [x, y, z] (0 when left out).
+void parse_lagrangian_and_gravity(const toml::table& root, const Parser& p, Scene& s) {
   if (auto n = root.get("lagrangian")) {
     if (!n->is_string()) {
       p.fail(*n, fmt::format("lagrangian must be an expression string such as \"m*l^2/2*theta_dot^2 + "
@@ -731,7 +758,10 @@ Scene parse_document(const toml::table& root, const Parser& p) {
   } else {
     for (auto& e : s.gravity) e = Expression{"0", {s.file.string(), 0, 0}, 0.0, false};
   }
+}
 
+// [simulation] (required): t_end, and optionally integrator, dt, tolerance and output_dt.
+void parse_simulation(const toml::table& root, const Parser& p, Scene& s) {
   const toml::node* sim = root.get("simulation");
   if (sim == nullptr) {
     p.fail(root.source(), "the scene has no [simulation] table; expected at least t_end (s)");
@@ -744,54 +774,66 @@ Scene parse_document(const toml::table& root, const Parser& p) {
   if (auto n = st.get("dt")) s.simulation.dt = p.expression(*n, "dt");
   if (auto n = st.get("tolerance")) s.simulation.tolerance = p.expression(*n, "tolerance");
   if (auto n = st.get("output_dt")) s.simulation.output_dt = p.expression(*n, "output_dt");
+}
 
-  if (auto n = root.get("output")) {
-    const toml::table& ot = p.table(*n, "[output]");
-    p.check_keys(ot, "[output]", {"directory", "formats", "quantities", "max_memory", "metrics"});
-    if (auto m = ot.get("metrics")) parse_metrics(p, *m, s.output.metrics);
-    if (auto m = ot.get("max_memory")) {
-      s.output.max_memory_where = p.where(m->source());
-      if (auto i = m->as_integer(); i != nullptr && i->get() > 0) {
-        s.output.max_memory = static_cast<std::uint64_t>(i->get());
-      } else if (auto text = m->as_string()) {
-        try {
-          s.output.max_memory = io::parse_memory_size(text->get());
-        } catch (const Error& e) {
-          p.fail(*m, fmt::format("[output] max_memory: {}", e.what()));
-        }
-      } else {
-        p.fail(*m, fmt::format("[output] max_memory must be a positive number of bytes or a size such "
-                               "as \"512MiB\", got {}",
-                               m->is_integer() ? "a number ≤ 0" : Parser::type_name(*m)));
-      }
+// [output] max_memory: a positive number of bytes or a size such as "512MiB".
+void parse_max_memory(const Parser& p, const toml::node& m, Output& output) {
+  output.max_memory_where = p.where(m.source());
+  if (auto i = m.as_integer(); i != nullptr && i->get() > 0) {
+    output.max_memory = static_cast<std::uint64_t>(i->get());
+  } else if (auto text = m.as_string()) {
+    try {
+      output.max_memory = io::parse_memory_size(text->get());
+    } catch (const Error& e) {
+      p.fail(m, fmt::format("[output] max_memory: {}", e.what()));
     }
-    if (auto q = ot.get("quantities")) {
-      const toml::array* a = q->as_array();
-      if (a == nullptr) {
-        p.fail(*q, "quantities must be an array of column names or patterns such as [\"theta\", \"*.x\"]");
-      }
-      s.output.quantities_where = p.where(q->source());
-      for (const toml::node& e : *a) s.output.quantities.push_back(p.string(e, "output quantity"));
-    }
-    if (auto d = ot.get("directory")) s.output.directory = p.string(*d, "output directory");
-    if (auto f = ot.get("formats")) {
-      const toml::array* a = f->as_array();
-      if (a == nullptr) p.fail(*f, "formats must be an array of strings such as [\"csv\", \"npy\", \"json\"]");
-      s.output.formats.clear();
-      const Keys known = {"csv", "npy", "json"};
-      for (const toml::node& e : *a) {
-        std::string fmt_name = p.string(e, "output format");
-        if (std::find(known.begin(), known.end(), fmt_name) == known.end()) {
-          std::string msg = fmt::format("unknown output format '{}'", fmt_name);
-          if (auto g = did_you_mean(fmt_name, known)) msg += fmt::format("; did you mean '{}'?", *g);
-          p.fail(e, msg + " (expected csv, npy or json)");
-        }
-        s.output.formats.push_back(std::move(fmt_name));
-      }
-    }
+  } else {
+    p.fail(m, fmt::format("[output] max_memory must be a positive number of bytes or a size such "
+                          "as \"512MiB\", got {}",
+                          m.is_integer() ? "a number ≤ 0" : Parser::type_name(m)));
   }
+}
 
-  // cross-references
+// [output] formats: csv, npy or json, in place of the default list.
+void parse_output_formats(const Parser& p, const toml::node& f, Output& output) {
+  const toml::array* a = f.as_array();
+  if (a == nullptr) p.fail(f, "formats must be an array of strings such as [\"csv\", \"npy\", \"json\"]");
+  output.formats.clear();
+  const Keys known = {"csv", "npy", "json"};
+  for (const toml::node& e : *a) {
+    std::string fmt_name = p.string(e, "output format");
+    if (std::find(known.begin(), known.end(), fmt_name) == known.end()) {
+      std::string msg = fmt::format("unknown output format '{}'", fmt_name);
+      if (auto g = did_you_mean(fmt_name, known)) msg += fmt::format("; did you mean '{}'?", *g);
+      p.fail(e, msg + " (expected csv, npy or json)");
+    }
+    output.formats.push_back(std::move(fmt_name));
+  }
+}
+
+// [output]: directory, formats, quantities, max_memory and metrics.
+void parse_output(const toml::table& root, const Parser& p, Scene& s) {
+  auto n = root.get("output");
+  if (n == nullptr) return;
+  const toml::table& ot = p.table(*n, "[output]");
+  p.check_keys(ot, "[output]", {"directory", "formats", "quantities", "max_memory", "metrics"});
+  if (auto m = ot.get("metrics")) parse_metrics(p, *m, s.output.metrics);
+  if (auto m = ot.get("max_memory")) parse_max_memory(p, *m, s.output);
+  if (auto q = ot.get("quantities")) {
+    const toml::array* a = q->as_array();
+    if (a == nullptr) {
+      p.fail(*q, "quantities must be an array of column names or patterns such as [\"theta\", \"*.x\"]");
+    }
+    s.output.quantities_where = p.where(q->source());
+    for (const toml::node& e : *a) s.output.quantities.push_back(p.string(e, "output quantity"));
+  }
+  if (auto d = ot.get("directory")) s.output.directory = p.string(*d, "output directory");
+  if (auto f = ot.get("formats")) parse_output_formats(p, *f, s.output);
+}
+
+// A scene is either free bodies or bodies posed by coordinates: refuses a mix, and a scene
+// with neither.
+void check_scene_kind(const toml::table& root, const Parser& p, const Scene& s) {
   const bool any_free = std::any_of(s.bodies.begin(), s.bodies.end(), [](const Body& b) { return b.free; });
   if (any_free) {
     for (const Body& b : s.bodies) {
@@ -816,6 +858,10 @@ Scene parse_document(const toml::table& root, const Parser& p) {
     p.fail(root.source(), "the scene has no [[coordinates]] and no free bodies; expected at least "
                           "one coordinate (name, initial, velocity) or a body with free = true");
   }
+}
+
+// Every force names a coordinate and every spring's bodies exist.
+void check_references(const Scene& s) {
   for (const NamedExpression& f : s.forces) {
     const bool known = std::any_of(s.coordinates.begin(), s.coordinates.end(),
                                    [&](const Coordinate& c) { return c.name == f.name; });
@@ -841,6 +887,29 @@ Scene parse_document(const toml::table& root, const Parser& p) {
       }
     }
   }
+}
+
+Scene parse_document(const toml::table& root, const Parser& p) {
+  Scene s;
+  s.file = p.file();
+  p.check_keys(root, "the scene", kTopKeys);
+  NameClaims names(p);  // every name an expression may use, for clashes
+
+  parse_parameters(root, p, names, s);
+  parse_coordinates(root, p, names, s);
+  parse_bodies(root, p, names, s);
+  parse_named_expressions(root, p, "constraints", "name", s.constraints);
+  parse_named_expressions(root, p, "potentials", "name", s.potentials);
+  parse_named_expressions(root, p, "forces", "coordinate", s.forces);
+  parse_velocity_constraints(root, p, s);
+  parse_springs(root, p, s);
+  parse_lagrangian_and_gravity(root, p, s);
+  parse_simulation(root, p, s);
+  parse_output(root, p, s);
+
+  // cross-references
+  check_scene_kind(root, p, s);
+  check_references(s);
   return s;
 }
 
