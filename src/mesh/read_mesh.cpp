@@ -311,6 +311,281 @@ struct PlyElement {
   std::vector<PlyProperty> props;
 };
 
+// A PLY header: its elements, its format and where the data after it begin.
+struct PlyHeader {
+  std::vector<PlyElement> elements;
+  std::string format;
+  std::size_t pos = 0;  // the first byte after the header
+  int line = 0;         // the header's last line (end_header)
+};
+
+// The rest of a `property` header line: `<type> <name>` or `list <count type> <type> <name>`.
+PlyProperty parse_ply_property(const std::string& path, int line, std::istringstream& ls) {
+  PlyProperty p;
+  std::string t;
+  ls >> t;
+  if (t == "list") {
+    std::string ct, it;
+    ls >> ct >> it >> p.name;
+    const auto a = ply_type(ct);
+    const auto b = ply_type(it);
+    if (!a || !b) fail_line(path, line, fmt::format("unknown list types '{} {}'", ct, it));
+    p.list = true;
+    p.count_type = *a;
+    p.type = *b;
+  } else {
+    ls >> p.name;
+    const auto a = ply_type(t);
+    if (!a) fail_line(path, line, fmt::format("unknown property type '{}'", t));
+    p.type = *a;
+  }
+  return p;
+}
+
+// Reads the header: lines up to "end_header", with the 'ply' magic line first.
+PlyHeader read_ply_header(const std::string& path, const std::string& data) {
+  PlyHeader h;
+  std::size_t& pos = h.pos;
+  int& line = h.line;
+  bool ended = false;
+  while (pos < data.size()) {
+    std::size_t eol = data.find('\n', pos);
+    if (eol == std::string::npos) eol = data.size();
+    std::string text = data.substr(pos, eol - pos);
+    if (!text.empty() && text.back() == '\r') text.pop_back();
+    pos = eol + 1;
+    ++line;
+    std::istringstream ls(text);
+    std::string word;
+    ls >> word;
+    if (line == 1) {
+      if (word != "ply") fail_line(path, 1, "missing 'ply' magic line: not a PLY file");
+      continue;
+    }
+    if (word == "format") {
+      ls >> h.format;
+      if (h.format != "ascii" && h.format != "binary_little_endian" && h.format != "binary_big_endian") {
+        fail_line(path, line, fmt::format("format '{}': expected ascii, binary_little_endian or "
+                                          "binary_big_endian",
+                                          h.format));
+      }
+    } else if (word == "element") {
+      PlyElement e;
+      long long n = -1;
+      ls >> e.name >> n;
+      if (!ls || n < 0) fail_line(path, line, "expected 'element <name> <count>'");
+      e.count = static_cast<std::size_t>(n);
+      e.line = line;
+      h.elements.push_back(e);
+    } else if (word == "property") {
+      if (h.elements.empty()) fail_line(path, line, "property before any element");
+      h.elements.back().props.push_back(parse_ply_property(path, line, ls));
+    } else if (word == "end_header") {
+      ended = true;
+      break;
+    } else if (word == "comment" || word == "obj_info" || word.empty()) {
+      continue;
+    } else {
+      fail_line(path, line, fmt::format("unknown header keyword '{}'", word));
+    }
+  }
+  if (!ended) fail_line(path, line, "no 'end_header': truncated PLY header");
+  if (h.format.empty()) fail_line(path, line, "no 'format' line in the PLY header");
+  return h;
+}
+
+// Limits before allocation: every row of an element takes at least the bytes of its
+// scalars and list counts (binary) or two characters per property, a digit and a separator
+// (ascii); the declared counts must fit in what follows the header. An element without
+// properties would hold rows of no data, which no file size bounds: refused.
+void check_ply_counts(const std::string& path, const std::string& data, const PlyHeader& h,
+                      bool ascii) {
+  std::uint64_t left = data.size() - std::min(h.pos, data.size()) + (ascii ? 1 : 0);
+  for (const auto& e : h.elements) {
+    std::uint64_t row = 0;
+    if (e.props.empty() && e.count > 0) {
+      fail_line(path, e.line,
+                fmt::format("element {} declares {} rows but no properties: expected at least "
+                            "one property per element (rows without data cannot be counted "
+                            "in the file)",
+                            e.name, e.count));
+    }
+    for (const auto& p : e.props) row += ascii ? 2 : ply_size(p.list ? p.count_type : p.type);
+    if (row == 0) continue;
+    if (e.count > left / row) {
+      fail_line(path, e.line,
+                fmt::format("element {} declares {} rows of at least {} bytes each, but only {} "
+                            "bytes of data follow the header: truncated or corrupt",
+                            e.name, e.count, row, left));
+    }
+    left -= e.count * row;
+    if (e.name == "vertex" && e.count >= 0xfffffffeu) {
+      fail_line(path, e.line, fmt::format("{} vertices: at most 2³² − 2 are supported", e.count));
+    }
+  }
+}
+
+// Which properties of an element the mesh uses: x, y and z of a vertex, the index list of a
+// face (-1: none).
+struct PlyRoles {
+  bool is_vertex = false, is_face = false;
+  int xyz[3] = {-1, -1, -1};
+  int index_prop = -1;
+};
+
+// The roles of e's properties; a vertex without x, y or z, or a face without indices, is refused.
+PlyRoles ply_roles(const std::string& path, const PlyElement& e) {
+  PlyRoles roles;
+  roles.is_vertex = e.name == "vertex";
+  roles.is_face = e.name == "face";
+  for (std::size_t k = 0; k < e.props.size(); ++k) {
+    const auto& p = e.props[k];
+    if (roles.is_vertex && !p.list) {
+      if (p.name == "x") roles.xyz[0] = static_cast<int>(k);
+      if (p.name == "y") roles.xyz[1] = static_cast<int>(k);
+      if (p.name == "z") roles.xyz[2] = static_cast<int>(k);
+    }
+    if (roles.is_face && p.list && (p.name == "vertex_indices" || p.name == "vertex_index")) {
+      roles.index_prop = static_cast<int>(k);
+    }
+  }
+  if (roles.is_vertex && (roles.xyz[0] < 0 || roles.xyz[1] < 0 || roles.xyz[2] < 0)) {
+    fail_line(path, e.line, "element vertex lacks x, y or z properties");
+  }
+  if (roles.is_face && roles.index_prop < 0) {
+    fail_line(path, e.line, "element face lacks a vertex_indices list");
+  }
+  return roles;
+}
+
+// Reads the elements after a PLY header (ascii or binary) into a mesh: the vertices scaled,
+// the faces triangulated, every other element read over.
+class PlyDataReader {
+ public:
+  PlyDataReader(const std::string& path, const std::string& data, const PlyHeader& h, double scale)
+      : path_(path), data_(data), ascii_(h.format == "ascii"), big_(h.format == "binary_big_endian"),
+        scale_(scale), pos_(h.pos), tok_(path, data, h.pos, h.line + 1, false) {}
+
+  // reads the rows of element e (an element without properties has none)
+  void read_element(const PlyElement& e) {
+    const bool is_vertex = e.name == "vertex";
+    const bool is_face = e.name == "face";
+    if (e.props.empty() && !is_vertex && !is_face) return;  // a count of 0 (others refused)
+    const PlyRoles roles = ply_roles(path_, e);
+    if (is_vertex) {
+      nv_ = e.count;
+      mesh_.vertices.reserve(e.count);  // checked against the file's size above
+    }
+    for (std::size_t r = 0; r < e.count; ++r) read_row(e, roles, r);
+  }
+
+  [[nodiscard]] TriangleMesh& mesh() { return mesh_; }
+
+ private:
+  // row r of e: a vertex appended, a face's polygon triangulated
+  void read_row(const PlyElement& e, const PlyRoles& roles, std::size_t r) {
+    Eigen::Vector3d p = Eigen::Vector3d::Zero();
+    poly_.clear();
+    for (std::size_t k = 0; k < e.props.size(); ++k) {
+      if (e.props[k].list) {
+        read_list(e, roles, r, k);
+      } else {
+        read_scalar(e, roles, r, k, p);
+      }
+    }
+    if (roles.is_vertex) mesh_.vertices.push_back(p);
+    if (roles.is_face) {
+      if (poly_.size() < 3) {
+        const std::string msg =
+            fmt::format("face {} has {} vertices: expected at least 3", r + 1, poly_.size());
+        if (ascii_) fail_line(path_, tok_.line(), msg);
+        fail_byte(path_, pos_, msg);
+      }
+      add_polygon(path_, mesh_, poly_, r + 1, ascii_ ? tok_.line() : 0, pos_);
+    }
+  }
+
+  // the binary value of `type` at pos_, which moves past it; refused past the end of the data
+  double binary_value(PlyType type, const PlyElement& e, std::size_t r) {
+    if (pos_ + ply_size(type) > data_.size()) {
+      fail_byte(path_, pos_, fmt::format("truncated PLY: element {} {} of {}", e.name,
+                                         r + 1, e.count));
+    }
+    const double v = ply_load(type, data_.data() + pos_, big_);
+    pos_ += ply_size(type);
+    return v;
+  }
+
+  // a list's length, 0 to 10^6
+  std::size_t list_length(const PlyProperty& prop, const PlyElement& e, std::size_t r) {
+    if (ascii_) {
+      const long long c = tok_.integer("a list length");
+      if (c < 0 || c > 1'000'000) {
+        fail_line(path_, tok_.line(), fmt::format("list length {}: expected 0 to 10^6", c));
+      }
+      return static_cast<std::size_t>(c);
+    }
+    const double c = binary_value(prop.count_type, e, r);
+    if (!(c >= 0 && c <= 1e6)) {
+      fail_byte(path_, pos_, fmt::format("list length {}: expected 0 to 10^6", c));
+    }
+    return static_cast<std::size_t>(c);
+  }
+
+  // list property k of row r; a face's vertex indices, each checked, go to poly_
+  void read_list(const PlyElement& e, const PlyRoles& roles, std::size_t r, std::size_t k) {
+    const auto& prop = e.props[k];
+    const std::size_t n = list_length(prop, e, r);
+    for (std::size_t j = 0; j < n; ++j) {
+      const double v = ascii_ ? static_cast<double>(tok_.integer("a list entry"))
+                              : binary_value(prop.type, e, r);
+      if (roles.is_face && static_cast<int>(k) == roles.index_prop) {
+        if (!(v >= 0 && v < static_cast<double>(nv_))) {
+          const std::string msg = fmt::format(
+              "face {} uses vertex index {}: the file has {} vertices", r + 1, v, nv_);
+          if (ascii_) fail_line(path_, tok_.line(), msg);
+          fail_byte(path_, pos_ - ply_size(prop.type), msg);
+        }
+        poly_.push_back(static_cast<Index>(v));
+      }
+    }
+  }
+
+  // scalar property k of row r; a vertex coordinate, which must be finite, goes to p (scaled)
+  void read_scalar(const PlyElement& e, const PlyRoles& roles, std::size_t r, std::size_t k,
+                   Eigen::Vector3d& p) {
+    const auto& prop = e.props[k];
+    double v = 0;
+    std::size_t at = pos_;
+    // a coordinate must be finite; other properties (normals, colours) are not used
+    const bool coordinate =
+        roles.is_vertex && (static_cast<int>(k) == roles.xyz[0] || static_cast<int>(k) == roles.xyz[1] ||
+                            static_cast<int>(k) == roles.xyz[2]);
+    if (ascii_) {
+      v = tok_.number(coordinate ? "a vertex coordinate" : "a property value", coordinate);
+    } else {
+      v = binary_value(prop.type, e, r);
+      if (coordinate && !std::isfinite(v)) {
+        fail_byte(path_, at, fmt::format("{} of {} {} is {}: expected a finite number",
+                                         prop.name, e.name, r + 1, v));
+      }
+    }
+    for (int c = 0; c < 3; ++c) {
+      if (roles.is_vertex && static_cast<int>(k) == roles.xyz[c]) p[c] = v * scale_;
+    }
+  }
+
+  const std::string& path_;
+  const std::string& data_;
+  bool ascii_, big_;
+  double scale_;
+  std::size_t pos_;
+  Tokens tok_;
+  TriangleMesh mesh_;
+  std::size_t nv_ = 0;
+  std::vector<Index> poly_;
+};
+
 }  // namespace
 
 double unit_scale(std::string_view unit) {
@@ -427,224 +702,12 @@ TriangleMesh read_ply(const std::string& path, double scale) {
 }
 
 TriangleMesh read_ply(const std::string& path, const std::string& data, double scale) {
-  // Header: lines up to "end_header".
-  std::vector<PlyElement> elements;
-  std::string format;
-  std::size_t pos = 0;
-  int line = 0;
-  bool ended = false;
-  while (pos < data.size()) {
-    std::size_t eol = data.find('\n', pos);
-    if (eol == std::string::npos) eol = data.size();
-    std::string text = data.substr(pos, eol - pos);
-    if (!text.empty() && text.back() == '\r') text.pop_back();
-    pos = eol + 1;
-    ++line;
-    std::istringstream ls(text);
-    std::string word;
-    ls >> word;
-    if (line == 1) {
-      if (word != "ply") fail_line(path, 1, "missing 'ply' magic line: not a PLY file");
-      continue;
-    }
-    if (word == "format") {
-      ls >> format;
-      if (format != "ascii" && format != "binary_little_endian" && format != "binary_big_endian") {
-        fail_line(path, line, fmt::format("format '{}': expected ascii, binary_little_endian or "
-                                          "binary_big_endian",
-                                          format));
-      }
-    } else if (word == "element") {
-      PlyElement e;
-      long long n = -1;
-      ls >> e.name >> n;
-      if (!ls || n < 0) fail_line(path, line, "expected 'element <name> <count>'");
-      e.count = static_cast<std::size_t>(n);
-      e.line = line;
-      elements.push_back(e);
-    } else if (word == "property") {
-      if (elements.empty()) fail_line(path, line, "property before any element");
-      PlyProperty p;
-      std::string t;
-      ls >> t;
-      if (t == "list") {
-        std::string ct, it;
-        ls >> ct >> it >> p.name;
-        const auto a = ply_type(ct);
-        const auto b = ply_type(it);
-        if (!a || !b) fail_line(path, line, fmt::format("unknown list types '{} {}'", ct, it));
-        p.list = true;
-        p.count_type = *a;
-        p.type = *b;
-      } else {
-        ls >> p.name;
-        const auto a = ply_type(t);
-        if (!a) fail_line(path, line, fmt::format("unknown property type '{}'", t));
-        p.type = *a;
-      }
-      elements.back().props.push_back(p);
-    } else if (word == "end_header") {
-      ended = true;
-      break;
-    } else if (word == "comment" || word == "obj_info" || word.empty()) {
-      continue;
-    } else {
-      fail_line(path, line, fmt::format("unknown header keyword '{}'", word));
-    }
-  }
-  if (!ended) fail_line(path, line, "no 'end_header': truncated PLY header");
-  if (format.empty()) fail_line(path, line, "no 'format' line in the PLY header");
-
-  const bool ascii = format == "ascii";
-  const bool big = format == "binary_big_endian";
-  // limits before allocation: every row of an element takes at least the bytes of its
-  // scalars and list counts (binary) or two characters per property, a digit and a separator
-  // (ascii); the declared counts must fit in what follows the header. An element without
-  // properties would hold rows of no data, which no file size bounds: refused.
-  {
-    std::uint64_t left = data.size() - std::min(pos, data.size()) + (ascii ? 1 : 0);
-    for (const auto& e : elements) {
-      std::uint64_t row = 0;
-      if (e.props.empty() && e.count > 0) {
-        fail_line(path, e.line,
-                  fmt::format("element {} declares {} rows but no properties: expected at least "
-                              "one property per element (rows without data cannot be counted "
-                              "in the file)",
-                              e.name, e.count));
-      }
-      for (const auto& p : e.props) row += ascii ? 2 : ply_size(p.list ? p.count_type : p.type);
-      if (row == 0) continue;
-      if (e.count > left / row) {
-        fail_line(path, e.line,
-                  fmt::format("element {} declares {} rows of at least {} bytes each, but only {} "
-                              "bytes of data follow the header: truncated or corrupt",
-                              e.name, e.count, row, left));
-      }
-      left -= e.count * row;
-      if (e.name == "vertex" && e.count >= 0xfffffffeu) {
-        fail_line(path, e.line, fmt::format("{} vertices: at most 2³² − 2 are supported", e.count));
-      }
-    }
-  }
-
-  TriangleMesh mesh;
-  std::size_t nv = 0;
-  Tokens tok(path, data, pos, line + 1, false);
-  std::vector<Index> poly;
-  for (const auto& e : elements) {
-    const bool is_vertex = e.name == "vertex";
-    const bool is_face = e.name == "face";
-    if (e.props.empty() && !is_vertex && !is_face) continue;  // a count of 0 (others refused)
-    int xyz[3] = {-1, -1, -1};
-    int index_prop = -1;
-    for (std::size_t k = 0; k < e.props.size(); ++k) {
-      const auto& p = e.props[k];
-      if (is_vertex && !p.list) {
-        if (p.name == "x") xyz[0] = static_cast<int>(k);
-        if (p.name == "y") xyz[1] = static_cast<int>(k);
-        if (p.name == "z") xyz[2] = static_cast<int>(k);
-      }
-      if (is_face && p.list && (p.name == "vertex_indices" || p.name == "vertex_index")) {
-        index_prop = static_cast<int>(k);
-      }
-    }
-    if (is_vertex && (xyz[0] < 0 || xyz[1] < 0 || xyz[2] < 0)) {
-      fail_line(path, e.line, "element vertex lacks x, y or z properties");
-    }
-    if (is_face && index_prop < 0) {
-      fail_line(path, e.line, "element face lacks a vertex_indices list");
-    }
-    if (is_vertex) {
-      nv = e.count;
-      mesh.vertices.reserve(e.count);  // checked against the file's size above
-    }
-    for (std::size_t r = 0; r < e.count; ++r) {
-      Eigen::Vector3d p = Eigen::Vector3d::Zero();
-      poly.clear();
-      for (std::size_t k = 0; k < e.props.size(); ++k) {
-        const auto& prop = e.props[k];
-        if (prop.list) {
-          std::size_t n = 0;
-          if (ascii) {
-            const long long c = tok.integer("a list length");
-            if (c < 0 || c > 1'000'000) {
-              fail_line(path, tok.line(), fmt::format("list length {}: expected 0 to 10^6", c));
-            }
-            n = static_cast<std::size_t>(c);
-          } else {
-            if (pos + ply_size(prop.count_type) > data.size()) {
-              fail_byte(path, pos, fmt::format("truncated PLY: element {} {} of {}", e.name,
-                                               r + 1, e.count));
-            }
-            const double c = ply_load(prop.count_type, data.data() + pos, big);
-            pos += ply_size(prop.count_type);
-            if (!(c >= 0 && c <= 1e6)) {
-              fail_byte(path, pos, fmt::format("list length {}: expected 0 to 10^6", c));
-            }
-            n = static_cast<std::size_t>(c);
-          }
-          for (std::size_t j = 0; j < n; ++j) {
-            double v = 0;
-            if (ascii) {
-              v = static_cast<double>(tok.integer("a list entry"));
-            } else {
-              if (pos + ply_size(prop.type) > data.size()) {
-                fail_byte(path, pos, fmt::format("truncated PLY: element {} {} of {}", e.name,
-                                                 r + 1, e.count));
-              }
-              v = ply_load(prop.type, data.data() + pos, big);
-              pos += ply_size(prop.type);
-            }
-            if (is_face && static_cast<int>(k) == index_prop) {
-              if (!(v >= 0 && v < static_cast<double>(nv))) {
-                const std::string msg = fmt::format(
-                    "face {} uses vertex index {}: the file has {} vertices", r + 1, v, nv);
-                if (ascii) fail_line(path, tok.line(), msg);
-                fail_byte(path, pos - ply_size(prop.type), msg);
-              }
-              poly.push_back(static_cast<Index>(v));
-            }
-          }
-        } else {
-          double v = 0;
-          std::size_t at = pos;
-          // a coordinate must be finite; other properties (normals, colours) are not used
-          const bool coordinate =
-              is_vertex && (static_cast<int>(k) == xyz[0] || static_cast<int>(k) == xyz[1] ||
-                            static_cast<int>(k) == xyz[2]);
-          if (ascii) {
-            v = tok.number(coordinate ? "a vertex coordinate" : "a property value", coordinate);
-          } else {
-            if (pos + ply_size(prop.type) > data.size()) {
-              fail_byte(path, pos, fmt::format("truncated PLY: element {} {} of {}", e.name,
-                                               r + 1, e.count));
-            }
-            v = ply_load(prop.type, data.data() + pos, big);
-            pos += ply_size(prop.type);
-            if (coordinate && !std::isfinite(v)) {
-              fail_byte(path, at, fmt::format("{} of {} {} is {}: expected a finite number",
-                                              prop.name, e.name, r + 1, v));
-            }
-          }
-          for (int c = 0; c < 3; ++c) {
-            if (is_vertex && static_cast<int>(k) == xyz[c]) p[c] = v * scale;
-          }
-        }
-      }
-      if (is_vertex) mesh.vertices.push_back(p);
-      if (is_face) {
-        if (poly.size() < 3) {
-          const std::string msg =
-              fmt::format("face {} has {} vertices: expected at least 3", r + 1, poly.size());
-          if (ascii) fail_line(path, tok.line(), msg);
-          fail_byte(path, pos, msg);
-        }
-        add_polygon(path, mesh, poly, r + 1, ascii ? tok.line() : 0, pos);
-      }
-    }
-  }
-  if (mesh.triangles.empty()) fail_line(path, line, "the PLY file has no faces");
-  return mesh;
+  const PlyHeader header = read_ply_header(path, data);
+  check_ply_counts(path, data, header, header.format == "ascii");
+  PlyDataReader reader(path, data, header, scale);
+  for (const auto& e : header.elements) reader.read_element(e);
+  if (reader.mesh().triangles.empty()) fail_line(path, header.line, "the PLY file has no faces");
+  return std::move(reader.mesh());
 }
 
 namespace detail {
