@@ -576,8 +576,10 @@ void symmetric_modes(const Impl& s, const Eigen::VectorXd& q, const Eigen::Matri
   Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(Ks, Mh);
   RIGID_REQUIRE_AS(kWho, es.info() == Eigen::Success, "the eigenproblem K φ = ω² M φ did not converge at ({})",
                    point_text(s, q));
-  const Eigen::VectorXd mu = es.eigenvalues();  // ascending: the largest |μ| is at an end
-  const double zero = 1e-9 * std::max(std::abs(mu[0]), std::abs(mu[nt - 1]));
+  const Eigen::VectorXd mu = es.eigenvalues();  // ascending
+  double largest = 0.0;  // max |μ| (a loop: GCC cannot bound Eigen's reduction of a dynamic vector)
+  for (const double m : mu) largest = std::max(largest, std::abs(m));
+  const double zero = 1e-9 * largest;
   out.eigenvalues.resize(2 * nt);
   for (Eigen::Index k = 0; k < nt; ++k) {
     Mode md;
