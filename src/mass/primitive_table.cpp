@@ -330,4 +330,35 @@ std::array<std::string, 10> primitive_expressions(const PrimitiveEntry& entry, A
   return out;
 }
 
+std::array<std::string, 10> point_mass_expressions(std::span<const PointMassText> points) {
+  RIGID_REQUIRE(!points.empty(), "point masses: expected at least one point");
+  auto paren = [](const std::string& text) { return "(" + text + ")"; };
+  std::array<std::string, 10> out;
+  std::string& total = out[0];
+  std::array<std::string, 3> moment;
+  for (const PointMassText& p : points) {
+    total += (total.empty() ? "" : " + ") + paren(p.mass);
+    for (std::size_t k = 0; k < 3; ++k) {
+      moment[k] += (moment[k].empty() ? "" : " + ") + paren(p.mass) + "*" + paren(p.position[k]);
+    }
+  }
+  for (std::size_t k = 0; k < 3; ++k) out[1 + k] = paren(moment[k]) + "/" + paren(total);
+  // the elements xx yy zz xy xz yz: a diagonal one is the sum of the other two squares, an
+  // off-diagonal one minus the product
+  static constexpr std::size_t kRow[6] = {0, 1, 2, 0, 0, 1}, kCol[6] = {0, 1, 2, 1, 2, 2};
+  for (std::size_t k = 0; k < 6; ++k) {
+    std::string sum;
+    for (const PointMassText& p : points) {
+      std::array<std::string, 3> d;
+      for (std::size_t a = 0; a < 3; ++a) d[a] = paren(paren(p.position[a]) + " - " + paren(out[1 + a]));
+      const std::size_t r = kRow[k], c = kCol[k];
+      const std::string term = r == c ? fmt::format("{}^2 + {}^2", d[(r + 1) % 3], d[(r + 2) % 3])
+                                      : fmt::format("-{}*{}", d[r], d[c]);
+      sum += (sum.empty() ? "" : " + ") + paren(p.mass) + "*" + paren(term);
+    }
+    out[4 + k] = sum;
+  }
+  return out;
+}
+
 }  // namespace rigid::mass

@@ -74,9 +74,6 @@ struct BodyMass {
   std::vector<std::pair<std::string, double>> sizes{};  // a primitive's, canonical names
 };
 
-// (text) × (text) etc. for the point-mass sums; every operand in parentheses
-std::string paren(const std::string& s) { return "(" + s + ")"; }
-
 // Names for the constants of a body that the scene did not write (a mesh file's mass
 // properties, a tetrahedron's): <body>_mass, <body>_com_x, …, <body>_ixx, …; zero entries
 // stay 0. The names are added to `derived` with their values, and their SI units to `units`.
@@ -104,6 +101,15 @@ lagrange::BodyMass named_constants(const std::string& body, const MassProperties
     const auto& [element, row, col] = lagrange::BodyMass::kInertiaElements[k];
     b.inertia[k] = name(element, I(row, col), "kg·m²");
   }
+  return b;
+}
+
+// Mass, COM (3) and inertia (6) as expression text (rigid::mass::primitive_expressions' layout).
+lagrange::BodyMass body_mass_of(const std::array<std::string, 10>& text) {
+  lagrange::BodyMass b;
+  b.mass = text[0];
+  for (std::size_t k = 0; k < 3; ++k) b.com[k] = text[1 + k];
+  for (std::size_t k = 0; k < 6; ++k) b.inertia[k] = text[4 + k];
   return b;
 }
 
@@ -139,10 +145,7 @@ BodyMass mass_of(const Body& b, const std::vector<lagrange::Parameter>& params,
       std::vector<std::string> sizes(entry.sizes.size());
       for (const auto& [key, e] : m.dimensions) sizes[*entry.size_index(key)] = e.text;
       const std::array<std::string, 10> text = mass::primitive_expressions(entry, kind, amount.text, sizes);
-      lagrange::BodyMass symbolic;
-      symbolic.mass = text[0];
-      for (std::size_t k = 0; k < 3; ++k) symbolic.com[k] = text[1 + k];
-      for (std::size_t k = 0; k < 6; ++k) symbolic.inertia[k] = text[4 + k];
+      const lagrange::BodyMass symbolic = body_mass_of(text);
       return {numeric, symbolic, evaluated};
     }
     case MassSpec::Kind::kMesh: {
@@ -185,36 +188,13 @@ BodyMass mass_of(const Body& b, const std::vector<lagrange::Parameter>& params,
         points.col(static_cast<Eigen::Index>(i)) = vector_of(m.points[i].position, params, ctx + " point position");
       }
       MassProperties numeric = at_location(m.where, ctx, [&] { return mass::point_masses(masses, points); });
-      // Σ mᵢ, c = Σ mᵢ pᵢ / Σ mᵢ, I = Σ mᵢ (|pᵢ − c|² 1 − (pᵢ − c)(pᵢ − c)ᵀ) as expressions;
-      // the Lagrangian engine simplifies them (one point at the origin gives m and zeros)
-      std::string total;
-      std::array<std::string, 3> moment;
+      // the same sums as expressions of the parameters (rigid::mass::point_mass_expressions)
+      std::vector<mass::PointMassText> texts;
       for (const PointMass& pm : m.points) {
-        total += (total.empty() ? "" : " + ") + paren(pm.mass.text);
-        for (std::size_t k = 0; k < 3; ++k) {
-          moment[k] += (moment[k].empty() ? "" : " + ") + paren(pm.mass.text) + "*" + paren(pm.position[k].text);
-        }
+        texts.push_back({pm.mass.text, {pm.position[0].text, pm.position[1].text, pm.position[2].text}});
       }
-      lagrange::BodyMass symbolic;
-      symbolic.mass = total;
-      std::array<std::string, 3> c;
-      for (std::size_t k = 0; k < 3; ++k) {
-        c[k] = paren(moment[k]) + "/" + paren(total);
-        symbolic.com[k] = c[k];
-      }
-      static constexpr int kRow[6] = {0, 1, 2, 0, 0, 1}, kCol[6] = {0, 1, 2, 1, 2, 2};
-      for (std::size_t k = 0; k < 6; ++k) {
-        std::string sum;
-        for (const PointMass& pm : m.points) {
-          std::array<std::string, 3> d;
-          for (std::size_t a = 0; a < 3; ++a) d[a] = paren(paren(pm.position[a].text) + " - " + paren(c[a]));
-          const auto r = static_cast<std::size_t>(kRow[k]), col = static_cast<std::size_t>(kCol[k]);
-          const std::string term = r == col ? fmt::format("{}^2 + {}^2", d[(r + 1) % 3], d[(r + 2) % 3])
-                                            : fmt::format("-{}*{}", d[r], d[col]);
-          sum += (sum.empty() ? "" : " + ") + paren(pm.mass.text) + "*" + paren(term);
-        }
-        symbolic.inertia[k] = sum;
-      }
+      const std::array<std::string, 10> text = mass::point_mass_expressions(texts);
+      const lagrange::BodyMass symbolic = body_mass_of(text);
       return {numeric, symbolic, {}};
     }
   }
@@ -1076,13 +1056,13 @@ RunResult Model::Impl::run_free(const Method& method, const RunOptions& o) const
         e_total += f.top->energy(rot);
         conserved[i] = g_dir.dot(L_W);
       } else {
-        // P is principal: I ω is a componentwise product; energy ½ m |v|² + ½ ωᵀ I ω − m g·p
+        // P is principal: I ω is a componentwise product; the energy ½ m |v|² + ½ ωᵀ I ω − m g·p
+        // is the library's (RigidBody::diagnose)
         const Eigen::Vector3d L_P = f.rigid->principal_moments().cwiseProduct(s.w_B);
         p_WB = s.p_WC - R_WB * f.com_B;
         v_WC = s.v_WC;
         L_W = R_WP * L_P;  // about the COM
-        e_total += 0.5 * f.rigid->mass() * s.v_WC.squaredNorm() + 0.5 * s.w_B.dot(L_P) -
-                   f.rigid->mass() * gravity.dot(s.p_WC);
+        e_total += f.rigid->diagnose(s).energy;
         conserved[i] = L_W.norm();
       }
       push_pose(out, p_WB, R_WB, continuity[i]);

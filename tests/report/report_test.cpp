@@ -341,3 +341,57 @@ TEST(ReportReadRun, MissingFilesAreNamed) {
   EXPECT_RIGID_ERROR((void)rigid::report::read_run(dir), "is not a run summary");
   fs::remove_all(dir);
 }
+
+namespace {
+
+// The units on the page are the schema's (by quantity), and a run read back from its
+// directory carries the schema summary.json holds: a summary whose schema is not its
+// trajectory's is refused, one written before runs carried a schema takes the model's.
+TEST(ReportReadRun, TheSchemaTravelsWithTheRunAndMustBeItsTrajectorys) {
+  const fs::path dir = scratch("schema");
+  std::ofstream(dir / "two.toml") << kFreeScene;
+  const rigid::scene::Model model(rigid::scene::load_scene(dir / "two.toml"));
+  const rigid::io::RunResult run = model.run();
+  const std::vector<rigid::io::OutputFormat> formats = {rigid::io::OutputFormat::kCsv,
+                                                        rigid::io::OutputFormat::kJson};
+  (void)rigid::io::write_run(dir / "out", run, formats);
+  const rigid::io::RunResult back = rigid::report::read_run(dir / "out");
+  EXPECT_EQ(back.schema, model.schema());
+  EXPECT_EQ(back.summary.kind, rigid::io::RunKind::kFreeBodies);
+  const json page = json::parse(report_json(model, back, {.max_frames = 50}));
+  std::size_t checked = 0;
+  for (const json& s : page["series"]) {
+    if (s["group"] == "energy_error" || s["group"] == "L_error") continue;  // relative changes
+    const rigid::io::Column* c = model.schema().find(s["column"].get<std::string>());
+    ASSERT_NE(c, nullptr) << s["column"];
+    EXPECT_EQ(s["unit"], c->unit) << s["column"];
+    if (c->quantity == rigid::io::Quantity::kAngularVelocity) {
+      EXPECT_EQ(s["unit"], "rad/s");
+    }
+    ++checked;
+  }
+  EXPECT_GT(checked, 10u);
+
+  // a schema that disagrees with the trajectory
+  json summary = json::parse(std::ifstream(dir / "out" / "summary.json"));
+  summary["schema"]["columns"][1]["name"] = "cone.xx";
+  std::ofstream(dir / "out" / "summary.json") << summary.dump();
+  EXPECT_RIGID_ERROR((void)rigid::report::read_run(dir / "out"), "disagree: the schema names the columns t, cone.xx");
+  summary["schema"]["columns"][1]["quantity"] = "place";
+  std::ofstream(dir / "out" / "summary.json") << summary.dump();
+  EXPECT_RIGID_ERROR((void)rigid::report::read_run(dir / "out"), "unknown quantity 'place'");
+  summary["kind"] = "free_body";
+  std::ofstream(dir / "out" / "summary.json") << summary.dump();
+  EXPECT_RIGID_ERROR((void)rigid::report::read_run(dir / "out"), "\"kind\": unknown run kind 'free_body'");
+
+  // an older summary without a schema: the page takes the model's
+  summary.erase("schema");
+  summary["kind"] = "free_bodies";
+  std::ofstream(dir / "out" / "summary.json") << summary.dump();
+  const rigid::io::RunResult old = rigid::report::read_run(dir / "out");
+  EXPECT_TRUE(old.schema.columns.empty());
+  EXPECT_EQ(json::parse(report_json(model, old, {.max_frames = 50}))["series"], page["series"]);
+  fs::remove_all(dir);
+}
+
+}  // namespace

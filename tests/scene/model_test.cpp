@@ -10,6 +10,7 @@
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include "rigid/mass/primitive_table.hpp"
 #include "rigid/mass/primitives.hpp"
 #include "support/expect_error.hpp"
 #include "support/scenes.hpp"
@@ -490,6 +491,152 @@ t_end = 1
 )toml",
                                    "other.toml");
   EXPECT_RIGID_ERROR(Model(other, like), "differs from the model's it should share equations with");
+}
+
+// The schema a model publishes before any run is what its runs produce, for every example
+// shipped: the same columns in the same order, the same diagnostics and metrics, and the units
+// of docs/scene-format.md (checked here by quantity, independently of the names).
+TEST(ModelSchema, EveryExampleRunsWhatItsSchemaSays) {
+  const std::filesystem::path examples = std::filesystem::path(RIGID_EXAMPLES_DIR);
+  std::size_t scenes = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(examples)) {
+    if (entry.path().extension() != ".toml") continue;
+    ++scenes;
+    SCOPED_TRACE(entry.path().filename().string());
+    const Model m = load_model(entry.path());
+    const io::RunSchema& schema = m.schema();
+    const RunResult r = m.run();
+    EXPECT_EQ(r.schema, schema);
+    EXPECT_EQ(schema.kind, m.kind());
+    EXPECT_EQ(schema.column_names(), r.trajectory.columns());
+    ASSERT_EQ(schema.diagnostics.size(), r.summary.diagnostics.size());
+    for (std::size_t k = 0; k < schema.diagnostics.size(); ++k) {
+      EXPECT_EQ(schema.diagnostics[k].name, r.summary.diagnostics[k].first);
+    }
+    ASSERT_EQ(schema.metrics.size(), r.summary.metrics.size());
+    for (std::size_t k = 0; k < schema.metrics.size(); ++k) {
+      EXPECT_EQ(schema.metrics[k].name, r.summary.metrics[k].name);
+      // a drift reported as an absolute change says so in its note and carries the change's unit
+      if (r.summary.metrics[k].note.empty()) {
+        EXPECT_EQ(schema.metrics[k].unit, r.summary.metrics[k].unit);
+      }
+    }
+    ASSERT_EQ(schema.parameters.size(), m.parameters().size());
+    for (std::size_t k = 0; k < schema.parameters.size(); ++k) {
+      EXPECT_EQ(schema.parameters[k].name, m.parameters()[k].name);
+    }
+    for (const io::Column& c : schema.columns) {
+      using Q = io::Quantity;
+      const std::string expected = c.quantity == Q::kTime                                              ? "s"
+                                   : c.quantity == Q::kPosition                                        ? "m"
+                                   : c.quantity == Q::kVelocity                                        ? "m/s"
+                                   : c.quantity == Q::kAngularVelocity                                 ? "rad/s"
+                                   : c.quantity == Q::kAngularMomentum                                 ? "kg·m²/s"
+                                   : c.quantity == Q::kEnergy || c.quantity == Q::kJacobi              ? "J"
+                                                                                                       : "";
+      EXPECT_EQ(c.unit, expected) << c.name;
+      if (c.quantity == Q::kCoordinateRate) {
+        EXPECT_EQ(c.name, c.owner + "_dot");
+      }
+      if (c.quantity == Q::kPosition || c.quantity == Q::kOrientation) {
+        EXPECT_TRUE(std::any_of(m.bodies().begin(), m.bodies().end(), [&](const ModelBody& b) { return b.name == c.owner; }))
+            << c.name;
+      }
+    }
+  }
+  EXPECT_GE(scenes, 10u);
+}
+
+// The tennis racket's first flip is a time (s), read from ω_y (rad/s); the heavy top's
+// diagnostics are of L about the pivot's vertical; a mesh body's derived constants are kg, m,
+// kg·m².
+TEST(ModelSchema, UnitsOfMetricsDiagnosticsAndDerivedConstants) {
+  const std::filesystem::path examples = std::filesystem::path(RIGID_EXAMPLES_DIR);
+  const Model racket = load_model(examples / "tennis_racket.toml");
+  ASSERT_FALSE(racket.schema().metrics.empty());
+  EXPECT_EQ(racket.schema().metrics[0].name, "first_flip");
+  EXPECT_EQ(racket.schema().metrics[0].unit, "s");
+  EXPECT_EQ(racket.schema().find("racket.wy")->quantity, io::Quantity::kAngularVelocity);
+  EXPECT_EQ(racket.schema().find("racket.wy")->owner, "racket");
+  EXPECT_EQ(racket.schema().find("racket.wy")->component, "y");
+
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "rigid_model_schema_test";
+  std::filesystem::create_directories(dir);
+  write_cube_stl(dir / "cube.stl");
+  const Model cube = model_of(R"toml(
+[parameters]
+rho = 1000
+[[coordinates]]
+name = "x"
+[[bodies]]
+name = "cube"
+mesh = "cube.stl"
+units = "cm"
+density = "rho"
+position = ["x", 0, 0]
+[simulation]
+t_end = 1
+[output]
+quantities = ["x*", "energy"]
+)toml",
+                              dir / "scene.toml");
+  std::filesystem::remove_all(dir);
+  // the scene's parameter states no unit; a cube's products of inertia are 0 and get no name
+  std::vector<std::pair<std::string, std::string>> units;
+  for (const io::Scalar& p : cube.schema().parameters) units.emplace_back(p.name, p.unit);
+  EXPECT_EQ(units, (std::vector<std::pair<std::string, std::string>>{{"rho", ""},
+                                                                      {"cube_mass", "kg"},
+                                                                      {"cube_com_x", "m"},
+                                                                      {"cube_com_y", "m"},
+                                                                      {"cube_com_z", "m"},
+                                                                      {"cube_ixx", "kg·m²"},
+                                                                      {"cube_iyy", "kg·m²"},
+                                                                      {"cube_izz", "kg·m²"}}));
+  // [output] quantities selects the schema's columns, and the run's
+  EXPECT_EQ(cube.schema().column_names(), (std::vector<std::string>{"t", "x", "x_dot", "energy"}));
+  EXPECT_EQ(cube.run().trajectory.columns(), cube.schema().column_names());
+}
+
+// A pattern of [output] quantities that matches nothing is the scene's error, found when the
+// model is built (rigid check finds it), not after a run.
+TEST(ModelSchema, AQuantityPatternMatchingNothingIsRefusedBeforeAnyRun) {
+  EXPECT_RIGID_ERROR((void)model_of(R"toml(
+[[coordinates]]
+name = "theta"
+[[bodies]]
+name = "bob"
+inertia = {mass = 1, ixx = 0, iyy = 0, izz = 0}
+position = ["sin(theta)", 0, "-cos(theta)"]
+[simulation]
+t_end = 1
+[output]
+quantities = ["thta"]
+)toml"),
+                     "scene.toml:11:14: [output] quantities: 'thta' matches no column; did you mean 'theta'?");
+}
+
+// The point-mass closed forms as text (what a scene's equations are built from) evaluate to
+// what rigid::mass::point_masses computes from the numbers, for three points in general
+// position (relative 1e-14: a few roundings of sums of ~10 terms).
+TEST(PointMassExpressions, EvaluateToTheNumericPointMasses) {
+  const std::vector<lagrange::Parameter> params = {{"a", 0.3}, {"b", -0.7}};
+  const std::vector<mass::PointMassText> texts = {
+      {"2", {"a", "b", "0.1"}}, {"0.5", {"-b", "2*a", "1"}}, {"a", {"0", "0.25", "-a"}}};
+  const std::array<std::string, 10> text = mass::point_mass_expressions(texts);
+  Eigen::Matrix3Xd points(3, 3);
+  points << 0.3, 0.7, 0.0, -0.7, 0.6, 0.25, 0.1, 1.0, -0.3;
+  const std::vector<double> masses = {2.0, 0.5, 0.3};
+  const MassProperties mp = mass::point_masses(masses, points);
+  auto value = [&](std::size_t k) {
+    return lagrange::evaluate_constant(lagrange::Expression(text[k]), params, "point masses");
+  };
+  EXPECT_NEAR(value(0), mp.mass(), 1e-14 * mp.mass());
+  for (Eigen::Index k = 0; k < 3; ++k) EXPECT_NEAR(value(1 + static_cast<std::size_t>(k)), mp.com()[k], 1e-14);
+  const Eigen::Matrix3d& I = mp.inertia_com();
+  const double scale = I.norm();
+  const double expected[6] = {I(0, 0), I(1, 1), I(2, 2), I(0, 1), I(0, 2), I(1, 2)};
+  for (std::size_t k = 0; k < 6; ++k) EXPECT_NEAR(value(4 + k), expected[k], 1e-14 * scale) << k;
+  EXPECT_RIGID_ERROR((void)mass::point_mass_expressions({}), "at least one point");
 }
 
 TEST(ModelThreads, OneModelRunsOnSeveralThreadsAtOnce) {

@@ -107,4 +107,17 @@ struct PrimitiveArguments {
                                                                 const std::string& amount_text,
                                                                 std::span<const std::string> sizes);
 
+/// A point mass as expression text: its mass (kg) and position (m) in the body frame.
+struct PointMassText {
+  std::string mass;
+  std::array<std::string, 3> position;
+};
+
+/// The closed forms of point_masses as expression text, laid out as primitive_expressions':
+/// mass Σ mᵢ, COM c = Σ mᵢ pᵢ / Σ mᵢ (3), inertia about c (6: xx yy zz xy xz yz)
+/// Σ mᵢ (|pᵢ − c|² 1 − (pᵢ − c)(pᵢ − c)ᵀ), every operand in parentheses and nothing
+/// simplified (the symbolic engine does that: one point at the origin gives m and zeros).
+/// @throws rigid::Error if `points` is empty.
+[[nodiscard]] std::array<std::string, 10> point_mass_expressions(std::span<const PointMassText> points);
+
 }  // namespace rigid::mass
