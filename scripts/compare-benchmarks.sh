@@ -27,10 +27,11 @@ declare -A filter=(
   [lagrange]='^BM_Lagrange'
   [mesh]='^BM_Rigid'
   [run]='.'
+  [sweep]='^BM_Sweep_(runs|modelRun|oneRun|perRun)'
 )
 rm -f "$out"/*.json
 for r in $(seq 1 "$reps"); do
-  for exe in body lagrange mesh run; do
+  for exe in body lagrange mesh run sweep; do
     for side in old new; do
       tree=$([[ $side == old ]] && echo "$old" || echo "$top")
       "$tree/build/bench/bin/rigid_${exe}_bench" --benchmark_filter="${filter[$exe]}" \
