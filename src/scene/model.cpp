@@ -1,11 +1,15 @@
 #include "rigid/scene/model.hpp"
 
 #include <algorithm>
+#include <bit>
+#include <cctype>
 #include <chrono>
 #include <cstdint>
 #include <cmath>
+#include <map>
 #include <memory>
 #include <optional>
+#include <string_view>
 
 #include <fnmatch.h>
 
@@ -49,16 +53,82 @@ auto at_location(const SourceLocation& where, const std::string& context, F&& f)
   }
 }
 
-double value_of(const Expression& e, const std::vector<lagrange::Parameter>& params,
-                const std::string& what) {
-  if (e.number) return *e.number;
-  return lagrange::evaluate_constant(to_lagrange(e), params, what);
+// The results of a prototype model's expressions that are not plain numbers, by text.
+using Results = std::map<std::string, double, std::less<>>;
+
+// Whether every parameter `text` names (its identifiers; numbers and function names are
+// skipped) has bit for bit the same value in `now` as in `then` (the last parameter of a name
+// is the one an expression sees).
+bool same_inputs(std::string_view text, const std::vector<lagrange::Parameter>& now,
+                 const std::vector<lagrange::Parameter>& then) {
+  auto value = [](const std::vector<lagrange::Parameter>& ps, std::string_view name) -> std::optional<double> {
+    for (auto it = ps.rbegin(); it != ps.rend(); ++it) {
+      if (it->name == name) return it->value;
+    }
+    return std::nullopt;
+  };
+  auto word = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_'; };
+  std::size_t i = 0;
+  while (i < text.size()) {
+    const char c = text[i];
+    if (std::isdigit(static_cast<unsigned char>(c)) != 0 || c == '.') {
+      // a number, with its exponent (1e-3 is no name)
+      while (i < text.size() && (std::isdigit(static_cast<unsigned char>(text[i])) != 0 || text[i] == '.')) ++i;
+      if (i < text.size() && (text[i] == 'e' || text[i] == 'E')) {
+        ++i;
+        if (i < text.size() && (text[i] == '+' || text[i] == '-')) ++i;
+        while (i < text.size() && std::isdigit(static_cast<unsigned char>(text[i])) != 0) ++i;
+      }
+      continue;
+    }
+    if (!word(c)) {
+      ++i;
+      continue;
+    }
+    const std::size_t start = i;
+    while (i < text.size() && word(text[i])) ++i;
+    const std::string_view name = text.substr(start, i - start);
+    const std::optional<double> a = value(now, name), b = value(then, name);
+    if (a.has_value() != b.has_value()) return false;
+    if (a && std::bit_cast<std::uint64_t>(*a) != std::bit_cast<std::uint64_t>(*b)) return false;
+  }
+  return true;
 }
 
-Eigen::Vector3d vector_of(const std::array<Expression, 3>& e,
-                          const std::vector<lagrange::Parameter>& params, const std::string& what) {
-  return {value_of(e[0], params, what), value_of(e[1], params, what), value_of(e[2], params, what)};
-}
+// The values of a model's expressions, from the parameters evaluated so far. A model built
+// like another takes the other's result for the same text when every parameter the text names
+// has the value it had there: the evaluation is deterministic, so that is the result a new one
+// would give, and a sweep's run enters the symbolic core only for an expression of a swept
+// value. A prototype (no `like`) records its results for the models built like it.
+class Evaluator {
+ public:
+  Evaluator(const std::vector<lagrange::Parameter>& params, const std::vector<lagrange::Parameter>* like_params,
+            const Results* like_results, Results* record)
+      : params_(params), like_params_(like_params), like_results_(like_results), record_(record) {}
+
+  [[nodiscard]] const std::vector<lagrange::Parameter>& params() const { return params_; }
+
+  [[nodiscard]] double value(const Expression& e, const std::string& what) const {
+    if (e.number) return *e.number;
+    if (like_results_ != nullptr) {
+      const auto it = like_results_->find(e.text);
+      if (it != like_results_->end() && same_inputs(e.text, params_, *like_params_)) return it->second;
+    }
+    const double v = lagrange::evaluate_constant(to_lagrange(e), params_, what);
+    if (record_ != nullptr) record_->emplace(e.text, v);
+    return v;
+  }
+
+  [[nodiscard]] Eigen::Vector3d vector(const std::array<Expression, 3>& e, const std::string& what) const {
+    return {value(e[0], what), value(e[1], what), value(e[2], what)};
+  }
+
+ private:
+  const std::vector<lagrange::Parameter>& params_;
+  const std::vector<lagrange::Parameter>* like_params_;
+  const Results* like_results_;
+  Results* record_;
+};
 
 lagrange::Vector3Expression expressions_of(const std::array<Expression, 3>& e) {
   return lagrange::Vector3Expression(std::array<lagrange::Expression, 3>{to_lagrange(e[0]), to_lagrange(e[1]),
@@ -118,20 +188,20 @@ lagrange::BodyMass body_mass_of(const std::array<std::string, 10>& text) {
 // reads each mesh file once and only measures it again for its run's mass or density.
 using SharedMesh = std::shared_ptr<const mesh::PreparedMesh>;
 
-BodyMass mass_of(const Body& b, const std::vector<lagrange::Parameter>& params,
-                 std::vector<lagrange::Parameter>& derived, std::vector<std::string>& derived_units,
+BodyMass mass_of(const Body& b, const Evaluator& eval, std::vector<lagrange::Parameter>& derived, std::vector<std::string>& derived_units,
                  std::vector<std::string>& warnings, SharedMesh& prepared) {
   const MassSpec& m = b.mass;
+  const std::vector<lagrange::Parameter>& params = eval.params();
   const std::string ctx = fmt::format("body '{}'", b.name);
   switch (m.kind) {
     case MassSpec::Kind::kPrimitive: {
       const mass::PrimitiveEntry& entry = mass::find_primitive(m.primitive);
       mass::PrimitiveArguments args;
-      for (const auto& [key, e] : m.dimensions) args.sizes.emplace_back(key, value_of(e, params, ctx + " " + key));
-      for (const auto& [key, e] : m.vertices) args.points.emplace_back(key, vector_of(e, params, ctx + " " + key));
+      for (const auto& [key, e] : m.dimensions) args.sizes.emplace_back(key, eval.value(e, ctx + " " + key));
+      for (const auto& [key, e] : m.vertices) args.points.emplace_back(key, eval.vector(e, ctx + " " + key));
       const bool by_mass = m.mass.has_value();
       const Expression& amount = by_mass ? *m.mass : *m.density;
-      const double value = value_of(amount, params, ctx + (by_mass ? " mass" : " density"));
+      const double value = eval.value(amount, ctx + (by_mass ? " mass" : " density"));
       const mass::Amount kind = by_mass ? mass::Amount::kMass : mass::Amount::kDensity;
       MassProperties numeric = at_location(m.where, ctx, [&] { return mass::make_primitive(m.primitive, kind, value, args); });
       std::vector<std::pair<std::string, double>> evaluated;  // canonical names, catalogue order
@@ -150,10 +220,10 @@ BodyMass mass_of(const Body& b, const std::vector<lagrange::Parameter>& params,
     }
     case MassSpec::Kind::kMesh: {
       mesh::MassSpec spec;
-      if (m.mass) spec.mass = value_of(*m.mass, params, ctx + " mass");
-      if (m.density) spec.density = value_of(*m.density, params, ctx + " density");
+      if (m.mass) spec.mass = eval.value(*m.mass, ctx + " mass");
+      if (m.density) spec.density = eval.value(*m.density, ctx + " density");
       spec.shell = m.shell;
-      if (m.thickness) spec.thickness = value_of(*m.thickness, params, ctx + " thickness");
+      if (m.thickness) spec.thickness = eval.value(*m.thickness, ctx + " thickness");
       MassProperties numeric = at_location(m.where, ctx, [&] {
         if (!prepared) {
           prepared = std::make_shared<const mesh::PreparedMesh>(
@@ -166,12 +236,12 @@ BodyMass mass_of(const Body& b, const std::vector<lagrange::Parameter>& params,
       return {numeric, named_constants(b.name, numeric, params, derived, derived_units), {}};
     }
     case MassSpec::Kind::kExplicit: {
-      const double mass = value_of(*m.mass, params, ctx + " inertia mass");
-      const Eigen::Vector3d com = vector_of(m.com, params, ctx + " inertia com");
+      const double mass = eval.value(*m.mass, ctx + " inertia mass");
+      const Eigen::Vector3d com = eval.vector(m.com, ctx + " inertia com");
       Eigen::Matrix3d I;
       for (std::size_t i = 0; i < 6; ++i) {
         const auto& [element, row, col] = lagrange::BodyMass::kInertiaElements[i];
-        I(row, col) = I(col, row) = value_of(m.inertia[i], params, ctx + " " + element);
+        I(row, col) = I(col, row) = eval.value(m.inertia[i], ctx + " " + element);
       }
       MassProperties numeric = at_location(m.where, ctx, [&] { return MassProperties(mass, com, I); });
       lagrange::BodyMass symbolic;
@@ -184,8 +254,8 @@ BodyMass mass_of(const Body& b, const std::vector<lagrange::Parameter>& params,
       std::vector<double> masses;
       Eigen::Matrix3Xd points(3, static_cast<Eigen::Index>(m.points.size()));
       for (std::size_t i = 0; i < m.points.size(); ++i) {
-        masses.push_back(value_of(m.points[i].mass, params, ctx + " point mass"));
-        points.col(static_cast<Eigen::Index>(i)) = vector_of(m.points[i].position, params, ctx + " point position");
+        masses.push_back(eval.value(m.points[i].mass, ctx + " point mass"));
+        points.col(static_cast<Eigen::Index>(i)) = eval.vector(m.points[i].position, ctx + " point position");
       }
       MassProperties numeric = at_location(m.where, ctx, [&] { return mass::point_masses(masses, points); });
       // the same sums as expressions of the parameters (rigid::mass::point_mass_expressions)
@@ -257,6 +327,9 @@ struct Model::Impl {
                                              // kg, m, kg·m² for the derived constants
   std::vector<ModelBody> bodies;
   std::vector<SharedMesh> meshes;  // per body: its mesh as read (null for other bodies)
+  // the prototype's results of the expressions that are not numbers (shared by the models built
+  // like it, which read them through Evaluator)
+  std::shared_ptr<const Results> results;
   std::vector<std::string> warnings;
   Eigen::Vector3d gravity = Eigen::Vector3d::Zero();
   // simulation settings (validated)
@@ -277,10 +350,10 @@ struct Model::Impl {
   std::vector<std::size_t> metric_columns;
   std::size_t probe_size = 0;
 
-  void read_simulation() {
+  void read_simulation(const Evaluator& eval) {
     const Simulation& s = scene.simulation;
     auto positive = [&](const Expression& e, const char* what, const char* unit) {
-      const double v = value_of(e, params, std::string("[simulation] ") + what);
+      const double v = eval.value(e, std::string("[simulation] ") + what);
       if (!(v > 0)) {
         detail::throw_error_at(e.where, fmt::format("[simulation] {} must be positive, got {} {}", what, v, unit));
       }
@@ -438,14 +511,14 @@ struct Model::Impl {
                                                      static_cast<double>(integrate::TimeGrid::kMaxOutputs)));
   }
 
-  void read_initial_state() {
+  void read_initial_state(const Evaluator& eval) {
     const auto n = static_cast<Eigen::Index>(scene.coordinates.size());
     q0.resize(n);
     q_dot0.resize(n);
     for (Eigen::Index i = 0; i < n; ++i) {
       const Coordinate& c = scene.coordinates[static_cast<std::size_t>(i)];
-      q0(i) = value_of(c.initial, params, c.name + " initial");
-      q_dot0(i) = value_of(c.velocity, params, c.name + " velocity");
+      q0(i) = eval.value(c.initial, c.name + " initial");
+      q_dot0(i) = eval.value(c.velocity, c.name + " velocity");
     }
   }
 
@@ -456,8 +529,8 @@ struct Model::Impl {
     return w;
   }
 
-  void build_coordinates(const std::vector<lagrange::BodyMass>& masses) {
-    read_initial_state();
+  void build_coordinates(const std::vector<lagrange::BodyMass>& masses, const Evaluator& eval) {
+    read_initial_state(eval);
     lagrange::SystemSpec spec;
     spec.parameters = params;
     for (std::size_t i = 0; i < scene.coordinates.size(); ++i) {
@@ -666,11 +739,16 @@ Model::Model(const Scene& scene, const Model* like) : impl_(std::make_unique<Imp
   Impl& m = *impl_;
   m.scene = scene;
   m.kind = scene.is_free_body_scene() ? SceneKind::kFreeBodies : SceneKind::kCoordinates;
+  // a prototype records its expressions' results, a model built like it reads them
+  auto record = like == nullptr ? std::make_shared<Results>() : nullptr;
+  const Impl* prototype = like != nullptr ? like->impl_.get() : nullptr;
+  const Evaluator eval(m.params, prototype != nullptr ? &prototype->params : nullptr,
+                       prototype != nullptr ? prototype->results.get() : nullptr, record.get());
   for (const Parameter& p : scene.parameters) {
-    m.params.push_back({p.name, value_of(p.value, m.params, "parameter " + p.name)});
+    m.params.push_back({p.name, eval.value(p.value, "parameter " + p.name)});
   }
   m.scene_params = m.params.size();
-  m.gravity = vector_of(scene.gravity, m.params, "gravity");
+  m.gravity = eval.vector(scene.gravity, "gravity");
   std::vector<lagrange::Parameter> derived;
   std::vector<std::string> derived_units;
   std::vector<lagrange::BodyMass> masses;
@@ -685,7 +763,7 @@ Model::Model(const Scene& scene, const Model* like) : impl_(std::make_unique<Imp
         prepared = like->impl_->meshes[i];
       }
     }
-    BodyMass bm = mass_of(b, m.params, derived, derived_units, m.warnings, prepared);
+    BodyMass bm = mass_of(b, eval, derived, derived_units, m.warnings, prepared);
     m.meshes.push_back(std::move(prepared));
     m.bodies.push_back({b.name, bm.numeric, b.free, bm.sizes});
     masses.push_back(std::move(bm.symbolic));
@@ -693,7 +771,7 @@ Model::Model(const Scene& scene, const Model* like) : impl_(std::make_unique<Imp
   m.params.insert(m.params.end(), derived.begin(), derived.end());
   m.param_units.assign(m.scene_params, "");
   m.param_units.insert(m.param_units.end(), derived_units.begin(), derived_units.end());
-  m.read_simulation();
+  m.read_simulation(eval);
   if (m.kind == SceneKind::kCoordinates && like != nullptr) {
     // the equations of `like`, whose scene differs from this one only in values: checked as far
     // as names go (a scene changed by apply_overrides keeps every name and expression)
@@ -714,12 +792,13 @@ Model::Model(const Scene& scene, const Model* like) : impl_(std::make_unique<Imp
                   "the scene '{}' differs from the model's it should share equations with in more than values",
                   scene.file.string());
     m.system = l.system;
-    m.read_initial_state();
+    m.read_initial_state(eval);
   } else if (m.kind == SceneKind::kCoordinates) {
-    m.build_coordinates(masses);
+    m.build_coordinates(masses, eval);
   } else {
     m.build_free_bodies(masses);
   }
+  m.results = prototype != nullptr ? prototype->results : std::shared_ptr<const Results>(std::move(record));
   m.full_schema = m.make_schema();
   m.check_metrics();
   m.select_columns();

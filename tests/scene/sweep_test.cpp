@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -16,6 +17,8 @@
 #include <nlohmann/json.hpp>
 
 #include "rigid/lagrange/symbolic_core.hpp"
+#include "rigid/scene/model.hpp"
+#include "rigid/scene/scene.hpp"
 #include "support/expect_error.hpp"
 #include "support/scenes.hpp"
 
@@ -306,6 +309,46 @@ TEST(SweepRun, NoRunEntersTheSymbolicCore) {
       entries.push_back(lagrange::symbolic_core_usage().entries - before);
     }
     EXPECT_EQ(entries[0], entries[1]) << scene;
+  }
+  fs::remove_all(dir);
+}
+
+// A run takes the prototype's result of a compound expression (here `inertia = m*L^2/3` and
+// `half = L/2`, evaluated by the symbolic core) when the parameters it names keep their values:
+// sweeping g, no run enters the core; sweeping L, each run evaluates the two expressions of L
+// again. Either way every run's numbers are bit for bit those of a model built alone.
+TEST(SweepRun, ACompoundExpressionIsEvaluatedAgainOnlyForASweptValue) {
+  const fs::path dir = temp_dir("compound");
+  std::string text = test::kRodPendulum;
+  text.replace(text.find("L = 1.0\n"), 8, "L = 1.0\ninertia = \"m*L^2/3\"\nhalf = \"L/2\"\n");
+  std::ofstream(dir / "rod.toml") << text;
+  const std::vector<std::pair<const char*, std::uint64_t>> cases{{"g=9:10:", 0}, {"L=0.5:2:", 2}};
+  for (const auto& [axis, per_run] : cases) {
+    std::vector<std::uint64_t> entries;
+    std::vector<SweepRow> rows;
+    for (int runs : {2, 8}) {
+      const SweepIdentity id{.scene = dir / "rod.toml", .set = {"simulation.t_end=0.05"}, .integrator = "",
+                             .spec = {.grid = {parse_grid_axis(fmt::format("{}{}", axis, runs))}}};
+      std::vector<std::size_t> all(run_count(id.spec));
+      std::iota(all.begin(), all.end(), 0);
+      const std::uint64_t before = lagrange::symbolic_core_usage().entries;
+      rows = run_sweep(id, all, {.threads = 2});
+      entries.push_back(lagrange::symbolic_core_usage().entries - before);
+    }
+    EXPECT_EQ(entries[1] - entries[0], 6 * per_run) << axis;
+    for (const SweepRow& row : rows) {
+      ASSERT_TRUE(row.error.empty()) << row.error;
+      Scene alone = load_scene(dir / "rod.toml");
+      const std::string name = std::string(axis).substr(0, 1);
+      apply_overrides(alone, {"simulation.t_end=0.05", fmt::format("{}={}", name, row.values[0])});
+      const RunResult r = Model(alone).run();
+      ASSERT_EQ(row.results.size(), r.summary.diagnostics.size());
+      for (std::size_t k = 0; k < row.results.size(); ++k) {
+        EXPECT_EQ(std::bit_cast<std::uint64_t>(row.results[k].second),
+                  std::bit_cast<std::uint64_t>(r.summary.diagnostics[k].second))
+            << row.results[k].first;
+      }
+    }
   }
   fs::remove_all(dir);
 }
