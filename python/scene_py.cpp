@@ -305,64 +305,86 @@ void bind_scene(py::module_& m) {
             rigid::scene::apply_overrides(scene, set);
             return Model(scene);
           },
-          py::arg("text"), py::arg("set") = std::vector<std::string>{}, py::arg("name") = py::none(),
+          py::arg("text"), py::arg("set") = std::vector<std::string>{},
+          py::arg("name") = py::none(),
           "A scene from TOML text (what a scene file holds): errors start with name:line:col "
           "(name default '<string>'), and mesh paths are relative to name's directory (the "
           "current directory by default); `set` as in rigid.Scene(path, set).")
-      .def_property_readonly("kind", [](const Model& mo) { return std::string(rigid::io::to_string(mo.kind())); },
-                             "'coordinates' (a Lagrangian system of generalized coordinates) or 'free_bodies'.")
-      .def_property_readonly("schema", [](const Model& mo) { return to_python(mo.schema()); },
-                             "What a run returns, known before it runs: {'kind', 'columns': [{'name', "
-                             "'quantity', 'owner', 'component', 'unit'}, ...] in the order of run()'s "
-                             "columns, 'parameters' / 'diagnostics' / 'metrics': {name: SI unit}} "
-                             "('' when dimensionless or not stated; docs/scene-format.md).")
-      .def_property_readonly("parameters", [](const Model& mo) {
-        py::dict d;
-        for (const auto& p : mo.parameters()) d[py::str(p.name)] = p.value;
-        return d;
-      }, "The scene's parameters after `set` overrides, {name: value} in file order (SI units).")
-      .def_property_readonly("bodies", [](const Model& mo) {
-        py::dict d;
-        for (const auto& b : mo.bodies()) d[py::str(b.name)] = b.mass;
-        return d;
-      }, "The bodies' mass properties (rigid.MassProperties in each body's frame), by name.")
-      .def_property_readonly("warnings", &Model::warnings,
-                             "What the scene's checks found suspicious but not wrong (the CLI prints them too).")
+      .def_property_readonly(
+          "kind", [](const Model& mo) { return std::string(rigid::io::to_string(mo.kind())); },
+          "'coordinates' (a Lagrangian system of generalized coordinates) or 'free_bodies'.")
+      .def_property_readonly(
+          "schema", [](const Model& mo) { return to_python(mo.schema()); },
+          "What a run returns, known before it runs: {'kind', 'columns': [{'name', "
+          "'quantity', 'owner', 'component', 'unit'}, ...] in the order of run()'s "
+          "columns, 'parameters' / 'diagnostics' / 'metrics': {name: SI unit}} "
+          "('' when dimensionless or not stated; docs/scene-format.md).")
+      .def_property_readonly(
+          "parameters",
+          [](const Model& mo) {
+            py::dict d;
+            for (const auto& p : mo.parameters()) d[py::str(p.name)] = p.value;
+            return d;
+          },
+          "The scene's parameters after `set` overrides, {name: value} in file order (SI units).")
+      .def_property_readonly(
+          "bodies",
+          [](const Model& mo) {
+            py::dict d;
+            for (const auto& b : mo.bodies()) d[py::str(b.name)] = b.mass;
+            return d;
+          },
+          "The bodies' mass properties (rigid.MassProperties in each body's frame), by name.")
+      .def_property_readonly(
+          "warnings", &Model::warnings,
+          "What the scene's checks found suspicious but not wrong (the CLI prints them too).")
       .def_property_readonly("t_end", &Model::t_end, "End time of a run (s).")
       .def("integrator", &Model::integrator, py::arg("requested") = std::string{},
            "The method a run uses (the requested one, the scene's, or the kind's default).")
-      .def("equations", [](const Model& mo, bool latex, const std::string& format) {
-             if (format.empty()) return mo.equations(latex);
-             const auto f = rigid::lagrange::parse_equation_format(format);
-             if (latex && f != rigid::lagrange::EquationFormat::kLatex) {
-               throw rigid::Error(fmt::format("latex=True and format='{}' ask for two formats; give one", format));
-             }
-             return mo.equations(f);
-           }, py::arg("latex") = false, py::arg("format") = std::string{},
-           "The equations of motion as `rigid eom` prints them: format 'text' (default), 'latex' "
-           "or 'json' (latex=True is format='latex').")
-      .def("emit", [](const Model& mo, const std::string& language, const std::string& name) {
-             return rigid::scene::emit_code(mo, language, name);
-           }, py::arg("language"), py::arg("name") = std::string{},
-           "The equations of motion (M, f, G, γ) as one dependency-free source file: 'c++' (a "
-           "header, <cmath> only; namespace `name`, default the file's stem) or 'python' (a "
-           "module, math only), with the scene's parameters as defaults.")
+      .def(
+          "equations",
+          [](const Model& mo, bool latex, const std::string& format) {
+            if (format.empty()) return mo.equations(latex);
+            const auto f = rigid::lagrange::parse_equation_format(format);
+            if (latex && f != rigid::lagrange::EquationFormat::kLatex) {
+              throw rigid::Error(
+                  fmt::format("latex=True and format='{}' ask for two formats; give one", format));
+            }
+            return mo.equations(f);
+          },
+          py::arg("latex") = false, py::arg("format") = std::string{},
+          "The equations of motion as `rigid eom` prints them: format 'text' (default), 'latex' "
+          "or 'json' (latex=True is format='latex').")
+      .def(
+          "emit",
+          [](const Model& mo, const std::string& language, const std::string& name) {
+            return rigid::scene::emit_code(mo, language, name);
+          },
+          py::arg("language"), py::arg("name") = std::string{},
+          "The equations of motion (M, f, G, γ) as one dependency-free source file: 'c++' (a "
+          "header, <cmath> only; namespace `name`, default the file's stem) or 'python' (a "
+          "module, math only), with the scene's parameters as defaults.")
       .def_property_readonly("system", &Model::system, py::return_value_policy::reference_internal,
                              "The rigid.lagrange.System of a coordinate scene.")
-      .def("check", [](const Model& mo, const std::string& integrator, const py::object& max_memory) {
-             rigid::scene::RunOptions o;
-             o.integrator = integrator;
-             o.max_memory = memory_of(max_memory);
-             mo.check(o);
-           }, py::arg("integrator") = std::string{}, py::arg("max_memory") = py::none(),
-           "Runs the checks of a run (initial conditions, mass matrix, steps, the trajectory's "
-           "memory against max_memory) without integrating.")
+      .def(
+          "check",
+          [](const Model& mo, const std::string& integrator, const py::object& max_memory) {
+            rigid::scene::RunOptions o;
+            o.integrator = integrator;
+            o.max_memory = memory_of(max_memory);
+            mo.check(o);
+          },
+          py::arg("integrator") = std::string{}, py::arg("max_memory") = py::none(),
+          "Runs the checks of a run (initial conditions, mass matrix, steps, the trajectory's "
+          "memory against max_memory) without integrating.")
       .def("run", &run, py::arg("integrator") = std::string{}, py::arg("output") = py::none(),
            py::arg("formats") = std::vector<std::string>{}, py::arg("max_memory") = py::none(),
            py::arg("report") = py::none(), py::arg("report_frames") = py::none(),
            "Simulates to t_end: {'columns': {name: numpy array}, 'summary': {...}, 'schema': "
-           "Scene.schema} with the columns of docs/scene-format.md; summary['metrics'] holds the scene's [[output.metrics]] as "
-           "{name: {'value', 'unit', 'note'}} (value NaN, with a note, when the event did not happen). "
+           "Scene.schema} with the columns of docs/scene-format.md; summary['metrics'] holds the "
+           "scene's [[output.metrics]] as "
+           "{name: {'value', 'unit', 'note'}} (value NaN, with a note, when the event did not "
+           "happen). "
            "With `output` (a directory), also writes the files `rigid run` "
            "writes (trajectory.csv, trajectory.npy, summary.json; `formats` as in the scene's "
            "[output] by default; summary.json always comes with trajectory.npy) as one set that "
@@ -371,11 +393,11 @@ void bind_scene(py::module_& m) {
            "max_memory, else 2 GiB) caps the trajectory, checked before the run. Ctrl-C raises "
            "KeyboardInterrupt and writes nothing. `report=True` adds report.html to the files in "
            "`output` (one self-contained page: 3D motion, plots, equations; docs/report.md), "
-           "`report=PATH` writes the page alone; its path is under 'report'. `report_frames` (default "
+           "`report=PATH` writes the page alone; its path is under 'report'. `report_frames` "
+           "(default "
            "2000) caps the frames the page keeps.")
       .def("__repr__", [](const Model& mo) {
         return fmt::format("Scene('{}', kind='{}', t_end={} s)", mo.scene().file.string(),
-                           rigid::io::to_string(mo.kind()),
-                           mo.t_end());
+                           rigid::io::to_string(mo.kind()), mo.t_end());
       });
 }

@@ -15,8 +15,8 @@
 namespace rigid::io {
 namespace {
 
-constexpr std::array<std::pair<RunKind, std::string_view>, 2> kKinds{{
-    {RunKind::kCoordinates, "coordinates"}, {RunKind::kFreeBodies, "free_bodies"}}};
+constexpr std::array<std::pair<RunKind, std::string_view>, 2> kKinds{
+    {{RunKind::kCoordinates, "coordinates"}, {RunKind::kFreeBodies, "free_bodies"}}};
 
 struct QuantityInfo {
   Quantity quantity;
@@ -76,8 +76,8 @@ RunKind parse_run_kind(std::string_view name) {
     if (n == name) return k;
   }
   const std::vector<std::string> names = names_of(kKinds);
-  throw Error(fmt::format("unknown run kind '{}'{}; expected {}", name, did_you_mean_hint(name, names),
-                          fmt::join(names, " or ")));
+  throw Error(fmt::format("unknown run kind '{}'{}; expected {}", name,
+                          did_you_mean_hint(name, names), fmt::join(names, " or ")));
 }
 
 std::string_view to_string(Quantity quantity) { return info(quantity).name; }
@@ -87,8 +87,8 @@ Quantity parse_quantity(std::string_view name) {
     if (i.name == name) return i.quantity;
   }
   const std::vector<std::string> names = names_of(kQuantities);
-  throw Error(fmt::format("unknown quantity '{}'{}; expected one of: {}", name, did_you_mean_hint(name, names),
-                          fmt::join(names, ", ")));
+  throw Error(fmt::format("unknown quantity '{}'{}; expected one of: {}", name,
+                          did_you_mean_hint(name, names), fmt::join(names, ", ")));
 }
 
 std::string_view unit_of(Quantity quantity) { return info(quantity).unit; }
@@ -101,11 +101,13 @@ std::vector<std::string> RunSchema::column_names() const {
 }
 
 const Column* RunSchema::find(std::string_view name) const {
-  const auto it = std::find_if(columns.begin(), columns.end(), [&](const Column& c) { return c.name == name; });
+  const auto it =
+      std::find_if(columns.begin(), columns.end(), [&](const Column& c) { return c.name == name; });
   return it == columns.end() ? nullptr : &*it;
 }
 
-const Column* RunSchema::find(Quantity quantity, std::string_view owner, std::string_view component) const {
+const Column* RunSchema::find(Quantity quantity, std::string_view owner,
+                              std::string_view component) const {
   const auto it = std::find_if(columns.begin(), columns.end(), [&](const Column& c) {
     return c.quantity == quantity && c.owner == owner && c.component == component;
   });
@@ -118,7 +120,8 @@ RunSchema RunSchema::select(std::span<const std::string> names) const {
   for (const std::string& n : names) {
     const Column* c = find(n);
     if (c == nullptr) {
-      throw Error(fmt::format("the run has no column '{}'{} (columns: {})", n, did_you_mean_hint(n, column_names()),
+      throw Error(fmt::format("the run has no column '{}'{} (columns: {})", n,
+                              did_you_mean_hint(n, column_names()),
                               fmt::join(column_names(), ", ")));
     }
     out.columns.push_back(*c);
@@ -128,13 +131,13 @@ RunSchema RunSchema::select(std::span<const std::string> names) const {
 
 Column body_column(Quantity quantity, const std::string& owner, std::string_view component) {
   const bool quaternion = quantity == Quantity::kOrientation;
-  const std::string_view prefix = quaternion                            ? "q"
+  const std::string_view prefix = quaternion                               ? "q"
                                   : quantity == Quantity::kVelocity        ? "v"
                                   : quantity == Quantity::kAngularVelocity ? "w"
                                   : quantity == Quantity::kAngularMomentum ? "L"
                                                                            : "";
-  return Column{fmt::format("{}.{}{}", owner, prefix, component), quantity, owner, std::string(component),
-                std::string(unit_of(quantity))};
+  return Column{fmt::format("{}.{}{}", owner, prefix, component), quantity, owner,
+                std::string(component), std::string(unit_of(quantity))};
 }
 
 namespace detail {
@@ -151,8 +154,9 @@ nlohmann::ordered_json schema_to_json(const RunSchema& schema) {
                        {"unit", c.unit}});
   }
   j["columns"] = std::move(columns);
-  for (const auto& [key, list] : {std::pair{"parameters", &schema.parameters},
-                                  std::pair{"diagnostics", &schema.diagnostics}, std::pair{"metrics", &schema.metrics}}) {
+  for (const auto& [key, list] :
+       {std::pair{"parameters", &schema.parameters}, std::pair{"diagnostics", &schema.diagnostics},
+        std::pair{"metrics", &schema.metrics}}) {
     nlohmann::ordered_json units = nlohmann::ordered_json::object();
     for (const Scalar& s : *list) units[s.name] = s.unit;
     j[key] = std::move(units);
@@ -166,8 +170,9 @@ std::string schema_json(const RunSchema& schema) { return detail::schema_to_json
 
 RunSchema parse_schema_json(std::string_view text, std::string_view source) {
   auto refuse = [&](const std::string& what) -> RunSchema {
-    throw Error(fmt::format("{}: the run's schema {}; expected the \"schema\" a run writes into summary.json",
-                            source, what));
+    throw Error(fmt::format(
+        "{}: the run's schema {}; expected the \"schema\" a run writes into summary.json", source,
+        what));
   };
   nlohmann::ordered_json j;
   try {
@@ -179,12 +184,14 @@ RunSchema parse_schema_json(std::string_view text, std::string_view source) {
   try {
     s.kind = parse_run_kind(j.at("kind").get<std::string>());
     for (const auto& c : j.at("columns")) {
-      s.columns.push_back(Column{c.at("name").get<std::string>(), parse_quantity(c.at("quantity").get<std::string>()),
-                                 c.at("owner").get<std::string>(), c.at("component").get<std::string>(),
-                                 c.at("unit").get<std::string>()});
+      s.columns.push_back(Column{
+          c.at("name").get<std::string>(), parse_quantity(c.at("quantity").get<std::string>()),
+          c.at("owner").get<std::string>(), c.at("component").get<std::string>(),
+          c.at("unit").get<std::string>()});
     }
-    for (const auto& [key, list] : {std::pair{"parameters", &s.parameters}, std::pair{"diagnostics", &s.diagnostics},
-                                    std::pair{"metrics", &s.metrics}}) {
+    for (const auto& [key, list] :
+         {std::pair{"parameters", &s.parameters}, std::pair{"diagnostics", &s.diagnostics},
+          std::pair{"metrics", &s.metrics}}) {
       for (const auto& [name, unit] : j.at(key).items()) {
         list->push_back({name, unit.get<std::string>()});
       }

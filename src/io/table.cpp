@@ -33,7 +33,8 @@ Table Table::select(std::span<const std::size_t> indices) const {
   std::vector<std::string> names;
   names.reserve(indices.size());
   for (const std::size_t c : indices) {
-    RIGID_REQUIRE(c < columns_.size(), "column index {} is out of range; the table has {} columns", c, columns_.size());
+    RIGID_REQUIRE(c < columns_.size(), "column index {} is out of range; the table has {} columns",
+                  c, columns_.size());
     names.push_back(columns_[c]);
   }
   Table out(std::move(names));  // refuses a repeated column

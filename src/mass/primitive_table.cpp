@@ -350,7 +350,9 @@ std::array<std::string, 10> point_mass_expressions(std::span<const PointMassText
     std::string sum;
     for (const PointMassText& p : points) {
       std::array<std::string, 3> d;
-      for (std::size_t a = 0; a < 3; ++a) d[a] = paren(paren(p.position[a]) + " - " + paren(out[1 + a]));
+      for (std::size_t a = 0; a < 3; ++a) {
+        d[a] = paren(paren(p.position[a]) + " - " + paren(out[1 + a]));
+      }
       const std::size_t r = kRow[k], c = kCol[k];
       const std::string term = r == c ? fmt::format("{}^2 + {}^2", d[(r + 1) % 3], d[(r + 2) % 3])
                                       : fmt::format("-{}*{}", d[r], d[c]);

@@ -41,7 +41,8 @@ nlohmann::ordered_json read_summary(const fs::path& directory) {
 
 // summary[key] as T, or a refusal naming the key.
 template <class T>
-T field(const nlohmann::ordered_json& j, const char* key, const fs::path& file, T fallback, bool required) {
+T field(const nlohmann::ordered_json& j, const char* key, const fs::path& file, T fallback,
+        bool required) {
   const auto it = j.find(key);
   if (it == j.end() || it->is_null()) {
     if (!required) return fallback;
@@ -98,10 +99,11 @@ io::RunResult read_run(const fs::path& directory) {
   if (const auto it = j.find("schema"); it != j.end()) {
     r.schema = io::parse_schema_json(it->dump(), summary.string());
     if (r.schema.column_names() != r.trajectory.columns()) {
-      throw Error(fmt::format("'{}' and '{}' disagree: the schema names the columns {}, the trajectory has {}; "
-                              "expected the files of one run",
-                              summary.string(), csv.string(), fmt::join(r.schema.column_names(), ", "),
-                              fmt::join(r.trajectory.columns(), ", ")));
+      throw Error(fmt::format(
+          "'{}' and '{}' disagree: the schema names the columns {}, the trajectory has {}; "
+          "expected the files of one run",
+          summary.string(), csv.string(), fmt::join(r.schema.column_names(), ", "),
+          fmt::join(r.trajectory.columns(), ", ")));
     }
   }
   return r;

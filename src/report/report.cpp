@@ -145,15 +145,20 @@ json mesh_json(const mesh::TriangleMesh& m) {
 std::string_view group_of(const io::Column& column) {
   using Q = io::Quantity;
   switch (column.quantity) {
-    case Q::kCoordinate: return "coordinates";
+    case Q::kCoordinate:
+      return "coordinates";
     case Q::kCoordinateRate:
     case Q::kVelocity:
-    case Q::kAngularVelocity: return "velocities";
+    case Q::kAngularVelocity:
+      return "velocities";
     case Q::kMultiplier:
-    case Q::kVelocityMultiplier: return "multipliers";
+    case Q::kVelocityMultiplier:
+      return "multipliers";
     case Q::kConstraintResidual:
-    case Q::kVelocityConstraintResidual: return "residuals";
-    default: return "other";
+    case Q::kVelocityConstraintResidual:
+      return "residuals";
+    default:
+      return "other";
   }
 }
 
@@ -238,9 +243,10 @@ std::string report_json(const scene::Model& model, const io::RunResult& result, 
   auto info = [&](const std::string& name) -> const io::Column& {
     const io::Column* c = schema.find(name);
     if (c == nullptr) {
-      throw Error(fmt::format("the run's column '{}' is not one the scene '{}' makes (its columns: {}); the "
-                              "scene changed since the run: run it again",
-                              name, sc.file.string(), fmt::join(schema.column_names(), ", ")));
+      throw Error(fmt::format(
+          "the run's column '{}' is not one the scene '{}' makes (its columns: {}); the "
+          "scene changed since the run: run it again",
+          name, sc.file.string(), fmt::join(schema.column_names(), ", ")));
     }
     return *c;
   };
@@ -313,8 +319,12 @@ std::string report_json(const scene::Model& model, const io::RunResult& result, 
     static constexpr const char* kXyz[3] = {"x", "y", "z"};
     static constexpr const char* kWxyz[4] = {"w", "x", "y", "z"};
     std::array<std::vector<double>, 7> pose;
-    for (std::size_t k = 0; k < 3; ++k) pose[k] = column(io::body_column(Q::kPosition, n, kXyz[k]).name);
-    for (std::size_t k = 0; k < 4; ++k) pose[3 + k] = column(io::body_column(Q::kOrientation, n, kWxyz[k]).name);
+    for (std::size_t k = 0; k < 3; ++k) {
+      pose[k] = column(io::body_column(Q::kPosition, n, kXyz[k]).name);
+    }
+    for (std::size_t k = 0; k < 4; ++k) {
+      pose[3 + k] = column(io::body_column(Q::kOrientation, n, kWxyz[k]).name);
+    }
     const io::Column* wx = schema.find(Q::kAngularVelocity, n, "x");
     const bool twist = wx != nullptr && has(wx->name);
     std::array<std::vector<double>, 3> w, L;
@@ -353,8 +363,14 @@ std::string report_json(const scene::Model& model, const io::RunResult& result, 
   for (const std::string& c : table.columns()) {
     const io::Column& col = info(c);
     if (col.quantity == Q::kEnergy) energy = &col;
-    if (col.quantity == Q::kTime || col.quantity == Q::kPosition || col.quantity == Q::kOrientation) continue;
-    series.push_back({{"group", group_of(col)}, {"name", c}, {"unit", col.unit}, {"column", c}, {"values", f32(column(c))}});
+    if (col.quantity == Q::kTime || col.quantity == Q::kPosition || col.quantity == Q::kOrientation) {
+      continue;
+    }
+    series.push_back({{"group", group_of(col)},
+                      {"name", c},
+                      {"unit", col.unit},
+                      {"column", c},
+                      {"values", f32(column(c))}});
   }
   if (energy != nullptr) {
     bool absolute = false;
@@ -373,7 +389,8 @@ std::string report_json(const scene::Model& model, const io::RunResult& result, 
     for (const scene::Body& b : sc.bodies) top = top || (b.name == n && b.pivot.has_value());
     const io::Column* Lc = schema.find(Q::kAngularMomentum, n, "x");
     if (!mb.free || top || Lc == nullptr || !has(Lc->name)) continue;
-    const std::vector<double> Lx = column(Lc->name), Ly = column(schema.find(Q::kAngularMomentum, n, "y")->name),
+    const std::vector<double> Lx = column(Lc->name),
+                              Ly = column(schema.find(Q::kAngularMomentum, n, "y")->name),
                               Lz = column(schema.find(Q::kAngularMomentum, n, "z")->name);
     std::vector<double> norm(Lx.size());
     for (std::size_t f = 0; f < norm.size(); ++f) norm[f] = std::sqrt(Lx[f] * Lx[f] + Ly[f] * Ly[f] + Lz[f] * Lz[f]);

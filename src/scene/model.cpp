@@ -61,7 +61,8 @@ using Results = std::map<std::string, double, std::less<>>;
 // is the one an expression sees).
 bool same_inputs(std::string_view text, const std::vector<lagrange::Parameter>& now,
                  const std::vector<lagrange::Parameter>& then) {
-  auto value = [](const std::vector<lagrange::Parameter>& ps, std::string_view name) -> std::optional<double> {
+  auto value = [](const std::vector<lagrange::Parameter>& ps,
+                  std::string_view name) -> std::optional<double> {
     for (auto it = ps.rbegin(); it != ps.rend(); ++it) {
       if (it->name == name) return it->value;
     }
@@ -73,7 +74,10 @@ bool same_inputs(std::string_view text, const std::vector<lagrange::Parameter>& 
     const char c = text[i];
     if (std::isdigit(static_cast<unsigned char>(c)) != 0 || c == '.') {
       // a number, with its exponent (1e-3 is no name)
-      while (i < text.size() && (std::isdigit(static_cast<unsigned char>(text[i])) != 0 || text[i] == '.')) ++i;
+      while (i < text.size() &&
+             (std::isdigit(static_cast<unsigned char>(text[i])) != 0 || text[i] == '.')) {
+        ++i;
+      }
       if (i < text.size() && (text[i] == 'e' || text[i] == 'E')) {
         ++i;
         if (i < text.size() && (text[i] == '+' || text[i] == '-')) ++i;
@@ -102,8 +106,9 @@ bool same_inputs(std::string_view text, const std::vector<lagrange::Parameter>& 
 // value. A prototype (no `like`) records its results for the models built like it.
 class Evaluator {
  public:
-  Evaluator(const std::vector<lagrange::Parameter>& params, const std::vector<lagrange::Parameter>* like_params,
-            const Results* like_results, Results* record)
+  Evaluator(const std::vector<lagrange::Parameter>& params,
+            const std::vector<lagrange::Parameter>* like_params, const Results* like_results,
+            Results* record)
       : params_(params), like_params_(like_params), like_results_(like_results), record_(record) {}
 
   [[nodiscard]] const std::vector<lagrange::Parameter>& params() const { return params_; }
@@ -112,14 +117,17 @@ class Evaluator {
     if (e.number) return *e.number;
     if (like_results_ != nullptr) {
       const auto it = like_results_->find(e.text);
-      if (it != like_results_->end() && same_inputs(e.text, params_, *like_params_)) return it->second;
+      if (it != like_results_->end() && same_inputs(e.text, params_, *like_params_)) {
+        return it->second;
+      }
     }
     const double v = lagrange::evaluate_constant(to_lagrange(e), params_, what);
     if (record_ != nullptr) record_->emplace(e.text, v);
     return v;
   }
 
-  [[nodiscard]] Eigen::Vector3d vector(const std::array<Expression, 3>& e, const std::string& what) const {
+  [[nodiscard]] Eigen::Vector3d vector(const std::array<Expression, 3>& e,
+                                       const std::string& what) const {
     return {value(e[0], what), value(e[1], what), value(e[2], what)};
   }
 
@@ -149,8 +157,10 @@ struct BodyMass {
 // stay 0. The names are added to `derived` with their values, and their SI units to `units`.
 lagrange::BodyMass named_constants(const std::string& body, const MassProperties& mp,
                                    const std::vector<lagrange::Parameter>& taken,
-                                   std::vector<lagrange::Parameter>& derived, std::vector<std::string>& units) {
-  auto name = [&](const std::string& suffix, double value, const char* unit) -> lagrange::Expression {
+                                   std::vector<lagrange::Parameter>& derived,
+                                   std::vector<std::string>& units) {
+  auto name = [&](const std::string& suffix, double value,
+                  const char* unit) -> lagrange::Expression {
     if (value == 0.0) return lagrange::Expression("0");
     std::string n = body + "_" + suffix;
     auto used = [&](const std::string& x) {
@@ -165,7 +175,9 @@ lagrange::BodyMass named_constants(const std::string& body, const MassProperties
   lagrange::BodyMass b;
   b.mass = name("mass", mp.mass(), "kg");
   static constexpr const char* kCom[3] = {"com_x", "com_y", "com_z"};
-  for (std::size_t k = 0; k < 3; ++k) b.com[k] = name(kCom[k], mp.com()[static_cast<Eigen::Index>(k)], "m");
+  for (std::size_t k = 0; k < 3; ++k) {
+    b.com[k] = name(kCom[k], mp.com()[static_cast<Eigen::Index>(k)], "m");
+  }
   const Eigen::Matrix3d& I = mp.inertia_com();
   for (std::size_t k = 0; k < 6; ++k) {
     const auto& [element, row, col] = lagrange::BodyMass::kInertiaElements[k];
@@ -188,8 +200,9 @@ lagrange::BodyMass body_mass_of(const std::array<std::string, 10>& text) {
 // reads each mesh file once and only measures it again for its run's mass or density.
 using SharedMesh = std::shared_ptr<const mesh::PreparedMesh>;
 
-BodyMass mass_of(const Body& b, const Evaluator& eval, std::vector<lagrange::Parameter>& derived, std::vector<std::string>& derived_units,
-                 std::vector<std::string>& warnings, SharedMesh& prepared) {
+BodyMass mass_of(const Body& b, const Evaluator& eval, std::vector<lagrange::Parameter>& derived,
+                 std::vector<std::string>& derived_units, std::vector<std::string>& warnings,
+                 SharedMesh& prepared) {
   const MassSpec& m = b.mass;
   const std::vector<lagrange::Parameter>& params = eval.params();
   const std::string ctx = fmt::format("body '{}'", b.name);
@@ -197,8 +210,12 @@ BodyMass mass_of(const Body& b, const Evaluator& eval, std::vector<lagrange::Par
     case MassSpec::Kind::kPrimitive: {
       const mass::PrimitiveEntry& entry = mass::find_primitive(m.primitive);
       mass::PrimitiveArguments args;
-      for (const auto& [key, e] : m.dimensions) args.sizes.emplace_back(key, eval.value(e, ctx + " " + key));
-      for (const auto& [key, e] : m.vertices) args.points.emplace_back(key, eval.vector(e, ctx + " " + key));
+      for (const auto& [key, e] : m.dimensions) {
+        args.sizes.emplace_back(key, eval.value(e, ctx + " " + key));
+      }
+      for (const auto& [key, e] : m.vertices) {
+        args.points.emplace_back(key, eval.vector(e, ctx + " " + key));
+      }
       const bool by_mass = m.mass.has_value();
       const Expression& amount = by_mass ? *m.mass : *m.density;
       const double value = eval.value(amount, ctx + (by_mass ? " mass" : " density"));
@@ -210,7 +227,10 @@ BodyMass mass_of(const Body& b, const Evaluator& eval, std::vector<lagrange::Par
           if (entry.size_index(key) == entry.size_index(size.name)) evaluated.emplace_back(size.name, v);
         }
       }
-      if (entry.formulas.mass.empty()) return {numeric, named_constants(b.name, numeric, params, derived, derived_units), evaluated};
+      if (entry.formulas.mass.empty()) {
+        return {numeric, named_constants(b.name, numeric, params, derived, derived_units),
+                evaluated};
+      }
       // the closed forms with the sizes as the file wrote them, in the entry's order
       std::vector<std::string> sizes(entry.sizes.size());
       for (const auto& [key, e] : m.dimensions) sizes[*entry.size_index(key)] = e.text;
@@ -255,13 +275,15 @@ BodyMass mass_of(const Body& b, const Evaluator& eval, std::vector<lagrange::Par
       Eigen::Matrix3Xd points(3, static_cast<Eigen::Index>(m.points.size()));
       for (std::size_t i = 0; i < m.points.size(); ++i) {
         masses.push_back(eval.value(m.points[i].mass, ctx + " point mass"));
-        points.col(static_cast<Eigen::Index>(i)) = eval.vector(m.points[i].position, ctx + " point position");
+        points.col(static_cast<Eigen::Index>(i)) =
+            eval.vector(m.points[i].position, ctx + " point position");
       }
       MassProperties numeric = at_location(m.where, ctx, [&] { return mass::point_masses(masses, points); });
       // the same sums as expressions of the parameters (rigid::mass::point_mass_expressions)
       std::vector<mass::PointMassText> texts;
       for (const PointMass& pm : m.points) {
-        texts.push_back({pm.mass.text, {pm.position[0].text, pm.position[1].text, pm.position[2].text}});
+        texts.push_back(
+            {pm.mass.text, {pm.position[0].text, pm.position[1].text, pm.position[2].text}});
       }
       const std::array<std::string, 10> text = mass::point_mass_expressions(texts);
       const lagrange::BodyMass symbolic = body_mass_of(text);
@@ -396,9 +418,13 @@ struct Model::Impl {
     };
     auto pose = [&](const std::string& body) {
       vector(Q::kPosition, body);
-      for (const char* c : {"w", "x", "y", "z"}) s.columns.push_back(io::body_column(Q::kOrientation, body, c));
+      for (const char* c : {"w", "x", "y", "z"}) {
+        s.columns.push_back(io::body_column(Q::kOrientation, body, c));
+      }
     };
-    auto diagnostic = [&](std::string name, Q q) { s.diagnostics.push_back({std::move(name), std::string(io::unit_of(q))}); };
+    auto diagnostic = [&](std::string name, Q q) {
+      s.diagnostics.push_back({std::move(name), std::string(io::unit_of(q))});
+    };
     scalar(Q::kTime, "t", "");
     if (kind == SceneKind::kCoordinates) {
       const lagrange::System& sys = *system;
@@ -408,13 +434,19 @@ struct Model::Impl {
       scalar(Q::kEnergy, "energy", "");
       scalar(Q::kJacobi, "jacobi", "");
       for (const auto& c : sys.constraint_names()) scalar(Q::kMultiplier, "lambda_" + c, c);
-      if (!sys.constraint_names().empty()) scalar(Q::kConstraintResidual, "constraint_residual", "");
-      for (const auto& c : sys.velocity_constraint_names()) scalar(Q::kVelocityMultiplier, "mu_" + c, c);
+      if (!sys.constraint_names().empty()) {
+        scalar(Q::kConstraintResidual, "constraint_residual", "");
+      }
+      for (const auto& c : sys.velocity_constraint_names()) {
+        scalar(Q::kVelocityMultiplier, "mu_" + c, c);
+      }
       if (sys.num_velocity_constraints() > 0) {
         scalar(Q::kVelocityConstraintResidual, "velocity_constraint_residual", "");
       }
       for (const auto& c : sys.cyclic_coordinates()) scalar(Q::kConjugateMomentum, "p_" + c, c);
-      for (const char* d : {"energy_initial", "energy_final", "energy_max_change"}) diagnostic(d, Q::kEnergy);
+      for (const char* d : {"energy_initial", "energy_final", "energy_max_change"}) {
+        diagnostic(d, Q::kEnergy);
+      }
       diagnostic("jacobi_max_change", Q::kJacobi);
       if (!sys.constraint_names().empty()) {
         diagnostic("constraint_residual_max", Q::kConstraintResidual);
@@ -423,7 +455,9 @@ struct Model::Impl {
       if (sys.num_velocity_constraints() > 0) {
         diagnostic("velocity_constraint_residual_max", Q::kVelocityConstraintResidual);
       }
-      for (const auto& c : sys.cyclic_coordinates()) diagnostic("p_" + c + "_max_change", Q::kConjugateMomentum);
+      for (const auto& c : sys.cyclic_coordinates()) {
+        diagnostic("p_" + c + "_max_change", Q::kConjugateMomentum);
+      }
     } else {
       for (const FreeBody& f : free) {
         pose(f.name);
@@ -432,13 +466,18 @@ struct Model::Impl {
         vector(Q::kAngularMomentum, f.name);
       }
       scalar(Q::kEnergy, "energy", "");
-      for (const char* d : {"energy_initial", "energy_final", "energy_max_change"}) diagnostic(d, Q::kEnergy);
+      for (const char* d : {"energy_initial", "energy_final", "energy_max_change"}) {
+        diagnostic(d, Q::kEnergy);
+      }
       for (const FreeBody& f : free) {
-        diagnostic(f.name + (f.top ? ".L_vertical_max_change" : ".L_norm_max_change"), Q::kAngularMomentum);
+        diagnostic(f.name + (f.top ? ".L_vertical_max_change" : ".L_norm_max_change"),
+                   Q::kAngularMomentum);
         s.diagnostics.push_back({f.name + ".orthonormality_max", ""});
       }
     }
-    for (std::size_t k = 0; k < params.size(); ++k) s.parameters.push_back({params[k].name, param_units[k]});
+    for (std::size_t k = 0; k < params.size(); ++k) {
+      s.parameters.push_back({params[k].name, param_units[k]});
+    }
     return s;
   }
 
@@ -463,7 +502,8 @@ struct Model::Impl {
       if (!any) {
         std::string msg = fmt::format("[output] quantities: '{}' matches no column", p);
         if (auto g = did_you_mean(p, cols)) msg += fmt::format("; did you mean '{}'?", *g);
-        detail::throw_error_at(out.quantities_where, msg + fmt::format(" (columns: {})", fmt::join(cols, ", ")));
+        detail::throw_error_at(out.quantities_where,
+                               msg + fmt::format(" (columns: {})", fmt::join(cols, ", ")));
       }
     }
     std::vector<std::string> names;
@@ -683,10 +723,11 @@ struct Model::Impl {
       }
       metric_columns.push_back(index);
       using K = MetricSpec::Kind;
-      const bool time = m.kind == K::kCrossing || m.kind == K::kPeriod || (m.kind == K::kExtremum && !m.report_value);
+      const bool time = m.kind == K::kCrossing || m.kind == K::kPeriod ||
+                        (m.kind == K::kExtremum && !m.report_value);
       full_schema.metrics.push_back({m.name, m.unit_given ? m.unit
-                                             : time       ? std::string(io::unit_of(io::Quantity::kTime))
-                                                          : full_schema.columns[index].unit});
+                                             : time ? std::string(io::unit_of(io::Quantity::kTime))
+                                                    : full_schema.columns[index].unit});
     }
   }
 
@@ -694,7 +735,10 @@ struct Model::Impl {
   // angular momentum's.
   [[nodiscard]] std::string drift_unit(const std::string& drift) const {
     for (const io::Column& c : full_schema.columns) {
-      if (c.name == drift || (c.quantity == io::Quantity::kAngularMomentum && c.owner + ".L" == drift)) return c.unit;
+      if (c.name == drift ||
+          (c.quantity == io::Quantity::kAngularMomentum && c.owner + ".L" == drift)) {
+        return c.unit;
+      }
     }
     return "";
   }
@@ -798,7 +842,8 @@ Model::Model(const Scene& scene, const Model* like) : impl_(std::make_unique<Imp
   } else {
     m.build_free_bodies(masses);
   }
-  m.results = prototype != nullptr ? prototype->results : std::shared_ptr<const Results>(std::move(record));
+  m.results =
+      prototype != nullptr ? prototype->results : std::shared_ptr<const Results>(std::move(record));
   m.full_schema = m.make_schema();
   m.check_metrics();
   m.select_columns();
@@ -965,9 +1010,11 @@ RunResult Model::run(const RunOptions& options) const {
   RIGID_REQUIRE(r.trajectory.columns().size() == full.columns.size() &&
                     r.summary.diagnostics.size() == full.diagnostics.size() &&
                     r.summary.metrics.size() == full.metrics.size(),
-                "the run's outputs ({} columns, {} diagnostics, {} metrics) differ from its schema's ({}, {}, {})",
-                r.trajectory.columns().size(), r.summary.diagnostics.size(), r.summary.metrics.size(),
-                full.columns.size(), full.diagnostics.size(), full.metrics.size());
+                "the run's outputs ({} columns, {} diagnostics, {} metrics) differ from its "
+                "schema's ({}, {}, {})",
+                r.trajectory.columns().size(), r.summary.diagnostics.size(),
+                r.summary.metrics.size(), full.columns.size(), full.diagnostics.size(),
+                full.metrics.size());
   if (impl_->kept.size() != full.columns.size()) r.trajectory = r.trajectory.select(impl_->kept);
   r.schema = impl_->schema;
   return r;

@@ -16,18 +16,27 @@ RunSchema sample_schema() {
   RunSchema s;
   s.kind = RunKind::kFreeBodies;
   s.columns.push_back({"t", Quantity::kTime, "", "", "s"});
-  for (const char* c : {"x", "y", "z"}) s.columns.push_back(body_column(Quantity::kPosition, "b", c));
-  for (const char* c : {"w", "x", "y", "z"}) s.columns.push_back(body_column(Quantity::kOrientation, "b", c));
-  for (const char* c : {"x", "y", "z"}) s.columns.push_back(body_column(Quantity::kAngularMomentum, "b", c));
+  for (const char* c : {"x", "y", "z"}) {
+    s.columns.push_back(body_column(Quantity::kPosition, "b", c));
+  }
+  for (const char* c : {"w", "x", "y", "z"}) {
+    s.columns.push_back(body_column(Quantity::kOrientation, "b", c));
+  }
+  for (const char* c : {"x", "y", "z"}) {
+    s.columns.push_back(body_column(Quantity::kAngularMomentum, "b", c));
+  }
   s.columns.push_back({"energy", Quantity::kEnergy, "", "", "J"});
-  s.parameters = {{"zeta", ""}, {"b_mass", "kg"}, {"a", ""}};  // not alphabetical: order must survive
+  s.parameters = {
+      {"zeta", ""}, {"b_mass", "kg"}, {"a", ""}};  // not alphabetical: order must survive
   s.diagnostics = {{"energy_initial", "J"}, {"b.orthonormality_max", ""}};
   s.metrics = {{"flip", "s"}};
   return s;
 }
 
 TEST(RunSchema, KindsAndQuantitiesReadBackFromTheirNames) {
-  for (const RunKind k : {RunKind::kCoordinates, RunKind::kFreeBodies}) EXPECT_EQ(parse_run_kind(to_string(k)), k);
+  for (const RunKind k : {RunKind::kCoordinates, RunKind::kFreeBodies}) {
+    EXPECT_EQ(parse_run_kind(to_string(k)), k);
+  }
   EXPECT_EQ(to_string(RunKind::kFreeBodies), "free_bodies");
   for (int q = 0; q <= static_cast<int>(Quantity::kConjugateMomentum); ++q) {
     EXPECT_EQ(parse_quantity(to_string(static_cast<Quantity>(q))), static_cast<Quantity>(q));
@@ -76,14 +85,18 @@ TEST(RunSchema, JsonRoundTripIsExactAndKeepsTheOrderOfEveryList) {
 }
 
 TEST(RunSchema, MalformedJsonIsRefusedNamingTheSource) {
-  EXPECT_RIGID_ERROR((void)parse_schema_json("{", "out/summary.json"), "out/summary.json: the run's schema is not JSON");
-  EXPECT_RIGID_ERROR((void)parse_schema_json(R"({"kind": "coordinates"})", "s.json"), "lacks a field");
-  EXPECT_RIGID_ERROR((void)parse_schema_json(
-                         R"({"kind": "coordinates", "columns": [{"name": "t", "quantity": "tme", "owner": "",
+  EXPECT_RIGID_ERROR((void)parse_schema_json("{", "out/summary.json"),
+                     "out/summary.json: the run's schema is not JSON");
+  EXPECT_RIGID_ERROR((void)parse_schema_json(R"({"kind": "coordinates"})", "s.json"),
+                     "lacks a field");
+  EXPECT_RIGID_ERROR(
+      (void)parse_schema_json(
+          R"({"kind": "coordinates", "columns": [{"name": "t", "quantity": "tme", "owner": "",
                              "component": "", "unit": "s"}], "parameters": {}, "diagnostics": {}, "metrics": {}})",
-                         "s.json"),
-                     "unknown quantity 'tme'");
-  EXPECT_RIGID_ERROR((void)parse_schema_json(R"({"kind": 3, "columns": []})", "s.json"), "wrong type");
+          "s.json"),
+      "unknown quantity 'tme'");
+  EXPECT_RIGID_ERROR((void)parse_schema_json(R"({"kind": 3, "columns": []})", "s.json"),
+                     "wrong type");
 }
 
 // summary.json carries the schema of a run that has one, and refuses one that is not the
@@ -93,11 +106,13 @@ TEST(RunSchema, SummaryJsonCarriesTheSchemaOfItsTrajectory) {
   r.trajectory = Table({"t", "energy"});
   r.trajectory.add_row(std::vector<double>{0.0, 1.0});
   EXPECT_FALSE(nlohmann::json::parse(summary_json(r)).contains("schema"));
-  r.schema.columns = {{"t", Quantity::kTime, "", "", "s"}, {"energy", Quantity::kEnergy, "", "", "J"}};
+  r.schema.columns = {{"t", Quantity::kTime, "", "", "s"},
+                      {"energy", Quantity::kEnergy, "", "", "J"}};
   const auto j = nlohmann::json::parse(summary_json(r));
   EXPECT_EQ(parse_schema_json(j.at("schema").dump(), "summary.json"), r.schema);
   r.schema.columns.pop_back();
-  EXPECT_RIGID_ERROR((void)summary_json(r), "the run's schema names the columns t, its trajectory has t, energy");
+  EXPECT_RIGID_ERROR((void)summary_json(r),
+                     "the run's schema names the columns t, its trajectory has t, energy");
 }
 
 TEST(Table, SelectCopiesColumnsInTheGivenOrder) {

@@ -24,19 +24,19 @@ enum class RunKind { kCoordinates, kFreeBodies };
 
 /// The physical quantity of a trajectory column.
 enum class Quantity {
-  kTime,                        ///< t (s)
-  kCoordinate,                  ///< a generalized coordinate q (m or rad: the scene does not say)
-  kCoordinateRate,              ///< its rate q̇
-  kPosition,                    ///< <body>.x .y .z: origin of B (coordinates) or COM (free bodies) in W (m)
-  kOrientation,                 ///< <body>.qw .qx .qy .qz: R_WB as a unit quaternion
-  kVelocity,                    ///< <body>.vx .vy .vz: COM velocity in W (m/s)
-  kAngularVelocity,             ///< <body>.wx .wy .wz: ω in B (rad/s)
-  kAngularMomentum,             ///< <body>.Lx .Ly .Lz: L in W about the COM or the pivot (kg·m²/s)
-  kEnergy,                      ///< total energy (J)
-  kJacobi,                      ///< Jacobi integral (J)
-  kMultiplier,                  ///< lambda_<constraint>: a generalized constraint force
-  kConstraintResidual,          ///< largest |g(q)| of the holonomic constraints
-  kVelocityMultiplier,          ///< mu_<constraint> of a velocity constraint
+  kTime,                ///< t (s)
+  kCoordinate,          ///< a generalized coordinate q (m or rad: the scene does not say)
+  kCoordinateRate,      ///< its rate q̇
+  kPosition,            ///< <body>.x .y .z: origin of B (coordinates) or COM (free bodies) in W (m)
+  kOrientation,         ///< <body>.qw .qx .qy .qz: R_WB as a unit quaternion
+  kVelocity,            ///< <body>.vx .vy .vz: COM velocity in W (m/s)
+  kAngularVelocity,     ///< <body>.wx .wy .wz: ω in B (rad/s)
+  kAngularMomentum,     ///< <body>.Lx .Ly .Lz: L in W about the COM or the pivot (kg·m²/s)
+  kEnergy,              ///< total energy (J)
+  kJacobi,              ///< Jacobi integral (J)
+  kMultiplier,          ///< lambda_<constraint>: a generalized constraint force
+  kConstraintResidual,  ///< largest |g(q)| of the holonomic constraints
+  kVelocityMultiplier,  ///< mu_<constraint> of a velocity constraint
   kVelocityConstraintResidual,  ///< largest |A(q) q̇ + b| of the velocity constraints
   kConjugateMomentum,           ///< p_<q> = ∂L/∂q̇ of a cyclic coordinate
 };
@@ -91,7 +91,8 @@ struct RunSchema {
   /// The column called `name`, or nullptr.
   [[nodiscard]] const Column* find(std::string_view name) const;
   /// The column of `quantity`, `owner` and `component`, or nullptr.
-  [[nodiscard]] const Column* find(Quantity quantity, std::string_view owner, std::string_view component) const;
+  [[nodiscard]] const Column* find(Quantity quantity, std::string_view owner,
+                                   std::string_view component) const;
   /// This schema with only the columns `names`, in that order.
   /// @throws rigid::Error naming a column the schema does not have.
   [[nodiscard]] RunSchema select(std::span<const std::string> names) const;
@@ -99,7 +100,8 @@ struct RunSchema {
 
 /// A column of `quantity` for `owner`.`component` ("<owner>.<component>" for a body's vector,
 /// with the quaternion's components w x y z named qw qx qy qz), unit from unit_of.
-[[nodiscard]] Column body_column(Quantity quantity, const std::string& owner, std::string_view component);
+[[nodiscard]] Column body_column(Quantity quantity, const std::string& owner,
+                                 std::string_view component);
 
 /// The schema as a JSON object: {"kind", "columns": [{"name", "quantity", "owner",
 /// "component", "unit"}], "parameters" / "diagnostics" / "metrics": {name: unit}}.

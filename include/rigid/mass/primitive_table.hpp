@@ -118,6 +118,7 @@ struct PointMassText {
 /// Σ mᵢ (|pᵢ − c|² 1 − (pᵢ − c)(pᵢ − c)ᵀ), every operand in parentheses and nothing
 /// simplified (the symbolic engine does that: one point at the origin gives m and zeros).
 /// @throws rigid::Error if `points` is empty.
-[[nodiscard]] std::array<std::string, 10> point_mass_expressions(std::span<const PointMassText> points);
+[[nodiscard]] std::array<std::string, 10> point_mass_expressions(
+    std::span<const PointMassText> points);
 
 }  // namespace rigid::mass
