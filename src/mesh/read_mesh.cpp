@@ -695,19 +695,22 @@ TriangleMesh read_off(const std::string& path, double scale) {
   return mesh;
 }
 
-TriangleMesh read_ply(const std::string& path, const std::string& data, double scale);
+namespace {
 
-TriangleMesh read_ply(const std::string& path, double scale) {
-  return read_ply(path, slurp(path), scale);
-}
-
-TriangleMesh read_ply(const std::string& path, const std::string& data, double scale) {
+// The mesh of a PLY file's bytes `data` (read from `path`, which the messages name).
+TriangleMesh read_ply_data(const std::string& path, const std::string& data, double scale) {
   const PlyHeader header = read_ply_header(path, data);
   check_ply_counts(path, data, header, header.format == "ascii");
   PlyDataReader reader(path, data, header, scale);
   for (const auto& e : header.elements) reader.read_element(e);
   if (reader.mesh().triangles.empty()) fail_line(path, header.line, "the PLY file has no faces");
   return std::move(reader.mesh());
+}
+
+}  // namespace
+
+TriangleMesh read_ply(const std::string& path, double scale) {
+  return read_ply_data(path, slurp(path), scale);
 }
 
 namespace detail {
