@@ -276,25 +276,27 @@ void write_cube_stl(const std::filesystem::path& file) {
   }
 }
 
-// A mesh body: a unit cube written as STL, whose inertia the mesh module computes, against
-// the box primitive.
-TEST(Model, MeshBodyFromAFileNextToTheScene) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "rigid_model_test";
-  std::filesystem::create_directories(dir);
-  write_cube_stl(dir / "cube.stl");
-  const Model m = model_of(R"toml(
+// A 1 cm cube (cube.stl, written beside the scene) of density `rho` sliding along x.
+constexpr const char* kCubeOnX = R"toml(
 [[coordinates]]
 name = "x"
 [[bodies]]
 name = "cube"
 mesh = "cube.stl"
 units = "cm"
-density = 1000
+density = "rho"
 position = ["x", 0, 0]
 [simulation]
 t_end = 1
-)toml",
-                           dir / "scene.toml");
+)toml";
+
+// A mesh body: a unit cube written as STL, whose inertia the mesh module computes, against
+// the box primitive.
+TEST(Model, MeshBodyFromAFileNextToTheScene) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "rigid_model_test";
+  std::filesystem::create_directories(dir);
+  write_cube_stl(dir / "cube.stl");
+  const Model m = model_of(std::string("[parameters]\nrho = 1000\n") + kCubeOnX, dir / "scene.toml");
   const MassProperties box = mass::solid_box_with_density(1000, 0.01, 0.01, 0.01);
   EXPECT_NEAR(m.bodies()[0].mass.mass(), box.mass(), 1e-15);
   EXPECT_TRUE(m.bodies()[0].mass.com().isApprox(Eigen::Vector3d::Constant(0.005), 1e-13));
@@ -563,22 +565,8 @@ TEST(ModelSchema, UnitsOfMetricsDiagnosticsAndDerivedConstants) {
   const std::filesystem::path dir = std::filesystem::temp_directory_path() / "rigid_model_schema_test";
   std::filesystem::create_directories(dir);
   write_cube_stl(dir / "cube.stl");
-  const Model cube = model_of(R"toml(
-[parameters]
-rho = 1000
-[[coordinates]]
-name = "x"
-[[bodies]]
-name = "cube"
-mesh = "cube.stl"
-units = "cm"
-density = "rho"
-position = ["x", 0, 0]
-[simulation]
-t_end = 1
-[output]
-quantities = ["x*", "energy"]
-)toml",
+  const Model cube = model_of(std::string("[parameters]\nrho = 1000\n") + kCubeOnX +
+                                  "[output]\nquantities = [\"x*\", \"energy\"]\n",
                               dir / "scene.toml");
   std::filesystem::remove_all(dir);
   // the scene's parameter states no unit; a cube's products of inertia are 0 and get no name
