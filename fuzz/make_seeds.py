@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Writes the seed corpus of every fuzz target into OUT/<target>/: small well-formed inputs
 generated here (a tetrahedron and a cube in every mesh format and encoding, inertials in the
-three XML formats, expressions), the example scenes, and the smallest meshes of the CGAL demo
+three XML formats, expressions, run schemas), the example scenes, and the smallest meshes of the CGAL demo
 data set when it is installed (libcgal-demo). Nothing large is committed: the seeds are made
 when `make fuzz` runs.  Usage: fuzz/make_seeds.py OUT"""
 import os
@@ -165,6 +165,25 @@ def expressions(out):
         write(out, "expression", name + ".txt", text)
 
 
+def run_schemas(out):
+    column = '{{"name": "{0}", "quantity": "{1}", "owner": "{2}", "component": "{3}", "unit": "{4}"}}'
+    racket = ('{"kind": "free_bodies", "columns": [' + column.format("t", "time", "", "", "s") + ", " +
+              column.format("racket.qw", "orientation", "racket", "w", "") + ", " +
+              column.format("racket.wy", "angular_velocity", "racket", "y", "rad/s") + "], " +
+              '"parameters": {}, "diagnostics": {"energy_initial": "J", "racket.orthonormality_max": ""}, '
+              '"metrics": {"first_flip": "s"}}')
+    pendulum = ('{"kind": "coordinates", "columns": [' + column.format("t", "time", "", "", "s") + ", " +
+                column.format("theta", "coordinate", "theta", "", "") + ", " +
+                column.format("lambda_rope", "multiplier", "rope", "", "") + "], " +
+                '"parameters": {"m": "", "bob_mass": "kg", "bob_ixx": "kg·m²"}, '
+                '"diagnostics": {"jacobi_max_change": "J"}, "metrics": {}}')
+    seeds = {"racket": racket, "pendulum": pendulum,
+             "unknown_quantity": pendulum.replace('"multiplier"', '"force"'),
+             "missing_field": '{"kind": "coordinates", "columns": []}'}
+    for name, text in seeds.items():
+        write(out, "run_schema", name + ".json", text)
+
+
 def scenes(out):
     ex = os.path.join(ROOT, "examples")
     for name in sorted(os.listdir(ex)):
@@ -181,6 +200,7 @@ def main():
     inertials(out)
     inertial_fixes(out)
     expressions(out)
+    run_schemas(out)
     scenes(out)
     for target in sorted(os.listdir(out)):
         print(f"seeds: {target}: {len(os.listdir(os.path.join(out, target)))} files")
