@@ -1,6 +1,7 @@
 #include "detail/parser.hpp"
 #include "detail/symbolic.hpp"
 #include "detail/symbolic_lock.hpp"
+#include "rigid/lagrange/expression_names.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -393,6 +394,35 @@ std::optional<double> value_of_name(std::string_view text, const std::vector<Par
 }
 
 }  // namespace
+
+std::vector<std::string> names_in(std::string_view text) {
+  auto digit = [](char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; };
+  auto word = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_'; };
+  std::vector<std::string> out;
+  std::size_t i = 0;
+  while (i < text.size()) {
+    const char c = text[i];
+    if (digit(c) || c == '.') {
+      // a number as Parser::number reads it: digits [. digits] [e|E [+-] digits]
+      while (i < text.size() && (digit(text[i]) || text[i] == '.')) ++i;
+      if (i < text.size() && (text[i] == 'e' || text[i] == 'E')) {
+        std::size_t p = i + 1;
+        if (p < text.size() && (text[p] == '+' || text[p] == '-')) ++p;
+        if (p < text.size() && digit(text[p])) {
+          while (p < text.size() && digit(text[p])) ++p;
+          i = p;
+        }
+      }
+    } else if (std::isalpha(static_cast<unsigned char>(c)) != 0 || c == '_') {
+      const std::size_t start = i;
+      while (i < text.size() && word(text[i])) ++i;
+      out.emplace_back(text.substr(start, i - start));
+    } else {
+      ++i;
+    }
+  }
+  return out;
+}
 
 double evaluate_constant(const Expression& expression, const std::vector<Parameter>& parameters,
                          std::string_view context) {

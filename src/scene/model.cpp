@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <bit>
-#include <cctype>
 #include <chrono>
 #include <cstdint>
 #include <cmath>
@@ -23,6 +22,7 @@
 #include "rigid/common/error.hpp"
 #include "rigid/common/wording.hpp"
 #include "rigid/integrate/integrator.hpp"
+#include "rigid/lagrange/expression_names.hpp"
 #include "rigid/mass/primitive_table.hpp"
 #include "rigid/mass/primitives.hpp"
 #include "rigid/mesh/mass_from_file.hpp"
@@ -56,9 +56,9 @@ auto at_location(const SourceLocation& where, const std::string& context, F&& f)
 // The results of a prototype model's expressions that are not plain numbers, by text.
 using Results = std::map<std::string, double, std::less<>>;
 
-// Whether every parameter `text` names (its identifiers; numbers and function names are
-// skipped) has bit for bit the same value in `now` as in `then` (the last parameter of a name
-// is the one an expression sees).
+// Whether every parameter `text` names (rigid::lagrange::names_in; function names are not
+// parameters) has bit for bit the same value in `now` as in `then` (the last parameter of a
+// name is the one an expression sees).
 bool same_inputs(std::string_view text, const std::vector<lagrange::Parameter>& now,
                  const std::vector<lagrange::Parameter>& then) {
   auto value = [](const std::vector<lagrange::Parameter>& ps,
@@ -68,30 +68,7 @@ bool same_inputs(std::string_view text, const std::vector<lagrange::Parameter>& 
     }
     return std::nullopt;
   };
-  auto word = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_'; };
-  std::size_t i = 0;
-  while (i < text.size()) {
-    const char c = text[i];
-    if (std::isdigit(static_cast<unsigned char>(c)) != 0 || c == '.') {
-      // a number, with its exponent (1e-3 is no name)
-      while (i < text.size() &&
-             (std::isdigit(static_cast<unsigned char>(text[i])) != 0 || text[i] == '.')) {
-        ++i;
-      }
-      if (i < text.size() && (text[i] == 'e' || text[i] == 'E')) {
-        ++i;
-        if (i < text.size() && (text[i] == '+' || text[i] == '-')) ++i;
-        while (i < text.size() && std::isdigit(static_cast<unsigned char>(text[i])) != 0) ++i;
-      }
-      continue;
-    }
-    if (!word(c)) {
-      ++i;
-      continue;
-    }
-    const std::size_t start = i;
-    while (i < text.size() && word(text[i])) ++i;
-    const std::string_view name = text.substr(start, i - start);
+  for (const std::string& name : lagrange::names_in(text)) {
     const std::optional<double> a = value(now, name), b = value(then, name);
     if (a.has_value() != b.has_value()) return false;
     if (a && std::bit_cast<std::uint64_t>(*a) != std::bit_cast<std::uint64_t>(*b)) return false;

@@ -11,6 +11,7 @@
 
 #include "support/tolerance.hpp"
 
+#include "rigid/lagrange/expression_names.hpp"
 #include "rigid/lagrange/symbolic_core.hpp"
 #include "rigid/lagrange/system.hpp"
 #include "support/expect_error.hpp"
@@ -144,6 +145,26 @@ TEST(EvaluateConstant, NamesAreReadWithoutTheSymbolicCoreAndExactlyAsParsed) {
   EXPECT_EQ(error_of("x", {{"x", 1e-310}}), error_of("(x)", {{"x", 1e-310}}));  // a subnormal alike
   EXPECT_NE(error_of("y", {{"x", 1.0}}).find("y"), std::string::npos);
   EXPECT_NE(error_of("x", {{"x", INFINITY}}).find("parameter 'x' = inf overflows"), std::string::npos);
+}
+
+// The names of an expression as the parser reads them: numbers (with exponents, a leading or
+// trailing point) are none of them, `e` inside a number is no name, functions and pi are names.
+// Checked against the parser itself: every name of a text it accepts with parameters a, b_2, c
+// and nothing else is one of those or a function, and a text naming another is refused.
+TEST(NamesIn, AreTheNamesTheParserReads) {
+  EXPECT_EQ(names_in("a*sin(b_2) + 1e-3*c - 2.5E+4 + .5/a + 3.*pi"),
+            (std::vector<std::string>{"a", "sin", "b_2", "c", "a", "pi"}));
+  EXPECT_EQ(names_in("2e5 + 1E3 + 7"), std::vector<std::string>{});
+  EXPECT_EQ(names_in("_x1^2"), std::vector<std::string>{"_x1"});
+  const std::vector<Parameter> params{{"a", 1.5}, {"b_2", -0.25}, {"c", 2.0}};
+  for (const char* text : {"a*sin(b_2) + 1e-3*c - 2.5E+4", "(a + c)^2 / 3e+1", "-b_2 * exp(a*1E-2)"}) {
+    (void)evaluate_constant(Expression(text), params, "names");  // the parser accepts it
+    for (const std::string& n : names_in(text)) {
+      EXPECT_TRUE(n == "a" || n == "b_2" || n == "c" || n == "sin" || n == "exp") << text << ": " << n;
+    }
+  }
+  EXPECT_EQ(names_in("a*d"), (std::vector<std::string>{"a", "d"}));
+  EXPECT_RIGID_ERROR((void)evaluate_constant(Expression("a*d"), params, "names"), "undefined symbol 'd'");
 }
 
 }  // namespace
