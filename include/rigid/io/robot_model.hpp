@@ -1,0 +1,109 @@
+#pragma once
+
+/// Kinematic trees of robot model files (URDF, MJCF): the links, where each sits on its parent,
+/// the joints that move it, and its inertial, as the file states them. docs/robots.md has the
+/// conventions; rigid::robot turns a tree into its equations of motion.
+///
+/// Conventions (MuJoCo's, so that a model reads alike from URDF and MJCF):
+///  - A link's frame L sits on its parent's frame (or the world's) at `position`, rotated by
+///    `rotation` (columns: L's axes in the parent's frame), when every joint of the link is at
+///    its reference value `ref`.
+///  - A link's joints act in order, each in the frame left by the ones before it: a hinge turns
+///    the link by (q − ref) about `axis` through `anchor` (right hand), a slide moves it by
+///    (q − ref) along `axis`. A link without joints is welded to its parent.
+///  - URDF: a joint's origin is the child link's frame; its axis is in that frame and passes
+///    through its origin (anchor 0, ref 0). revolute and continuous are hinges, prismatic a
+///    slide, fixed welds the child.
+///  - The coordinates are the joints in `links` order (depth first from the root, children in
+///    file order) and, within a link, in file order: MuJoCo's qpos order for hinge/slide trees.
+///  - Passive forces on a joint's coordinate: −damping q̇ − stiffness (q − springref); the
+///    armature adds to the joint's diagonal entry of the mass matrix.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "rigid/io/inertial_xml.hpp"
+
+namespace rigid::io {
+
+enum class RobotJointType { kHinge, kSlide };
+
+/// "hinge" or "slide".
+[[nodiscard]] const char* to_string(RobotJointType type);
+
+/// One degree of freedom.
+struct RobotJoint {
+  std::string name;
+  RobotJointType type = RobotJointType::kHinge;
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();    ///< unit, in the link frame
+  Eigen::Vector3d anchor = Eigen::Vector3d::Zero();   ///< a point of a hinge's axis, link frame (m)
+  double ref = 0;        ///< q (rad or m) at which the link sits at its placement
+  double damping = 0;    ///< N·m·s/rad or N·s/m
+  double stiffness = 0;  ///< N·m/rad or N/m
+  double springref = 0;  ///< q (rad or m) at which the spring is relaxed
+  double armature = 0;   ///< kg·m² or kg, added to the mass matrix's diagonal
+  int line = 0;          ///< the element's line in `source`
+};
+
+/// One link (URDF) or body (MJCF).
+struct RobotLink {
+  std::string name;
+  int parent = -1;  ///< index into RobotModel::links; −1: the world
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();     ///< m, in the parent's frame
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();  ///< parent ← link, proper rotation
+  std::vector<RobotJoint> joints;  ///< empty: welded to the parent
+  /// The inertial in the link frame: mass (kg), COM (m), inertia about the COM (kg·m²). A link
+  /// with no inertial has mass 0 (a frame only); a positive mass passed
+  /// rigid::MassProperties::check.
+  double mass = 0;
+  Eigen::Vector3d com = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d inertia_com = Eigen::Matrix3d::Zero();
+  int line = 0;  ///< the element's line in the file that holds it
+  std::string file;  ///< that file (an MJCF <include>d file, or `source`)
+};
+
+/// A robot model: the links in depth-first order from the root (a parent before its
+/// children, children in file order), and the gravity.
+struct RobotModel {
+  std::string source;  ///< the file read
+  InertialFormat format = InertialFormat::urdf;
+  std::string name;    ///< URDF robot name, MJCF model name
+  std::vector<RobotLink> links;
+  Eigen::Vector3d gravity{0, 0, -9.81};  ///< m/s²: MJCF <option gravity>, else MuJoCo's default
+
+  /// Number of joints (coordinates).
+  [[nodiscard]] std::size_t dof() const;
+  /// The joints' names in coordinate order.
+  [[nodiscard]] std::vector<std::string> coordinate_names() const;
+};
+
+/// How a model is read.
+struct RobotReadOptions {
+  /// A free joint (MJCF <freejoint>, <joint type="free">) on a body of the world is welded
+  /// there at its placement: the robot pinned at its root. Otherwise it is refused (floating
+  /// bases are not yet supported).
+  bool pin_free_root = false;
+  /// Every link's inertial from its geometry with the rules of `rigid inertia fix` (MJCF:
+  /// MuJoCo's compiler's, as inertiafromgeom="true"; URDF: collision geometry at `density`).
+  bool inertia_from_geometry = false;
+  double density = 1000;  ///< kg/m³, URDF geometry with inertia_from_geometry
+};
+
+/// The tree of a URDF or MJCF document (detected from the root element, as read_inertials
+/// does); `source` names it in messages and is the base of relative paths (<include>, meshes).
+/// @throws rigid::Error "file:line: ..." for malformed XML, a missing or unknown parent, a
+///   loop, several roots (URDF), an unsupported joint (ball, free unless pinned, planar,
+///   floating, mimic), an unusable attribute or an invalid inertial (naming the link and
+///   MassProperties::check's reason).
+[[nodiscard]] RobotModel read_robot_model(const std::string& xml, const std::string& source,
+                                          const RobotReadOptions& options = {});
+
+/// read_robot_model on a file's contents. @throws rigid::Error if it is not a regular,
+/// readable file.
+[[nodiscard]] RobotModel read_robot_model_file(const std::string& path,
+                                               const RobotReadOptions& options = {});
+
+}  // namespace rigid::io
