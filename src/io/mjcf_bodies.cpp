@@ -7,8 +7,10 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <optional>
 #include <filesystem>
+#include <fstream>
+#include <optional>
+#include <sstream>
 #include <map>
 #include <numbers>
 #include <string_view>
@@ -25,32 +27,15 @@
 namespace rigid::io::detail {
 namespace {
 
-using Attributes = std::map<std::string, std::string, std::less<>>;
-
-struct Compiler {
-  bool degrees = true;             // angle="degree" is MuJoCo's default
-  std::string eulerseq = "xyz";
-  std::string meshdir, assetdir;
-  std::string inertiafromgeom = "auto";
-  double group_min = 0, group_max = 5;  // inertiagrouprange
-  bool exact_mesh_inertia = false;       // exactmeshinertia
-};
-
-struct Defaults {
-  std::map<std::string, Attributes, std::less<>> geom;  // class → attributes
-  std::map<std::string, Attributes, std::less<>> mesh;
-};
+using Attributes = MjcfAttributes;
+using Compiler = MjcfCompiler;
+using Defaults = MjcfDefaults;
 
 struct MeshAsset {
   std::string file;
   Eigen::Vector3d scale = Eigen::Vector3d::Ones();
   int line = 0;
 };
-
-[[noreturn]] void refuse(const std::string& source, const tinyxml2::XMLElement* e,
-                         const std::string& message) {
-  rigid::detail::throw_error_at(SourceLocation{source, e->GetLineNum(), 0}, message);
-}
 
 void merge(Attributes& into, const tinyxml2::XMLElement* e) {
   for (const auto* a = e->FirstAttribute(); a != nullptr; a = a->Next()) {
@@ -59,93 +44,88 @@ void merge(Attributes& into, const tinyxml2::XMLElement* e) {
 }
 
 void read_defaults(const tinyxml2::XMLElement* d, const std::string& parent, Defaults& out,
-                   const std::string& source) {
+                   const MjcfDocument& doc) {
   const char* cls = d->Attribute("class");
   std::string name = cls != nullptr ? cls : (parent.empty() ? "main" : "");
-  if (name.empty()) refuse(source, d, "a nested <default> needs a 'class' attribute");
-  if (!parent.empty()) {
-    out.geom[name] = out.geom[parent];
-    out.mesh[name] = out.mesh[parent];
-  } else {
-    out.geom[name];
-    out.mesh[name];
+  if (name.empty()) doc.refuse(d, "a nested <default> needs a 'class' attribute");
+  for (auto* kind : {&out.geom, &out.mesh, &out.joint}) {
+    if (!parent.empty()) {
+      (*kind)[name] = (*kind)[parent];
+    } else {
+      (*kind)[name];
+    }
   }
-  for (const auto* c = d->FirstChildElement(); c != nullptr; c = c->NextSiblingElement()) {
+  for (const auto* c : doc.children(d)) {
     const std::string_view n = c->Name();
     if (n == "geom") merge(out.geom[name], c);
     if (n == "mesh") merge(out.mesh[name], c);
-    if (n == "default") read_defaults(c, name, out, source);
+    if (n == "joint") merge(out.joint[name], c);
+    if (n == "default") read_defaults(c, name, out, doc);
   }
 }
 
-// MuJoCo's own reading of these models: the compiler settings that change what a body's
-// inertia is, and the document elements this reader does not follow
-Compiler read_compiler(const tinyxml2::XMLElement* root, const std::string& source) {
-  Compiler c;
-  for (const auto* e = root->FirstChildElement("compiler"); e != nullptr;
-       e = e->NextSiblingElement("compiler")) {
-    if (const char* a = e->Attribute("angle")) {
-      const std::string_view v = a;
-      if (v != "degree" && v != "radian") {
-        refuse(source, e, fmt::format("<compiler> angle=\"{}\": expected \"degree\" or \"radian\"", v));
-      }
-      c.degrees = v == "degree";
+// the compiler settings that change a body's frame or inertia
+void read_compiler_element(const tinyxml2::XMLElement* e, const MjcfDocument& doc, Compiler& c) {
+  if (const char* a = e->Attribute("angle")) {
+    const std::string_view v = a;
+    if (v != "degree" && v != "radian") {
+      doc.refuse(e, fmt::format("<compiler> angle=\"{}\": expected \"degree\" or \"radian\"", v));
     }
-    if (const char* a = e->Attribute("eulerseq")) c.eulerseq = a;
-    if (const char* a = e->Attribute("meshdir")) c.meshdir = a;
-    if (const char* a = e->Attribute("assetdir")) c.assetdir = a;
-    if (const char* a = e->Attribute("inertiafromgeom")) {
-      const std::string_view v = a;
-      if (v != "auto" && v != "true" && v != "false") {
-        refuse(source, e, fmt::format("<compiler> inertiafromgeom=\"{}\": expected \"auto\", "
-                                      "\"true\" or \"false\"", v));
-      }
-      c.inertiafromgeom = a;
+    c.degrees = v == "degree";
+  }
+  if (const char* a = e->Attribute("eulerseq")) c.eulerseq = a;
+  if (const char* a = e->Attribute("meshdir")) c.meshdir = a;
+  if (const char* a = e->Attribute("assetdir")) c.assetdir = a;
+  if (const char* a = e->Attribute("inertiafromgeom")) {
+    const std::string_view v = a;
+    if (v != "auto" && v != "true" && v != "false") {
+      doc.refuse(e, fmt::format("<compiler> inertiafromgeom=\"{}\": expected \"auto\", "
+                                "\"true\" or \"false\"", v));
     }
-    if (const char* a = e->Attribute("exactmeshinertia")) c.exact_mesh_inertia = std::string_view(a) == "true";
-    if (const char* a = e->Attribute("inertiagrouprange")) {
-      try {
-        const auto v = parse_numbers(a, 2, "<compiler> attribute 'inertiagrouprange'");
-        c.group_min = v[0];
-        c.group_max = v[1];
-      } catch (const GeometryProblem& p) {
-        refuse(source, e, p.text);
-      }
-    }
-    // settings that rescale or bound the compiled inertias: the file's inertials would not
-    // be the model's, so they are refused rather than silently ignored
-    for (const char* rescale : {"settotalmass", "boundmass", "boundinertia"}) {
-      if (const char* a = e->Attribute(rescale)) {
-        double v = 0;
-        if (e->QueryDoubleAttribute(rescale, &v) != tinyxml2::XML_SUCCESS || v > 0) {
-          refuse(source, e, fmt::format("<compiler> {}=\"{}\" changes every body's compiled "
-                                        "inertia; remove it to compute the inertials from the "
-                                        "geoms", rescale, a));
-        }
-      }
-    }
-    if (const char* a = e->Attribute("balanceinertia"); a != nullptr && std::string_view(a) == "true") {
-      refuse(source, e, "<compiler> balanceinertia=\"true\" changes compiled inertias; remove it "
-                        "to compute the inertials from the geoms");
+    c.inertiafromgeom = a;
+  }
+  if (const char* a = e->Attribute("exactmeshinertia")) c.exact_mesh_inertia = std::string_view(a) == "true";
+  if (const char* a = e->Attribute("inertiagrouprange")) {
+    try {
+      const auto v = parse_numbers(a, 2, "<compiler> attribute 'inertiagrouprange'");
+      c.group_min = v[0];
+      c.group_max = v[1];
+    } catch (const GeometryProblem& p) {
+      doc.refuse(e, p.text);
     }
   }
-  return c;
+  // settings that rescale or bound the compiled inertias: the file's inertials would not
+  // be the model's, so they are refused rather than silently ignored
+  for (const char* rescale : {"settotalmass", "boundmass", "boundinertia"}) {
+    if (const char* a = e->Attribute(rescale)) {
+      double v = 0;
+      if (e->QueryDoubleAttribute(rescale, &v) != tinyxml2::XML_SUCCESS || v > 0) {
+        doc.refuse(e, fmt::format("<compiler> {}=\"{}\" changes every body's compiled "
+                                  "inertia; remove it to compute the inertials from the "
+                                  "geoms", rescale, a));
+      }
+    }
+  }
+  if (const char* a = e->Attribute("balanceinertia"); a != nullptr && std::string_view(a) == "true") {
+    doc.refuse(e, "<compiler> balanceinertia=\"true\" changes compiled inertias; remove it "
+                  "to compute the inertials from the geoms");
+  }
 }
 
-void refuse_unfollowed(const tinyxml2::XMLElement* e, const std::string& source) {
-  for (const auto* c = e->FirstChildElement(); c != nullptr; c = c->NextSiblingElement()) {
+void refuse_unfollowed(const tinyxml2::XMLElement* e, const MjcfDocument& doc) {
+  for (const auto* c : doc.children(e)) {
     const std::string_view n = c->Name();
     if (n == "include") {
-      refuse(source, c, "<include> is not supported: give the model as one file (MuJoCo's "
-                        "compile sample writes the merged model: mujoco-compile model.xml "
-                        "merged.xml)");
+      doc.refuse(c, "<include> is not supported: give the model as one file (MuJoCo's "
+                    "compile sample writes the merged model: mujoco-compile model.xml "
+                    "merged.xml)");
     }
     if (n == "frame" || n == "replicate" || n == "attach" || n == "composite" || n == "flexcomp") {
-      refuse(source, c, fmt::format("<{}> is not supported: the bodies it makes are MuJoCo's "
-                                    "compiler's; give them as bodies and geoms (mujoco-compile "
-                                    "model.xml merged.xml writes them out)", n));
+      doc.refuse(c, fmt::format("<{}> is not supported: the bodies it makes are MuJoCo's "
+                                "compiler's; give them as bodies and geoms (mujoco-compile "
+                                "model.xml merged.xml writes them out)", n));
     }
-    refuse_unfollowed(c, source);
+    refuse_unfollowed(c, doc);
   }
 }
 
@@ -157,16 +137,14 @@ std::filesystem::path mesh_directory(const Compiler& c, const std::string& sourc
   return p.is_absolute() ? p : model_dir / p;
 }
 
-std::map<std::string, MeshAsset, std::less<>> read_meshes(const tinyxml2::XMLElement* root,
+std::map<std::string, MeshAsset, std::less<>> read_meshes(const MjcfDocument& doc,
                                                           const Defaults& defaults,
-                                                          const Compiler& compiler,
-                                                          const std::string& source) {
+                                                          const Compiler& compiler) {
   std::map<std::string, MeshAsset, std::less<>> out;
-  const std::filesystem::path dir = mesh_directory(compiler, source);
-  for (const auto* asset = root->FirstChildElement("asset"); asset != nullptr;
-       asset = asset->NextSiblingElement("asset")) {
-    for (const auto* m = asset->FirstChildElement("mesh"); m != nullptr;
-         m = m->NextSiblingElement("mesh")) {
+  // MuJoCo: meshdir is relative to the main file's directory, as includes are
+  const std::filesystem::path dir = mesh_directory(compiler, doc.source());
+  for (const auto* asset : doc.children(doc.root(), "asset")) {
+    for (const auto* m : doc.children(asset, "mesh")) {
       const char* cls = m->Attribute("class");
       const auto d = defaults.mesh.find(cls != nullptr ? cls : "main");
       Attributes attrs = d == defaults.mesh.end() ? Attributes{} : d->second;
@@ -177,8 +155,8 @@ std::map<std::string, MeshAsset, std::less<>> read_meshes(const tinyxml2::XMLEle
       // an inline mesh (vertex/face attributes) or one offset by refpos/refquat: not followed
       for (const char* unsupported : {"vertex", "face", "refpos", "refquat"}) {
         if (attrs.count(unsupported) != 0) {
-          refuse(source, m, fmt::format("<mesh> attribute '{}' is not supported; give the mesh "
-                                        "as a file in its own frame", unsupported));
+          doc.refuse(m, fmt::format("<mesh> attribute '{}' is not supported; give the mesh "
+                                    "as a file in its own frame", unsupported));
         }
       }
       if (file == attrs.end()) continue;  // a mesh without a file is refused where a geom uses it
@@ -189,7 +167,7 @@ std::map<std::string, MeshAsset, std::less<>> read_meshes(const tinyxml2::XMLEle
           const auto v = parse_numbers(s->second.c_str(), 3, "<mesh> attribute 'scale'");
           a.scale = Eigen::Vector3d(v[0], v[1], v[2]);
         } catch (const GeometryProblem& p) {
-          refuse(source, m, p.text);
+          doc.refuse(m, p.text);
         }
       }
       const auto name = attrs.find("name");
@@ -213,6 +191,86 @@ Eigen::Matrix3d z_to(const Eigen::Vector3d& v) {
   }
   return SO3d::from_axis_angle(axis, std::atan2(s, v.z())).matrix();
 }
+
+Eigen::Matrix3d quaternion_rotation(const char* text) {
+  const auto v = parse_numbers(text, 4, "attribute 'quat'");
+  const double n = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2] + v[3] * v[3]);
+  if (!(n > 0) || !std::isfinite(n)) {
+    throw GeometryProblem{fmt::format("attribute 'quat': expected a non-zero quaternion w x y "
+                                      "z, got '{}'", text)};
+  }
+  return SO3d::from_quaternion(v[0], v[1], v[2], v[3]).matrix();  // normalised, as MuJoCo does
+}
+
+Eigen::Matrix3d euler_rotation(const char* text, const Compiler& compiler, double angle_unit) {
+  const auto v = parse_numbers(text, 3, "attribute 'euler'");
+  const std::string& seq = compiler.eulerseq;
+  const bool lower = std::all_of(seq.begin(), seq.end(), [](char c) { return std::islower(static_cast<unsigned char>(c)); });
+  const bool upper = std::all_of(seq.begin(), seq.end(), [](char c) { return std::isupper(static_cast<unsigned char>(c)); });
+  if (!lower && !upper) {
+    throw GeometryProblem{fmt::format("<compiler> eulerseq=\"{}\" mixes rotating and fixed "
+                                      "axes; not supported", seq)};
+  }
+  // MuJoCo: lower case = rotating (intrinsic) axes, upper case = fixed (extrinsic) axes
+  try {
+    return from_euler(Eigen::Vector3d(v[0], v[1], v[2]) * angle_unit,
+                      EulerConvention::parse(seq, lower))
+        .matrix();
+  } catch (const Error& e) {
+    throw GeometryProblem{fmt::format("<compiler> eulerseq=\"{}\": {}", seq, e.what())};
+  }
+}
+
+Eigen::Matrix3d xyaxes_rotation(const char* text) {
+  const std::string what = "attribute 'xyaxes'";
+  const auto v = parse_numbers(text, 6, what);
+  Eigen::Vector3d x(v[0], v[1], v[2]), y(v[3], v[4], v[5]);
+  if (!(x.norm() > 0)) throw GeometryProblem{fmt::format("{}: zero x axis", what)};
+  x.normalize();
+  y -= x.dot(y) * x;
+  if (!(y.norm() > 1e-10)) throw GeometryProblem{fmt::format("{}: y axis parallel to x", what)};
+  y.normalize();
+  Eigen::Matrix3d R;
+  R << x, y, x.cross(y);
+  return R;
+}
+
+}  // namespace
+
+std::optional<Eigen::Matrix3d> mjcf_orientation(const tinyxml2::XMLElement* e,
+                                                const MjcfCompiler& compiler) {
+  const char* given = nullptr;
+  int count = 0;
+  for (const char* key : {"quat", "axisangle", "euler", "xyaxes", "zaxis"}) {
+    if (e->Attribute(key) != nullptr) {
+      given = key;
+      ++count;
+    }
+  }
+  if (count > 1) {
+    throw GeometryProblem{"more than one orientation attribute (quat, axisangle, euler, "
+                          "xyaxes, zaxis); MuJoCo accepts one"};
+  }
+  if (given == nullptr) return std::nullopt;
+  const double angle_unit = compiler.degrees ? std::numbers::pi / 180.0 : 1.0;
+  const std::string_view key = given;
+  const char* text = e->Attribute(given);
+  if (key == "quat") return quaternion_rotation(text);
+  if (key == "euler") return euler_rotation(text, compiler, angle_unit);
+  if (key == "xyaxes") return xyaxes_rotation(text);
+  if (key == "axisangle") {
+    const auto v = parse_numbers(text, 4, "attribute 'axisangle'");
+    const Eigen::Vector3d axis(v[0], v[1], v[2]);
+    if (!(axis.norm() > 0)) throw GeometryProblem{"attribute 'axisangle': zero axis"};
+    return SO3d::from_axis_angle(axis.normalized(), v[3] * angle_unit).matrix();
+  }
+  const auto v = parse_numbers(text, 3, "attribute 'zaxis'");
+  const Eigen::Vector3d z(v[0], v[1], v[2]);
+  if (!(z.norm() > 0)) throw GeometryProblem{"attribute 'zaxis': zero axis"};
+  return z_to(z.normalized());
+}
+
+namespace {
 
 class GeomReader {
  public:
@@ -358,78 +416,10 @@ class GeomReader {
 
   // the geom's own orientation attribute (at most one), else a quat from its class
   Eigen::Matrix3d orientation(const tinyxml2::XMLElement* g, const Attributes& def) const {
-    const char* given = nullptr;
-    int count = 0;
-    for (const char* key : {"quat", "axisangle", "euler", "xyaxes", "zaxis"}) {
-      if (g->Attribute(key) != nullptr) {
-        given = key;
-        ++count;
-      }
-    }
-    if (count > 1) {
-      throw GeometryProblem{"more than one orientation attribute (quat, axisangle, euler, "
-                            "xyaxes, zaxis); MuJoCo accepts one"};
-    }
-    const double angle_unit = compiler_.degrees ? std::numbers::pi / 180.0 : 1.0;
-    if (given == nullptr) {
-      const auto q = def.find("quat");
-      if (q == def.end()) return Eigen::Matrix3d::Identity();
-      return quat(q->second.c_str());
-    }
-    const std::string key = given;
-    const char* text = g->Attribute(given);
-    const std::string what = fmt::format("attribute '{}'", key);
-    if (key == "quat") return quat(text);
-    if (key == "axisangle") {
-      const auto v = parse_numbers(text, 4, what);
-      const Eigen::Vector3d axis(v[0], v[1], v[2]);
-      if (!(axis.norm() > 0)) throw GeometryProblem{fmt::format("{}: zero axis", what)};
-      return SO3d::from_axis_angle(axis.normalized(), v[3] * angle_unit).matrix();
-    }
-    if (key == "euler") {
-      const auto v = parse_numbers(text, 3, what);
-      const std::string& seq = compiler_.eulerseq;
-      const bool lower = std::all_of(seq.begin(), seq.end(), [](char c) { return std::islower(static_cast<unsigned char>(c)); });
-      const bool upper = std::all_of(seq.begin(), seq.end(), [](char c) { return std::isupper(static_cast<unsigned char>(c)); });
-      if (!lower && !upper) {
-        throw GeometryProblem{fmt::format("<compiler> eulerseq=\"{}\" mixes rotating and fixed "
-                                          "axes; not supported", seq)};
-      }
-      // MuJoCo: lower case = rotating (intrinsic) axes, upper case = fixed (extrinsic) axes
-      try {
-        return from_euler(Eigen::Vector3d(v[0], v[1], v[2]) * angle_unit,
-                          EulerConvention::parse(seq, lower))
-            .matrix();
-      } catch (const Error& e) {
-        throw GeometryProblem{fmt::format("<compiler> eulerseq=\"{}\": {}", seq, e.what())};
-      }
-    }
-    if (key == "xyaxes") {
-      const auto v = parse_numbers(text, 6, what);
-      Eigen::Vector3d x(v[0], v[1], v[2]), y(v[3], v[4], v[5]);
-      if (!(x.norm() > 0)) throw GeometryProblem{fmt::format("{}: zero x axis", what)};
-      x.normalize();
-      y -= x.dot(y) * x;
-      if (!(y.norm() > 1e-10)) throw GeometryProblem{fmt::format("{}: y axis parallel to x", what)};
-      y.normalize();
-      Eigen::Matrix3d R;
-      R << x, y, x.cross(y);
-      return R;
-    }
-    const auto v = parse_numbers(text, 3, what);  // zaxis
-    const Eigen::Vector3d z(v[0], v[1], v[2]);
-    if (!(z.norm() > 0)) throw GeometryProblem{fmt::format("{}: zero axis", what)};
-    return z_to(z.normalized());
-  }
-
-  static Eigen::Matrix3d quat(const char* text) {
-    const auto v = parse_numbers(text, 4, "attribute 'quat'");
-    const double n = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2] + v[3] * v[3]);
-    if (!(n > 0) || !std::isfinite(n)) {
-      throw GeometryProblem{fmt::format("attribute 'quat': expected a non-zero quaternion w x y "
-                                        "z, got '{}'", text)};
-    }
-    return SO3d::from_quaternion(v[0], v[1], v[2], v[3]).matrix();  // normalised, as MuJoCo does
+    if (const auto own = mjcf_orientation(g, compiler_)) return *own;
+    const auto q = def.find("quat");
+    if (q == def.end()) return Eigen::Matrix3d::Identity();
+    return quaternion_rotation(q->second.c_str());
   }
 
   const Compiler& compiler_;
@@ -438,17 +428,17 @@ class GeomReader {
 };
 
 void collect_bodies(const tinyxml2::XMLElement* parent, const std::string& childclass,
-                    const GeomReader& reader, const Compiler& compiler,
+                    const GeomReader& reader, const MjcfDocument& doc, const Compiler& compiler,
                     std::vector<LinkGeometry>& out) {
-  for (const auto* b = parent->FirstChildElement("body"); b != nullptr;
-       b = b->NextSiblingElement("body")) {
+  for (const auto* b : doc.children(parent, "body")) {
     LinkGeometry link;
     link.element = b;
     link.line = b->GetLineNum();
     if (const char* n = b->Attribute("name")) link.name = n;
     const char* cc = b->Attribute("childclass");
     const std::string cls = cc != nullptr ? cc : childclass;
-    link.inertial = b->FirstChildElement("inertial");
+    const auto inertials = doc.children(b, "inertial");
+    link.inertial = inertials.empty() ? nullptr : inertials.front();
     if (compiler.inertiafromgeom == "false") {
       link.recompute = false;
       link.keep_detail = "<compiler inertiafromgeom=\"false\">: MuJoCo uses the <inertial> as it is";
@@ -456,8 +446,7 @@ void collect_bodies(const tinyxml2::XMLElement* parent, const std::string& child
       link.recompute = false;
       link.keep_detail = "<compiler inertiafromgeom=\"auto\">: MuJoCo uses a body's own <inertial>";
     }
-    for (const auto* g = b->FirstChildElement("geom"); g != nullptr;
-         g = g->NextSiblingElement("geom")) {
+    for (const auto* g : doc.children(b, "geom")) {
       try {
         reader.add(g, cls, link);
       } catch (const GeometryProblem& p) {
@@ -465,30 +454,176 @@ void collect_bodies(const tinyxml2::XMLElement* parent, const std::string& child
       }
     }
     out.push_back(std::move(link));
-    collect_bodies(b, cls, reader, compiler, out);
+    collect_bodies(b, cls, reader, doc, compiler, out);
+  }
+}
+
+std::vector<LinkGeometry> measured_bodies(const MjcfDocument& doc) {
+  const Compiler compiler = read_mjcf_compiler(doc);
+  const Defaults defaults = read_mjcf_defaults(doc);
+  const auto meshes = read_meshes(doc, defaults, compiler);
+  const GeomReader reader(compiler, defaults, meshes);
+  std::vector<LinkGeometry> out;
+  for (const auto* w : doc.children(doc.root(), "worldbody")) {
+    collect_bodies(w, "main", reader, doc, compiler, out);
+  }
+  return out;
+}
+
+// tinyxml2's errors in plain words
+const char* xml_problem(tinyxml2::XMLError e) {
+  switch (e) {
+    case tinyxml2::XML_ERROR_PARSING_ELEMENT: return "an element is not closed or badly formed";
+    case tinyxml2::XML_ERROR_PARSING_ATTRIBUTE: return "an attribute is badly formed (expected name=\"value\")";
+    case tinyxml2::XML_ERROR_PARSING_TEXT: return "text that is not XML";
+    case tinyxml2::XML_ERROR_PARSING_CDATA: return "an unterminated CDATA section";
+    case tinyxml2::XML_ERROR_PARSING_COMMENT: return "an unterminated comment (expected -->)";
+    case tinyxml2::XML_ERROR_PARSING_DECLARATION: return "a badly formed <?...?> declaration";
+    case tinyxml2::XML_ERROR_PARSING_UNKNOWN: return "an unknown <!...> construct";
+    case tinyxml2::XML_ERROR_EMPTY_DOCUMENT: return "the document is empty";
+    case tinyxml2::XML_ERROR_MISMATCHED_ELEMENT: return "an end tag does not match its start tag";
+    case tinyxml2::XML_ELEMENT_DEPTH_EXCEEDED: return "elements nested too deeply (more than 100 levels)";
+    default: return "the text is not well-formed XML";
   }
 }
 
 }  // namespace
 
-std::vector<LinkGeometry> mjcf_links(const tinyxml2::XMLElement* root, const std::string& source) {
-  refuse_unfollowed(root, source);
-  const Compiler compiler = read_compiler(root, source);
+void parse_xml(tinyxml2::XMLDocument& doc, const std::string& text, const std::string& source) {
+  if (const tinyxml2::XMLError e = doc.Parse(text.c_str(), text.size()); e != tinyxml2::XML_SUCCESS) {
+    rigid::detail::throw_error_at(SourceLocation{source, doc.ErrorLineNum(), 0},
+                                  fmt::format("malformed XML: {}", xml_problem(e)));
+  }
+  if (doc.RootElement() == nullptr) {
+    rigid::detail::throw_error_at(SourceLocation{source, 0, 0},
+                                  "the document has no root element");
+  }
+}
+
+std::string read_model_file(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::file_status st = fs::status(path, ec);
+  RIGID_REQUIRE_AS("read_model_file", !ec && fs::exists(st), "'{}' does not exist", path);
+  RIGID_REQUIRE_AS("read_model_file", fs::is_regular_file(st),
+                   "'{}' is not a regular file (a directory, FIFO or device); expected a model "
+                   "file", path);
+  const std::uintmax_t size = fs::file_size(path, ec);
+  RIGID_REQUIRE_AS("read_model_file", !ec && size <= kMaxModelFileBytes,
+                   "'{}' is {} bytes; a model file of at most {} MiB is read", path, size,
+                   kMaxModelFileBytes >> 20u);
+  std::ifstream in(path, std::ios::binary);
+  RIGID_REQUIRE_AS("read_model_file", in.good(), "cannot open '{}' for reading", path);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+MjcfDocument::MjcfDocument(const tinyxml2::XMLElement* root, std::string source,
+                           bool follow_includes)
+    : root_(root), source_(std::move(source)) {
+  file_names_[root->GetDocument()] = source_;
+  if (follow_includes) {
+    std::vector<std::string> seen;
+    load_includes(root, seen);
+  }
+}
+
+MjcfDocument::~MjcfDocument() = default;
+
+const std::string& MjcfDocument::file_of(const tinyxml2::XMLElement* e) const {
+  const auto it = file_names_.find(e->GetDocument());
+  return it == file_names_.end() ? source_ : it->second;
+}
+
+void MjcfDocument::refuse(const tinyxml2::XMLElement* e, const std::string& message) const {
+  rigid::detail::throw_error_at(SourceLocation{file_of(e), e->GetLineNum(), 0}, message);
+}
+
+// every <include> below e, depth first, each file read and parsed once
+void MjcfDocument::load_includes(const tinyxml2::XMLElement* e, std::vector<std::string>& seen) {
+  for (const auto* c = e->FirstChildElement(); c != nullptr; c = c->NextSiblingElement()) {
+    if (std::string_view(c->Name()) != "include") {
+      load_includes(c, seen);
+      continue;
+    }
+    const char* file = c->Attribute("file");
+    if (file == nullptr || *file == '\0') refuse(c, "<include> has no 'file' attribute");
+    const std::filesystem::path dir = std::filesystem::path(source_).parent_path();
+    const std::string path = (dir / file).lexically_normal().string();
+    if (std::find(seen.begin(), seen.end(), path) != seen.end() ||
+        path == std::filesystem::path(source_).lexically_normal().string()) {
+      refuse(c, fmt::format("<include file=\"{}\">: '{}' is already part of the model; MuJoCo "
+                            "includes a file at most once", file, path));
+    }
+    seen.push_back(path);
+    std::string text;
+    try {
+      text = read_model_file(path);
+    } catch (const Error& err) {
+      refuse(c, fmt::format("<include file=\"{}\">: {} (the path is relative to the main "
+                            "file's directory, as MuJoCo reads it)", file,
+                            strip_function_names(err.what())));
+    }
+    auto included = std::make_unique<tinyxml2::XMLDocument>();
+    parse_xml(*included, text, path);
+    const tinyxml2::XMLElement* root = included->RootElement();
+    if (root->FirstChildElement() == nullptr) {
+      rigid::detail::throw_error_at(SourceLocation{path, root->GetLineNum(), 0},
+                                    fmt::format("<{}>, included from {}:{}, has no elements; "
+                                                "MuJoCo inserts at least one", root->Name(),
+                                                file_of(c), c->GetLineNum()));
+    }
+    file_names_[included.get()] = path;
+    include_roots_[c] = root;
+    included_docs_.push_back(std::move(included));
+    load_includes(root, seen);
+  }
+}
+
+void MjcfDocument::append_children(const tinyxml2::XMLElement* e, std::string_view name,
+                                   std::vector<const tinyxml2::XMLElement*>& out) const {
+  for (const auto* c = e->FirstChildElement(); c != nullptr; c = c->NextSiblingElement()) {
+    if (const auto it = include_roots_.find(c); it != include_roots_.end()) {
+      append_children(it->second, name, out);
+    } else if (name.empty() || name == c->Name()) {
+      out.push_back(c);
+    }
+  }
+}
+
+std::vector<const tinyxml2::XMLElement*> MjcfDocument::children(const tinyxml2::XMLElement* e,
+                                                                std::string_view name) const {
+  std::vector<const tinyxml2::XMLElement*> out;
+  append_children(e, name, out);
+  return out;
+}
+
+MjcfCompiler read_mjcf_compiler(const MjcfDocument& doc) {
+  Compiler c;
+  for (const auto* e : doc.children(doc.root(), "compiler")) read_compiler_element(e, doc, c);
+  return c;
+}
+
+MjcfDefaults read_mjcf_defaults(const MjcfDocument& doc) {
   Defaults defaults;
   defaults.geom["main"];
   defaults.mesh["main"];
-  for (const auto* d = root->FirstChildElement("default"); d != nullptr;
-       d = d->NextSiblingElement("default")) {
-    read_defaults(d, "", defaults, source);
-  }
-  const auto meshes = read_meshes(root, defaults, compiler, source);
-  const GeomReader reader(compiler, defaults, meshes);
-  std::vector<LinkGeometry> out;
-  for (const auto* w = root->FirstChildElement("worldbody"); w != nullptr;
-       w = w->NextSiblingElement("worldbody")) {
-    collect_bodies(w, "main", reader, compiler, out);
-  }
-  return out;
+  defaults.joint["main"];
+  for (const auto* d : doc.children(doc.root(), "default")) read_defaults(d, "", defaults, doc);
+  return defaults;
+}
+
+std::vector<LinkGeometry> mjcf_links(const tinyxml2::XMLElement* root, const std::string& source) {
+  const MjcfDocument doc(root, source, false);
+  refuse_unfollowed(root, doc);
+  return measured_bodies(doc);
+}
+
+std::vector<LinkGeometry> mjcf_links(const MjcfDocument& doc) {
+  // an <include> left in the tree is one this document did not follow
+  refuse_unfollowed(doc.root(), doc);
+  return measured_bodies(doc);
 }
 
 }  // namespace rigid::io::detail
