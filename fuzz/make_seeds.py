@@ -153,6 +153,32 @@ def inertial_fixes(out):
           '</model></sdf>\n')
 
 
+def robot_models(out):
+    write(out, "robot_model", "arm.urdf",
+          '<robot name="arm">\n  <link name="base"/>\n  <link name="upper">\n    <inertial>'
+          '<origin xyz="0 0 0.1" rpy="0 0 0.5"/><mass value="2"/><inertia ixx="0.1" ixy="0" '
+          'ixz="0" iyy="0.2" iyz="0" izz="0.3"/></inertial>\n  </link>\n  <link name="tip"/>\n'
+          '  <joint name="shoulder" type="revolute"><parent link="base"/><child link="upper"/>'
+          '<origin xyz="0.1 0.2 0.3" rpy="0.3 -0.4 0.5"/><axis xyz="0 3 4"/>'
+          '<dynamics damping="0.7"/></joint>\n  <joint name="rail" type="prismatic">'
+          '<parent link="upper"/><child link="tip"/></joint>\n</robot>\n')
+    write(out, "robot_model", "model.xml",
+          '<mujoco model="m">\n  <compiler angle="degree" eulerseq="zyx"/>\n'
+          '  <option gravity="0 0 -1.6"/>\n  <default>\n    <joint damping="1"/>\n'
+          '    <default class="a"><joint stiffness="2" armature="0.1"/>\n'
+          '      <default class="b"><joint type="slide" ref="0.2"/></default></default>\n'
+          '  </default>\n  <worldbody>\n    <body name="p" pos="0 0 1" childclass="a">\n'
+          '      <freejoint name="root"/>\n      <geom type="capsule" fromto="0 0 0 0 0 -0.3" '
+          'size="0.05"/>\n      <body name="q" euler="10 20 30"><joint name="h" axis="1 1 0" '
+          'ref="30" springref="15"/><joint name="s" class="b"/>\n'
+          '        <inertial pos="0 0 0" quat="1 0 0 0" mass="1" diaginertia="1 2 2"/></body>\n'
+          '      <body name="r" xyaxes="0 1 0 -1 0 0"><geom type="box" size="0.1 0.2 0.3"/></body>\n'
+          '    </body>\n  </worldbody>\n</mujoco>\n')
+    write(out, "robot_model", "include.xml",
+          '<mujoco>\n  <worldbody>\n    <body name="a"><include file="part.xml"/></body>\n'
+          '  </worldbody>\n</mujoco>\n')
+
+
 def expressions(out):
     seeds = {
         "const": "0a*b + sin(pi/3)^2 - sqrt(abs(b)) / exp(1e-3)",
@@ -199,6 +225,7 @@ def main():
     meshes(out)
     inertials(out)
     inertial_fixes(out)
+    robot_models(out)
     expressions(out)
     run_schemas(out)
     scenes(out)
