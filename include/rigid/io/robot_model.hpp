@@ -18,6 +18,12 @@
 ///    file order) and, within a link, in file order: MuJoCo's qpos order for hinge/slide trees.
 ///  - Passive forces on a joint's coordinate: −damping q̇ − stiffness (q − springref); the
 ///    armature adds to the joint's diagonal entry of the mass matrix.
+///  - URDF <dynamics friction> is Coulomb friction (a constraint force, not a passive force of
+///    the equations): it is not read. A link without <inertial> has mass 0.
+///  - MJCF: hinge ref and springref are in <compiler angle> units (degree by default, as
+///    MuJoCo); inertials follow <compiler inertiafromgeom> ("auto": a body's <inertial>, else
+///    its geoms). <include file> is relative to the main file's directory and a file is
+///    included at most once (MuJoCo's XML reference); messages name the included file.
 
 #include <optional>
 #include <string>
@@ -87,7 +93,8 @@ struct RobotReadOptions {
   /// bases are not yet supported).
   bool pin_free_root = false;
   /// Every link's inertial from its geometry with the rules of `rigid inertia fix` (MJCF:
-  /// MuJoCo's compiler's, as inertiafromgeom="true"; URDF: collision geometry at `density`).
+  /// MuJoCo's compiler's, as inertiafromgeom="true", a body without geoms massless; URDF:
+  /// collision geometry at `density`, a link without collision keeps its stated inertial).
   bool inertia_from_geometry = false;
   double density = 1000;  ///< kg/m³, URDF geometry with inertia_from_geometry
 };
