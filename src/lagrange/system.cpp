@@ -186,11 +186,19 @@ ex time_derivative(const System::Impl& s, const ex& e) {
   return r;
 }
 
+// A body frame's pose in the world and its angular velocity in its own axes.
+struct Frame {
+  Vec3 p;  // p_WB
+  Mat3 R;  // R_WB
+  Vec3 w;  // ω_B
+};
+
 // What the bodies add to the model: T and V, and the outputs of the mass and pose tapes.
 struct BodyTerms {
   ex T = 0, V = 0;
   std::vector<ex> mass_outputs;  // per body: mass, COM (3), inertia xx yy zz xy xz yz
   Poses poses;                   // body name → (p_WB, R_WB)
+  std::map<std::string, Frame> frames;  // body name → its frame, for the bodies hanging from it
   std::vector<ex> pose_outputs;  // per body: p_WB (3), R_WB row-major (9)
 };
 
@@ -222,10 +230,80 @@ Orientation body_orientation(const System::Impl& s, const ExpressionReader& read
   return {R, w};
 }
 
-// Adds body `b`: its T and its V in `gravity`, its mass properties (constants: no q, q̇ or t)
-// to the mass outputs, its pose to the pose outputs, and its name to s.body_names.
-void add_body(System::Impl& s, const ExpressionReader& reader, const Body& b, const Vec3& gravity,
-              BodyTerms& terms) {
+// The frame of the parent a body names: a body declared before it (refused otherwise).
+const Frame& parent_frame(const BodyTerms& terms, const SystemSpec& spec, const Body& b,
+                          std::size_t index) {
+  const std::string who = b.name.empty() ? fmt::format("body{}", index) : b.name;
+  RIGID_REQUIRE_AS("System", b.parent != b.name,
+                   "body '{}' names itself as its parent; expected the world (empty) or a body "
+                   "declared before it",
+                   who);
+  auto it = terms.frames.find(b.parent);
+  if (it != terms.frames.end()) return it->second;
+  const auto later =
+      std::find_if(spec.bodies.begin() + static_cast<std::ptrdiff_t>(index), spec.bodies.end(),
+                   [&](const Body& o) { return o.name == b.parent; });
+  if (later != spec.bodies.end()) {
+    rigid::detail::throw_error(
+        "System", fmt::format("body '{}' names the parent '{}', which is declared after it; "
+                              "declare a parent before the bodies that hang from it",
+                              who, b.parent));
+  }
+  std::vector<std::string> known;
+  for (const auto& [name, _] : terms.frames) known.push_back(name);
+  rigid::detail::throw_error(
+      "System",
+      fmt::format("body '{}' names the parent '{}', which is no body{}; bodies declared "
+                  "before it: {}",
+                  who, b.parent, did_you_mean_hint(b.parent, known),
+                  known.empty() ? std::string("none") : fmt::format("{}", fmt::join(known, ", "))));
+}
+
+// Applies a body's joints to its pose (p, R) and angular velocity ω (in the frame the joints
+// start from), left to right. A turn J = Trans(a) Rot(u, θ) Trans(−a):
+//   p ← p + R (a − R_J a),  R ← R R_J,  ω ← R_Jᵀ ω + u θ̇;
+// a slide by s along u: p ← p + R u s (R and ω stay).
+void apply_joints(const System::Impl& s, const ExpressionReader& reader, const Body& b,
+                  const std::string& ctx, Vec3& p, Mat3& R, Vec3& w) {
+  for (std::size_t j = 0; j < b.joints.size(); ++j) {
+    const JointMotion& J = b.joints[j];
+    const double norm = J.axis.norm();
+    RIGID_REQUIRE_AS("System", std::isfinite(norm) && norm > 0,
+                     "{} joint {}: the axis must be a non-zero finite vector, got ({}, {}, {})",
+                     ctx, j, J.axis.x(), J.axis.y(), J.axis.z());
+    RIGID_REQUIRE_AS("System", J.anchor.allFinite(),
+                     "{} joint {}: the anchor must be finite, got ({}, {}, {})",
+                     ctx, j, J.anchor.x(), J.anchor.y(), J.anchor.z());
+    const Eigen::Vector3d u = J.axis / norm;
+    const bool turn = J.kind == JointMotion::Kind::kTurn;
+    const ex amount = reader.parse(
+        J.amount, fmt::format("{} joint {} {}", ctx, j, turn ? "turn" : "slide"), false);
+    Vec3 shift;  // the joint's translation, in the frame it starts from
+    if (turn) {
+      const Mat3 RJ = rodrigues(u, amount);
+      const Vec3 a{number(J.anchor.x()), number(J.anchor.y()), number(J.anchor.z())};
+      const Vec3 RJa = mat_vec(RJ, a);
+      for (int k = 0; k < 3; ++k) shift[k] = (a[k] - RJa[k]).expand();
+      const ex amount_dot = time_derivative(s, amount);
+      w = mat_t_vec(RJ, w);
+      for (int k = 0; k < 3; ++k) w[k] = (w[k] + number(u[k]) * amount_dot).expand();
+      const Vec3 Rshift = mat_vec(R, shift);
+      for (int k = 0; k < 3; ++k) p[k] = (p[k] + Rshift[k]).expand();
+      R = mat_mul(R, RJ);
+    } else {
+      for (int k = 0; k < 3; ++k) shift[k] = number(u[k]) * amount;
+      const Vec3 Rshift = mat_vec(R, shift);
+      for (int k = 0; k < 3; ++k) p[k] = (p[k] + Rshift[k]).expand();
+    }
+  }
+}
+
+// Adds body `b` (number `index` of the spec): its T and its V in `gravity`, its mass
+// properties (constants: no q, q̇ or t) to the mass outputs, its world pose to the pose
+// outputs, its frame for the bodies hanging from it, and its name to s.body_names.
+void add_body(System::Impl& s, const ExpressionReader& reader, const SystemSpec& spec,
+              std::size_t index, const Vec3& gravity, BodyTerms& terms) {
+  const Body& b = spec.bodies[index];
   const std::string ctx = fmt::format("body '{}'", b.name);
   RIGID_REQUIRE_AS("System", b.name.empty() || !terms.poses.count(b.name), "body name '{}' is used twice",
                 b.name);
@@ -235,7 +313,21 @@ void add_body(System::Impl& s, const ExpressionReader& reader, const Body& b, co
     const bool empty = b.position[k].text.find_first_not_of(" \t") == std::string::npos;
     p[k] = empty ? ex(0) : reader.parse(b.position[k], fmt::format("{} position[{}]", ctx, k), false);
   }
-  const auto [R, w] = body_orientation(s, reader, b, ctx);
+  auto [R, w] = body_orientation(s, reader, b, ctx);
+  // a body in a tree: its joints, then its pose in the parent's carried into the world
+  // (p_WB = p_WP + R_WP p_PB, R_WB = R_WP R_PB, ω_B = R_PBᵀ ω_P + ω_PB_B); the other bodies
+  // keep the expressions they always had
+  if (!b.joints.empty()) apply_joints(s, reader, b, ctx, p, R, w);
+  if (!b.parent.empty()) {
+    const Frame& P = parent_frame(terms, spec, b, index);
+    const Vec3 w_P_B = mat_t_vec(R, P.w);
+    const Vec3 p_W = mat_vec(P.R, p);
+    for (int k = 0; k < 3; ++k) {
+      w[k] = (w_P_B[k] + w[k]).expand();
+      p[k] = (P.p[k] + p_W[k]).expand();
+    }
+    R = mat_mul(P.R, R);
+  }
   // mass properties as expressions of the parameters (constants: no q, q̇ or t)
   const ex mass = reader.parse_constant(b.mass.mass, ctx + " mass");
   Vec3 com_B;
@@ -263,7 +355,10 @@ void add_body(System::Impl& s, const ExpressionReader& reader, const Body& b, co
   for (int k = 0; k < 3; ++k) {
     if (!gravity[k].is_zero()) terms.V -= mass * gravity[k] * c[k];
   }
-  if (!b.name.empty()) terms.poses.emplace(b.name, std::make_pair(p, R));
+  if (!b.name.empty()) {
+    terms.poses.emplace(b.name, std::make_pair(p, R));
+    terms.frames.emplace(b.name, Frame{p, R, w});
+  }
   s.body_names.push_back(b.name.empty() ? fmt::format("body{}", s.body_names.size()) : b.name);
   for (int k = 0; k < 3; ++k) terms.pose_outputs.push_back(p[k]);
   for (int i = 0; i < 3; ++i)
@@ -330,7 +425,7 @@ BodyTerms derive_energies(System::Impl& s, const SystemSpec& spec, const Express
     L_given = reader.parse(spec.lagrangian, "Lagrangian", true).expand();
   }
   BodyTerms terms;
-  for (const Body& b : spec.bodies) add_body(s, reader, b, gravity, terms);
+  for (std::size_t i = 0; i < spec.bodies.size(); ++i) add_body(s, reader, spec, i, gravity, terms);
   add_springs(spec, reader, terms.poses, terms.V);
   for (const NamedExpression& pot : spec.potentials) {
     terms.V += reader.parse(pot.expression, fmt::format("potential '{}'", pot.name), false);

@@ -100,14 +100,35 @@ struct AxisRotation {
   Expression angle;
 };
 
-/// A rigid body whose pose is a function of q and t: p_WB (m) and R_WB = R₁ R₂ ⋯ R_k.
+/// One joint of a body, in the frame left by the body's position, rotations and the joints
+/// before it: a turn by `amount` (rad, right hand) about `axis` through `anchor`, or a slide by
+/// `amount` (m) along `axis`. axis: non-zero, normalised on use; anchor in that frame (m).
+/// As a pose: a turn is J = Trans(anchor) Rot(axis, amount) Trans(−anchor), a slide
+/// J = Trans(axis · amount). Parsed like a rotation's angle (q, t and the parameters).
+struct JointMotion {
+  enum class Kind { kTurn, kSlide };
+  Kind kind = Kind::kTurn;
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
+  Eigen::Vector3d anchor = Eigen::Vector3d::Zero();
+  Expression amount;
+};
+
+/// A rigid body whose pose is a function of q and t, relative to its parent frame P (the world
+/// W when `parent` is empty):
+///   X_PB = Trans(position) · R₁ R₂ ⋯ R_k · J₁ ⋯ J_m,   X_WB = X_WP X_PB,
+/// and ω_B = R_PBᵀ ω_P + ω_PB_B (the parent's angular velocity carried into B, plus B's own).
 /// Kinetic energy T = ½ m |ċ|² + ½ ω_Bᵀ I_C_B ω_B with c = p_WB + R_WB p_BC and ω_B read off
-/// R_WBᵀ Ṙ_WB; gravity adds V = −m g_W · c.
+/// R_WBᵀ Ṙ_WB; gravity adds V = −m g_W · c. Springs, poses and gravity use the world pose.
 struct Body {
   std::string name;
   BodyMass mass;
   std::array<Expression, 3> position{Expression("0"), Expression("0"), Expression("0")};  ///< empty: 0
   std::vector<AxisRotation> rotations;
+  /// The body this one hangs from: empty for the world, else the name of a body declared
+  /// earlier in SystemSpec::bodies (refused otherwise, naming both).
+  std::string parent{};
+  /// Joints after the rotations, applied left to right (see JointMotion).
+  std::vector<JointMotion> joints{};
 };
 
 /// A named expression: potential V(q, t) (J), constraint g(q, t) = 0, or, for a force, the
