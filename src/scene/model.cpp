@@ -561,6 +561,14 @@ struct Model::Impl {
       for (const AxisRotation& r : b.rotations) {
         lb.rotations.push_back({Eigen::Vector3d(r.axis[0], r.axis[1], r.axis[2]), to_lagrange(r.angle)});
       }
+      lb.parent = b.parent;
+      for (const Joint& j : b.joints) {
+        lb.joints.push_back({j.kind == Joint::Kind::kTurn ? lagrange::JointMotion::Kind::kTurn
+                                                          : lagrange::JointMotion::Kind::kSlide,
+                             Eigen::Vector3d(j.axis[0], j.axis[1], j.axis[2]),
+                             Eigen::Vector3d(j.anchor[0], j.anchor[1], j.anchor[2]),
+                             to_lagrange(j.amount)});
+      }
       spec.bodies.push_back(std::move(lb));
     }
     spec.gravity_W = expressions_of(scene.gravity);

@@ -159,8 +159,8 @@ class Parser {
   }
 
   [[nodiscard]] std::array<double, 3> vector3(const toml::node& n, std::string_view what) const {
-    const auto& a = array(n, what, 3);
-    return {number(*a.get(0), what), number(*a.get(1), what), number(*a.get(2), what)};
+    const auto& a = array(n, what, 3);  // three elements: a[i] (unchecked) is never null
+    return {number(a[0], what), number(a[1], what), number(a[2], what)};
   }
 
   [[nodiscard]] std::array<Expression, 3> expression3(const toml::node& n, std::string_view what) const {
@@ -271,8 +271,9 @@ const Keys kDimensionKeys = [] {
 const Keys kMeshKeys = {"units", "shell", "thickness", "fill_holes"};
 const Keys kBodyKeys = [] {
   Keys k = {"name", "primitive", "mesh", "inertia", "point_masses", "mass", "density",
-            "position", "rotation", "free", "initial_position", "initial_quaternion",
-            "initial_rotation", "initial_velocity", "angular_velocity", "pivot"};
+            "position", "rotation", "parent", "joints", "free", "initial_position",
+            "initial_quaternion", "initial_rotation", "initial_velocity", "angular_velocity",
+            "pivot"};
   k.insert(k.end(), kMeshKeys.begin(), kMeshKeys.end());
   k.insert(k.end(), kDimensionKeys.begin(), kDimensionKeys.end());
   return k;
@@ -407,6 +408,55 @@ void parse_mass(const Parser& p, const toml::table& t, const std::string& contex
   }
 }
 
+// [[bodies.joints]]: exactly one of turn (rad) or slide (m), an expression; axis (required,
+// non-zero, normalised here); anchor (m, default 0; a turn's only).
+void parse_joints(const Parser& p, const toml::node& n, const std::string& context, Body& body) {
+  const toml::array* a = n.as_array();
+  if (a == nullptr) {
+    p.fail(n, fmt::format("{} joints must be an array of tables, written [[bodies.joints]] under "
+                          "the body, got {}",
+                          context, Parser::type_name(n)));
+  }
+  std::size_t i = 0;
+  for (const toml::node& e : *a) {
+    const std::string ctx = fmt::format("{} joint {}", context, ++i);
+    const toml::table& jt = p.table(e, ctx);
+    p.check_keys(jt, ctx, {"turn", "slide", "axis", "anchor"});
+    Joint j;
+    j.where = p.where(e.source());
+    const toml::node* turn = jt.get("turn");
+    const toml::node* slide = jt.get("slide");
+    if (turn != nullptr && slide != nullptr) {
+      p.fail(*slide, fmt::format("{} has both 'turn' and 'slide'; a joint is one of them (add a "
+                                 "second [[bodies.joints]] for the other)",
+                                 ctx));
+    }
+    if (turn == nullptr && slide == nullptr) {
+      p.fail(e, fmt::format("{} is missing 'turn' or 'slide': the angle (rad) it turns about its "
+                            "axis, or the distance (m) it slides along it",
+                            ctx));
+    }
+    j.kind = turn != nullptr ? Joint::Kind::kTurn : Joint::Kind::kSlide;
+    j.amount = p.expression(turn != nullptr ? *turn : *slide,
+                            ctx + (turn != nullptr ? " turn" : " slide"));
+    const toml::node& axis = p.required(jt, e.source(), "axis", ctx);
+    j.axis = p.vector3(axis, ctx + " axis");
+    const double len = safe_norm(j.axis);
+    if (!(len > 0)) p.fail(axis, fmt::format("{} axis is zero; expected a non-zero vector", ctx));
+    const double scale = std::max({std::abs(j.axis[0]), std::abs(j.axis[1]), std::abs(j.axis[2])});
+    for (double& c : j.axis) c = c / scale / (len / scale);
+    if (auto an = jt.get("anchor")) {
+      if (slide != nullptr) {
+        p.fail(*an, fmt::format("{} slides, and a slide has no anchor (only a turn is about an "
+                                "axis through a point); remove 'anchor'",
+                                ctx));
+      }
+      j.anchor = p.vector3(*an, ctx + " anchor");
+    }
+    body.joints.push_back(std::move(j));
+  }
+}
+
 void parse_pose(const Parser& p, const toml::table& t, const std::string& context, Body& body) {
   if (auto f = t.get("free")) body.free = p.boolean(*f, context + " free");
   const Keys free_keys = {"initial_position", "initial_quaternion", "initial_rotation",
@@ -417,6 +467,13 @@ void parse_pose(const Parser& p, const toml::table& t, const std::string& contex
         p.fail(*n, fmt::format("{} is free, so its pose is a state, not an expression: use "
                                "'initial_position' and 'initial_quaternion' or 'initial_rotation' "
                                "instead of '{}'",
+                               context, key));
+      }
+    }
+    for (const char* key : {"parent", "joints"}) {
+      if (auto n = t.get(key)) {
+        p.fail(*n, fmt::format("{} is free, so it hangs from nothing: '{}' is for bodies posed by "
+                               "[[coordinates]]",
                                context, key));
       }
     }
@@ -491,6 +548,11 @@ void parse_pose(const Parser& p, const toml::table& t, const std::string& contex
       body.rotations.push_back(std::move(r));
     }
   }
+  if (auto n = t.get("parent")) {
+    body.parent = p.identifier(*n, context + " parent");
+    body.parent_where = p.where(n->source());
+  }
+  if (auto n = t.get("joints")) parse_joints(p, *n, context, body);
 }
 
 // [[output.metrics]]: every key checked, and the keys a kind does not take refused by name.
@@ -860,6 +922,45 @@ void check_scene_kind(const toml::table& root, const Parser& p, const Scene& s) 
   }
 }
 
+// Every parent is a body posed by coordinates and declared before the body that names it.
+void check_parents(const Scene& s) {
+  for (std::size_t i = 0; i < s.bodies.size(); ++i) {
+    const Body& b = s.bodies[i];
+    if (b.parent.empty()) continue;
+    const auto it = std::find_if(s.bodies.begin(), s.bodies.end(),
+                                 [&](const Body& o) { return o.name == b.parent; });
+    if (it == s.bodies.end()) {
+      std::vector<std::string> bodies;
+      for (std::size_t k = 0; k < i; ++k) bodies.push_back(s.bodies[k].name);
+      std::string msg =
+          fmt::format("body '{}': parent '{}' is no body of the scene", b.name, b.parent);
+      if (auto g = did_you_mean(b.parent, bodies)) msg += fmt::format("; did you mean '{}'?", *g);
+      msg += bodies.empty() ? std::string("; it is the first body, so it hangs from the world: "
+                                          "leave out 'parent'")
+                            : fmt::format(" (bodies declared before it: {})", fmt::join(bodies, ", "));
+      detail::throw_error_at(b.parent_where, msg);
+    }
+    const auto k = static_cast<std::size_t>(it - s.bodies.begin());
+    if (k == i) {
+      detail::throw_error_at(b.parent_where, fmt::format("body '{}' names itself as its parent; "
+                                                         "expected a body declared before it",
+                                                         b.name));
+    }
+    if (k > i) {
+      detail::throw_error_at(b.parent_where,
+                             fmt::format("body '{}': parent '{}' is declared after it (line {}); "
+                                         "declare a parent before the bodies that hang from it",
+                                         b.name, b.parent, it->where.line));
+    }
+    if (it->free) {
+      detail::throw_error_at(b.parent_where,
+                             fmt::format("body '{}': parent '{}' is a free body; a body hangs only "
+                                         "from a body posed by [[coordinates]]",
+                                         b.name, b.parent));
+    }
+  }
+}
+
 // Every force names a coordinate and every spring's bodies exist.
 void check_references(const Scene& s) {
   for (const NamedExpression& f : s.forces) {
@@ -908,6 +1009,7 @@ Scene parse_document(const toml::table& root, const Parser& p) {
   parse_output(root, p, s);
 
   // cross-references
+  check_parents(s);
   check_scene_kind(root, p, s);
   check_references(s);
   return s;

@@ -49,6 +49,19 @@ struct AxisRotation {
   Expression angle;
 };
 
+/// One joint of a body posed by coordinates, from `[[bodies.joints]]`, in the frame left by
+/// the body's position, rotations and the joints before it: a turn by `amount` (rad, right
+/// hand) about `axis` through `anchor` (m), or a slide by `amount` (m) along `axis`
+/// (rigid::lagrange::JointMotion). The parser normalises `axis`.
+struct Joint {
+  enum class Kind { kTurn, kSlide };
+  Kind kind = Kind::kTurn;
+  std::array<double, 3> axis{0, 0, 1};
+  std::array<double, 3> anchor{};
+  Expression amount;
+  SourceLocation where;  ///< the joint's table
+};
+
 /// A point mass (kg) at a position (m) in the body frame.
 struct PointMass {
   Expression mass;
@@ -91,10 +104,16 @@ struct Body {
   SourceLocation where;
   MassSpec mass;
   bool free = false;
-  /// Pose of the body frame B in the world W as expressions: p_WB (m) and
-  /// R_WB = R_1 R_2 ... R_k (the listed rotations composed left to right).
+  /// Pose of the body frame B in its parent's frame P (the world W when `parent` is empty) as
+  /// expressions: X_PB = Trans(position) R_1 R_2 ... R_k J_1 ... J_m (the listed rotations,
+  /// then the joints, composed left to right); X_WB = X_WP X_PB.
   std::array<Expression, 3> position;
   std::vector<AxisRotation> rotations;
+  /// The body this one hangs from (empty: the world): a body posed by coordinates declared
+  /// earlier in the file.
+  std::string parent;
+  SourceLocation parent_where;  ///< the `parent` value, for errors about it
+  std::vector<Joint> joints;
   /// Free body: initial position (m), orientation as a unit quaternion (w, x, y, z),
   /// velocity of the COM in the world (m/s), angular velocity in the body frame (rad/s).
   std::array<double, 3> initial_position{};
