@@ -17,6 +17,7 @@ void bind_scene(py::module_& m);
 void bind_modes(py::module_& m);
 void bind_spring(py::module_& m);
 void bind_integrate(py::module_& m);
+void bind_robot(py::module_& m);
 
 PYBIND11_MODULE(_rigid, m) {
   m.doc() = "rigid: rigid-body mechanics from isometries and inertia tensors to Euler's equations";
@@ -48,5 +49,6 @@ PYBIND11_MODULE(_rigid, m) {
   bind_modes(m);
   bind_spring(m);
   bind_integrate(m);
+  bind_robot(m);
   m.attr("__name__") = "rigid._rigid";
 }

@@ -159,6 +159,7 @@ def samples():
         # omega = sqrt(g / L) = 3.1320919527... rad/s
         (pendulum.modes(), ["NormalModes", "theta", "3.13209"]),
         (rigid.Scene(str(EXAMPLES / "atwood.toml")), ["Scene(", "atwood.toml", "coordinates"]),
+        (rigid.robot.Robot(EXAMPLES / "arm7.urdf"), ["Robot(", "arm7.urdf", "dof=7"]),
     ]
     out.append((out[-2][0].modes[0], ["Mode", "3.13209", "Hz"]))
     # the open cube: its 4 bottom edges are used by one triangle each

@@ -212,7 +212,15 @@ struct Orientation {
 Orientation body_orientation(const System::Impl& s, const ExpressionReader& reader, const Body& b,
                              const std::string& ctx) {
   Mat3 R = identity3();
-  Vec3 w{0, 0, 0};
+  if (!b.orientation.isIdentity(0.0)) {
+    const Eigen::Matrix3d& O = b.orientation;
+    RIGID_REQUIRE_AS("System", O.allFinite() && (O.transpose() * O - Eigen::Matrix3d::Identity()).norm() < 1e-12 &&
+                                   O.determinant() > 0,
+                     "{} orientation: expected a proper rotation matrix", ctx);
+    for (int i = 0; i < 3; ++i)
+      for (int k = 0; k < 3; ++k) R[i][k] = number(O(i, k));
+  }
+  Vec3 w{0, 0, 0};  // a constant leading rotation adds no angular velocity
   for (std::size_t j = 0; j < b.rotations.size(); ++j) {
     const AxisRotation& r = b.rotations[j];
     const double norm = r.axis.norm();

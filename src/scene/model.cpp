@@ -561,6 +561,7 @@ struct Model::Impl {
       for (const AxisRotation& r : b.rotations) {
         lb.rotations.push_back({Eigen::Vector3d(r.axis[0], r.axis[1], r.axis[2]), to_lagrange(r.angle)});
       }
+      if (b.orientation) lb.orientation = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>(b.orientation->data());
       lb.parent = b.parent;
       for (const Joint& j : b.joints) {
         lb.joints.push_back({j.kind == Joint::Kind::kTurn ? lagrange::JointMotion::Kind::kTurn

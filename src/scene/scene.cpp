@@ -1,4 +1,5 @@
 #include "rigid/scene/scene.hpp"
+#include "rigid/scene/robot_scene.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -1090,6 +1091,8 @@ Scene load_scene(const std::filesystem::path& file) {
     throw Error(fmt::format("scene file '{}' has more than the {} bytes (16 MiB) a scene may have",
                             file.string(), kMaxSceneFileBytes));
   }
+  // a robot model file (URDF, MJCF) is a scene of its joints (rigid/scene/robot_scene.hpp)
+  if (looks_like_xml(text)) return scene_from_robot(io::read_robot_model(text, file.string()), file);
   return parse_scene(text, file);
 }
 

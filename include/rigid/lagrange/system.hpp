@@ -124,6 +124,9 @@ struct Body {
   BodyMass mass;
   std::array<Expression, 3> position{Expression("0"), Expression("0"), Expression("0")};  ///< empty: 0
   std::vector<AxisRotation> rotations;
+  /// A constant rotation before `rotations` (a robot link's placement: numbers, not angles, so
+  /// that no cos of a constant stays in the equations): R = O R₁ ⋯ R_k. A proper rotation.
+  Eigen::Matrix3d orientation = Eigen::Matrix3d::Identity();
   /// The body this one hangs from: empty for the world, else the name of a body declared
   /// earlier in SystemSpec::bodies (refused otherwise, naming both).
   std::string parent{};

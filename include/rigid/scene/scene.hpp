@@ -109,6 +109,9 @@ struct Body {
   /// then the joints, composed left to right); X_WB = X_WP X_PB.
   std::array<Expression, 3> position;
   std::vector<AxisRotation> rotations;
+  /// A constant rotation matrix before `rotations` (row-major; rigid::lagrange::Body::
+  /// orientation): set for a robot link's placement, not by the TOML format.
+  std::optional<std::array<double, 9>> orientation;
   /// The body this one hangs from (empty: the world): a body posed by coordinates declared
   /// earlier in the file.
   std::string parent;

@@ -1,0 +1,256 @@
+#include "rigid/scene/robot_scene.hpp"
+
+#include <cmath>
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Geometry>
+#include <fmt/format.h>
+
+#include "rigid/common/error.hpp"
+
+namespace rigid::scene {
+
+namespace {
+
+// A rigid transform x ↦ R x + p.
+struct Transform {
+  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d p = Eigen::Vector3d::Zero();
+  [[nodiscard]] Transform operator*(const Transform& o) const { return {R * o.R, R * o.p + p}; }
+};
+
+// A moving body of the scene before it is written out: the link it stands for, its parent
+// body (−1: the world), its placement in the parent's frame, its joints (each in the frame left
+// by the ones before it) and its inertial in its own frame.
+struct TreeBody {
+  std::size_t link = 0;
+  int parent = -1;
+  Transform placement;
+  std::vector<io::RobotJoint> joints;
+  double mass = 0;
+  Eigen::Vector3d first_moment = Eigen::Vector3d::Zero();  // m c (kg·m)
+  Eigen::Matrix3d inertia_origin = Eigen::Matrix3d::Zero();  // about the body origin
+  bool merged_away = false;
+};
+
+// Adds an inertial given in a frame placed by X in the body's frame.
+void add_inertial(TreeBody& b, const io::RobotLink& link, const Transform& X) {
+  if (link.mass == 0) return;
+  const Eigen::Vector3d c = X.R * link.com + X.p;
+  const Eigen::Matrix3d I_c = X.R * link.inertia_com * X.R.transpose();
+  // parallel axes: I_O = I_C + m (|c|² 1 − c cᵀ)
+  b.inertia_origin += I_c + link.mass * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
+  b.first_moment += link.mass * c;
+  b.mass += link.mass;
+}
+
+std::string number_text(double v) { return fmt::format("{}", v); }
+
+Expression number(double v, const SourceLocation& where) {
+  return Expression{number_text(v), where, v, false};
+}
+
+Expression text(std::string t, const SourceLocation& where) {
+  return Expression{std::move(t), where, std::nullopt, true};
+}
+
+SourceLocation where_of(const io::RobotModel& model, const io::RobotLink& link, int line) {
+  return SourceLocation{link.file.empty() ? model.source : link.file, line, 0};
+}
+
+// The moving bodies: links with joints; welded links merged into the body they hang from (or
+// dropped when they hang from the world).
+std::vector<TreeBody> moving_bodies(const io::RobotModel& model) {
+  std::vector<TreeBody> bodies;
+  // per link: the body it belongs to (−1: the world) and its frame in that body's frame
+  std::vector<int> owner(model.links.size(), -1);
+  std::vector<Transform> in_owner(model.links.size());
+  for (std::size_t i = 0; i < model.links.size(); ++i) {
+    const io::RobotLink& link = model.links[i];
+    const Transform placement{link.rotation, link.position};
+    const int up = link.parent >= 0 ? owner[static_cast<std::size_t>(link.parent)] : -1;
+    const Transform up_frame = link.parent >= 0 ? in_owner[static_cast<std::size_t>(link.parent)] : Transform{};
+    if (link.joints.empty()) {
+      owner[i] = up;
+      in_owner[i] = up_frame * placement;
+      if (up >= 0) add_inertial(bodies[static_cast<std::size_t>(up)], link, in_owner[i]);
+      continue;
+    }
+    TreeBody b;
+    b.link = i;
+    b.parent = up;
+    b.placement = up_frame * placement;
+    b.joints = link.joints;
+    add_inertial(b, link, Transform{});
+    owner[i] = static_cast<int>(bodies.size());
+    bodies.push_back(std::move(b));
+  }
+  return bodies;
+}
+
+// P⁻¹ J P for a joint J given in the frame before P: the same motion, described in the frame
+// after P (a turn's axis and anchor, a slide's axis).
+io::RobotJoint conjugate(io::RobotJoint j, const Transform& P) {
+  j.axis = P.R.transpose() * j.axis;
+  j.anchor = P.R.transpose() * (j.anchor - P.p);
+  return j;
+}
+
+// A massless moving body carrying exactly one moving body is merged into it: T = P_B J_B P_C
+// J_C = (P_B P_C) (P_C⁻¹ J_B P_C) J_C. Others are refused: their joints would move nothing.
+void merge_massless(const io::RobotModel& model, std::vector<TreeBody>& bodies) {
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    if (bodies[b].mass > 0) continue;
+    std::vector<std::size_t> children;
+    for (std::size_t c = b + 1; c < bodies.size(); ++c) {
+      if (bodies[c].parent == static_cast<int>(b)) children.push_back(c);
+    }
+    const io::RobotLink& link = model.links[bodies[b].link];
+    if (children.size() != 1) {
+      rigid::detail::throw_error_at(
+          where_of(model, link, link.line),
+          fmt::format("link '{}' has joints but no mass, and carries {} moving links; a massless "
+                      "link between joints is supported when it carries exactly one (give it an "
+                      "<inertial>)",
+                      link.name, children.size()));
+    }
+    TreeBody& child = bodies[children.front()];
+    std::vector<io::RobotJoint> joints;
+    for (const io::RobotJoint& j : bodies[b].joints) joints.push_back(conjugate(j, child.placement));
+    joints.insert(joints.end(), child.joints.begin(), child.joints.end());
+    child.joints = std::move(joints);
+    child.placement = bodies[b].placement * child.placement;
+    child.parent = bodies[b].parent;
+    bodies[b].merged_away = true;
+  }
+}
+
+// q − ref as an expression of the coordinate
+std::string joint_amount(const io::RobotJoint& j) {
+  return j.ref == 0 ? j.name : fmt::format("{} - ({})", j.name, number_text(j.ref));
+}
+
+Body scene_body(const io::RobotModel& model, const std::vector<TreeBody>& bodies, const TreeBody& b) {
+  const io::RobotLink& link = model.links[b.link];
+  const SourceLocation where = where_of(model, link, link.line);
+  Body out;
+  out.name = link.name;
+  out.where = where;
+  if (b.parent >= 0) out.parent = model.links[bodies[static_cast<std::size_t>(b.parent)].link].name;
+  for (std::size_t k = 0; k < 3; ++k) out.position[k] = number(b.placement.p(static_cast<Eigen::Index>(k)), where);
+  if (!b.placement.R.isIdentity(0.0)) {
+    // entries of a quarter turn written as 1.5707963267948966 rad are ±1 and 6e-17: the latter
+    // are the rounding of the file's angle, and kept they would fill M(q) with terms of 1e-17
+    std::array<double, 9> O{};
+    for (int i = 0; i < 3; ++i) {
+      for (int k = 0; k < 3; ++k) {
+        const double v = b.placement.R(i, k);
+        O[static_cast<std::size_t>(3 * i + k)] = std::abs(v) < 1e-15 ? 0.0 : v;
+      }
+    }
+    out.orientation = O;
+  }
+  for (const io::RobotJoint& j : b.joints) {
+    Joint joint;
+    joint.kind = j.type == io::RobotJointType::kHinge ? Joint::Kind::kTurn : Joint::Kind::kSlide;
+    joint.axis = {j.axis.x(), j.axis.y(), j.axis.z()};
+    joint.anchor = {j.anchor.x(), j.anchor.y(), j.anchor.z()};
+    const SourceLocation jw = where_of(model, link, j.line);
+    joint.amount = text(joint_amount(j), jw);
+    joint.where = jw;
+    out.joints.push_back(std::move(joint));
+  }
+  // the inertial about the COM, from the sums about the body origin
+  MassSpec& m = out.mass;
+  m.kind = MassSpec::Kind::kExplicit;
+  m.where = where;
+  m.mass = number(b.mass, where);
+  const Eigen::Vector3d c = b.first_moment / b.mass;
+  const Eigen::Matrix3d I_c =
+      b.inertia_origin - b.mass * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
+  for (std::size_t k = 0; k < 3; ++k) m.com[k] = number(c(static_cast<Eigen::Index>(k)), where);
+  constexpr std::array<std::array<int, 2>, 6> kElements{{{0, 0}, {1, 1}, {2, 2}, {0, 1}, {0, 2}, {1, 2}}};
+  for (std::size_t k = 0; k < 6; ++k) m.inertia[k] = number(I_c(kElements[k][0], kElements[k][1]), where);
+  return out;
+}
+
+// The joints' passive terms: damping as forces, stiffness as potentials, armature in L.
+void add_passive_terms(const io::RobotModel& model, Scene& s) {
+  std::string armature;
+  for (const io::RobotLink& link : model.links) {
+    for (const io::RobotJoint& j : link.joints) {
+      const SourceLocation where = where_of(model, link, j.line);
+      if (j.damping != 0) {
+        s.forces.push_back({j.name, text(fmt::format("-{}*{}_dot", number_text(j.damping), j.name), where)});
+      }
+      if (j.stiffness != 0) {
+        const std::string rest = j.springref == 0 ? j.name : fmt::format("{} - ({})", j.name, number_text(j.springref));
+        s.potentials.push_back(
+            {j.name + "_spring", text(fmt::format("{}/2*({})^2", number_text(j.stiffness), rest), where)});
+      }
+      if (j.armature != 0) {
+        armature += fmt::format("{}{}/2*{}_dot^2", armature.empty() ? "" : " + ", number_text(j.armature), j.name);
+      }
+    }
+  }
+  if (!armature.empty()) s.lagrangian = text(armature, SourceLocation{model.source, 0, 0});
+}
+
+// The symbolic equations of a chain grow about threefold per joint (a spatial 7-joint arm:
+// 10 s and 5 MB of text; 5 joints: 0.1 s), so a deeper chain is refused with the reason
+// rather than left to run for minutes. Its dynamics in numbers: rigid.robot.Robot.
+void refuse_deep_chains(const io::RobotModel& model) {
+  std::vector<std::size_t> depth(model.links.size(), 0);
+  for (std::size_t i = 0; i < model.links.size(); ++i) {
+    const io::RobotLink& link = model.links[i];
+    depth[i] = (link.parent >= 0 ? depth[static_cast<std::size_t>(link.parent)] : 0) + link.joints.size();
+    if (depth[i] > kMaxRobotChainJoints) {
+      rigid::detail::throw_error_at(
+          where_of(model, link, link.line),
+          fmt::format("link '{}' hangs from the world through {} joints; the symbolic equations of "
+                      "a chain deeper than {} joints are not yet derived in reasonable time (a "
+                      "7-joint arm takes ~10 s). Its dynamics in numbers (M(q), bias and passive "
+                      "forces, forward and inverse dynamics): Python's rigid.robot.Robot",
+                      link.name, depth[i], kMaxRobotChainJoints));
+    }
+  }
+}
+
+}  // namespace
+
+bool looks_like_xml(std::string_view t) {
+  const std::size_t first = t.find_first_not_of(" \t\r\n\xef\xbb\xbf");
+  return first != std::string_view::npos && t[first] == '<';
+}
+
+Scene scene_from_robot(const io::RobotModel& model, const std::filesystem::path& file) {
+  Scene s;
+  s.file = file;
+  const SourceLocation top{model.source, 0, 0};
+  for (const io::RobotLink& link : model.links) {
+    for (const io::RobotJoint& j : link.joints) {
+      const SourceLocation where = where_of(model, link, j.line);
+      s.coordinates.push_back(Coordinate{j.name, number(j.ref, where), number(0, where), where});
+    }
+  }
+  RIGID_REQUIRE_AS("robot", !s.coordinates.empty(),
+                   "{}: the model has no joint (every link is fixed), so it has no equations of motion",
+                   model.source);
+  refuse_deep_chains(model);
+  std::vector<TreeBody> bodies = moving_bodies(model);
+  merge_massless(model, bodies);
+  for (const TreeBody& b : bodies) {
+    if (!b.merged_away) s.bodies.push_back(scene_body(model, bodies, b));
+  }
+  for (std::size_t k = 0; k < 3; ++k) s.gravity[k] = number(model.gravity(static_cast<Eigen::Index>(k)), top);
+  add_passive_terms(model, s);
+  s.simulation.t_end = number(5, top);
+  s.simulation.where = top;
+  return s;
+}
+
+}  // namespace rigid::scene

@@ -1,0 +1,194 @@
+// Robot model files as scenes (scene::load_scene on a URDF or MJCF; rigid/scene/robot_scene.hpp):
+// the symbolic equations of the scene against robot::TreeDynamics (recursive Newton–Euler and
+// composite inertias in numbers, itself held to MuJoCo in tests/robot) on the same file; the
+// fusion of welded and massless links; the passive terms; the refusals.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <string>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include "rigid/common/error.hpp"
+#include "rigid/io/robot_model.hpp"
+#include "rigid/robot/tree_dynamics.hpp"
+#include "rigid/scene/model.hpp"
+#include "rigid/scene/scene.hpp"
+
+namespace rigid::scene {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kExamples = fs::path(RIGID_TEST_DATA_DIR).parent_path().parent_path() / "examples";
+
+fs::path write(const std::string& name, const std::string& text) {
+  const fs::path p = fs::temp_directory_path() / fmt::format("rigid_robot_scene_{}_{}", ::getpid(), name);
+  std::ofstream(p) << text;
+  return p;
+}
+
+// M and f = −b + p of the scene's symbolic system and of TreeDynamics at random states, to 1e-10
+// relative to the largest entry: the tape evaluates the expanded expressions (a few hundred
+// terms, each a handful of roundings), TreeDynamics the recursive sums.
+void expect_same_equations(const fs::path& file, unsigned seed) {
+  const Model model(load_scene(file));
+  const robot::TreeDynamics tree(io::read_robot_model_file(file.string()));
+  const lagrange::System& system = model.system();
+  ASSERT_EQ(static_cast<std::size_t>(system.num_coordinates()), tree.dof());
+  EXPECT_EQ(system.coordinate_names(), tree.model().coordinate_names());
+  EXPECT_TRUE(system.initial_q().isApprox(tree.reference_configuration(), 0.0) ||
+              system.initial_q() == tree.reference_configuration());
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1.5, 1.5);
+  const auto n = static_cast<Eigen::Index>(tree.dof());
+  for (int state = 0; state < 10; ++state) {
+    Eigen::VectorXd q(n), v(n);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      q(i) = u(rng);
+      v(i) = 2 * u(rng);
+    }
+    Eigen::MatrixXd M;
+    Eigen::VectorXd f;
+    system.mass_matrix_and_forces(0.0, q, v, M, f);
+    const Eigen::MatrixXd M_ref = tree.mass_matrix(q);
+    const Eigen::VectorXd f_ref = -tree.bias_forces(q, v) + tree.passive_forces(q, v);
+    EXPECT_LT((M - M_ref).cwiseAbs().maxCoeff(), 1e-10 * M_ref.cwiseAbs().maxCoeff()) << "state " << state << "\n"
+                                                                                       << M << "\n\n" << M_ref;
+    EXPECT_LT((f - f_ref).cwiseAbs().maxCoeff(), 1e-10 * std::max(1.0, f_ref.cwiseAbs().maxCoeff()))
+        << "state " << state << "\n" << f.transpose() << "\n" << f_ref.transpose();
+  }
+}
+
+TEST(RobotScene, UrdfWithPrismaticContinuousAndFixedJoints) {
+  expect_same_equations(kExamples / "cart_arm.urdf", 1);
+}
+
+// MJCF: several joints on one body, hinges through anchors, a slide, ref, springs with springref,
+// armature, damping, defaults, a welded body whose inertial joins its parent's, degrees.
+TEST(RobotScene, MjcfWithMultiJointBodiesAnchorsSpringsAndArmature) {
+  const fs::path f = write("tree.xml", R"(<mujoco model="tree">
+  <option gravity="0.2 0 -9.81"/>
+  <default><joint damping="0.3" armature="0.02"/></default>
+  <worldbody>
+    <body name="base" pos="0 0 1" euler="10 20 30">
+      <joint name="yaw" type="hinge" axis="0 0 1" pos="0.05 0 0" ref="15" stiffness="2" springref="5"/>
+      <joint name="lift" type="slide" axis="0 0.6 0.8"/>
+      <inertial pos="0.02 0 0.1" mass="2" fullinertia="0.03 0.04 0.02 0.001 0.002 -0.001"/>
+      <body name="mount" pos="0.1 0 0" quat="0.9 0.1 0.3 0">
+        <inertial pos="0 0 0" mass="0.4" diaginertia="0.001 0.001 0.001"/>
+      </body>
+      <body name="arm" pos="0.2 0 0" axisangle="1 1 0 30">
+        <joint name="a1" axis="1 0 0" pos="0 0 0.05" damping="0"/>
+        <joint name="a2" axis="0 1 1" pos="0.1 0 0"/>
+        <inertial pos="0.15 0 0" quat="1 0.2 0 0.1" mass="1.2" diaginertia="0.01 0.02 0.025"/>
+      </body>
+    </body>
+  </worldbody>
+</mujoco>
+)");
+  expect_same_equations(f, 2);
+  fs::remove(f);
+}
+
+// A massless link between two joints (a URDF's way to write a two-axis joint) is merged into the
+// link it carries; the equations are those of the tree as written.
+TEST(RobotScene, MasslessLinkBetweenJointsIsMerged) {
+  const fs::path f = write("gimbal.urdf", R"(<robot name="gimbal">
+  <link name="base"/>
+  <link name="yoke"/>
+  <link name="bob"><inertial><origin xyz="0 0.1 -0.4" rpy="0.2 0 0"/><mass value="1.5"/>
+    <inertia ixx="0.02" ixy="0.001" ixz="0" iyy="0.03" iyz="0" izz="0.04"/></inertial></link>
+  <joint name="pan" type="continuous"><parent link="base"/><child link="yoke"/>
+    <origin xyz="0 0 0.5" rpy="0 0 0.4"/><axis xyz="0 0 1"/></joint>
+  <joint name="tilt" type="revolute"><parent link="yoke"/><child link="bob"/>
+    <origin xyz="0.1 0 0" rpy="0.3 0 0"/><axis xyz="0 1 0"/><limit lower="-1" upper="1" effort="1" velocity="1"/>
+    <dynamics damping="0.1"/></joint>
+</robot>
+)");
+  const Scene s = load_scene(f);
+  ASSERT_EQ(s.bodies.size(), 1U);
+  EXPECT_EQ(s.bodies[0].name, "bob");
+  EXPECT_EQ(s.bodies[0].joints.size(), 2U);
+  expect_same_equations(f, 3);
+  fs::remove(f);
+}
+
+TEST(RobotScene, UndampedRunKeepsItsEnergy) {
+  // the cart arm without damping, released from a bent pose: the default dopri5 keeps the energy
+  // to its tolerance's order (1e-6 of the energy scale over 2 s)
+  std::ifstream in(kExamples / "cart_arm.urdf");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  std::string text = buffer.str();
+  for (std::size_t at; (at = text.find("<dynamics")) != std::string::npos;) text.erase(at, text.find("/>", at) + 2 - at);
+  const fs::path f = write("cart_arm_free.urdf", text);
+  Scene s = load_scene(f);
+  apply_overrides(s, {"shoulder.initial=1.2", "elbow.velocity=2", "simulation.t_end=2"});
+  const RunResult r = Model(s).run();
+  double change = -1, scale = 0;
+  for (const auto& [name, value] : r.summary.diagnostics) {
+    if (name == "energy_max_change") change = value;
+    if (name == "energy_initial") scale = std::abs(value);
+  }
+  ASSERT_GE(change, 0);
+  EXPECT_LT(change, 1e-5 * std::max(1.0, scale));
+  fs::remove(f);
+}
+
+TEST(RobotScene, Refusals) {
+  // a massless link with joints that carries two moving links
+  const fs::path fork = write("fork.urdf", R"(<robot name="fork">
+  <link name="base"/><link name="hub"/>
+  <link name="a"><inertial><mass value="1"/><inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.1"/></inertial></link>
+  <link name="b"><inertial><mass value="1"/><inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.1"/></inertial></link>
+  <joint name="j0" type="continuous"><parent link="base"/><child link="hub"/><axis xyz="0 0 1"/></joint>
+  <joint name="j1" type="continuous"><parent link="hub"/><child link="a"/><axis xyz="1 0 0"/></joint>
+  <joint name="j2" type="continuous"><parent link="hub"/><child link="b"/><axis xyz="0 1 0"/></joint>
+</robot>
+)");
+  try {
+    (void)load_scene(fork);
+    FAIL() << "expected rigid::Error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("link 'hub' has joints but no mass"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(fork.string() + ":2"), std::string::npos) << e.what();
+  }
+  fs::remove(fork);
+  // MuJoCo's humanoid (pinned): 9 joints from the torso to a foot
+  try {
+    (void)load_scene("/usr/share/mujoco/model/humanoid/humanoid.xml");
+    FAIL() << "expected rigid::Error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("free joint"), std::string::npos) << e.what();
+  }
+  // an XML file that is neither URDF nor MJCF
+  const fs::path other = write("other.xml", "<svg/>\n");
+  EXPECT_THROW((void)load_scene(other), Error);
+  fs::remove(other);
+}
+
+TEST(RobotScene, DeepChainsAreRefusedWithTheReason) {
+  std::string links = R"(<robot name="chain"><link name="l0"/>)", joints;
+  for (int i = 1; i <= 9; ++i) {
+    links += fmt::format(R"(<link name="l{}"><inertial><origin xyz="0 0 -0.1"/><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>)" "\n", i);
+    joints += fmt::format(R"(<joint name="j{}" type="continuous"><parent link="l{}"/><child link="l{}"/><origin xyz="0 0 -0.2"/><axis xyz="{}"/></joint>)",
+                          i, i - 1, i, i % 2 ? "0 1 0" : "1 0 0");
+  }
+  const fs::path f = write("chain.urdf", links + joints + "</robot>\n");
+  try {
+    (void)load_scene(f);
+    FAIL() << "expected rigid::Error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("through 8 joints"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("rigid.robot.Robot"), std::string::npos) << e.what();
+  }
+  fs::remove(f);
+}
+
+}  // namespace
+}  // namespace rigid::scene
