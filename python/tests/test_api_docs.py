@@ -159,7 +159,6 @@ def samples():
         # omega = sqrt(g / L) = 3.1320919527... rad/s
         (pendulum.modes(), ["NormalModes", "theta", "3.13209"]),
         (rigid.Scene(str(EXAMPLES / "atwood.toml")), ["Scene(", "atwood.toml", "coordinates"]),
-        (rigid.robot.Robot(EXAMPLES / "arm7.urdf"), ["Robot(", "arm7.urdf", "dof=7"]),
     ]
     out.append((out[-2][0].modes[0], ["Mode", "3.13209", "Hz"]))
     # the open cube: its 4 bottom edges are used by one triangle each
@@ -167,6 +166,7 @@ def samples():
     # two 1 kg particles 1 m apart, one spring
     out.append((rigid.spring.Network([1.0, 1.0], [[0, 0, 0], [1, 0, 0]], np.zeros((2, 3)), [(0, 1, 10.0, 1.0)]),
                 ["Network(", "particles=2", "springs=1", "mass=2 kg"]))
+    out.append((rigid.robot.Robot(EXAMPLES / "arm7.urdf"), ["Robot(", "arm7.urdf", "dof=7"]))
     return out
 
 
