@@ -1,0 +1,309 @@
+"""A robot model file (URDF, MJCF) as a scene on the command line and in Python: the modes of
+a pinned pendulum against its closed form (stiffness and armature included), `rigid run`
+against rigid.Scene.run and the printed equations against rigid.robot.Robot (the same tree in
+numbers), the energy of a damped and an undamped arm, a sweep, `rigid check`, and the
+refusals, which every surface words alike and locates by file:line."""
+import csv
+import json
+import math
+import pathlib
+
+import numpy as np
+import pytest
+
+import rigid
+
+EXAMPLES = pathlib.Path(__file__).resolve().parents[2] / "examples"
+CART_ARM = EXAMPLES / "cart_arm.urdf"
+HUMANOID = pathlib.Path("/usr/share/mujoco/model/humanoid/humanoid.xml")
+G = 9.81  # URDF has no gravity element: MuJoCo's default, (0, 0, -9.81) m/s²
+PREFIX = "rigid: error: "
+
+
+def read_csv(path):
+    with open(path, newline="") as f:
+        rows = list(csv.reader(f))
+    return rows[0], np.array(rows[1:], dtype=float)
+
+
+# --- 1. the modes of a pinned pendulum --------------------------------------------------------
+
+M_BOB, L_COM, I_YY = 2.5, 0.7, 0.13  # kg, m below the hinge, kg·m² about the COM (axis y)
+
+
+def pendulum_urdf(path, yaw=0.0, damping=None):
+    """A hinge at the world origin about the world y axis carrying one link whose COM hangs
+    L_COM below it. With yaw ≠ 0 the link frame is turned by yaw about z, so the axis and the
+    inertia are written in that frame: the same physical pendulum in other numbers."""
+    c, s = math.cos(yaw), math.sin(yaw)
+    R = np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]])  # world ← link
+    I_link = R.T @ np.diag([0.1, I_YY, 0.05]) @ R
+    axis = R.T @ np.array([0, 1, 0])
+    dyn = f'\n    <dynamics damping="{damping!r}"/>' if damping is not None else ""
+    path.write_text(f"""<?xml version="1.0"?>
+<robot name="pendulum">
+  <link name="base"/>
+  <link name="bob">
+    <inertial>
+      <origin xyz="0 0 {-L_COM!r}" rpy="0 0 0"/>
+      <mass value="{M_BOB!r}"/>
+      <inertia ixx="{I_link[0, 0]!r}" ixy="{I_link[0, 1]!r}" ixz="0" iyy="{I_link[1, 1]!r}" iyz="0" izz="{I_link[2, 2]!r}"/>
+    </inertial>
+  </link>
+  <joint name="theta" type="continuous">
+    <parent link="base"/>
+    <child link="bob"/>
+    <origin xyz="0 0 0" rpy="0 0 {yaw!r}"/>
+    <axis xyz="{axis[0]!r} {axis[1]!r} {axis[2]!r}"/>{dyn}
+  </joint>
+</robot>
+""")
+    return path
+
+
+def pendulum_mjcf(path, stiffness, armature):
+    # URDF has no joint stiffness or armature: MJCF states them (N·m/rad, kg·m²)
+    path.write_text(f"""<mujoco model="pendulum">
+  <worldbody>
+    <body name="bob">
+      <joint name="theta" type="hinge" axis="0 1 0" stiffness="{stiffness!r}" armature="{armature!r}"/>
+      <inertial pos="0 0 {-L_COM!r}" mass="{M_BOB!r}" diaginertia="0.1 {I_YY!r} 0.05"/>
+    </body>
+  </worldbody>
+</mujoco>
+""")
+    return path
+
+
+def modes_json(run, path):
+    return json.loads(run("modes", path, "--json", check=True).stdout)
+
+
+# The linearisation of a one-coordinate scene is M, K of 1×1 and ω = sqrt(K/M): a few ε of
+# round-off in M = I + m l², K = m g l and the square root; 1e-9 leaves six orders of margin
+# and still catches any wrong term (a missing m l² is a 90 % error, a missing armature 20 %).
+OMEGA_RTOL = 1e-9
+
+
+@pytest.mark.parametrize("yaw", [0.0, 0.7])
+def test_pendulum_urdf_modes_are_the_closed_form(run, tmp_path, yaw):
+    d = modes_json(run, pendulum_urdf(tmp_path / "pendulum.urdf", yaw=yaw))
+    assert d["coordinates"] == ["theta"] and d["stability"] == "stable"
+    assert len(d["modes"]) == 1
+    omega = math.sqrt(M_BOB * G * L_COM / (I_YY + M_BOB * L_COM**2))
+    assert d["modes"][0]["omega"] == pytest.approx(omega, rel=OMEGA_RTOL)
+
+
+@pytest.mark.parametrize("stiffness, armature", [(0.0, 0.0), (3.2, 0.0), (0.0, 0.4), (3.2, 0.4)])
+def test_stiffness_and_armature_enter_the_pendulums_frequency(run, tmp_path, stiffness, armature):
+    d = modes_json(run, pendulum_mjcf(tmp_path / "pendulum.xml", stiffness, armature))
+    # spring: V gains ½ k θ², so K = m g l + k; armature: T gains ½ a θ̇², so M = I + m l² + a
+    omega = math.sqrt((M_BOB * G * L_COM + stiffness) / (I_YY + M_BOB * L_COM**2 + armature))
+    assert d["modes"][0]["omega"] == pytest.approx(omega, rel=OMEGA_RTOL)
+    assert d["M"][0][0] == pytest.approx(I_YY + M_BOB * L_COM**2 + armature, rel=1e-14)
+    assert d["K"][0][0] == pytest.approx(M_BOB * G * L_COM + stiffness, rel=1e-14)
+
+
+def test_damping_makes_the_pendulums_mode_decay(run, tmp_path):
+    c = 0.3  # N·m·s/rad
+    d = modes_json(run, pendulum_urdf(tmp_path / "damped.urdf", damping=c))
+    J, K = I_YY + M_BOB * L_COM**2, M_BOB * G * L_COM
+    assert d["C"] == [[pytest.approx(c, rel=1e-15)]]
+    # J λ² + c λ + K = 0: λ = −c/(2J) ± i sqrt(K/J − (c/2J)²); round-off only, as above
+    eig = d["modes"][0]["eigenvalue"]
+    assert eig["re"] == pytest.approx(-c / (2 * J), rel=OMEGA_RTOL)
+    assert abs(eig["im"]) == pytest.approx(math.sqrt(K / J - (c / (2 * J))**2), rel=OMEGA_RTOL)
+
+
+# --- 2. the seams: rigid run = rigid.Scene.run; rigid eom = rigid.robot.Robot -------------------
+
+OVERRIDES = ["shoulder.initial=0.8", "simulation.t_end=0.5"]
+
+
+def cli_run(run, model, out, *overrides):
+    sets = [a for o in overrides for a in ("--set", o)]
+    run("run", model, *sets, "-o", out, "-q", check=True)
+    return read_csv(out / "trajectory.csv"), json.loads((out / "summary.json").read_text())
+
+
+def test_rigid_run_and_python_give_the_same_trajectory(run, tmp_path):
+    (names, rows), summary = cli_run(run, CART_ARM, tmp_path / "cli", *OVERRIDES)
+    py = rigid.Scene(str(CART_ARM), set=OVERRIDES).run()
+    assert list(py["columns"]) == names
+    assert rows[-1, 0] == 0.5 and summary["t_end"] == 0.5
+    assert py["summary"]["steps"] == summary["steps"]
+    # the same engine on the same input; the CSV holds shortest round-trip decimals, so the
+    # last row agrees to the bit — 1e-12 only allows for a last-digit difference in printing
+    for j, name in enumerate(names):
+        np.testing.assert_allclose(py["columns"][name][-1], rows[-1, j], rtol=1e-12, atol=1e-15,
+                                   err_msg=name)
+
+
+def evaluate(text, values):
+    """A printed expression (sin, cos, sqrt, ^, rationals) at the given symbol values."""
+    return eval(text.replace("^", "**"), {"__builtins__": {}},
+                {"sin": math.sin, "cos": math.cos, "sqrt": math.sqrt, **values})
+
+
+def test_printed_equations_are_the_trees_dynamics(run):
+    d = json.loads(run("eom", CART_ARM, "--format", "json", check=True).stdout)
+    robot = rigid.robot.Robot(str(CART_ARM))
+    assert d["coordinates"] == robot.coordinates == ["x", "shoulder", "elbow"]
+    assert len(d["equations"]["text"]) == robot.dof == 3
+    q, q_dot = np.array([0.3, -0.7, 1.1]), np.array([0.4, -1.3, 2.2])  # a generic state
+    values = {**dict(zip(d["coordinates"], q)), **{f"{n}_dot": v for n, v in zip(d["coordinates"], q_dot)}}
+    M = np.array([[evaluate(e, values) for e in row] for row in d["mass_matrix"]["text"]])
+    f = np.array([evaluate(e, values) for e in d["forcing"]["text"]])
+    # M q̈ = f with f = −b(q, q̇) + p(q, q̇); the printed coefficients carry ≥ 17 digits, so
+    # the two differ by the round-off of summing ~10 terms of size ≤ 10: 1e-12 absolute
+    np.testing.assert_allclose(M, robot.mass_matrix(q), rtol=0, atol=1e-12)
+    np.testing.assert_allclose(f, robot.passive_forces(q, q_dot) - robot.bias_forces(q, q_dot),
+                               rtol=0, atol=1e-12)
+    # the damping of the file (x: 2 N·s/m, shoulder: 0.05 N·m·s/rad) as generalized forces
+    expected = -np.array([2.0, 0.05, 0.0]) * q_dot
+    np.testing.assert_allclose([evaluate(e, values) for e in d["forcing_generalized"]["text"]],
+                               expected, rtol=0, atol=1e-15)
+
+
+# --- 3. the energy -----------------------------------------------------------------------------
+
+def test_the_damped_arm_loses_the_energy_its_dampers_dissipate(run, tmp_path):
+    (names, rows), summary = cli_run(run, CART_ARM, tmp_path / "run", *OVERRIDES)
+    col = {n: rows[:, j] for j, n in enumerate(names)}
+    E, t = col["energy"], col["t"]
+    # dE/dt = −2 ẋ² − 0.05 θ̇_shoulder² ≤ 0. Between steps E falls by ≥ 7.8e-9 J here (the first
+    # step, from rest, falls least), while the undamped copy below drifts by ≤ 1.5e-9 J over the
+    # whole run: any rise above 1e-9 · |E(0)| ≈ 3.6e-9 J is not integration error.
+    assert np.all(np.diff(E) <= 1e-9 * abs(E[0])), np.diff(E).max()
+    # and the loss is the dampers' work: E(0) − E(T) = ∫ (2 ẋ² + 0.05 θ̇²) dt, by the trapezoid
+    # rule on dopri5's ~80 steps of h ≈ 7 ms: its error ≈ h²/12 · ∫|P''| ≈ (7e-3 · 10 s⁻¹)²/12
+    # ≈ 4e-4 of the integral (measured 4e-5); 2e-3 catches a wrong coefficient
+    power = 2 * col["x_dot"]**2 + 0.05 * col["shoulder_dot"]**2
+    dissipated = np.sum(np.diff(t) * (power[1:] + power[:-1]) / 2)
+    assert E[0] - E[-1] == pytest.approx(dissipated, rel=2e-3)
+    assert summary["diagnostics"]["energy_final"] == E[-1]
+    # the energy column is the tree's T + V (rigid.robot.Robot, independent numbers): the same
+    # up to the round-off of a few J
+    robot = rigid.robot.Robot(str(CART_ARM))
+    q = np.stack([col[n] for n in robot.coordinates], axis=1)
+    q_dot = np.stack([col[f"{n}_dot"] for n in robot.coordinates], axis=1)
+    TV = np.array([sum(robot.energy(q[k], q_dot[k])) for k in range(len(t))])
+    np.testing.assert_allclose(TV - TV[0], E - E[0], rtol=0, atol=1e-12)
+
+
+def test_without_damping_the_energy_is_conserved_to_the_integrators_tolerance(run, tmp_path):
+    text = CART_ARM.read_text()
+    undamped = "\n".join(line for line in text.splitlines() if "<dynamics" not in line)
+    assert undamped.count("<dynamics") == 0 and text.count("<dynamics") == 2
+    model = tmp_path / "undamped.urdf"
+    model.write_text(undamped)
+    _, summary = cli_run(run, model, tmp_path / "run", *OVERRIDES)
+    _, damped = cli_run(run, CART_ARM, tmp_path / "damped", *OVERRIDES)
+    # a robot scene takes the coordinates' default integrator, dopri5 at a tolerance of 1e-9
+    # per step: over 79 steps the energy can drift by at most ~79 · 1e-9 · |E| ≈ 1e-7 |E|
+    # (measured 1.4e-9 J, 4e-10 |E|); 1e-6 |E| is the bound, and the damped run's change,
+    # 0.27 J = 7 % of E, is five orders above it
+    assert summary["integrator"] == "dopri5" and summary["tolerance"] == 1e-9
+    d = summary["diagnostics"]
+    assert d["energy_max_change"] < 1e-6 * abs(d["energy_initial"])
+    assert damped["diagnostics"]["energy_max_change"] > 1e-2 * abs(d["energy_initial"])
+    assert damped["diagnostics"]["energy_initial"] == d["energy_initial"]
+
+
+# --- 4. a sweep; 6. rigid check ----------------------------------------------------------------
+
+def test_a_sweep_over_the_shoulders_start(run, tmp_path):
+    out = tmp_path / "sweep"
+    run("sweep", CART_ARM, "--grid", "shoulder.initial=0.1:1.0:4", "--set", "simulation.t_end=0.5",
+        "-o", out, "-q", check=True)
+    with open(out / "runs.csv", newline="") as f:
+        runs = list(csv.DictReader(f))
+    assert len(runs) == 4
+    assert [float(r["shoulder.initial"]) for r in runs] == pytest.approx([0.1, 0.4, 0.7, 1.0], abs=1e-15)
+    assert all(r["error"] == "" for r in runs)
+    assert json.loads((out / "summary.json").read_text())["failures"] == 0
+    # a run of the sweep is `rigid run` with the same overrides: the same numbers, bit for bit
+    # but for printing (1e-12)
+    _, single = cli_run(run, CART_ARM, tmp_path / "single", "shoulder.initial=1.0", "simulation.t_end=0.5")
+    for key in ("energy_initial", "energy_final", "energy_max_change"):
+        assert float(runs[-1][key]) == pytest.approx(single["diagnostics"][key], rel=1e-12), key
+
+
+def test_rigid_check_accepts_the_cart_arm(run):
+    proc = run("check", CART_ARM, check=True)
+    assert "coordinates: x, shoulder, elbow" in proc.stdout
+    # the tool (0.3 kg) welded to the lower link joins it: 1 + 0.3 kg
+    assert "lower        mass 1.3 kg" in proc.stdout
+
+
+# --- 5. refusals ---------------------------------------------------------------------------------
+
+LINK = ('<link name="{name}"><inertial><origin xyz="0 0 -0.1"/><mass value="1"/>'
+        '<inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>')
+
+
+def chain(n):
+    """n links hanging in a chain by continuous joints: line 3 is the base, link i on line 4 + i."""
+    links = ['<link name="base"/>'] + [LINK.format(name=f"l{i}") for i in range(n)]
+    joints = [f'<joint name="j{i}" type="continuous"><parent link="{"base" if i == 0 else f"l{i - 1}"}"/>'
+              f'<child link="l{i}"/><origin xyz="0 0 {-0.2 if i else 0}"/><axis xyz="0 1 0"/></joint>'
+              for i in range(n)]
+    return '<?xml version="1.0"?>\n<robot name="chain">\n' + "\n".join(links + joints) + "\n</robot>\n"
+
+
+def two_links(joint2_extra="", joint2_type="continuous"):
+    return ('<?xml version="1.0"?>\n<robot name="r">\n<link name="base"/>\n'   # lines 1-3
+            + LINK.format(name="a") + "\n" + LINK.format(name="b") + "\n"      # lines 4-5
+            + '<joint name="j1" type="continuous"><parent link="base"/><child link="a"/>'
+              '<axis xyz="0 1 0"/></joint>\n'                                   # line 6
+            + f'<joint name="j2" type="{joint2_type}"><parent link="a"/><child link="b"/>'
+              f'<origin xyz="0 0 -0.2"/><axis xyz="0 1 0"/>{joint2_extra}</joint>\n'  # line 7
+            + "</robot>\n")
+
+
+# (file name, its text (None: the file as it is), the line the message starts with,
+#  the words it must name)
+REFUSALS = {
+    "truncated": ("trunc.urdf", '<robot name="x"><link name="a">', 1, ["malformed XML"]),
+    "floating": ("floating.urdf", two_links(joint2_type="floating"), 7,
+                 ["'j2'", "floating"]),
+    "mimic": ("mimic.urdf", two_links('<mimic joint="j1" multiplier="2"/>'), 7,
+              ["'j2'", "mimic"]),
+    "humanoid": (str(HUMANOID), None, 67, ["'root'", "free"]),
+    # l7 is the first link 8 joints from the world
+    "nine_joints": ("chain9.urdf", chain(9), 11,
+                    ["'l7'", "8 joints", "7 joints", "rigid.robot.Robot"]),
+    "missing": ("missing.urdf", None, None, ["missing.urdf", "No such file"]),
+}
+
+
+@pytest.mark.parametrize("case", list(REFUSALS))
+def test_refusals_are_located_and_the_same_in_python(run, tmp_path, case):
+    name, text, where, words = REFUSALS[case]
+    if case == "humanoid":
+        if not HUMANOID.exists():
+            pytest.skip("MuJoCo's model directory is not installed")
+        assert "<freejoint" in HUMANOID.read_text().splitlines()[66]  # line 67 holds the free joint
+        path = HUMANOID
+    else:
+        path = tmp_path / name
+        if text is not None:
+            path.write_text(text)
+    messages = set()
+    for verb in (["check"], ["eom"], ["modes"], ["run", "-o", tmp_path / "out"],
+                 ["sweep", "--grid", "j1.initial=0:1:2", "-o", tmp_path / "sweep"]):
+        proc = run(verb[0], path, *verb[1:], check=False)
+        assert proc.returncode == 1, (verb, proc.stdout, proc.stderr)
+        assert "Traceback" not in proc.stderr and proc.stderr.count("\n") == 1, proc.stderr
+        assert proc.stderr.startswith(PREFIX), proc.stderr
+        messages.add(proc.stderr.strip().removeprefix(PREFIX))
+    assert len(messages) == 1, messages  # every verb says the same
+    assert not (tmp_path / "out").exists() and not (tmp_path / "sweep").exists()  # nothing written
+    message = messages.pop()
+    if where is not None:
+        assert message.startswith(f"{path}:{where}: "), message
+    for word in words:
+        assert word in message, (word, message)
+    with pytest.raises(rigid.Error) as refused:
+        rigid.Scene(str(path))
+    assert str(refused.value) == message
