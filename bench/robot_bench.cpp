@@ -34,7 +34,8 @@ std::string pinned_humanoid() {
     std::ifstream in(kHumanoid);
     std::stringstream s;
     s << in.rdbuf();
-    const fs::path out = fs::temp_directory_path() / ("rigid_bench_humanoid_" + std::to_string(::getpid()) + ".xml");
+    const fs::path out =
+        fs::temp_directory_path() / ("rigid_bench_humanoid_" + std::to_string(::getpid()) + ".xml");
     std::ofstream(out) << std::regex_replace(s.str(), std::regex(R"(<freejoint[^>]*/>)"), "");
     return out.string();
   }();
@@ -83,7 +84,8 @@ struct Pair {
 };
 
 Pair& model(int which) {
-  static Pair arm((kSource / "examples" / "arm7.urdf").string(), (kSource / "examples" / "arm7.urdf").string(), false);
+  static Pair arm((kSource / "examples" / "arm7.urdf").string(),
+                  (kSource / "examples" / "arm7.urdf").string(), false);
   static Pair humanoid(kHumanoid.string(), pinned_humanoid(), true);
   return which == 0 ? arm : humanoid;
 }

@@ -25,9 +25,10 @@ namespace {
 
 using rigid::robot::TreeDynamics;
 
-Eigen::VectorXd coordinates_arg(const TreeDynamics& t, const py::handle& value, std::string_view function,
-                                std::string_view name) {
-  return cv::vector(value, {function, name}, static_cast<Eigen::Index>(t.dof()), cv::Finite::kRequired, "dof");
+Eigen::VectorXd coordinates_arg(const TreeDynamics& t, const py::handle& value,
+                                std::string_view function, std::string_view name) {
+  return cv::vector(value, {function, name}, static_cast<Eigen::Index>(t.dof()),
+                    cv::Finite::kRequired, "dof");
 }
 
 }  // namespace
@@ -48,11 +49,13 @@ void bind_robot(py::module_& m) {
              rigid::io::RobotReadOptions options;
              options.pin_free_root = pin_free_root;
              return cv::reading("rigid.robot.Robot", path, [&] {
-               return std::make_shared<TreeDynamics>(rigid::io::read_robot_model_file(path, options));
+               return std::make_shared<TreeDynamics>(
+                   rigid::io::read_robot_model_file(path, options));
              });
            }),
            py::arg("file"), py::kw_only(), py::arg("pin_free_root") = false,
-           "Reads the model. pin_free_root: weld a free-floating root (MJCF <freejoint>) where it is.")
+           "Reads the model. pin_free_root: weld a free-floating root (MJCF <freejoint>) where it "
+           "is.")
       .def_property_readonly("dof", &TreeDynamics::dof, "Number of coordinates.")
       .def_property_readonly(
           "coordinates", [](const TreeDynamics& t) { return t.model().coordinate_names(); },
@@ -66,7 +69,8 @@ void bind_robot(py::module_& m) {
           },
           "The links' names, depth first from the root.")
       .def_property_readonly(
-          "gravity", [](const TreeDynamics& t) { return Eigen::Vector3d(t.model().gravity); }, "m/s², world frame.")
+          "gravity", [](const TreeDynamics& t) { return Eigen::Vector3d(t.model().gravity); },
+          "m/s², world frame.")
       .def_property_readonly("reference_configuration", &TreeDynamics::reference_configuration,
                              "q at which every link sits at its placement (each joint's ref).")
       .def(
@@ -79,7 +83,8 @@ void bind_robot(py::module_& m) {
           "bias_forces",
           [](const TreeDynamics& t, const py::object& q, const py::object& q_dot) {
             const char* f = "rigid.robot.Robot.bias_forces";
-            return t.bias_forces(coordinates_arg(t, q, f, "q"), coordinates_arg(t, q_dot, f, "q_dot"));
+            return t.bias_forces(coordinates_arg(t, q, f, "q"),
+                                 coordinates_arg(t, q_dot, f, "q_dot"));
           },
           py::arg("q"), py::arg("q_dot"),
           "b(q, q̇): Coriolis, centrifugal and gravity forces (MuJoCo's qfrc_bias).")
@@ -87,23 +92,28 @@ void bind_robot(py::module_& m) {
           "passive_forces",
           [](const TreeDynamics& t, const py::object& q, const py::object& q_dot) {
             const char* f = "rigid.robot.Robot.passive_forces";
-            return t.passive_forces(coordinates_arg(t, q, f, "q"), coordinates_arg(t, q_dot, f, "q_dot"));
+            return t.passive_forces(coordinates_arg(t, q, f, "q"),
+                                    coordinates_arg(t, q_dot, f, "q_dot"));
           },
           py::arg("q"), py::arg("q_dot"),
           "p(q, q̇) = −damping q̇ − stiffness (q − springref) (MuJoCo's qfrc_passive).")
       .def(
           "inverse_dynamics",
-          [](const TreeDynamics& t, const py::object& q, const py::object& q_dot, const py::object& q_ddot) {
+          [](const TreeDynamics& t, const py::object& q, const py::object& q_dot,
+             const py::object& q_ddot) {
             const char* f = "rigid.robot.Robot.inverse_dynamics";
-            return t.inverse_dynamics(coordinates_arg(t, q, f, "q"), coordinates_arg(t, q_dot, f, "q_dot"),
+            return t.inverse_dynamics(coordinates_arg(t, q, f, "q"),
+                                      coordinates_arg(t, q_dot, f, "q_dot"),
                                       coordinates_arg(t, q_ddot, f, "q_ddot"));
           },
           py::arg("q"), py::arg("q_dot"), py::arg("q_ddot"), "τ = M q̈ + b − p.")
       .def(
           "forward_dynamics",
-          [](const TreeDynamics& t, const py::object& q, const py::object& q_dot, const py::object& tau) {
+          [](const TreeDynamics& t, const py::object& q, const py::object& q_dot,
+             const py::object& tau) {
             const char* f = "rigid.robot.Robot.forward_dynamics";
-            return t.forward_dynamics(coordinates_arg(t, q, f, "q"), coordinates_arg(t, q_dot, f, "q_dot"),
+            return t.forward_dynamics(coordinates_arg(t, q, f, "q"),
+                                      coordinates_arg(t, q_dot, f, "q_dot"),
                                       coordinates_arg(t, tau, f, "tau"));
           },
           py::arg("q"), py::arg("q_dot"), py::arg("tau"), "q̈ = M⁻¹ (τ − b + p).")
@@ -121,8 +131,10 @@ void bind_robot(py::module_& m) {
           "link_poses",
           [](const TreeDynamics& t, const py::object& q) {
             py::list out;
-            for (const auto& pose : t.link_poses(coordinates_arg(t, q, "rigid.robot.Robot.link_poses", "q"))) {
-              out.append(py::make_tuple(Eigen::Vector3d(pose.position), Eigen::Matrix3d(pose.rotation)));
+            for (const auto& pose :
+                 t.link_poses(coordinates_arg(t, q, "rigid.robot.Robot.link_poses", "q"))) {
+              out.append(
+                  py::make_tuple(Eigen::Vector3d(pose.position), Eigen::Matrix3d(pose.rotation)));
             }
             return out;
           },

@@ -97,8 +97,10 @@ Eigen::VectorXd TreeDynamics::reference_configuration() const {
 }
 
 void TreeDynamics::check_sizes(const char* what, const Eigen::VectorXd& v) const {
-  RIGID_REQUIRE_AS("robot", static_cast<std::size_t>(v.size()) == n_, "{} has {} entries; the model has {} "
-                   "coordinates", what, v.size(), n_);
+  RIGID_REQUIRE_AS("robot", static_cast<std::size_t>(v.size()) == n_,
+                   "{} has {} entries; the model has {} "
+                   "coordinates",
+                   what, v.size(), n_);
   RIGID_REQUIRE_AS("robot", v.allFinite(), "{} is not finite", what);
 }
 
@@ -132,7 +134,8 @@ void TreeDynamics::kinematics(const Eigen::VectorXd& q, Kinematics& k) const {
       k.S.col(column++) = S;
     }
     k.poses[i] = {p, R};
-    k.inertia[i] = spatial_inertia(link.mass, p + R * link.com, R * link.inertia_com * R.transpose());
+    k.inertia[i] =
+        spatial_inertia(link.mass, p + R * link.com, R * link.inertia_com * R.transpose());
   }
 }
 
@@ -194,7 +197,8 @@ Eigen::MatrixXd TreeDynamics::mass_matrix(const Eigen::VectorXd& q) const {
       const auto col = static_cast<Eigen::Index>(first_dof_[i] + j);
       const Vector6d F = Ic[i] * k.S.col(col);
       // the joints of this link and of every ancestor feel it
-      for (int a = static_cast<int>(i); a >= 0; a = model_.links[static_cast<std::size_t>(a)].parent) {
+      for (int a = static_cast<int>(i); a >= 0;
+           a = model_.links[static_cast<std::size_t>(a)].parent) {
         const auto ua = static_cast<std::size_t>(a);
         for (std::size_t jj = 0; jj < model_.links[ua].joints.size(); ++jj) {
           const auto row = static_cast<Eigen::Index>(first_dof_[ua] + jj);
@@ -213,12 +217,14 @@ Eigen::MatrixXd TreeDynamics::mass_matrix(const Eigen::VectorXd& q) const {
   return M;
 }
 
-Eigen::VectorXd TreeDynamics::bias_forces(const Eigen::VectorXd& q, const Eigen::VectorXd& q_dot) const {
+Eigen::VectorXd TreeDynamics::bias_forces(const Eigen::VectorXd& q,
+                                          const Eigen::VectorXd& q_dot) const {
   check_sizes("q_dot", q_dot);
   return rnea(q, q_dot, Eigen::VectorXd::Zero(static_cast<Eigen::Index>(n_)), true);
 }
 
-Eigen::VectorXd TreeDynamics::passive_forces(const Eigen::VectorXd& q, const Eigen::VectorXd& q_dot) const {
+Eigen::VectorXd TreeDynamics::passive_forces(const Eigen::VectorXd& q,
+                                             const Eigen::VectorXd& q_dot) const {
   check_sizes("q", q);
   check_sizes("q_dot", q_dot);
   Eigen::VectorXd p(static_cast<Eigen::Index>(n_));
@@ -232,7 +238,8 @@ Eigen::VectorXd TreeDynamics::passive_forces(const Eigen::VectorXd& q, const Eig
   return p;
 }
 
-Eigen::VectorXd TreeDynamics::inverse_dynamics(const Eigen::VectorXd& q, const Eigen::VectorXd& q_dot,
+Eigen::VectorXd TreeDynamics::inverse_dynamics(const Eigen::VectorXd& q,
+                                               const Eigen::VectorXd& q_dot,
                                                const Eigen::VectorXd& q_ddot) const {
   check_sizes("q_dot", q_dot);
   check_sizes("q_ddot", q_ddot);
@@ -247,11 +254,13 @@ Eigen::VectorXd TreeDynamics::inverse_dynamics(const Eigen::VectorXd& q, const E
   return tau;
 }
 
-Eigen::VectorXd TreeDynamics::forward_dynamics(const Eigen::VectorXd& q, const Eigen::VectorXd& q_dot,
+Eigen::VectorXd TreeDynamics::forward_dynamics(const Eigen::VectorXd& q,
+                                               const Eigen::VectorXd& q_dot,
                                                const Eigen::VectorXd& tau) const {
   check_sizes("tau", tau);
   const Eigen::LLT<Eigen::MatrixXd> llt(mass_matrix(q));
-  RIGID_REQUIRE_AS("robot", llt.info() == Eigen::Success, "the mass matrix is not positive definite at q = {}",
+  RIGID_REQUIRE_AS("robot", llt.info() == Eigen::Success,
+                   "the mass matrix is not positive definite at q = {}",
                    rigid::to_string(q.transpose()));
   return llt.solve(tau - bias_forces(q, q_dot) + passive_forces(q, q_dot));
 }

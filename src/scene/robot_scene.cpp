@@ -32,7 +32,7 @@ struct TreeBody {
   Transform placement;
   std::vector<io::RobotJoint> joints;
   double mass = 0;
-  Eigen::Vector3d first_moment = Eigen::Vector3d::Zero();  // m c (kg·m)
+  Eigen::Vector3d first_moment = Eigen::Vector3d::Zero();    // m c (kg·m)
   Eigen::Matrix3d inertia_origin = Eigen::Matrix3d::Zero();  // about the body origin
   bool merged_away = false;
 };
@@ -43,7 +43,8 @@ void add_inertial(TreeBody& b, const io::RobotLink& link, const Transform& X) {
   const Eigen::Vector3d c = X.R * link.com + X.p;
   const Eigen::Matrix3d I_c = X.R * link.inertia_com * X.R.transpose();
   // parallel axes: I_O = I_C + m (|c|² 1 − c cᵀ)
-  b.inertia_origin += I_c + link.mass * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
+  b.inertia_origin +=
+      I_c + link.mass * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
   b.first_moment += link.mass * c;
   b.mass += link.mass;
 }
@@ -73,7 +74,8 @@ std::vector<TreeBody> moving_bodies(const io::RobotModel& model) {
     const io::RobotLink& link = model.links[i];
     const Transform placement{link.rotation, link.position};
     const int up = link.parent >= 0 ? owner[static_cast<std::size_t>(link.parent)] : -1;
-    const Transform up_frame = link.parent >= 0 ? in_owner[static_cast<std::size_t>(link.parent)] : Transform{};
+    const Transform up_frame =
+        link.parent >= 0 ? in_owner[static_cast<std::size_t>(link.parent)] : Transform{};
     if (link.joints.empty()) {
       owner[i] = up;
       in_owner[i] = up_frame * placement;
@@ -120,7 +122,8 @@ void merge_massless(const io::RobotModel& model, std::vector<TreeBody>& bodies) 
     }
     TreeBody& child = bodies[children.front()];
     std::vector<io::RobotJoint> joints;
-    for (const io::RobotJoint& j : bodies[b].joints) joints.push_back(conjugate(j, child.placement));
+    for (const io::RobotJoint& j : bodies[b].joints)
+      joints.push_back(conjugate(j, child.placement));
     joints.insert(joints.end(), child.joints.begin(), child.joints.end());
     child.joints = std::move(joints);
     child.placement = bodies[b].placement * child.placement;
@@ -134,14 +137,16 @@ std::string joint_amount(const io::RobotJoint& j) {
   return j.ref == 0 ? j.name : fmt::format("{} - ({})", j.name, number_text(j.ref));
 }
 
-Body scene_body(const io::RobotModel& model, const std::vector<TreeBody>& bodies, const TreeBody& b) {
+Body scene_body(const io::RobotModel& model, const std::vector<TreeBody>& bodies,
+                const TreeBody& b) {
   const io::RobotLink& link = model.links[b.link];
   const SourceLocation where = where_of(model, link, link.line);
   Body out;
   out.name = link.name;
   out.where = where;
   if (b.parent >= 0) out.parent = model.links[bodies[static_cast<std::size_t>(b.parent)].link].name;
-  for (std::size_t k = 0; k < 3; ++k) out.position[k] = number(b.placement.p(static_cast<Eigen::Index>(k)), where);
+  for (std::size_t k = 0; k < 3; ++k)
+    out.position[k] = number(b.placement.p(static_cast<Eigen::Index>(k)), where);
   if (!b.placement.R.isIdentity(0.0)) {
     // entries of a quarter turn written as 1.5707963267948966 rad are ±1 and 6e-17: the latter
     // are the rounding of the file's angle, and kept they would fill M(q) with terms of 1e-17
@@ -171,10 +176,13 @@ Body scene_body(const io::RobotModel& model, const std::vector<TreeBody>& bodies
   m.mass = number(b.mass, where);
   const Eigen::Vector3d c = b.first_moment / b.mass;
   const Eigen::Matrix3d I_c =
-      b.inertia_origin - b.mass * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
+      b.inertia_origin -
+      b.mass * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
   for (std::size_t k = 0; k < 3; ++k) m.com[k] = number(c(static_cast<Eigen::Index>(k)), where);
-  constexpr std::array<std::array<int, 2>, 6> kElements{{{0, 0}, {1, 1}, {2, 2}, {0, 1}, {0, 2}, {1, 2}}};
-  for (std::size_t k = 0; k < 6; ++k) m.inertia[k] = number(I_c(kElements[k][0], kElements[k][1]), where);
+  constexpr std::array<std::array<int, 2>, 6> kElements{
+      {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {0, 2}, {1, 2}}};
+  for (std::size_t k = 0; k < 6; ++k)
+    m.inertia[k] = number(I_c(kElements[k][0], kElements[k][1]), where);
   return out;
 }
 
@@ -185,15 +193,19 @@ void add_passive_terms(const io::RobotModel& model, Scene& s) {
     for (const io::RobotJoint& j : link.joints) {
       const SourceLocation where = where_of(model, link, j.line);
       if (j.damping != 0) {
-        s.forces.push_back({j.name, text(fmt::format("-{}*{}_dot", number_text(j.damping), j.name), where)});
+        s.forces.push_back(
+            {j.name, text(fmt::format("-{}*{}_dot", number_text(j.damping), j.name), where)});
       }
       if (j.stiffness != 0) {
-        const std::string rest = j.springref == 0 ? j.name : fmt::format("{} - ({})", j.name, number_text(j.springref));
+        const std::string rest =
+            j.springref == 0 ? j.name : fmt::format("{} - ({})", j.name, number_text(j.springref));
         s.potentials.push_back(
-            {j.name + "_spring", text(fmt::format("{}/2*({})^2", number_text(j.stiffness), rest), where)});
+            {j.name + "_spring",
+             text(fmt::format("{}/2*({})^2", number_text(j.stiffness), rest), where)});
       }
       if (j.armature != 0) {
-        armature += fmt::format("{}{}/2*{}_dot^2", armature.empty() ? "" : " + ", number_text(j.armature), j.name);
+        armature += fmt::format("{}{}/2*{}_dot^2", armature.empty() ? "" : " + ",
+                                number_text(j.armature), j.name);
       }
     }
   }
@@ -207,7 +219,8 @@ void refuse_deep_chains(const io::RobotModel& model) {
   std::vector<std::size_t> depth(model.links.size(), 0);
   for (std::size_t i = 0; i < model.links.size(); ++i) {
     const io::RobotLink& link = model.links[i];
-    depth[i] = (link.parent >= 0 ? depth[static_cast<std::size_t>(link.parent)] : 0) + link.joints.size();
+    depth[i] =
+        (link.parent >= 0 ? depth[static_cast<std::size_t>(link.parent)] : 0) + link.joints.size();
     if (depth[i] > kMaxRobotChainJoints) {
       rigid::detail::throw_error_at(
           where_of(model, link, link.line),
@@ -237,16 +250,18 @@ Scene scene_from_robot(const io::RobotModel& model, const std::filesystem::path&
       s.coordinates.push_back(Coordinate{j.name, number(j.ref, where), number(0, where), where});
     }
   }
-  RIGID_REQUIRE_AS("robot", !s.coordinates.empty(),
-                   "{}: the model has no joint (every link is fixed), so it has no equations of motion",
-                   model.source);
+  RIGID_REQUIRE_AS(
+      "robot", !s.coordinates.empty(),
+      "{}: the model has no joint (every link is fixed), so it has no equations of motion",
+      model.source);
   refuse_deep_chains(model);
   std::vector<TreeBody> bodies = moving_bodies(model);
   merge_massless(model, bodies);
   for (const TreeBody& b : bodies) {
     if (!b.merged_away) s.bodies.push_back(scene_body(model, bodies, b));
   }
-  for (std::size_t k = 0; k < 3; ++k) s.gravity[k] = number(model.gravity(static_cast<Eigen::Index>(k)), top);
+  for (std::size_t k = 0; k < 3; ++k)
+    s.gravity[k] = number(model.gravity(static_cast<Eigen::Index>(k)), top);
   add_passive_terms(model, s);
   s.simulation.t_end = number(5, top);
   s.simulation.where = top;

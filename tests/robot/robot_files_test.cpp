@@ -54,14 +54,16 @@ std::string read(const fs::path& p) {
 // A copy of MuJoCo's model directory `dir` in which every free joint is removed: MuJoCo's own
 // model of the robot pinned at its root (what RobotReadOptions::pin_free_root reads).
 fs::path pinned_copy(const fs::path& dir) {
-  const fs::path out = fs::temp_directory_path() / fmt::format("rigid_pinned_{}_{}", dir.filename().string(), ::getpid());
+  const fs::path out = fs::temp_directory_path() /
+                       fmt::format("rigid_pinned_{}_{}", dir.filename().string(), ::getpid());
   fs::create_directories(out);
   const std::regex freejoint(R"(<freejoint[^>]*/>)");
   for (const auto& e : fs::directory_iterator(dir)) {
     if (e.path().extension() == ".xml") {
       std::ofstream(out / e.path().filename()) << std::regex_replace(read(e.path()), freejoint, "");
     } else {
-      fs::copy(e.path(), out / e.path().filename(), fs::copy_options::recursive | fs::copy_options::overwrite_existing);
+      fs::copy(e.path(), out / e.path().filename(),
+               fs::copy_options::recursive | fs::copy_options::overwrite_existing);
     }
   }
   return out;
@@ -88,9 +90,11 @@ void expect_same_dynamics(const mjModel* m, const TreeDynamics& tree, unsigned s
     mj_fullM(m, dense.data(), d->qM);
     const Eigen::MatrixXd M = tree.mass_matrix(q);
     const Eigen::VectorXd f = -tree.bias_forces(q, v) + tree.passive_forces(q, v);
-    const double m_scale = M.cwiseAbs().maxCoeff(), f_scale = std::max(1.0, f.cwiseAbs().maxCoeff());
+    const double m_scale = M.cwiseAbs().maxCoeff(),
+                 f_scale = std::max(1.0, f.cwiseAbs().maxCoeff());
     for (int i = 0; i < m->nv; ++i) {
-      EXPECT_NEAR(f(i), -d->qfrc_bias[i] + d->qfrc_passive[i], 1e-9 * f_scale) << "f row " << i << ", state " << state;
+      EXPECT_NEAR(f(i), -d->qfrc_bias[i] + d->qfrc_passive[i], 1e-9 * f_scale)
+          << "f row " << i << ", state " << state;
       for (int j = 0; j < m->nv; ++j) {
         EXPECT_NEAR(M(i, j), dense[static_cast<std::size_t>(i * m->nv + j)], 1e-9 * m_scale)
             << "M(" << i << ", " << j << "), state " << state;
@@ -133,7 +137,8 @@ TEST(RobotFiles, PrismaticContinuousAndFixedUrdfMatchesMuJoCo) {
 TEST(RobotFiles, MuJoCoHumanoidPinnedAtTheTorso) {
   io::RobotReadOptions pin;
   pin.pin_free_root = true;
-  const io::RobotModel model = io::read_robot_model_file((kModels / "humanoid" / "humanoid.xml").string(), pin);
+  const io::RobotModel model =
+      io::read_robot_model_file((kModels / "humanoid" / "humanoid.xml").string(), pin);
   EXPECT_EQ(model.dof(), 21U);
   const fs::path dir = pinned_copy(kModels / "humanoid");
   const MjModel m = load(dir / "humanoid.xml");

@@ -71,7 +71,8 @@ io::RobotJoint random_joint(std::mt19937& rng, int index) {
   j.name = fmt::format("j{}", index);
   j.type = pos(rng) < 0.25 ? io::RobotJointType::kSlide : io::RobotJointType::kHinge;
   j.axis = Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized();
-  if (j.type == io::RobotJointType::kHinge) j.anchor = 0.2 * Eigen::Vector3d(u(rng), u(rng), u(rng));
+  if (j.type == io::RobotJointType::kHinge)
+    j.anchor = 0.2 * Eigen::Vector3d(u(rng), u(rng), u(rng));
   j.ref = 0.3 * u(rng);
   j.damping = pos(rng);
   j.stiffness = 2 * pos(rng);
@@ -83,8 +84,8 @@ io::RobotJoint random_joint(std::mt19937& rng, int index) {
 std::string joint_mjcf(const io::RobotJoint& j) {
   return fmt::format(
       R"(<joint name="{}" type="{}" axis="{}" pos="{}" ref="{:.17g}" damping="{:.17g}" stiffness="{:.17g}" springref="{:.17g}" armature="{:.17g}"/>)",
-      j.name, j.type == io::RobotJointType::kHinge ? "hinge" : "slide", numbers(j.axis), numbers(j.anchor), j.ref, j.damping, j.stiffness,
-      j.springref, j.armature);
+      j.name, j.type == io::RobotJointType::kHinge ? "hinge" : "slide", numbers(j.axis),
+      numbers(j.anchor), j.ref, j.damping, j.stiffness, j.springref, j.armature);
 }
 
 RandomTree random_tree(unsigned seed, int links) {
@@ -105,15 +106,19 @@ RandomTree random_tree(unsigned seed, int links) {
     const int joints = i == 0 ? 1 : static_cast<int>(pos(rng) * 3);
     for (int k = 0; k < joints; ++k) l.joints.push_back(random_joint(rng, joint_count++));
     // principal moments that satisfy the triangle inequality, in a rotated inertial frame
-    const Eigen::Vector3d moments(0.1 + 0.05 * pos(rng), 0.1 + 0.05 * pos(rng), 0.1 + 0.05 * pos(rng));
+    const Eigen::Vector3d moments(0.1 + 0.05 * pos(rng), 0.1 + 0.05 * pos(rng),
+                                  0.1 + 0.05 * pos(rng));
     const Eigen::Quaterniond qi = random_rotation(rng);
     l.mass = 0.5 + 2 * pos(rng);
     l.com = 0.1 * Eigen::Vector3d(u(rng), u(rng), u(rng));
-    l.inertia_com = qi.toRotationMatrix() * moments.asDiagonal() * qi.toRotationMatrix().transpose();
-    std::string xml = fmt::format(R"(<body name="{}" pos="{}" quat="{:.17g} {:.17g} {:.17g} {:.17g}">)", l.name,
-                                  numbers(l.position), q.w(), q.x(), q.y(), q.z());
-    xml += fmt::format(R"(<inertial pos="{}" quat="{:.17g} {:.17g} {:.17g} {:.17g}" mass="{:.17g}" diaginertia="{}"/>)",
-                       numbers(l.com), qi.w(), qi.x(), qi.y(), qi.z(), l.mass, numbers(moments));
+    l.inertia_com =
+        qi.toRotationMatrix() * moments.asDiagonal() * qi.toRotationMatrix().transpose();
+    std::string xml =
+        fmt::format(R"(<body name="{}" pos="{}" quat="{:.17g} {:.17g} {:.17g} {:.17g}">)", l.name,
+                    numbers(l.position), q.w(), q.x(), q.y(), q.z());
+    xml += fmt::format(
+        R"(<inertial pos="{}" quat="{:.17g} {:.17g} {:.17g} {:.17g}" mass="{:.17g}" diaginertia="{}"/>)",
+        numbers(l.com), qi.w(), qi.x(), qi.y(), qi.z(), l.mass, numbers(moments));
     for (const io::RobotJoint& j : l.joints) xml += joint_mjcf(j);
     body_xml[static_cast<std::size_t>(i)] = xml;
     t.model.links.push_back(std::move(l));
@@ -121,7 +126,9 @@ RandomTree random_tree(unsigned seed, int links) {
   // nest the bodies: each closes after its subtree (links are in depth-first order only if a
   // child follows its parent's subtree: build the MJCF recursively and reorder the model alike)
   std::vector<std::vector<int>> children(static_cast<std::size_t>(links));
-  for (int i = 1; i < links; ++i) children[static_cast<std::size_t>(t.model.links[static_cast<std::size_t>(i)].parent)].push_back(i);
+  for (int i = 1; i < links; ++i)
+    children[static_cast<std::size_t>(t.model.links[static_cast<std::size_t>(i)].parent)].push_back(
+        i);
   std::vector<io::RobotLink> ordered;
   std::vector<int> new_index(static_cast<std::size_t>(links));
   std::function<std::string(int, int)> emit = [&](int i, int parent) {
@@ -130,13 +137,15 @@ RandomTree random_tree(unsigned seed, int links) {
     new_index[static_cast<std::size_t>(i)] = static_cast<int>(ordered.size());
     ordered.push_back(std::move(l));
     std::string xml = body_xml[static_cast<std::size_t>(i)];
-    for (int c : children[static_cast<std::size_t>(i)]) xml += emit(c, new_index[static_cast<std::size_t>(i)]);
+    for (int c : children[static_cast<std::size_t>(i)])
+      xml += emit(c, new_index[static_cast<std::size_t>(i)]);
     return xml + "</body>";
   };
   const std::string bodies = emit(0, -1);
   t.model.links = std::move(ordered);
-  t.mjcf = fmt::format(R"(<mujoco><compiler angle="radian"/><option gravity="{}"/><worldbody>{}</worldbody></mujoco>)",
-                       numbers(t.model.gravity), bodies);
+  t.mjcf = fmt::format(
+      R"(<mujoco><compiler angle="radian"/><option gravity="{}"/><worldbody>{}</worldbody></mujoco>)",
+      numbers(t.model.gravity), bodies);
   return t;
 }
 
@@ -145,7 +154,8 @@ struct MuJoCoForces {
   Eigen::VectorXd bias, passive;
 };
 
-MuJoCoForces mujoco_forces(const mjModel* m, const Eigen::VectorXd& q, const Eigen::VectorXd& q_dot) {
+MuJoCoForces mujoco_forces(const mjModel* m, const Eigen::VectorXd& q,
+                           const Eigen::VectorXd& q_dot) {
   MjData d(mj_makeData(m));
   for (int i = 0; i < m->nq; ++i) d->qpos[i] = q(i);
   for (int i = 0; i < m->nv; ++i) d->qvel[i] = q_dot(i);
@@ -185,7 +195,8 @@ TEST(TreeDynamics, MatchesMuJoCoOnRandomTrees) {
         v(i) = u(rng);
       }
       const MuJoCoForces ref = mujoco_forces(m.get(), q, v);
-      EXPECT_LT(relative_error(tree.mass_matrix(q), ref.M), 1e-9) << tree.mass_matrix(q) << "\n\n" << ref.M;
+      EXPECT_LT(relative_error(tree.mass_matrix(q), ref.M), 1e-9) << tree.mass_matrix(q) << "\n\n"
+                                                                  << ref.M;
       EXPECT_LT(relative_error(tree.bias_forces(q, v), ref.bias), 1e-9);
       EXPECT_LT(relative_error(tree.passive_forces(q, v), ref.passive), 1e-12);
     }
@@ -210,7 +221,8 @@ TEST(TreeDynamics, InverseAndForwardDynamicsAgree) {
     const Eigen::VectorXd tau = tree.inverse_dynamics(q, v, a);
     const Eigen::VectorXd expected =
         tree.mass_matrix(q) * a + tree.bias_forces(q, v) - tree.passive_forces(q, v);
-    EXPECT_LT((tau - expected).cwiseAbs().maxCoeff(), 1e-12 * std::max(1.0, tau.cwiseAbs().maxCoeff()));
+    EXPECT_LT((tau - expected).cwiseAbs().maxCoeff(),
+              1e-12 * std::max(1.0, tau.cwiseAbs().maxCoeff()));
     EXPECT_LT((tree.forward_dynamics(q, v, tau) - a).cwiseAbs().maxCoeff(), 1e-10);
   }
 }
@@ -223,7 +235,8 @@ TEST(TreeDynamics, PowerBalanceOfTheForwardDynamics) {
   const RandomTree t = random_tree(5, 6);
   const TreeDynamics tree(t.model);
   const auto n = static_cast<Eigen::Index>(tree.dof());
-  Eigen::VectorXd q = Eigen::VectorXd::LinSpaced(n, -0.7, 0.9), v = Eigen::VectorXd::LinSpaced(n, 1.1, -0.4);
+  Eigen::VectorXd q = Eigen::VectorXd::LinSpaced(n, -0.7, 0.9),
+                  v = Eigen::VectorXd::LinSpaced(n, 1.1, -0.4);
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);
   auto f = [&](const Eigen::VectorXd& x) {
     Eigen::VectorXd dx(2 * n);
@@ -234,7 +247,8 @@ TEST(TreeDynamics, PowerBalanceOfTheForwardDynamics) {
     return tree.kinetic_energy(x.head(n), x.tail(n)) + tree.potential_energy(x.head(n));
   };
   auto rk4 = [&](const Eigen::VectorXd& x, double h) {
-    const Eigen::VectorXd k1 = f(x), k2 = f(x + h / 2 * k1), k3 = f(x + h / 2 * k2), k4 = f(x + h * k3);
+    const Eigen::VectorXd k1 = f(x), k2 = f(x + h / 2 * k1), k3 = f(x + h / 2 * k2),
+                          k4 = f(x + h * k3);
     return Eigen::VectorXd(x + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4));
   };
   Eigen::VectorXd x(2 * n);
@@ -271,7 +285,8 @@ TEST(TreeDynamics, PendulumClosedForm) {
   model.links.push_back(l);
   const TreeDynamics tree(model);
   for (double th : {-2.0, 0.0, 0.3, 1.4}) {
-    const Eigen::VectorXd q = Eigen::VectorXd::Constant(1, th), v = Eigen::VectorXd::Constant(1, 0.7);
+    const Eigen::VectorXd q = Eigen::VectorXd::Constant(1, th),
+                          v = Eigen::VectorXd::Constant(1, 0.7);
     EXPECT_NEAR(tree.mass_matrix(q)(0, 0), 0.02 + 2 * 0.25, 1e-15);
     EXPECT_NEAR(tree.bias_forces(q, v)(0), 2 * 9.81 * 0.5 * std::sin(th), 1e-14);
   }
@@ -293,7 +308,8 @@ TEST(TreeDynamics, RefusesAJointThatMovesNothing) {
     FAIL() << "expected rigid::Error";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("arm.urdf:12"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("joint 'spin' moves nothing"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("joint 'spin' moves nothing"), std::string::npos)
+        << e.what();
   }
   io::RobotModel none;
   none.source = "fixed.urdf";

@@ -27,7 +27,8 @@ namespace fs = std::filesystem;
 const fs::path kExamples = fs::path(RIGID_TEST_DATA_DIR).parent_path().parent_path() / "examples";
 
 fs::path write(const std::string& name, const std::string& text) {
-  const fs::path p = fs::temp_directory_path() / fmt::format("rigid_robot_scene_{}_{}", ::getpid(), name);
+  const fs::path p =
+      fs::temp_directory_path() / fmt::format("rigid_robot_scene_{}_{}", ::getpid(), name);
   std::ofstream(p) << text;
   return p;
 }
@@ -57,10 +58,14 @@ void expect_same_equations(const fs::path& file, unsigned seed) {
     system.mass_matrix_and_forces(0.0, q, v, M, f);
     const Eigen::MatrixXd M_ref = tree.mass_matrix(q);
     const Eigen::VectorXd f_ref = -tree.bias_forces(q, v) + tree.passive_forces(q, v);
-    EXPECT_LT((M - M_ref).cwiseAbs().maxCoeff(), 1e-10 * M_ref.cwiseAbs().maxCoeff()) << "state " << state << "\n"
-                                                                                       << M << "\n\n" << M_ref;
+    EXPECT_LT((M - M_ref).cwiseAbs().maxCoeff(), 1e-10 * M_ref.cwiseAbs().maxCoeff())
+        << "state " << state << "\n"
+        << M << "\n\n"
+        << M_ref;
     EXPECT_LT((f - f_ref).cwiseAbs().maxCoeff(), 1e-10 * std::max(1.0, f_ref.cwiseAbs().maxCoeff()))
-        << "state " << state << "\n" << f.transpose() << "\n" << f_ref.transpose();
+        << "state " << state << "\n"
+        << f.transpose() << "\n"
+        << f_ref.transpose();
   }
 }
 
@@ -125,7 +130,8 @@ TEST(RobotScene, UndampedRunKeepsItsEnergy) {
   std::stringstream buffer;
   buffer << in.rdbuf();
   std::string text = buffer.str();
-  for (std::size_t at; (at = text.find("<dynamics")) != std::string::npos;) text.erase(at, text.find("/>", at) + 2 - at);
+  for (std::size_t at; (at = text.find("<dynamics")) != std::string::npos;)
+    text.erase(at, text.find("/>", at) + 2 - at);
   const fs::path f = write("cart_arm_free.urdf", text);
   Scene s = load_scene(f);
   apply_overrides(s, {"shoulder.initial=1.2", "elbow.velocity=2", "simulation.t_end=2"});
@@ -155,7 +161,8 @@ TEST(RobotScene, Refusals) {
     (void)load_scene(fork);
     FAIL() << "expected rigid::Error";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("link 'hub' has joints but no mass"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("link 'hub' has joints but no mass"), std::string::npos)
+        << e.what();
     EXPECT_NE(std::string(e.what()).find(fork.string() + ":2"), std::string::npos) << e.what();
   }
   fs::remove(fork);
@@ -175,9 +182,13 @@ TEST(RobotScene, Refusals) {
 TEST(RobotScene, DeepChainsAreRefusedWithTheReason) {
   std::string links = R"(<robot name="chain"><link name="l0"/>)", joints;
   for (int i = 1; i <= 9; ++i) {
-    links += fmt::format(R"(<link name="l{}"><inertial><origin xyz="0 0 -0.1"/><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>)" "\n", i);
-    joints += fmt::format(R"(<joint name="j{}" type="continuous"><parent link="l{}"/><child link="l{}"/><origin xyz="0 0 -0.2"/><axis xyz="{}"/></joint>)",
-                          i, i - 1, i, i % 2 ? "0 1 0" : "1 0 0");
+    links += fmt::format(
+        R"(<link name="l{}"><inertial><origin xyz="0 0 -0.1"/><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>)"
+        "\n",
+        i);
+    joints += fmt::format(
+        R"(<joint name="j{}" type="continuous"><parent link="l{}"/><child link="l{}"/><origin xyz="0 0 -0.2"/><axis xyz="{}"/></joint>)",
+        i, i - 1, i, i % 2 ? "0 1 0" : "1 0 0");
   }
   const fs::path f = write("chain.urdf", links + joints + "</robot>\n");
   try {

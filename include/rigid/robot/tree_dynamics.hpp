@@ -50,14 +50,18 @@ class TreeDynamics {
   /// M(q), n × n, symmetric positive definite (kg·m², kg·m or kg per entry).
   [[nodiscard]] Eigen::MatrixXd mass_matrix(const Eigen::VectorXd& q) const;
   /// b(q, q̇): Coriolis, centrifugal and gravity forces (N·m or N).
-  [[nodiscard]] Eigen::VectorXd bias_forces(const Eigen::VectorXd& q, const Eigen::VectorXd& q_dot) const;
+  [[nodiscard]] Eigen::VectorXd bias_forces(const Eigen::VectorXd& q,
+                                            const Eigen::VectorXd& q_dot) const;
   /// p(q, q̇) = −damping q̇ − stiffness (q − springref).
-  [[nodiscard]] Eigen::VectorXd passive_forces(const Eigen::VectorXd& q, const Eigen::VectorXd& q_dot) const;
+  [[nodiscard]] Eigen::VectorXd passive_forces(const Eigen::VectorXd& q,
+                                               const Eigen::VectorXd& q_dot) const;
   /// τ = M q̈ + b − p: the joint forces that give the accelerations q̈.
-  [[nodiscard]] Eigen::VectorXd inverse_dynamics(const Eigen::VectorXd& q, const Eigen::VectorXd& q_dot,
+  [[nodiscard]] Eigen::VectorXd inverse_dynamics(const Eigen::VectorXd& q,
+                                                 const Eigen::VectorXd& q_dot,
                                                  const Eigen::VectorXd& q_ddot) const;
   /// q̈ = M⁻¹ (τ − b + p), by a Cholesky factorisation of M.
-  [[nodiscard]] Eigen::VectorXd forward_dynamics(const Eigen::VectorXd& q, const Eigen::VectorXd& q_dot,
+  [[nodiscard]] Eigen::VectorXd forward_dynamics(const Eigen::VectorXd& q,
+                                                 const Eigen::VectorXd& q_dot,
                                                  const Eigen::VectorXd& tau) const;
   /// Kinetic energy ½ q̇ᵀ M q̇ (J, armature included).
   [[nodiscard]] double kinetic_energy(const Eigen::VectorXd& q, const Eigen::VectorXd& q_dot) const;

@@ -32,7 +32,8 @@ inline constexpr std::size_t kMaxRobotChainJoints = 7;
 /// the default output directory).
 /// @throws rigid::Error naming the link for a massless moving link that cannot be merged, or
 ///   for a chain of more than kMaxRobotChainJoints joints.
-[[nodiscard]] Scene scene_from_robot(const io::RobotModel& model, const std::filesystem::path& file);
+[[nodiscard]] Scene scene_from_robot(const io::RobotModel& model,
+                                     const std::filesystem::path& file);
 
 /// True when `text` is an XML document (its first non-blank character is '<'): a robot model
 /// rather than a TOML scene.
