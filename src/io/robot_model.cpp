@@ -411,7 +411,8 @@ std::optional<RobotJoint> mjcf_joint(const Mjcf& m, const XMLElement* j,
             "joint '{}' (type {}): ball and free joints (floating bases) are not yet supported{}",
             name, type,
             type == "free" && world_child
-                ? "; read with pin_free_root to weld the body to the world"
+                ? "; the robot pinned where its root stands is read by Python's "
+                  "rigid.robot.Robot(file, pin_free_root=True)"
                 : ""));
   }
   if (type != "hinge" && type != "slide") {
