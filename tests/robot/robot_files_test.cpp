@@ -7,7 +7,6 @@
 #include <fstream>
 #include <memory>
 #include <random>
-#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -51,16 +50,23 @@ std::string read(const fs::path& p) {
   return s.str();
 }
 
+// The text without its <freejoint .../> elements (MuJoCo's model of the robot pinned at its root).
+std::string without_free_joints(std::string text) {
+  for (std::size_t at; (at = text.find("<freejoint")) != std::string::npos;) {
+    text.erase(at, text.find("/>", at) + 2 - at);
+  }
+  return text;
+}
+
 // A copy of MuJoCo's model directory `dir` in which every free joint is removed: MuJoCo's own
 // model of the robot pinned at its root (what RobotReadOptions::pin_free_root reads).
 fs::path pinned_copy(const fs::path& dir) {
   const fs::path out = fs::temp_directory_path() /
                        fmt::format("rigid_pinned_{}_{}", dir.filename().string(), ::getpid());
   fs::create_directories(out);
-  const std::regex freejoint(R"(<freejoint[^>]*/>)");
   for (const auto& e : fs::directory_iterator(dir)) {
     if (e.path().extension() == ".xml") {
-      std::ofstream(out / e.path().filename()) << std::regex_replace(read(e.path()), freejoint, "");
+      std::ofstream(out / e.path().filename()) << without_free_joints(read(e.path()));
     } else {
       fs::copy(e.path(), out / e.path().filename(),
                fs::copy_options::recursive | fs::copy_options::overwrite_existing);
