@@ -353,33 +353,32 @@ struct Mjcf {
   const RobotReadOptions& options;
 };
 
-// a number attribute of a joint: its own, else its class's (MuJoCo's defaults)
-double mjcf_scalar(const Mjcf& m, const XMLElement* e, const detail::MjcfAttributes& def,
-                   const char* key, double fallback) {
+// `count` numbers of a joint's attribute: its own, else its class's (MuJoCo's defaults); empty
+// when neither gives it
+std::vector<double> mjcf_numbers(const Mjcf& m, const XMLElement* e, const detail::MjcfAttributes& def,
+                                 const char* key, std::size_t count) {
   const char* text = e->Attribute(key);
   if (text == nullptr) {
     const auto it = def.find(key);
-    if (it == def.end()) return fallback;
+    if (it == def.end()) return {};
     text = it->second.c_str();
   }
   detail::XmlNumbers n =
-      detail::read_xml_numbers(text, 1, fmt::format("<{}> attribute '{}'", e->Name(), key), true);
+      detail::read_xml_numbers(text, count, fmt::format("<{}> attribute '{}'", e->Name(), key), true);
   if (!n.problem.empty()) m.doc.refuse(e, n.problem);
-  return n.values[0];
+  return n.values;
+}
+
+double mjcf_scalar(const Mjcf& m, const XMLElement* e, const detail::MjcfAttributes& def,
+                   const char* key, double fallback) {
+  const std::vector<double> v = mjcf_numbers(m, e, def, key, 1);
+  return v.empty() ? fallback : v[0];
 }
 
 Eigen::Vector3d mjcf_vector(const Mjcf& m, const XMLElement* e, const detail::MjcfAttributes& def,
                             const char* key, const Eigen::Vector3d& fallback) {
-  const char* text = e->Attribute(key);
-  if (text == nullptr) {
-    const auto it = def.find(key);
-    if (it == def.end()) return fallback;
-    text = it->second.c_str();
-  }
-  detail::XmlNumbers n =
-      detail::read_xml_numbers(text, 3, fmt::format("<{}> attribute '{}'", e->Name(), key), true);
-  if (!n.problem.empty()) m.doc.refuse(e, n.problem);
-  return {n.values[0], n.values[1], n.values[2]};
+  const std::vector<double> v = mjcf_numbers(m, e, def, key, 3);
+  return v.empty() ? fallback : Eigen::Vector3d(v[0], v[1], v[2]);
 }
 
 const detail::MjcfAttributes& joint_class(const Mjcf& m, const XMLElement* j,

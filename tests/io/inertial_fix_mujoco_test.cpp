@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include "rigid/io/inertial_fix.hpp"
+#include "support/mujoco_model.hpp"
 #include "support/inertial_text.hpp"
 
 namespace rigid::io {
@@ -25,17 +26,8 @@ namespace fs = std::filesystem;
 // the models Debian's libmujoco-samples installs (a build dependency of the tests)
 const fs::path kModels = "/usr/share/mujoco/model";
 
-struct ModelDeleter {
-  void operator()(mjModel* m) const { mj_deleteModel(m); }
-};
-using Model = std::unique_ptr<mjModel, ModelDeleter>;
-
-Model load(const fs::path& path) {
-  char error[1000] = "";
-  Model m(mj_loadXML(path.c_str(), nullptr, error, sizeof error));
-  EXPECT_NE(m, nullptr) << path << ": " << error;
-  return m;
-}
+using Model = test::MjModelPtr;
+Model load(const fs::path& path) { return test::load_mujoco(path); }
 
 // a body's compiled inertia as a full tensor in the body frame: R(iquat) diag(inertia) Rᵀ
 // (principal axes of equal moments are not unique, the tensor is)

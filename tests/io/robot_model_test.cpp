@@ -17,6 +17,7 @@
 #include <mujoco/mujoco.h>
 
 #include "rigid/io/robot_model.hpp"
+#include "support/mujoco_model.hpp"
 #include "support/expect_error.hpp"
 #include "support/tolerance.hpp"
 
@@ -524,17 +525,8 @@ TEST(RobotModelMjcf, IncludesFollowedAndTheirErrorsNamed) {
 // ---------------------------------------------------------------------------------------------
 // MJCF against MuJoCo's compiler
 
-struct ModelDeleter {
-  void operator()(mjModel* m) const { mj_deleteModel(m); }
-};
-using Model = std::unique_ptr<mjModel, ModelDeleter>;
-
-Model load_mujoco(const fs::path& path) {
-  char error[1000] = "";
-  Model m(mj_loadXML(path.c_str(), nullptr, error, sizeof error));
-  EXPECT_NE(m, nullptr) << path << ": " << error;
-  return m;
-}
+using Model = test::MjModelPtr;
+using test::load_mujoco;
 
 Matrix3d rotation(const mjtNum* q) {
   return Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized().toRotationMatrix();

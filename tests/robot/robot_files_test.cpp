@@ -18,6 +18,7 @@
 
 #include "rigid/io/robot_model.hpp"
 #include "rigid/robot/tree_dynamics.hpp"
+#include "support/mujoco_model.hpp"
 
 namespace rigid::robot {
 namespace {
@@ -27,35 +28,16 @@ namespace fs = std::filesystem;
 const fs::path kModels = "/usr/share/mujoco/model";  // Debian's libmujoco-samples
 const fs::path kExamples = fs::path(RIGID_TEST_DATA_DIR).parent_path().parent_path() / "examples";
 
-struct ModelDeleter {
-  void operator()(mjModel* m) const { mj_deleteModel(m); }
-};
-struct DataDeleter {
-  void operator()(mjData* d) const { mj_deleteData(d); }
-};
-using MjModel = std::unique_ptr<mjModel, ModelDeleter>;
-using MjData = std::unique_ptr<mjData, DataDeleter>;
-
-MjModel load(const fs::path& path) {
-  char error[1000] = "";
-  MjModel m(mj_loadXML(path.c_str(), nullptr, error, sizeof error));
-  EXPECT_NE(m, nullptr) << path << ": " << error;
-  return m;
-}
+using test::load_mujoco;
+using test::without_free_joints;
+using MjModel = test::MjModelPtr;
+using MjData = test::MjDataPtr;
 
 std::string read(const fs::path& p) {
   std::ifstream in(p);
   std::stringstream s;
   s << in.rdbuf();
   return s.str();
-}
-
-// The text without its <freejoint .../> elements (MuJoCo's model of the robot pinned at its root).
-std::string without_free_joints(std::string text) {
-  for (std::size_t at; (at = text.find("<freejoint")) != std::string::npos;) {
-    text.erase(at, text.find("/>", at) + 2 - at);
-  }
-  return text;
 }
 
 // A copy of MuJoCo's model directory `dir` in which every free joint is removed: MuJoCo's own
@@ -125,7 +107,7 @@ void expect_same_coordinates(const mjModel* m, const io::RobotModel& model) {
 TEST(RobotFiles, SevenJointArmUrdfMatchesMuJoCo) {
   const fs::path file = kExamples / "arm7.urdf";
   const io::RobotModel model = io::read_robot_model_file(file.string());
-  const MjModel m = load(file);
+  const MjModel m = load_mujoco(file);
   ASSERT_NE(m, nullptr);
   expect_same_coordinates(m.get(), model);
   expect_same_dynamics(m.get(), TreeDynamics(model), 7);
@@ -134,7 +116,7 @@ TEST(RobotFiles, SevenJointArmUrdfMatchesMuJoCo) {
 TEST(RobotFiles, PrismaticContinuousAndFixedUrdfMatchesMuJoCo) {
   const fs::path file = kExamples / "cart_arm.urdf";
   const io::RobotModel model = io::read_robot_model_file(file.string());
-  const MjModel m = load(file);
+  const MjModel m = load_mujoco(file);
   ASSERT_NE(m, nullptr);
   expect_same_coordinates(m.get(), model);
   expect_same_dynamics(m.get(), TreeDynamics(model), 8);
@@ -147,7 +129,7 @@ TEST(RobotFiles, MuJoCoHumanoidPinnedAtTheTorso) {
       io::read_robot_model_file((kModels / "humanoid" / "humanoid.xml").string(), pin);
   EXPECT_EQ(model.dof(), 21U);
   const fs::path dir = pinned_copy(kModels / "humanoid");
-  const MjModel m = load(dir / "humanoid.xml");
+  const MjModel m = load_mujoco(dir / "humanoid.xml");
   ASSERT_NE(m, nullptr);
   expect_same_coordinates(m.get(), model);
   expect_same_dynamics(m.get(), TreeDynamics(model), 9);
@@ -160,7 +142,7 @@ TEST(RobotFiles, MuJoCoHumanoid100ThroughItsInclude) {
   const io::RobotModel model =
       io::read_robot_model_file((kModels / "humanoid100" / "humanoid100.xml").string(), pin);
   const fs::path dir = pinned_copy(kModels / "humanoid100");
-  const MjModel m = load(dir / "humanoid100.xml");
+  const MjModel m = load_mujoco(dir / "humanoid100.xml");
   ASSERT_NE(m, nullptr);
   EXPECT_EQ(static_cast<int>(model.links.size()), m->nbody - 1);
   expect_same_coordinates(m.get(), model);
@@ -171,7 +153,7 @@ TEST(RobotFiles, MuJoCoHumanoid100ThroughItsInclude) {
 TEST(RobotFiles, MuJoCoTendonArmHingeTree) {
   const fs::path file = kModels / "tendon_arm" / "arm26.xml";
   const io::RobotModel model = io::read_robot_model_file(file.string());
-  const MjModel m = load(file);
+  const MjModel m = load_mujoco(file);
   ASSERT_NE(m, nullptr);
   expect_same_coordinates(m.get(), model);
   expect_same_dynamics(m.get(), TreeDynamics(model), 11);

@@ -19,29 +19,22 @@
 
 #include "rigid/common/error.hpp"
 #include "rigid/robot/tree_dynamics.hpp"
+#include "support/mujoco_model.hpp"
 
 namespace rigid::robot {
 namespace {
 
 namespace fs = std::filesystem;
 
-struct ModelDeleter {
-  void operator()(mjModel* m) const { mj_deleteModel(m); }
-};
-struct DataDeleter {
-  void operator()(mjData* d) const { mj_deleteData(d); }
-};
-using MjModel = std::unique_ptr<mjModel, ModelDeleter>;
-using MjData = std::unique_ptr<mjData, DataDeleter>;
+using MjModel = test::MjModelPtr;
+using MjData = test::MjDataPtr;
 
 // MuJoCo's model of an MJCF text (mj_loadXML reads files: the text goes through a temporary)
 MjModel load_mjcf(const std::string& xml) {
   const fs::path path = fs::temp_directory_path() / fmt::format("rigid_tree_{}.xml", ::getpid());
   std::ofstream(path) << xml;
-  char error[1000] = "";
-  MjModel m(mj_loadXML(path.c_str(), nullptr, error, sizeof error));
+  MjModel m = test::load_mujoco(path);
   fs::remove(path);
-  EXPECT_NE(m, nullptr) << error << "\n" << xml;
   return m;
 }
 
