@@ -41,12 +41,14 @@ test-asan: deps
 
 # One model run from several threads at once, under ThreadSanitizer: a Lagrangian system
 # (per-run workspaces), scenes (immutable models) and sweeps (the runs of a coordinate scene
-# share one derivation); builds only those two test binaries.
+# share one derivation), robot trees (TreeDynamics, a robot scene); builds only those three test
+# binaries.
 test-tsan: deps
 	cmake --preset tsan >/dev/null
-	cmake --build --preset tsan --target rigid_lagrange_tests rigid_scene_tests
+	cmake --build --preset tsan --target rigid_lagrange_tests rigid_scene_tests rigid_robot_tests
 	TSAN_OPTIONS=halt_on_error=1 build/tsan/bin/rigid_lagrange_tests --gtest_brief=1 --gtest_filter='Workspace.*'
-	TSAN_OPTIONS=halt_on_error=1 build/tsan/bin/rigid_scene_tests --gtest_brief=1 --gtest_filter='ModelThreads.*:SweepRun.*:SymbolicThreads.*'
+	TSAN_OPTIONS=halt_on_error=1 build/tsan/bin/rigid_scene_tests --gtest_brief=1 --gtest_filter='ModelThreads.*:SweepRun.*:SymbolicThreads.*:RobotSceneThreads.*'
+	TSAN_OPTIONS=halt_on_error=1 build/tsan/bin/rigid_robot_tests --gtest_brief=1 --gtest_filter='TreeDynamicsThreads.*'
 
 asan: test-asan
 

@@ -2,6 +2,7 @@
 // through its C API) and against closed forms: M(q) = mj_fullM (armature included), the bias
 // forces = qfrc_bias, the passive forces = qfrc_passive, on trees this test writes both as an
 // io::RobotModel and as MJCF.
+#include <atomic>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -9,6 +10,7 @@
 #include <memory>
 #include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -307,6 +309,48 @@ TEST(TreeDynamics, RefusesAJointThatMovesNothing) {
   io::RobotModel none;
   none.source = "fixed.urdf";
   EXPECT_THROW((void)TreeDynamics(none), Error);
+}
+
+
+// One immutable tree, eight threads at once (ThreadSanitizer in make test): every thread's M, b
+// and forward dynamics equal the serial ones bit for bit.
+TEST(TreeDynamicsThreads, EightThreadsGiveTheSerialAnswers) {
+  const RandomTree t = random_tree(21, 8);
+  const TreeDynamics tree(t.model);
+  const auto n = static_cast<Eigen::Index>(tree.dof());
+  std::vector<Eigen::VectorXd> qs, vs;
+  std::vector<Eigen::MatrixXd> Ms;
+  std::vector<Eigen::VectorXd> bs, as;
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int k = 0; k < 16; ++k) {
+    Eigen::VectorXd q(n), v(n);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      q(i) = u(rng);
+      v(i) = u(rng);
+    }
+    qs.push_back(q);
+    vs.push_back(v);
+    Ms.push_back(tree.mass_matrix(q));
+    bs.push_back(tree.bias_forces(q, v));
+    as.push_back(tree.forward_dynamics(q, v, Eigen::VectorXd::Zero(n)));
+  }
+  std::atomic<int> mismatches{0};
+  std::vector<std::thread> threads;
+  for (int th = 0; th < 8; ++th) {
+    threads.emplace_back([&] {
+      for (int rep = 0; rep < 20; ++rep) {
+        for (std::size_t k = 0; k < qs.size(); ++k) {
+          if (tree.mass_matrix(qs[k]) != Ms[k] || tree.bias_forces(qs[k], vs[k]) != bs[k] ||
+              tree.forward_dynamics(qs[k], vs[k], Eigen::VectorXd::Zero(n)) != as[k]) {
+            ++mismatches;
+          }
+        }
+      }
+    });
+  }
+  for (std::thread& th : threads) th.join();
+  EXPECT_EQ(mismatches.load(), 0);
 }
 
 }  // namespace

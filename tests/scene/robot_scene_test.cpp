@@ -2,12 +2,15 @@
 // the symbolic equations of the scene against robot::TreeDynamics (recursive Newton–Euler and
 // composite inertias in numbers, itself held to MuJoCo in tests/robot) on the same file; the
 // fusion of welded and massless links; the passive terms; the refusals.
+#include <atomic>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <random>
 #include <sstream>
 #include <string>
+#include <thread>
+#include <vector>
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -199,6 +202,28 @@ TEST(RobotScene, DeepChainsAreRefusedWithTheReason) {
     EXPECT_NE(std::string(e.what()).find("rigid.robot.Robot"), std::string::npos) << e.what();
   }
   fs::remove(f);
+}
+
+
+// A robot scene's model, built once, run from eight threads at once (ThreadSanitizer in make
+// test): every run's trajectory equals the serial one bit for bit.
+TEST(RobotSceneThreads, OneModelRunsOnEightThreads) {
+  Scene s = load_scene(kExamples / "cart_arm.urdf");
+  apply_overrides(s, {"shoulder.initial=0.8", "simulation.t_end=0.5"});
+  const Model model(s);
+  const RunResult serial = model.run();
+  std::atomic<int> mismatches{0};
+  std::vector<std::thread> threads;
+  for (int th = 0; th < 8; ++th) {
+    threads.emplace_back([&] {
+      const RunResult r = model.run();
+      if (r.trajectory.data() != serial.trajectory.data()) {
+        ++mismatches;
+      }
+    });
+  }
+  for (std::thread& th : threads) th.join();
+  EXPECT_EQ(mismatches.load(), 0);
 }
 
 }  // namespace
