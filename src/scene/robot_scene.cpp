@@ -1,7 +1,9 @@
 #include "rigid/scene/robot_scene.hpp"
 
+#include <cctype>
 #include <cmath>
 #include <cstddef>
+#include <map>
 #include <optional>
 #include <string>
 #include <utility>
@@ -233,6 +235,35 @@ void refuse_deep_chains(const io::RobotModel& model) {
   }
 }
 
+// A coordinate's name is its joint's, usable in expressions: an unnamed joint (MJCF allows
+// them) is q<i> (its index), and a character other than a letter, a digit or '_' becomes '_'
+// ("r-hip.x" → "r_hip_x"; a leading digit gains "q_"). Two joints whose names become one are
+// refused, naming both.
+io::RobotModel with_coordinate_names(io::RobotModel model) {
+  std::map<std::string, std::pair<std::string, int>, std::less<>> taken;  // → the file's name, line
+  std::size_t index = 0;
+  for (io::RobotLink& link : model.links) {
+    for (io::RobotJoint& j : link.joints) {
+      std::string name = j.name.empty() ? fmt::format("q{}", index) : j.name;
+      for (char& c : name) {
+        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_') c = '_';
+      }
+      if (std::isdigit(static_cast<unsigned char>(name.front()))) name = "q_" + name;
+      if (const auto it = taken.find(name); it != taken.end()) {
+        rigid::detail::throw_error_at(
+            where_of(model, link, j.line),
+            fmt::format("joint '{}' would be the coordinate '{}', the name of the joint '{}' (line "
+                        "{}); give the joints names of letters, digits and '_' that differ",
+                        j.name, name, it->second.first, it->second.second));
+      }
+      taken.emplace(name, std::make_pair(j.name, j.line));
+      j.name = name;
+      ++index;
+    }
+  }
+  return model;
+}
+
 }  // namespace
 
 bool looks_like_xml(std::string_view t) {
@@ -240,7 +271,8 @@ bool looks_like_xml(std::string_view t) {
   return first != std::string_view::npos && t[first] == '<';
 }
 
-Scene scene_from_robot(const io::RobotModel& model, const std::filesystem::path& file) {
+Scene scene_from_robot(const io::RobotModel& file_model, const std::filesystem::path& file) {
+  const io::RobotModel model = with_coordinate_names(file_model);
   Scene s;
   s.file = file;
   const SourceLocation top{model.source, 0, 0};

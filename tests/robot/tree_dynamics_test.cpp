@@ -311,7 +311,6 @@ TEST(TreeDynamics, RefusesAJointThatMovesNothing) {
   EXPECT_THROW((void)TreeDynamics(none), Error);
 }
 
-
 // One immutable tree, eight threads at once (ThreadSanitizer in make test): every thread's M, b
 // and forward dynamics equal the serial ones bit for bit.
 TEST(TreeDynamicsThreads, EightThreadsGiveTheSerialAnswers) {

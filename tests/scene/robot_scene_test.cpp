@@ -204,6 +204,37 @@ TEST(RobotScene, DeepChainsAreRefusedWithTheReason) {
   fs::remove(f);
 }
 
+// Coordinates are the joints' names made usable in expressions: an unnamed MJCF joint is q<i>,
+// other characters become '_'; two joints that would share a name are refused, naming both.
+TEST(RobotScene, CoordinateNamesFromJointNames) {
+  const fs::path f = write("names.xml", R"(<mujoco><worldbody>
+<body name="b" pos="0 0 1"><joint axis="0 1 0"/><geom type="sphere" size="0.1" pos="0 0 -0.5"/></body>
+<body name="c"><joint name="r-hip.x" axis="1 0 0"/><geom type="sphere" size="0.1" pos="0 0 -0.5"/></body>
+</worldbody></mujoco>
+)");
+  const Scene s = load_scene(f);
+  ASSERT_EQ(s.coordinates.size(), 2U);
+  EXPECT_EQ(s.coordinates[0].name, "q0");
+  EXPECT_EQ(s.coordinates[1].name, "r_hip_x");
+  EXPECT_NO_THROW((void)Model(s));
+  const fs::path clash = write("clash.xml", R"(<mujoco><worldbody>
+<body name="b" pos="0 0 1"><joint name="a-b" axis="0 1 0"/><geom type="sphere" size="0.1" pos="0 0 -0.5"/>
+<body name="c"><joint name="a_b" axis="1 0 0"/><geom type="sphere" size="0.1" pos="0 0 -0.5"/></body></body>
+</worldbody></mujoco>
+)");
+  try {
+    (void)load_scene(clash);
+    FAIL() << "expected rigid::Error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find(
+                  clash.string() + ":3: joint 'a_b' would be the coordinate 'a_b', the name of "
+                                   "the joint 'a-b' (line 2)"),
+              std::string::npos)
+        << e.what();
+  }
+  fs::remove(f);
+  fs::remove(clash);
+}
 
 // A robot scene's model, built once, run from eight threads at once (ThreadSanitizer in make
 // test): every run's trajectory equals the serial one bit for bit.
