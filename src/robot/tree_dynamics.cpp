@@ -64,7 +64,7 @@ TreeDynamics::TreeDynamics(io::RobotModel model) : model_(std::move(model)) {
     first_dof_.push_back(n_);
     n_ += link.joints.size();
   }
-  RIGID_REQUIRE_AS("robot", n_ > 0, "{}: the model has no joint, so it has no equations of motion",
+  RIGID_REQUIRE_AS("TreeDynamics", n_ > 0, "{}: the model has no joint, so it has no equations of motion",
                    model_.source);
   const Eigen::MatrixXd M = mass_matrix(reference_configuration());
   const double scale = M.diagonal().cwiseAbs().maxCoeff();
@@ -81,7 +81,7 @@ TreeDynamics::TreeDynamics(io::RobotModel model) : model_(std::move(model)) {
       }
     }
   }
-  RIGID_REQUIRE_AS("robot", M.llt().info() == Eigen::Success,
+  RIGID_REQUIRE_AS("TreeDynamics", M.llt().info() == Eigen::Success,
                    "{}: the mass matrix at the reference configuration is not positive definite "
                    "(two joints move the same links the same way)",
                    model_.source);
@@ -97,11 +97,11 @@ Eigen::VectorXd TreeDynamics::reference_configuration() const {
 }
 
 void TreeDynamics::check_sizes(const char* what, const Eigen::VectorXd& v) const {
-  RIGID_REQUIRE_AS("robot", static_cast<std::size_t>(v.size()) == n_,
+  RIGID_REQUIRE_AS("TreeDynamics", static_cast<std::size_t>(v.size()) == n_,
                    "{} has {} entries; the model has {} "
                    "coordinates",
                    what, v.size(), n_);
-  RIGID_REQUIRE_AS("robot", v.allFinite(), "{} is not finite", what);
+  RIGID_REQUIRE_AS("TreeDynamics", v.allFinite(), "{} is not finite", what);
 }
 
 void TreeDynamics::kinematics(const Eigen::VectorXd& q, Kinematics& k) const {
@@ -259,7 +259,7 @@ Eigen::VectorXd TreeDynamics::forward_dynamics(const Eigen::VectorXd& q,
                                                const Eigen::VectorXd& tau) const {
   check_sizes("tau", tau);
   const Eigen::LLT<Eigen::MatrixXd> llt(mass_matrix(q));
-  RIGID_REQUIRE_AS("robot", llt.info() == Eigen::Success,
+  RIGID_REQUIRE_AS("TreeDynamics", llt.info() == Eigen::Success,
                    "the mass matrix is not positive definite at q = {}",
                    rigid::to_string(q.transpose()));
   return llt.solve(tau - bias_forces(q, q_dot) + passive_forces(q, q_dot));

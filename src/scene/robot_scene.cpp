@@ -124,8 +124,9 @@ void merge_massless(const io::RobotModel& model, std::vector<TreeBody>& bodies) 
     }
     TreeBody& child = bodies[children.front()];
     std::vector<io::RobotJoint> joints;
-    for (const io::RobotJoint& j : bodies[b].joints)
+    for (const io::RobotJoint& j : bodies[b].joints) {
       joints.push_back(conjugate(j, child.placement));
+    }
     joints.insert(joints.end(), child.joints.begin(), child.joints.end());
     child.joints = std::move(joints);
     child.placement = bodies[b].placement * child.placement;
@@ -282,10 +283,10 @@ Scene scene_from_robot(const io::RobotModel& file_model, const std::filesystem::
       s.coordinates.push_back(Coordinate{j.name, number(j.ref, where), number(0, where), where});
     }
   }
-  RIGID_REQUIRE_AS(
-      "robot", !s.coordinates.empty(),
-      "{}: the model has no joint (every link is fixed), so it has no equations of motion",
-      model.source);
+  if (s.coordinates.empty()) {
+    rigid::detail::throw_error_at(top, "the model has no joint (every link is fixed), so it has no "
+                                       "equations of motion");
+  }
   refuse_deep_chains(model);
   std::vector<TreeBody> bodies = moving_bodies(model);
   merge_massless(model, bodies);
