@@ -3,8 +3,9 @@ same file independently, closed forms and its own identities; the refusals; thre
 
 The SymPy model reads the URDF with xml.etree (not rigid's reader), composes each link's pose
 from the joints' origins (URDF's fixed-axis rpy) and axes, keeps a fixed joint's child as its
-own body, and forms T = Σ ½ m |v_C|² + ½ ωᵀ I_W ω, V = −Σ m g·c; then M = ∂²T/∂q̇², and
-f = ∂L/∂q − (∂²L/∂q̇∂q) q̇ − D q̇ (no explicit time). Tolerance 1e-11 relative to the largest
+own body, and forms T = ½ q̇ᵀ M q̇ with M = Σ m J_vᵀ J_v + J_ωᵀ I_W J_ω (J_v = ∂c/∂q of each
+COM, J_ω from ω̂ = Σ ∂R/∂q_k Rᵀ q̇_k), V = −Σ m g·c; then Lagrange's equation gives
+f = ∂T/∂q − (∂(M q̇)/∂q) q̇ − ∂V/∂q − D q̇ (no explicit time). Tolerance 1e-11 relative to the largest
 entry: both sides round once per operation on quantities of order 1 (≈ 50 operations deep);
 a wrong sign, axis or inertia changes entries by ≥ 1e-3.
 """
@@ -48,8 +49,7 @@ def sympy_model(path):
     joints = root.findall("joint")
     child_of = {j.find("child").get("link"): j for j in joints}
     base = next(n for n in links if n not in child_of)
-    q, qd, damping = [], [], []
-    t = sp.Symbol("t")
+    q, damping = [], []
     pose = {base: (sp.zeros(3, 1), sp.eye(3))}
     order = [base]
     # depth first, children in the joints' file order
@@ -67,7 +67,7 @@ def sympy_model(path):
             if kind != "fixed":
                 u = sp.Matrix(_numbers(j.find("axis").get("xyz")))
                 u = u / sp.sqrt((u.T * u)[0])
-                qi = sp.Function(j.get("name"))(t)
+                qi = sp.Symbol(j.get("name"))
                 q.append(qi)
                 dyn = j.find("dynamics")
                 damping.append(sp.Float(dyn.get("damping"), 30) if dyn is not None else 0)
@@ -80,7 +80,9 @@ def sympy_model(path):
             visit(child)
     visit(base)
     g = sp.Matrix([0, 0, -sp.Float("9.81", 30)])
-    T, V = 0, 0
+    n = len(q)
+    vs = sp.Matrix(sp.symbols(f"v0:{n}"))
+    M, V = sp.zeros(n, n), 0
     for name in order:
         inertial = links[name].find("inertial")
         if inertial is None:
@@ -94,23 +96,20 @@ def sympy_model(path):
         I_I = sp.Matrix([[a["ixx"], a["ixy"], a["ixz"]], [a["ixy"], a["iyy"], a["iyz"]], [a["ixz"], a["iyz"], a["izz"]]])
         c = p + R * c_L
         I_W = (R * R_I) * I_I * (R * R_I).T
-        v = c.diff(t)
-        W = R.diff(t) * R.T  # ω̂ in the world frame
-        w = sp.Matrix([W[2, 1], W[0, 2], W[1, 0]])
-        T += m / 2 * (v.T * v)[0] + (w.T * I_W * w)[0] / 2
+        J_v = c.jacobian(q)
+        J_w = sp.zeros(3, n)
+        for k in range(n):
+            W = R.diff(q[k]) * R.T  # ω̂ per unit q̇_k, world frame
+            J_w[:, k] = sp.Matrix([W[2, 1], W[0, 2], W[1, 0]])
+        M += m * J_v.T * J_v + J_w.T * I_W * J_w
         V -= m * (g.T * c)[0]
-    qs = sp.symbols(f"q0:{len(q)}")
-    vs = sp.symbols(f"v0:{len(q)}")
-    subs = {}
-    for qi, s, v in zip(q, qs, vs):
-        subs[qi.diff(t)] = v
-    L = (T - V).subs(subs)
-    L = L.subs(dict(zip(q, qs)))
-    n = len(q)
-    M = sp.Matrix(n, n, lambda i, j: sp.diff(L, vs[i], vs[j]))
-    f = sp.Matrix([sp.diff(L, qs[i]) - sum(sp.diff(L, vs[i], qs[k]) * vs[k] for k in range(n)) - damping[i] * vs[i]
-                   for i in range(n)])
-    return sp.lambdify([qs, vs], M, "numpy"), sp.lambdify([qs, vs], f, "numpy"), n
+    # Lagrange's equation with T = ½ q̇ᵀ M(q) q̇: ∂T/∂q_i − d/dt ∂T/∂q̇_i − ∂V/∂q_i − d_i q̇_i,
+    # the acceleration terms M q̈ on the left
+    Mv = M * vs
+    f = sp.Matrix([(vs.T * M.diff(q[i]) * vs)[0] / 2 - sum(Mv[i].diff(q[k]) * vs[k] for k in range(n))
+                   - V.diff(q[i]) - damping[i] * vs[i] for i in range(n)])
+    qs = q
+    return sp.lambdify([qs, list(vs)], M, "numpy", cse=True), sp.lambdify([qs, list(vs)], f, "numpy", cse=True), n
 
 
 @pytest.fixture(scope="module")
