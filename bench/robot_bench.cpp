@@ -19,6 +19,7 @@
 
 #include "rigid/io/robot_model.hpp"
 #include "rigid/robot/tree_dynamics.hpp"
+#include "support/mjcf_text.hpp"
 
 namespace {
 
@@ -26,14 +27,6 @@ namespace fs = std::filesystem;
 
 const fs::path kSource = fs::path(__FILE__).parent_path().parent_path();
 const fs::path kHumanoid = "/usr/share/mujoco/model/humanoid/humanoid.xml";
-
-// The text without its <freejoint .../> elements (MuJoCo's model of the robot pinned at its root).
-std::string without_free_joints(std::string text) {
-  for (std::size_t at; (at = text.find("<freejoint")) != std::string::npos;) {
-    text.erase(at, text.find("/>", at) + 2 - at);
-  }
-  return text;
-}
 
 // the humanoid without its free joint, for MuJoCo (rigid reads it with pin_free_root)
 std::string pinned_humanoid() {
@@ -43,7 +36,7 @@ std::string pinned_humanoid() {
     s << in.rdbuf();
     const fs::path out =
         fs::temp_directory_path() / ("rigid_bench_humanoid_" + std::to_string(::getpid()) + ".xml");
-    std::ofstream(out) << without_free_joints(s.str());
+    std::ofstream(out) << rigid::test::without_free_joints(s.str());
     return out.string();
   }();
   return path;

@@ -139,15 +139,13 @@ void TreeDynamics::kinematics(const Eigen::VectorXd& q, Kinematics& k) const {
   }
 }
 
-Eigen::VectorXd TreeDynamics::rnea(const Eigen::VectorXd& q, const Eigen::VectorXd& q_dot,
-                                   const Eigen::VectorXd& q_ddot, bool gravity) const {
-  Kinematics k;
-  kinematics(q, k);
+Eigen::VectorXd TreeDynamics::rnea(const Kinematics& k, const Eigen::VectorXd& q_dot,
+                                   const Eigen::VectorXd& q_ddot) const {
   const std::size_t links = model_.links.size();
   std::vector<Vector6d> V(links), A(links), F(links);
-  Vector6d A_world = Vector6d::Zero();
   // gravity as an upward acceleration of the world [Featherstone2008, §5.3]
-  if (gravity) A_world.tail<3>() = -model_.gravity;
+  Vector6d A_world = Vector6d::Zero();
+  A_world.tail<3>() = -model_.gravity;
   for (std::size_t i = 0; i < links; ++i) {
     const io::RobotLink& link = model_.links[i];
     Vector6d v = link.parent >= 0 ? V[static_cast<std::size_t>(link.parent)] : Vector6d::Zero();
@@ -183,6 +181,10 @@ std::vector<LinkPose> TreeDynamics::link_poses(const Eigen::VectorXd& q) const {
 Eigen::MatrixXd TreeDynamics::mass_matrix(const Eigen::VectorXd& q) const {
   Kinematics k;
   kinematics(q, k);
+  return crba(k);
+}
+
+Eigen::MatrixXd TreeDynamics::crba(const Kinematics& k) const {
   const std::size_t links = model_.links.size();
   // composite inertias: each link's subtree [Featherstone2008, §6.2]
   std::vector<Matrix6d> Ic = k.inertia;
@@ -220,7 +222,9 @@ Eigen::MatrixXd TreeDynamics::mass_matrix(const Eigen::VectorXd& q) const {
 Eigen::VectorXd TreeDynamics::bias_forces(const Eigen::VectorXd& q,
                                           const Eigen::VectorXd& q_dot) const {
   check_sizes("q_dot", q_dot);
-  return rnea(q, q_dot, Eigen::VectorXd::Zero(static_cast<Eigen::Index>(n_)), true);
+  Kinematics k;
+  kinematics(q, k);
+  return rnea(k, q_dot, Eigen::VectorXd::Zero(static_cast<Eigen::Index>(n_)));
 }
 
 Eigen::VectorXd TreeDynamics::passive_forces(const Eigen::VectorXd& q,
@@ -243,7 +247,9 @@ Eigen::VectorXd TreeDynamics::inverse_dynamics(const Eigen::VectorXd& q,
                                                const Eigen::VectorXd& q_ddot) const {
   check_sizes("q_dot", q_dot);
   check_sizes("q_ddot", q_ddot);
-  Eigen::VectorXd tau = rnea(q, q_dot, q_ddot, true) - passive_forces(q, q_dot);
+  Kinematics k;
+  kinematics(q, k);
+  Eigen::VectorXd tau = rnea(k, q_dot, q_ddot) - passive_forces(q, q_dot);
   Eigen::Index c = 0;
   for (const io::RobotLink& link : model_.links) {
     for (const io::RobotJoint& joint : link.joints) {
@@ -257,12 +263,17 @@ Eigen::VectorXd TreeDynamics::inverse_dynamics(const Eigen::VectorXd& q,
 Eigen::VectorXd TreeDynamics::forward_dynamics(const Eigen::VectorXd& q,
                                                const Eigen::VectorXd& q_dot,
                                                const Eigen::VectorXd& tau) const {
+  check_sizes("q_dot", q_dot);
   check_sizes("tau", tau);
-  const Eigen::LLT<Eigen::MatrixXd> llt(mass_matrix(q));
+  // one pass of kinematics for M and b
+  Kinematics k;
+  kinematics(q, k);
+  const Eigen::LLT<Eigen::MatrixXd> llt(crba(k));
   RIGID_REQUIRE_AS("TreeDynamics", llt.info() == Eigen::Success,
                    "the mass matrix is not positive definite at q = {}",
                    rigid::to_string(q.transpose()));
-  return llt.solve(tau - bias_forces(q, q_dot) + passive_forces(q, q_dot));
+  const Eigen::VectorXd b = rnea(k, q_dot, Eigen::VectorXd::Zero(static_cast<Eigen::Index>(n_)));
+  return llt.solve(tau - b + passive_forces(q, q_dot));
 }
 
 double TreeDynamics::kinetic_energy(const Eigen::VectorXd& q, const Eigen::VectorXd& q_dot) const {

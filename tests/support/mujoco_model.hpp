@@ -1,7 +1,7 @@
 #pragma once
 // MuJoCo (libmujoco, Debian's libmujoco-dev) as the independent reference of the tests that
 // link it: its models and data owned by unique_ptr, a model loaded from a file with the
-// loader's message on failure, and a model file without its free joints.
+// loader's message on failure (support/mjcf_text.hpp: the file without its free joints).
 
 #include <filesystem>
 #include <memory>
@@ -9,6 +9,8 @@
 
 #include <gtest/gtest.h>
 #include <mujoco/mujoco.h>
+
+#include "support/mjcf_text.hpp"
 
 namespace rigid::test {
 
@@ -28,15 +30,6 @@ inline MjModelPtr load_mujoco(const std::filesystem::path& path) {
   MjModelPtr m(mj_loadXML(path.c_str(), nullptr, error, sizeof error));
   EXPECT_NE(m, nullptr) << path << ": " << error;
   return m;
-}
-
-/// The text without its <freejoint .../> elements: MuJoCo's model of the robot pinned at its
-/// root (what rigid reads with RobotReadOptions::pin_free_root).
-inline std::string without_free_joints(std::string text) {
-  for (std::size_t at; (at = text.find("<freejoint")) != std::string::npos;) {
-    text.erase(at, text.find("/>", at) + 2 - at);
-  }
-  return text;
 }
 
 }  // namespace rigid::test

@@ -72,9 +72,11 @@ class TreeDynamics {
   struct Kinematics;
   // world poses, joint axes S (6 × n) and link spatial inertias at q
   void kinematics(const Eigen::VectorXd& q, Kinematics& k) const;
-  // τ of the recursive Newton–Euler algorithm; gravity included when `gravity`
-  [[nodiscard]] Eigen::VectorXd rnea(const Eigen::VectorXd& q, const Eigen::VectorXd& q_dot,
-                                     const Eigen::VectorXd& q_ddot, bool gravity) const;
+  // τ of the recursive Newton–Euler algorithm at the kinematics' q, gravity included
+  [[nodiscard]] Eigen::VectorXd rnea(const Kinematics& k, const Eigen::VectorXd& q_dot,
+                                     const Eigen::VectorXd& q_ddot) const;
+  // M of the composite-rigid-body algorithm at the kinematics' q, armature included
+  [[nodiscard]] Eigen::MatrixXd crba(const Kinematics& k) const;
   void check_sizes(const char* what, const Eigen::VectorXd& v) const;
 
   io::RobotModel model_;
