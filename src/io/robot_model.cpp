@@ -542,6 +542,40 @@ void add_mjcf_body(const Mjcf& m, const XMLElement* b, int parent, const std::st
   for (const auto* c : m.doc.children(b, "body")) add_mjcf_body(m, c, self, cls, out);
 }
 
+// What MuJoCo adds to a tree's equations that a tree of links and joints does not say: the
+// constraints of <equality> (closed loops, coupled joints), a tendon's spring and damper, the
+// medium's drag. Refused by name rather than left out of M q̈ = τ + f.
+void refuse_unmodelled(const Mjcf& m, const XMLElement* root) {
+  static const detail::MjcfAttributes kNone;
+  for (const auto* eq : m.doc.children(root, "equality")) {
+    for (const auto* c = eq->FirstChildElement(); c != nullptr; c = c->NextSiblingElement()) {
+      m.doc.refuse(c, fmt::format("<equality><{}>: closed loops and coupled joints are not yet "
+                                  "supported; a tree's equations would leave the constraint out",
+                                  c->Name()));
+    }
+  }
+  for (const auto* tendons : m.doc.children(root, "tendon")) {
+    for (const auto* t = tendons->FirstChildElement(); t != nullptr; t = t->NextSiblingElement()) {
+      for (const char* key : {"stiffness", "damping"}) {
+        if (mjcf_scalar(m, t, kNone, key, 0) != 0) {
+          m.doc.refuse(t, fmt::format("<tendon><{}> with {}: a tendon's passive force is not yet "
+                                      "part of the equations; expected no stiffness and damping",
+                                      t->Name(), key));
+        }
+      }
+    }
+  }
+  for (const auto* o : m.doc.children(root, "option")) {
+    for (const char* key : {"density", "viscosity"}) {
+      if (mjcf_scalar(m, o, kNone, key, 0) != 0) {
+        m.doc.refuse(o, fmt::format("<option {}>: the medium's drag on the bodies is not part of "
+                                    "the equations; expected 0",
+                                    key));
+      }
+    }
+  }
+}
+
 RobotModel read_mjcf(const XMLElement* root, const std::string& file,
                      const RobotReadOptions& options) {
   const detail::MjcfDocument doc(root, file, true);
@@ -552,6 +586,7 @@ RobotModel read_mjcf(const XMLElement* root, const std::string& file,
   model.source = file;
   model.format = InertialFormat::mjcf;
   if (const char* n = root->Attribute("model")) model.name = n;
+  refuse_unmodelled(m, root);
   static const detail::MjcfAttributes kNone;
   for (const auto* o : doc.children(root, "option")) {
     model.gravity = mjcf_vector(m, o, kNone, "gravity", model.gravity);

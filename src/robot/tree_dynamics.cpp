@@ -64,8 +64,8 @@ TreeDynamics::TreeDynamics(io::RobotModel model) : model_(std::move(model)) {
     first_dof_.push_back(n_);
     n_ += link.joints.size();
   }
-  RIGID_REQUIRE_AS("TreeDynamics", n_ > 0, "{}: the model has no joint, so it has no equations of motion",
-                   model_.source);
+  RIGID_REQUIRE_AS("TreeDynamics", n_ > 0,
+                   "{}: the model has no joint, so it has no equations of motion", model_.source);
   const Eigen::MatrixXd M = mass_matrix(reference_configuration());
   const double scale = M.diagonal().cwiseAbs().maxCoeff();
   std::size_t j = 0;

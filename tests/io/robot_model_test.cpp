@@ -423,6 +423,29 @@ TEST(RobotModelMjcf, HingeAnglesFollowCompilerAngle) {
             test::ulps(4, 1.0));
 }
 
+// What MuJoCo would add to the tree's equations is refused by name, not left out: an
+// <equality> constraint (a closed loop), a tendon's spring or damper, the medium's drag.
+TEST(RobotModelMjcf, RefusesWhatTheTreeWouldLeaveOut) {
+  const std::string body = R"(<worldbody><body name="a"><joint name="j"/>
+<geom type="sphere" size="0.1"/></body></worldbody>
+)";
+  EXPECT_RIGID_ERROR((void)read_robot_model("<mujoco>" + body + R"(<equality>
+<connect body1="a" anchor="0 0 0"/></equality></mujoco>)", "e.xml"),
+                     "e.xml:4: <equality><connect>: closed loops and coupled joints are not yet "
+                     "supported");
+  EXPECT_RIGID_ERROR((void)read_robot_model("<mujoco>" + body + R"(<tendon>
+<fixed name="t" stiffness="3"><joint joint="j" coef="1"/></fixed></tendon></mujoco>)", "t.xml"),
+                     "t.xml:4: <tendon><fixed> with stiffness: a tendon's passive force is not yet "
+                     "part of the equations");
+  EXPECT_RIGID_ERROR((void)read_robot_model(R"(<mujoco><option viscosity="0.5"/>
+)" + body + "</mujoco>", "o.xml"),
+                     "o.xml:1: <option viscosity>: the medium's drag on the bodies is not part of "
+                     "the equations");
+  // a tendon without stiffness or damping changes nothing of M q̈ = τ + f: read
+  EXPECT_NO_THROW((void)read_robot_model("<mujoco>" + body + R"(<tendon>
+<fixed name="t"><joint joint="j" coef="1"/></fixed></tendon></mujoco>)", "ok.xml"));
+}
+
 TEST(RobotModelMjcf, RefusesBallAndFreeJointsUnlessPinned) {
   const std::string xml = R"(<mujoco>
   <worldbody>

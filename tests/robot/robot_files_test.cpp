@@ -16,6 +16,7 @@
 #include <mujoco/mujoco.h>
 #include <unistd.h>
 
+#include "rigid/common/error.hpp"
 #include "rigid/io/robot_model.hpp"
 #include "rigid/robot/tree_dynamics.hpp"
 #include "support/mujoco_model.hpp"
@@ -157,6 +158,30 @@ TEST(RobotFiles, MuJoCoTendonArmHingeTree) {
   ASSERT_NE(m, nullptr);
   expect_same_coordinates(m.get(), model);
   expect_same_dynamics(m.get(), TreeDynamics(model), 11);
+}
+
+// Every model Debian's libmujoco-samples ships, read as written and pinned: a tree whose
+// dynamics build, or a rigid::Error naming the file (composites, flexible bodies, ball joints
+// are refused); never another exception. The ones that read have MuJoCo's coordinate count.
+TEST(RobotFiles, EveryMuJoCoSampleReadsOrIsRefusedByName) {
+  int read = 0, refused = 0;
+  for (const auto& e : fs::recursive_directory_iterator(kModels)) {
+    if (e.path().extension() != ".xml") continue;
+    SCOPED_TRACE(e.path().string());
+    io::RobotReadOptions pin;
+    pin.pin_free_root = true;
+    try {
+      const TreeDynamics tree(io::read_robot_model_file(e.path().string(), pin));
+      ++read;
+      EXPECT_GT(tree.dof(), 0U);
+    } catch (const Error& err) {
+      ++refused;
+      EXPECT_NE(std::string(err.what()).find(e.path().filename().string()), std::string::npos)
+          << err.what();
+    }
+  }
+  EXPECT_GE(read, 4);  // humanoid, humanoid100, arm26, 22_humanoids at least
+  EXPECT_GE(read + refused, 15);
 }
 
 }  // namespace
