@@ -122,7 +122,8 @@ bool print_motion(const System::Impl& s, Printer& printer, Equations& eq) {
   for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t j = 0; j < n; ++j) eq.mass_matrix[i].push_back(printer.both(M_sums[i * n + j]));
     const ex generalized = s.Q[i].expand();
-    const ex potential = -d(s.V, s.q[i]);
+    // −∂V/∂q; a recursive derivation gives it apart (V is in terms of its intermediates)
+    const ex potential = s.f_potential.empty() ? ex(-d(s.V, s.q[i])) : s.f_potential[i];
     forced = forced || !detail::simplify(generalized).is_zero();
     const detail::Sum f_sum = printer.textbook(s.f[i]);
     eq.forcing.push_back(printer.both(f_sum));
@@ -172,6 +173,7 @@ std::vector<EquationSymbol> symbols_table(const System::Impl& s) {
   auto tex = [](const symbol& x) { return x.get_TeX_name().empty() ? detail::tex_name(x.get_name()) : x.get_TeX_name(); };
   for (std::size_t i = 0; i < n; ++i) {
     bool angle = in_angle(s.L, s.q[i]);
+    for (const ex& a : s.aux_def) angle = angle || in_angle(a, s.q[i]);
     for (const ex& g : s.g) angle = angle || in_angle(g, s.q[i]);
     const std::string unit = angle ? "rad" : "m or rad";
     symbols.push_back({s.q[i].get_name(), tex(s.q[i]), "coordinate", unit});
@@ -224,6 +226,9 @@ Equations print_equations(const System::Impl& s) {
   eq.constraint_names = s.constraint_names;
   for (std::size_t k = 0; k < s.param_names.size(); ++k) {
     eq.parameters.push_back({s.param_names[k], s.param_values[k]});
+  }
+  for (std::size_t k = 0; k < s.aux.size(); ++k) {
+    eq.intermediates.emplace_back(printer.simplified(s.aux[k]), printer.simplified(s.aux_def[k]));
   }
   eq.lagrangian = printer.simplified(s.L);
   eq.kinetic_energy = printer.simplified(s.T);
@@ -280,6 +285,10 @@ std::string format_text(const Equations& eq) {
   if (!names.empty()) line(fmt::format("parameters: {}", fmt::join(names, ", ")));
   line("equations of motion (one per coordinate):");
   for (const Printed& e : eq.equations) line("  " + e.text);
+  if (!eq.intermediates.empty()) {
+    line("where (the tree's recursions, each from those before it):");
+    for (const auto& [name, value] : eq.intermediates) line(fmt::format("  {} = {}", name.text, value.text));
+  }
   if (!eq.constraints.empty()) {
     line("constraints:");
     for (std::size_t k = 0; k < eq.constraints.size(); ++k) {
@@ -370,6 +379,9 @@ std::string format_latex(const Equations& eq) {
   for (const Printed& e : eq.equations) rows.push_back(at_equals(e.latex));
   align("equations of motion, one per coordinate", rows);
   rows.clear();
+  for (const auto& [name, value] : eq.intermediates) rows.push_back(name.latex + " &= " + value.latex);
+  align("where: the tree's recursions, each from those before it", rows);
+  rows.clear();
   for (std::size_t k = 0; k < eq.constraints.size(); ++k) {
     rows.push_back(fmt::format("{} &= 0 && \\text{{({})}}", eq.constraints[k].latex, tex_text(eq.constraint_names[k])));
   }
@@ -440,6 +452,14 @@ std::string format_json(const Equations& eq) {
   j["parameters"] = params;
   j["constraint_names"] = eq.constraint_names;
   j["equations"] = printed(eq.equations);
+  if (!eq.intermediates.empty()) {
+    Json where = Json::array();
+    for (const auto& [name, value] : eq.intermediates) {
+      where.push_back({{"name", name.text}, {"latex_name", name.latex}, {"text", value.text},
+                       {"latex", value.latex}});
+    }
+    j["intermediates"] = where;
+  }
   j["lagrangian"] = printed(eq.lagrangian);
   j["kinetic_energy"] = printed(eq.kinetic_energy);
   j["potential_energy"] = printed(eq.potential_energy);

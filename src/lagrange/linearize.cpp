@@ -35,25 +35,30 @@ using GiNaC::ex;
 constexpr const char* kWho = "normal_modes";
 
 // M, f, K = −∂f/∂q, C = −∂f/∂q̇, and the constraints g, G = ∂g/∂q and their Hessians
-// H_k = ∂²g_k/∂q², compiled once per call: inputs (q, q̇, t, parameters).
+// H_k = ∂²g_k/∂q², compiled once per call: inputs (q, q̇, t, parameters). K and C are symbolic
+// derivatives of f, or, for a recursive derivation (f in terms of intermediates), the tape's
+// forward-mode derivatives of f (exact but for rounding).
 class Linearization {
  public:
-  explicit Linearization(const Impl& s) : n_(s.n), m_(s.m) {
+  explicit Linearization(const Impl& s) : n_(s.n), m_(s.m), by_tangent_(!s.aux.empty()) {
     std::vector<GiNaC::symbol> inputs;
     inputs.insert(inputs.end(), s.q.begin(), s.q.end());
     inputs.insert(inputs.end(), s.qd.begin(), s.qd.end());
     inputs.push_back(s.t);
     inputs.insert(inputs.end(), s.params.begin(), s.params.end());
     detail::TapeBuilder b(inputs);
+    detail::define_intermediates(b, s);
     const auto n = static_cast<std::size_t>(s.n);
     const auto m = static_cast<std::size_t>(s.m);
     for (std::size_t i = 0; i < n; ++i)
       for (std::size_t j = i; j < n; ++j) b.add_output(s.M[i * n + j]);
     for (const ex& fi : s.f) b.add_output(fi);
-    for (std::size_t i = 0; i < n; ++i)
-      for (std::size_t j = 0; j < n; ++j) b.add_output(-detail::d(s.f[i], s.q[j]));
-    for (std::size_t i = 0; i < n; ++i)
-      for (std::size_t j = 0; j < n; ++j) b.add_output(-detail::d(s.f[i], s.qd[j]));
+    if (!by_tangent_) {
+      for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t j = 0; j < n; ++j) b.add_output(-detail::d(s.f[i], s.q[j]));
+      for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t j = 0; j < n; ++j) b.add_output(-detail::d(s.f[i], s.qd[j]));
+    }
     for (const ex& gk : s.g) b.add_output(gk);
     for (std::size_t k = 0; k < m; ++k)
       for (std::size_t i = 0; i < n; ++i) b.add_output(s.G[k * n + i]);
@@ -64,6 +69,11 @@ class Linearization {
     in_.assign(tape_.num_inputs(), 0.0);
     out_.assign(tape_.num_outputs(), 0.0);
     scratch_ = tape_.make_scratch();
+    if (by_tangent_) {
+      seed_.assign(tape_.num_inputs(), 0.0);
+      dout_.assign(tape_.num_outputs(), 0.0);
+      dscratch_ = tape_.make_scratch();
+    }
   }
 
   void evaluate(const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
@@ -86,11 +96,22 @@ class Linearization {
     std::size_t k = 0;
     for (int i = 0; i < n; ++i)
       for (int j = i; j < n; ++j) M(i, j) = M(j, i) = out_[k++];
+    const std::size_t f_at = k;
     for (int i = 0; i < n; ++i) f[i] = out_[k++];
-    for (int i = 0; i < n; ++i)
-      for (int j = 0; j < n; ++j) K(i, j) = out_[k++];
-    for (int i = 0; i < n; ++i)
-      for (int j = 0; j < n; ++j) C(i, j) = out_[k++];
+    if (by_tangent_) {
+      // column j of K and C: −∂f/∂q_j and −∂f/∂q̇_j, one forward-mode pass each
+      for (int j = 0; j < 2 * n; ++j) {
+        std::fill(seed_.begin(), seed_.end(), 0.0);
+        seed_[static_cast<std::size_t>(j)] = 1.0;
+        tape_.tangent(seed_.data(), dout_.data(), scratch_, dscratch_);
+        for (int i = 0; i < n; ++i) (j < n ? K(i, j) : C(i, j - n)) = -dout_[f_at + static_cast<std::size_t>(i)];
+      }
+    } else {
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) K(i, j) = out_[k++];
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) C(i, j) = out_[k++];
+    }
     for (int a = 0; a < m; ++a) g[a] = out_[k++];
     for (int a = 0; a < m; ++a)
       for (int i = 0; i < n; ++i) G(a, i) = out_[k++];
@@ -105,8 +126,10 @@ class Linearization {
 
  private:
   int n_, m_;
+  bool by_tangent_;
   detail::Tape tape_;
   std::vector<double> in_, out_, scratch_;
+  std::vector<double> seed_, dout_, dscratch_;  // forward-mode derivatives (by_tangent_)
 };
 
 Eigen::MatrixXd rows_cols(const Eigen::MatrixXd& A, const std::vector<int>& rows,

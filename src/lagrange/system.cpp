@@ -1,6 +1,7 @@
 #include "rigid/lagrange/system.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <map>
 #include <set>
@@ -11,6 +12,7 @@
 #include "rigid/common/did_you_mean.hpp"
 #include "rigid/common/format.hpp"
 #include "detail/parser.hpp"
+#include "detail/recursive.hpp"
 #include "detail/symbolic.hpp"
 #include "detail/symbolic_lock.hpp"
 #include "detail/system_impl.hpp"
@@ -448,6 +450,187 @@ BodyTerms derive_energies(System::Impl& s, const SystemSpec& spec, const Express
   return terms;
 }
 
+// Why the tree's recursions do not derive `spec` (empty: they do); `depth` receives the most
+// joints on one chain from the world.
+std::string recursion_refusal(const System::Impl& s, const SystemSpec& spec,
+                              const ExpressionReader& reader, int& depth) {
+  depth = 0;
+  if (!spec.springs.empty()) return "springs act between the bodies' points, not along a tree";
+  if (spec.bodies.empty()) return "there are no bodies";
+  std::map<std::string, int> depth_of;  // body name → joints from the world to it
+  std::vector<bool> driven(static_cast<std::size_t>(s.n), false);
+  for (std::size_t i = 0; i < spec.bodies.size(); ++i) {
+    const Body& b = spec.bodies[i];
+    const std::string who = b.name.empty() ? fmt::format("body{}", i) : b.name;
+    if (!b.rotations.empty()) {
+      return fmt::format("body '{}' turns by `rotations`; give its motion as joints", who);
+    }
+    int d = 0;
+    if (!b.parent.empty()) {
+      auto it = depth_of.find(b.parent);
+      if (it == depth_of.end() || b.parent == b.name) {
+        return fmt::format("body '{}' names the parent '{}', which is no earlier body", who, b.parent);
+      }
+      d = it->second;
+    }
+    for (int k = 0; k < 3; ++k) {
+      if (b.position[k].text.find_first_not_of(" \t") == std::string::npos) continue;
+      const ex x = reader.parse(b.position[k], fmt::format("body '{}' position[{}]", b.name, k), false);
+      bool moves = x.has(s.t);
+      for (const symbol& q : s.q) moves = moves || x.has(q);
+      if (moves) return fmt::format("body '{}' has a position that moves; give its motion as joints", who);
+    }
+    const Eigen::Matrix3d& O = b.orientation;
+    if (!O.allFinite() || (O.transpose() * O - Eigen::Matrix3d::Identity()).norm() >= 1e-12 ||
+        O.determinant() <= 0) {
+      return fmt::format("body '{}' has an orientation that is no rotation", who);
+    }
+    for (std::size_t j = 0; j < b.joints.size(); ++j) {
+      const JointMotion& J = b.joints[j];
+      const double norm = J.axis.norm();
+      if (!std::isfinite(norm) || norm <= 0 || !J.anchor.allFinite()) {
+        return fmt::format("body '{}' joint {} has no valid axis or anchor", who, j);
+      }
+      const ex amount = reader.parse(J.amount, fmt::format("body '{}' joint {} {}", b.name, j,
+                                     J.kind == JointMotion::Kind::kTurn ? "turn" : "slide"), false);
+      auto it = std::find_if(s.q.begin(), s.q.end(), [&](const symbol& q) { return amount.is_equal(q); });
+      if (it == s.q.end()) {
+        return fmt::format("body '{}' joint {} moves by '{}', which is not a coordinate", who, j,
+                           J.amount.text);
+      }
+      const auto c = static_cast<std::size_t>(it - s.q.begin());
+      if (driven[c]) return fmt::format("the coordinate '{}' drives two joints", s.coord_names[c]);
+      driven[c] = true;
+    }
+    d += static_cast<int>(b.joints.size());
+    depth = std::max(depth, d);
+    depth_of[b.name] = d;
+  }
+  return {};
+}
+
+// Whether the bodies are derived by the tree's recursions (SystemSpec::Derivation).
+bool use_recursion(const System::Impl& s, const SystemSpec& spec, const ExpressionReader& reader) {
+  using Derivation = SystemSpec::Derivation;
+  if (spec.derivation == Derivation::kExpanded) return false;
+  int depth = 0;
+  const std::string why = recursion_refusal(s, spec, reader, depth);
+  if (spec.derivation == Derivation::kRecursive) {
+    RIGID_REQUIRE_AS("System", why.empty(), "the recursive derivation applies to a tree of bodies "
+                     "moved by joints; here {}", why);
+    return true;
+  }
+  return why.empty() && depth > SystemSpec::kAutoRecursiveDepth;
+}
+
+// A name fit to carry into the intermediates' names: letters, digits and '_'.
+std::string name_part(const std::string& name) {
+  std::string out = name;
+  for (char& c : out) {
+    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+  }
+  return out;
+}
+
+// The bodies as the recursion takes them (recursion_refusal has passed), their mass
+// properties into the mass outputs and their names into s.body_names.
+std::vector<detail::TreeBody> tree_bodies(System::Impl& s, const SystemSpec& spec,
+                                          const ExpressionReader& reader, BodyTerms& terms) {
+  std::vector<detail::TreeBody> bodies;
+  std::map<std::string, int> index;
+  for (std::size_t i = 0; i < spec.bodies.size(); ++i) {
+    const Body& b = spec.bodies[i];
+    const std::string ctx = fmt::format("body '{}'", b.name);
+    RIGID_REQUIRE_AS("System", b.name.empty() || !index.count(b.name), "body name '{}' is used twice",
+                     b.name);
+    detail::TreeBody t;
+    t.name = name_part(b.name.empty() ? fmt::format("body{}", i) : b.name);
+    t.parent = b.parent.empty() ? -1 : index.at(b.parent);
+    for (int k = 0; k < 3; ++k) {
+      const bool empty = b.position[k].text.find_first_not_of(" \t") == std::string::npos;
+      t.position[k] = empty ? ex(0) : reader.parse(b.position[k], fmt::format("{} position[{}]", ctx, k), false);
+    }
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) t.orientation[r][c] = number(b.orientation(r, c));
+    for (const JointMotion& J : b.joints) {
+      const ex amount = reader.parse(J.amount, ctx, false);
+      const auto it = std::find_if(s.q.begin(), s.q.end(), [&](const symbol& q) { return amount.is_equal(q); });
+      t.joints.push_back({J.kind == JointMotion::Kind::kTurn, J.axis / J.axis.norm(), J.anchor,
+                          static_cast<std::size_t>(it - s.q.begin())});
+    }
+    t.mass = reader.parse_constant(b.mass.mass, ctx + " mass");
+    for (int k = 0; k < 3; ++k) t.com[k] = reader.parse_constant(b.mass.com[k], fmt::format("{} com[{}]", ctx, k));
+    for (std::size_t k = 0; k < 6; ++k) {
+      const auto& [name, row, col] = BodyMass::kInertiaElements[k];
+      t.inertia[row][col] = t.inertia[col][row] = reader.parse_constant(b.mass.inertia[k], ctx + " " + name);
+    }
+    terms.mass_outputs.push_back(t.mass);
+    for (int k = 0; k < 3; ++k) terms.mass_outputs.push_back(t.com[k]);
+    for (const auto& e : BodyMass::kInertiaElements) terms.mass_outputs.push_back(t.inertia[e.row][e.col]);
+    if (!b.name.empty()) index.emplace(b.name, static_cast<int>(i));
+    s.body_names.push_back(b.name.empty() ? fmt::format("body{}", s.body_names.size()) : b.name);
+    bodies.push_back(std::move(t));
+  }
+  return bodies;
+}
+
+// The recursive derivation (SystemSpec::Derivation): the bodies' M, bias forces, T and V by
+// the tree's recursions (recursive.cpp), the given Lagrangian and the potentials by Lagrange's
+// equations of their own (they are expressions of q, q̇ and t); sets s.T, V, L, h, M, f (but
+// the generalized forces) and f_potential; returns the outputs of the mass and pose tapes.
+BodyTerms derive_recursive(System::Impl& s, const SystemSpec& spec, const ExpressionReader& reader,
+                           const Names& names) {
+  const auto n = static_cast<std::size_t>(s.n);
+  Vec3 gravity;
+  for (int k = 0; k < 3; ++k) gravity[k] = reader.parse_constant(spec.gravity_W[k], fmt::format("gravity[{}]", k));
+  ex L_given = 0;
+  if (spec.lagrangian.text.find_first_not_of(" \t") != std::string::npos) {
+    L_given = reader.parse(spec.lagrangian, "Lagrangian", true).expand();
+  }
+  BodyTerms terms;
+  const std::vector<detail::TreeBody> bodies = tree_bodies(s, spec, reader, terms);
+  std::set<std::string> taken(reserved_names());
+  for (const auto& [name, _] : names) taken.insert(name);
+  const detail::TreeEquations tree = detail::tree_equations(s, bodies, gravity, taken);
+  for (const auto& [p, R] : tree.poses) {
+    for (int k = 0; k < 3; ++k) terms.pose_outputs.push_back(p[k]);
+    for (int i = 0; i < 3; ++i)
+      for (int k = 0; k < 3; ++k) terms.pose_outputs.push_back(R[i][k]);
+  }
+  // the rest of L: L_extra = (velocity part of L_given) + (the rest of L_given) − Σ potentials
+  ex V_pot = 0;
+  for (const NamedExpression& pot : spec.potentials) {
+    V_pot += reader.parse(pot.expression, fmt::format("potential '{}'", pot.name), false);
+  }
+  ex T_given = 0, V_given = 0;
+  split_given_lagrangian(s, L_given, T_given, V_given);
+  const ex V_extra = simplify(V_pot - V_given);
+  const ex L_extra = T_given - V_extra;
+  s.T = tree.T + T_given;
+  s.V = tree.V + V_extra;
+  s.L = s.T - s.V;
+  s.M = tree.M;
+  s.f.resize(n);
+  s.f_potential.resize(n);
+  ex h = tree.T + tree.V - L_extra;
+  for (std::size_t i = 0; i < n; ++i) {
+    const ex p = d(L_extra, s.qd[i]);
+    for (std::size_t j = 0; j < n; ++j) s.M[i * n + j] = (s.M[i * n + j] + d(p, s.qd[j])).expand();
+    if (s.M[i * n + i].is_zero()) {
+      rigid::detail::throw_error("System", fmt::format("no body moves with the coordinate '{}' and the "
+                  "Lagrangian is not quadratic in '{}_dot', so the mass matrix is singular",
+                  s.coord_names[i], s.coord_names[i]));
+    }
+    ex fi = tree.inertial[i] + tree.gravity[i] + d(L_extra, s.q[i]) - d(p, s.t);
+    for (std::size_t j = 0; j < n; ++j) fi -= d(p, s.q[j]) * s.qd[j];
+    s.f[i] = fi.expand();
+    s.f_potential[i] = (tree.gravity[i] - d(V_extra, s.q[i])).expand();
+    h += s.qd[i] * p;
+  }
+  s.h = h.expand();
+  return terms;
+}
+
 // Sets s.Q, the generalized forces on the coordinates; returns which coordinates have one.
 std::vector<bool> derive_generalized_forces(System::Impl& s, const SystemSpec& spec,
                                             const ExpressionReader& reader) {
@@ -561,6 +744,7 @@ void compile_tapes(System::Impl& s, const BodyTerms& terms) {
   inputs.push_back(s.t);
   inputs.insert(inputs.end(), s.params.begin(), s.params.end());
   detail::TapeBuilder dyn(inputs, inputs.size() - s.params.size());
+  detail::define_intermediates(dyn, s);
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = i; j < n; ++j) dyn.add_output(s.M[i * n + j]);
   for (const ex& e : s.f) dyn.add_output(e);
@@ -570,11 +754,13 @@ void compile_tapes(System::Impl& s, const BodyTerms& terms) {
   for (const ex& e : s.g) dyn.add_output(e);
   s.dyn = dyn.build();
   detail::TapeBuilder diag(inputs);
+  detail::define_intermediates(diag, s);
   diag.add_output(simplify(s.T + s.V));
   diag.add_output(s.h);
   for (int i : s.cyclic_index) diag.add_output(s.p[static_cast<std::size_t>(i)]);
   s.diag = diag.build();
   detail::TapeBuilder pose(inputs);
+  detail::define_intermediates(pose, s);
   for (const ex& e : terms.pose_outputs) pose.add_output(e);
   s.pose = pose.build();
 
@@ -595,18 +781,29 @@ void derive(System::Impl& s, const SystemSpec& spec) {
   declare_symbols(s, spec, names);
   const ExpressionReader reader(s, names);
 
-  // T, V and L; generalized forces; the Euler–Lagrange equations
-  const BodyTerms terms = derive_energies(s, spec, reader);
+  // T, V and L; generalized forces; the Euler–Lagrange equations (of the expanded L, or by
+  // the tree's recursions)
+  const bool recursive = use_recursion(s, spec, reader);
+  const BodyTerms terms = recursive ? derive_recursive(s, spec, reader, names)
+                                    : derive_energies(s, spec, reader);
   const std::vector<bool> forced = derive_generalized_forces(s, spec, reader);
-  derive_euler_lagrange(s);
+  if (recursive) {
+    for (std::size_t i = 0; i < s.f.size(); ++i) s.f[i] = (s.f[i] + s.Q[i]).expand();
+  } else {
+    derive_euler_lagrange(s);
+  }
 
   // constraints: G = ∂g/∂q, ġ = G q̇ + ∂g/∂t, γ = −(∂ġ/∂q q̇ + ∂ġ/∂t)
   std::vector<bool> constrained = derive_constraints(s, spec, reader);
   // velocity (nonholonomic) constraints A q̇ + a = 0 (velocity_constraints.cpp)
   detail::derive_velocity_constraints(spec, s, names, constrained);
 
-  find_cyclic_coordinates(s, forced, constrained);
-  s.verlet_ok = verlet_applies(s);
+  // the recursion's intermediates hide which coordinates L and M depend on: no coordinate is
+  // called cyclic and Störmer–Verlet is not offered (both are conservative)
+  if (!recursive) {
+    find_cyclic_coordinates(s, forced, constrained);
+    s.verlet_ok = verlet_applies(s);
+  }
 
   // compile: inputs (q, q̇, t, parameters)
   compile_tapes(s, terms);

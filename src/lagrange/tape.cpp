@@ -87,6 +87,63 @@ void Tape::evaluate(const double* inputs, double* outputs, std::vector<double>& 
 
 #undef RIGID_TAPE_LOOP
 
+// one loop per operation: the body is the derivative of the instruction's result from the
+// operands' values x, y, the result v and the operands' derivatives dx, dy
+#define RIGID_TANGENT_LOOP(expr)                                                  \
+  for (std::uint32_t k = g.begin; k < g.end; ++k) {                               \
+    [[maybe_unused]] const double x = s[code[k].a], dx = ds[code[k].a];           \
+    [[maybe_unused]] const double v = r[k];                                       \
+    [[maybe_unused]] const double y = is_binary(g.op) ? s[code[k].b] : 0.0;       \
+    [[maybe_unused]] const double dy = is_binary(g.op) ? ds[code[k].b] : 0.0;     \
+    dr[k] = (expr);                                                               \
+  }                                                                               \
+  break
+
+void Tape::tangent(const double* seed, double* tangent, const std::vector<double>& scratch,
+                   std::vector<double>& dscratch) const {
+  RIGID_ASSERT(scratch.size() == num_inputs_ + constants_.size() + code_.size());
+  RIGID_ASSERT(dscratch.size() == scratch.size());
+  const double* s = scratch.data();
+  double* ds = dscratch.data();
+  std::copy(seed, seed + num_inputs_, ds);
+  std::fill(ds + num_inputs_, ds + num_inputs_ + constants_.size(), 0.0);
+  const std::size_t first = num_inputs_ + constants_.size();
+  const double* r = s + first;
+  double* dr = ds + first;
+  const Instruction* code = code_.data();
+  for (const Group& g : groups_) {
+    switch (g.op) {
+      case Op::kAdd: RIGID_TANGENT_LOOP(dx + dy);
+      case Op::kSub: RIGID_TANGENT_LOOP(dx - dy);
+      case Op::kMul: RIGID_TANGENT_LOOP(dx * y + x * dy);
+      case Op::kDiv: RIGID_TANGENT_LOOP((dx - v * dy) / y);
+      case Op::kNeg: RIGID_TANGENT_LOOP(-dx);
+      case Op::kInv: RIGID_TANGENT_LOOP(-v * v * dx);
+      case Op::kSquare: RIGID_TANGENT_LOOP(2.0 * x * dx);
+      case Op::kPow: RIGID_TANGENT_LOOP(dy == 0.0 ? y * std::pow(x, y - 1.0) * dx
+                                                  : v * (dy * std::log(x) + y * dx / x));
+      case Op::kPowInt: RIGID_TANGENT_LOOP(code[k].b * pow_int(x, code[k].b - 1) * dx);
+      case Op::kSqrt: RIGID_TANGENT_LOOP(0.5 * dx / v);
+      case Op::kInvSqrt: RIGID_TANGENT_LOOP(-0.5 * v / x * dx);
+      case Op::kSin: RIGID_TANGENT_LOOP(std::cos(x) * dx);
+      case Op::kCos: RIGID_TANGENT_LOOP(-std::sin(x) * dx);
+      case Op::kTan: RIGID_TANGENT_LOOP((1.0 + v * v) * dx);
+      case Op::kAsin: RIGID_TANGENT_LOOP(dx / std::sqrt(1.0 - x * x));
+      case Op::kAcos: RIGID_TANGENT_LOOP(-dx / std::sqrt(1.0 - x * x));
+      case Op::kAtan: RIGID_TANGENT_LOOP(dx / (1.0 + x * x));
+      case Op::kExp: RIGID_TANGENT_LOOP(v * dx);
+      case Op::kLog: RIGID_TANGENT_LOOP(dx / x);
+      case Op::kAbs: RIGID_TANGENT_LOOP(x < 0.0 ? -dx : dx);
+      case Op::kSinh: RIGID_TANGENT_LOOP(std::cosh(x) * dx);
+      case Op::kCosh: RIGID_TANGENT_LOOP(std::sinh(x) * dx);
+      case Op::kTanh: RIGID_TANGENT_LOOP((1.0 - v * v) * dx);
+    }
+  }
+  for (std::size_t k = 0; k < outputs_.size(); ++k) tangent[k] = ds[outputs_[k]];
+}
+
+#undef RIGID_TANGENT_LOOP
+
 TapeBuilder::TapeBuilder(const std::vector<GiNaC::symbol>& inputs, std::size_t first_run_constant)
     : num_inputs_(inputs.size()), first_run_constant_(first_run_constant) {
   for (std::size_t k = 0; k < inputs.size(); ++k) memo_[inputs[k]] = static_cast<std::int32_t>(k);
@@ -95,6 +152,11 @@ TapeBuilder::TapeBuilder(const std::vector<GiNaC::symbol>& inputs, std::size_t f
 std::size_t TapeBuilder::add_output(const GiNaC::ex& e) {
   outputs_.push_back(slot_of(e));
   return outputs_.size() - 1;
+}
+
+void TapeBuilder::define(const GiNaC::symbol& name, const GiNaC::ex& e) {
+  RIGID_ASSERT(!memo_.count(name));
+  definitions_.emplace(name, e);  // compiled where an output first uses it
 }
 
 std::int32_t TapeBuilder::constant_slot(double value) {
@@ -181,7 +243,10 @@ bool TapeBuilder::is_run_constant(const GiNaC::ex& e) {
   bool constant = true;
   if (is_a<symbol>(e)) {
     auto slot = memo_.find(e);
-    constant = slot != memo_.end() && static_cast<std::size_t>(slot->second) >= first_run_constant_;
+    auto defined = definitions_.find(e);
+    constant = defined != definitions_.end()
+                   ? is_run_constant(defined->second)
+                   : slot != memo_.end() && static_cast<std::size_t>(slot->second) >= first_run_constant_;
   } else {
     for (std::size_t k = 0; k < e.nops() && constant; ++k) constant = is_run_constant(e.op(k));
   }
@@ -210,6 +275,8 @@ std::int32_t TapeBuilder::slot_of(const GiNaC::ex& e) {
     s = constant_slot(ex_to<numeric>(e).to_double());
   } else if (is_a<constant>(e)) {
     s = constant_slot(ex_to<numeric>(e.evalf()).to_double());
+  } else if (auto defined = definitions_.find(e); defined != definitions_.end()) {
+    s = slot_of(defined->second);
   } else if (is_a<symbol>(e)) {
     std::ostringstream os;
     os << e;

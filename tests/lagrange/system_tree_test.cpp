@@ -10,6 +10,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "rigid/lagrange/linearize.hpp"
 #include "rigid/lagrange/system.hpp"
 #include "support/expect_error.hpp"
 #include "support/tolerance.hpp"
@@ -342,6 +343,114 @@ TEST(BodyTreeErrors, JointAxisAndAmount) {
   EXPECT_RIGID_ERROR(System{spec}, "depends on the velocity 'theta2_dot'");
   spec.bodies[1].joints[0].amount = "theta3";
   EXPECT_RIGID_ERROR(System{spec}, "body 'link2' joint 0 turn");
+}
+
+// The spatial chain with its constant rotation as an orientation (the recursion takes joints
+// and constant frames only), a damper, spring potentials (one on q1, which would otherwise be
+// cyclic: q1 turns about the vertical) and a rotor's ½ J q̇₁² in L.
+SystemSpec chain_with_extras(SystemSpec::Derivation derivation) {
+  SystemSpec spec = spatial_chain_spec();
+  const std::vector<Link> links = spatial_chain();
+  for (std::size_t b = 0; b < links.size(); ++b) {
+    spec.bodies[b].rotations.clear();
+    if (links[b].rotation_angle != 0) {
+      spec.bodies[b].orientation =
+          Eigen::AngleAxisd(links[b].rotation_angle, links[b].rotation_axis.normalized()).toRotationMatrix();
+    }
+  }
+  spec.forces = {{"q2", "-3/10*q2_dot"}};
+  spec.potentials = {{"spring", "2*q3^2 + 1 - cos(q1)"}};
+  spec.lagrangian = "1/20*q1_dot^2";
+  spec.derivation = derivation;
+  return spec;
+}
+
+TEST(BodyTreeRecursive, EqualsTheExpandedLagrangian) {
+  // two derivations of one model: Lagrange's equations of the expanded T − V, and the tree's
+  // recursions (composite inertias, Newton–Euler) on named intermediates. Both tapes round
+  // differently; |M| ≲ 1 kg·m², |f| ≲ 100 N·m, so 1e-12 of the largest entry is ~1e3 ulps
+  const System expanded(chain_with_extras(SystemSpec::Derivation::kExpanded));
+  const System recursive(chain_with_extras(SystemSpec::Derivation::kRecursive));
+  EXPECT_TRUE(expanded.equations().intermediates.empty());
+  EXPECT_FALSE(recursive.equations().intermediates.empty());
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-2.0, 2.0);
+  for (int k = 0; k < 6; ++k) {
+    Eigen::VectorXd q(4), qd(4);
+    for (int i = 0; i < 4; ++i) {
+      q[i] = u(rng);
+      qd[i] = 2 * u(rng);
+    }
+    q[2] /= 10;  // the slide, in m
+    Eigen::MatrixXd Me, Mr;
+    Eigen::VectorXd fe, fr;
+    expanded.mass_matrix_and_forces(0.0, q, qd, Me, fe);
+    recursive.mass_matrix_and_forces(0.0, q, qd, Mr, fr);
+    EXPECT_LT((Me - Mr).cwiseAbs().maxCoeff(), 1e-12 * Me.cwiseAbs().maxCoeff()) << Me << "\n\n" << Mr;
+    EXPECT_LT((fe - fr).cwiseAbs().maxCoeff(), 1e-12 * std::max(1.0, fe.cwiseAbs().maxCoeff()))
+        << fe.transpose() << "\n" << fr.transpose();
+    const double E = expanded.energy(0.0, q, qd);
+    EXPECT_NEAR(recursive.energy(0.0, q, qd), E, 1e-12 * std::max(1.0, std::abs(E)));
+    const double h = expanded.jacobi_integral(0.0, q, qd);
+    EXPECT_NEAR(recursive.jacobi_integral(0.0, q, qd), h, 1e-12 * std::max(1.0, std::abs(h)));
+    const auto Pe = expanded.body_poses(0.0, q), Pr = recursive.body_poses(0.0, q);
+    ASSERT_EQ(Pe.size(), Pr.size());
+    for (std::size_t b = 0; b < Pe.size(); ++b) {
+      EXPECT_LT((Pe[b].p_WB - Pr[b].p_WB).norm(), test::ulps(64));
+      EXPECT_LT((Pe[b].R_WB.matrix() - Pr[b].R_WB.matrix()).cwiseAbs().maxCoeff(), test::ulps(64));
+    }
+  }
+}
+
+TEST(BodyTreeRecursive, ModesEqualTheExpandedLagrangians) {
+  // K = −∂f/∂q and C = −∂f/∂q̇: symbolic derivatives of the expanded f, forward-mode derivatives
+  // of the recursion's tape; the equilibrium and the eigenvalues agree to the search's and the
+  // eigensolver's rounding (1e-9 relative)
+  const NormalModes e = normal_modes(System(chain_with_extras(SystemSpec::Derivation::kExpanded)));
+  const NormalModes r = normal_modes(System(chain_with_extras(SystemSpec::Derivation::kRecursive)));
+  EXPECT_LT((e.q - r.q).cwiseAbs().maxCoeff(), 1e-9);
+  EXPECT_LT((e.K - r.K).cwiseAbs().maxCoeff(), 1e-9 * e.K.cwiseAbs().maxCoeff());
+  EXPECT_LT((e.C - r.C).cwiseAbs().maxCoeff(), 1e-9 * std::max(1.0, e.C.cwiseAbs().maxCoeff()));
+  ASSERT_EQ(e.eigenvalues.size(), r.eigenvalues.size());
+  for (Eigen::Index k = 0; k < e.eigenvalues.size(); ++k) {
+    EXPECT_LT(std::abs(e.eigenvalues[k] - r.eigenvalues[k]), 1e-9 * std::max(1.0, std::abs(e.eigenvalues[k])));
+  }
+}
+
+TEST(BodyTreeRecursive, GrowsLinearlyWithTheDepth) {
+  // a chain of n links turning about alternating axes: the recursion's tape grows by about the
+  // same number of instructions per link (a link's intermediates use its parent's only), so
+  // doubling the depth at most doubles it plus a bounded remainder (M has n² entries of six
+  // products each: 6n² instructions of the 2n chain's tape, allowed for)
+  auto chain = [](int n) {
+    SystemSpec spec;
+    spec.gravity_W = Vector3Expression(Eigen::Vector3d(0, 0, -9.81));
+    for (int i = 0; i < n; ++i) {
+      spec.coordinates.push_back({fmt::format("q{}", i + 1), 0.1, 0.0});
+      Body b;
+      b.name = fmt::format("l{}", i + 1);
+      b.parent = i ? fmt::format("l{}", i) : "";
+      b.position = {"0", "0", i ? "-1/5" : "0"};
+      b.mass = BodyMass(MassProperties(1.0, Eigen::Vector3d(0.01, 0, -0.1),
+                                       Eigen::Vector3d(0.01, 0.02, 0.015).asDiagonal()));
+      b.joints = {JointMotion{Kind::kTurn, i % 2 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY(),
+                              Eigen::Vector3d::Zero(), fmt::format("q{}", i + 1)}};
+      spec.bodies.push_back(b);
+    }
+    return spec;
+  };
+  const std::size_t t8 = System(chain(8)).tape_size(), t16 = System(chain(16)).tape_size();
+  EXPECT_LT(static_cast<double>(t16), 2.0 * static_cast<double>(t8) + 6.0 * 16 * 16)
+      << t8 << " → " << t16;
+}
+
+TEST(BodyTreeRecursive, RefusedWhereItDoesNotApplyWithTheReason) {
+  SystemSpec spec = spatial_chain_spec();  // link B turns by a constant rotation
+  spec.derivation = SystemSpec::Derivation::kRecursive;
+  EXPECT_RIGID_ERROR(System{spec}, "body 'B' turns by `rotations`; give its motion as joints");
+  spec = chain_with_extras(SystemSpec::Derivation::kRecursive);
+  spec.bodies[1].joints[0].amount = "2*q2";
+  EXPECT_RIGID_ERROR(System{spec}, "moves by '2*q2', which is not a coordinate");
 }
 
 }  // namespace

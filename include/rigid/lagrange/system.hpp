@@ -5,6 +5,7 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -181,6 +182,18 @@ struct SystemSpec {
   /// acceleration level A q̈ = −(Ȧ q̇ + ȧ) (Baumgarte: the residual c = A q̇ + a obeys
   /// ċ + 2α c = 0, the holonomic rows' equation with g ≡ 0).
   std::vector<VelocityConstraint> velocity_constraints;
+  /// How M and f of the bodies are found. kExpanded: Lagrange's equations of the expanded
+  /// T − V (every entry a polynomial in q̇ and the sines and cosines of the angles). kRecursive:
+  /// the tree's recursions (composite rigid bodies for M, Newton–Euler for the bias forces),
+  /// with each link's rotation, axes, velocities, inertias and forces a named intermediate
+  /// (Equations::intermediates): linear in the depth where the expanded form grows
+  /// exponentially. It applies to bodies whose joints are the coordinates themselves (each
+  /// coordinate one joint at most), with constant positions, no `rotations` and no springs;
+  /// asked for elsewhere, it is refused saying why. kAuto: kRecursive where it applies and a
+  /// chain holds more than kAutoRecursiveDepth joints, else kExpanded.
+  enum class Derivation { kAuto, kExpanded, kRecursive };
+  Derivation derivation = Derivation::kAuto;
+  static constexpr int kAutoRecursiveDepth = 3;
 };
 
 /// One printed quantity: plain text (parsable by SymPy's sympify, `^` for powers) and LaTeX.
@@ -228,6 +241,10 @@ struct Equations {
   bool jacobi_conserved = false;
   std::vector<Printed> cyclic_momenta;        ///< p_i = ∂L/∂q̇_i of the `cyclic` coordinates
   std::vector<EquationSymbol> symbols;        ///< every symbol that may appear, with units
+  /// The named intermediates of a recursive derivation (SystemSpec::Derivation), in the order
+  /// they are defined, each from the ones before it: M, f, L, T and V are printed in terms of
+  /// them (name, definition). Empty for an expanded derivation.
+  std::vector<std::pair<Printed, Printed>> intermediates;
   /// Free text appended by a front end (e.g. the values of constants named for a scene).
   std::string note;
 };

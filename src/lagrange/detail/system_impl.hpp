@@ -28,6 +28,12 @@ struct System::Impl {
   GiNaC::ex L, T, V, h;
   std::vector<GiNaC::ex> M, f, G, gamma, g, c, p;
   std::vector<GiNaC::ex> Q;  // generalized forces, per coordinate (printed apart from f)
+  // a tree derived by its recursions (recursive.cpp): M, f, T, V and the poses use the named
+  // intermediates aux, each defined by aux_def in terms of q, q̇, the parameters and the
+  // intermediates before it; f_potential is the part of f from V (−∂V/∂q through them)
+  std::vector<GiNaC::symbol> aux;
+  std::vector<GiNaC::ex> aux_def;
+  std::vector<GiNaC::ex> f_potential;
   std::vector<int> cyclic_index;
   bool verlet_ok = false;
   // compiled: inputs (q, q̇, t, parameters) for dyn, diag and pose; the parameters alone for
@@ -53,6 +59,13 @@ struct System::Impl {
   void check_masses(const std::vector<double>& values, std::string_view context) const;
   [[nodiscard]] std::string state_text(double time, const Eigen::VectorXd& qv) const;
 };
+
+namespace detail {
+/// Defines the intermediates of `s` in `b` (before any output that uses them).
+inline void define_intermediates(TapeBuilder& b, const System::Impl& s) {
+  for (std::size_t k = 0; k < s.aux.size(); ++k) b.define(s.aux[k], s.aux_def[k]);
+}
+}  // namespace detail
 
 struct Workspace::Impl {
   const System::Impl* owner = nullptr;

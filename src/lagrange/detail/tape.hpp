@@ -41,6 +41,12 @@ class Tape {
   void evaluate(const double* inputs, double* outputs, std::vector<double>& scratch) const;
   /// The same with a scratch made for this call.
   void evaluate(const double* inputs, double* outputs) const;
+  /// Forward-mode derivative: with `scratch` from evaluate(inputs, …) of this tape, writes
+  /// Σ_k ∂output/∂input_k · seed_k into `tangent` (num_outputs() values); `dscratch` is a
+  /// second scratch of make_scratch()'s size. Exact up to rounding (each operation's own
+  /// derivative rule), where the operations are differentiable.
+  void tangent(const double* seed, double* tangent, const std::vector<double>& scratch,
+               std::vector<double>& dscratch) const;
   [[nodiscard]] std::size_t size() const { return code_.size(); }
   [[nodiscard]] std::size_t num_inputs() const { return num_inputs_; }
   [[nodiscard]] std::size_t num_outputs() const { return outputs_.size(); }
@@ -88,6 +94,9 @@ class TapeBuilder {
                        std::size_t first_run_constant = static_cast<std::size_t>(-1));
   /// Adds an output; returns its index.
   std::size_t add_output(const GiNaC::ex& e);
+  /// Makes `name` stand for the value of `e` in every later expression (an intermediate of a
+  /// tree's recursion); `e` may use the inputs and the names defined before it.
+  void define(const GiNaC::symbol& name, const GiNaC::ex& e);
   [[nodiscard]] Tape build() const;
 
  private:
@@ -106,6 +115,7 @@ class TapeBuilder {
   std::size_t first_run_constant_;
   std::map<GiNaC::ex, bool, GiNaC::ex_is_less> run_constant_;
   std::map<GiNaC::ex, std::int32_t, GiNaC::ex_is_less> memo_;
+  std::map<GiNaC::ex, GiNaC::ex, GiNaC::ex_is_less> definitions_;  // define(): name → value
   std::map<GiNaC::ex, std::string, GiNaC::ex_is_less> keys_;
   std::map<double, std::int32_t> constant_slots_;
   std::vector<double> constants_;

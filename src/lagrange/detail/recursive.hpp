@@ -1,0 +1,60 @@
+#pragma once
+
+// M(q) and f(q, q̇) of a tree of bodies by the tree's recursions in symbols: forward
+// kinematics link by link, the composite-rigid-body algorithm for M and recursive
+// Newton–Euler for the bias forces (Featherstone, "Rigid Body Dynamics Algorithms", 2008,
+// ch. 5–6), every spatial quantity in world coordinates about the world origin. Each
+// quantity of a link is a named intermediate (System::Impl::aux) defined by a short
+// expression of its parent's, so the equations grow linearly with the depth of the tree
+// where the expanded Lagrangian grows exponentially.
+
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Core>
+#include <ginac/ginac.h>
+
+#include "symbolic.hpp"
+#include "system_impl.hpp"
+
+namespace rigid::lagrange::detail {
+
+/// A joint of a tree body: a turn about, or a slide along, the unit `axis` (in the frame the
+/// joint starts from) through `anchor`, by the coordinate number `coordinate`.
+struct TreeJoint {
+  bool turn = true;
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
+  Eigen::Vector3d anchor = Eigen::Vector3d::Zero();
+  std::size_t coordinate = 0;
+};
+
+/// A body of the tree: X_PB = Trans(position) · orientation · J₁ ⋯ J_m (as lagrange::Body),
+/// its parent an earlier body (or −1, the world); mass, COM and inertia about the COM in B.
+struct TreeBody {
+  std::string name;
+  int parent = -1;
+  Vec3 position;
+  Mat3 orientation;
+  std::vector<TreeJoint> joints;
+  GiNaC::ex mass;
+  Vec3 com;
+  Mat3 inertia;
+};
+
+/// What the recursions give, in terms of the intermediates they appended to s.aux/aux_def.
+struct TreeEquations {
+  std::vector<GiNaC::ex> M;          ///< n × n, row-major
+  std::vector<GiNaC::ex> inertial;   ///< −C(q, q̇) q̇: Coriolis and centrifugal forces
+  std::vector<GiNaC::ex> gravity;    ///< the generalized forces of gravity
+  GiNaC::ex T, V;                    ///< kinetic energy; potential of gravity
+  std::vector<std::pair<Vec3, Mat3>> poses;  ///< per body: p_WB, R_WB
+};
+
+/// Derives the tree's M, bias forces and energies; `taken` holds the names the intermediates
+/// must not take (the system's own symbols).
+[[nodiscard]] TreeEquations tree_equations(System::Impl& s, const std::vector<TreeBody>& bodies,
+                                           const Vec3& gravity, const std::set<std::string>& taken);
+
+}  // namespace rigid::lagrange::detail
