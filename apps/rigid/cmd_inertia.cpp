@@ -333,15 +333,22 @@ void run_inertia_source(const InertiaSourceOptions& opts) {
 }
 
 void run_inertia_check(const InertiaCheckOptions& opts) {
+  // a FIFO or device is refused before it is opened; MJCF <include>s are followed, and each
+  // inertial is reported at its own file and line
   const auto entries = io::read_inertials_file(opts.file);
   int invalid = 0;
+  std::vector<std::string> included;
   for (const auto& e : entries) {
+    if (e.file != opts.file && std::find(included.begin(), included.end(), e.file) == included.end()) {
+      included.push_back(e.file);
+    }
     if (e.problem) {
       ++invalid;
-      std::fputs(fmt::format("{}:{}: '{}': {}\n", opts.file, e.line, e.name, *e.problem).c_str(), stdout);
+      std::fputs(fmt::format("{}:{}: '{}': {}\n", e.file, e.line, e.name, *e.problem).c_str(), stdout);
     }
   }
-  std::fputs(fmt::format("{}: {} inertial{}, {} invalid\n", opts.file, entries.size(),
+  const std::string with = included.empty() ? "" : fmt::format(" (with {})", fmt::join(included, ", "));
+  std::fputs(fmt::format("{}{}: {} inertial{}, {} invalid\n", opts.file, with, entries.size(),
                          entries.size() == 1 ? "" : "s", invalid)
                  .c_str(),
              stdout);

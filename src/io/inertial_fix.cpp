@@ -19,7 +19,9 @@
 #include <tinyxml2.h>
 
 #include "detail/fix_geometry.hpp"
+#include "detail/inertial_element.hpp"
 #include "detail/xml_numbers.hpp"
+#include "detail/xml_parse.hpp"
 #include "rigid/common/error.hpp"
 #include "rigid/common/wording.hpp"
 #include "rigid/mass/primitive_table.hpp"
@@ -462,8 +464,14 @@ struct Edit {
   std::string insert;
 };
 
-std::string display_name(const FixedInertial& f) {
-  return f.name.empty() ? fmt::format("(unnamed, line {})", f.line) : f.name;
+// "line 12", or "arm.xml:12" for a link of an <include>d file
+std::string place(const FixedInertial& f, const std::string& source) {
+  return f.file.empty() || f.file == source ? fmt::format("line {}", f.line)
+                                            : fmt::format("{}:{}", f.file, f.line);
+}
+
+std::string display_name(const FixedInertial& f, const std::string& source) {
+  return f.name.empty() ? fmt::format("(unnamed, {})", place(f, source)) : f.name;
 }
 
 }  // namespace
@@ -476,7 +484,7 @@ std::vector<std::string> InertialFixResult::errors() const {
   std::vector<std::string> out;
   for (const auto& l : links) {
     for (const auto& e : l.errors) {
-      out.push_back(fmt::format("{}:{}: {} '{}': {}", source, l.line,
+      out.push_back(fmt::format("{}:{}: {} '{}': {}", l.file.empty() ? source : l.file, l.line,
                                 format == InertialFormat::mjcf ? "body" : "link", l.name, e));
     }
   }
@@ -497,42 +505,100 @@ void InertialFixResult::require_ok() const {
               list.size() == 1 ? "" : "s", fmt::join(list, "\n  "));
 }
 
+namespace {
+
+// One file of the model (the document, or an MJCF file it <include>s): its text, the byte
+// positions of its elements and the edits made to it.
+struct FileText {
+  const std::string* text = nullptr;
+  const tinyxml2::XMLElement* root = nullptr;
+  std::vector<ElementSpan> spans;
+  std::unordered_map<const tinyxml2::XMLElement*, std::size_t> span_of;
+  std::string nl;  // its line ending
+  std::vector<Edit> edits;
+
+  [[nodiscard]] const ElementSpan& span(const tinyxml2::XMLElement* e) const {
+    return spans[span_of.at(e)];
+  }
+};
+
+FileText locate(const std::string& text, const std::string& file,
+                const tinyxml2::XMLElement* root) {
+  FileText f;
+  f.text = &text;
+  f.root = root;
+  f.spans = element_spans(text, file);
+  number_elements(root, f.span_of);
+  if (f.span_of.size() != f.spans.size()) {
+    rigid::detail::throw_error_at(SourceLocation{file, 0, 0},
+                                  fmt::format("could not locate the {} elements in the text "
+                                              "(found {}); the file is left as it is",
+                                              f.span_of.size(), f.spans.size()));
+  }
+  f.nl = text.find("\r\n") != std::string::npos ? "\r\n" : "\n";
+  return f;
+}
+
+// The text of `f` with its edits applied and each followed <include> element replaced by the
+// elements of its file (their own edits applied): MuJoCo puts the included root's children in
+// the include's place, so the written model is the same model in one file.
+std::string render(const FileText& f, const std::map<const tinyxml2::XMLDocument*, FileText>& files,
+                   const detail::MjcfDocument* mjcf) {
+  std::vector<Edit> edits = f.edits;
+  if (mjcf != nullptr) {
+    for (const auto& [e, index] : f.span_of) {
+      const tinyxml2::XMLElement* root = mjcf->included_root(e);
+      if (root == nullptr) continue;
+      const FileText& inner = files.at(root->GetDocument());
+      const std::string text = render(inner, files, mjcf);
+      // the root's content: every edit lies inside it, so its end moved by the growth
+      const ElementSpan& r = inner.span(root);
+      const std::size_t end_tag = inner.text->rfind("</", r.end - 1);
+      const std::size_t end = end_tag + (text.size() - inner.text->size());
+      std::string_view content = std::string_view(text).substr(r.start_tag_end, end - r.start_tag_end);
+      const std::size_t first = content.find_first_not_of(" \t\r\n");
+      content = first == std::string_view::npos
+                    ? std::string_view{}
+                    : content.substr(first, content.find_last_not_of(" \t\r\n") + 1 - first);
+      const ElementSpan& span = f.spans[index];
+      edits.push_back({span.begin, span.end - span.begin, std::string(content)});
+    }
+  }
+  // back to front; they do not overlap (one per link, one per include). At the same byte the
+  // replacement goes first, so that an inertial inserted there comes before what replaced it.
+  std::sort(edits.begin(), edits.end(), [](const Edit& a, const Edit& b) {
+    return a.at != b.at ? a.at > b.at : a.remove > b.remove;
+  });
+  std::string out = *f.text;
+  for (const auto& e : edits) out.replace(e.at, e.remove, e.insert);
+  return out;
+}
+
+}  // namespace
+
 InertialFixResult fix_inertials(const std::string& xml, const std::string& source,
                                 const InertialFixOptions& options) {
   RIGID_REQUIRE(!options.density || (*options.density > 0 && std::isfinite(*options.density)),
                 "density must be positive and finite, got {} kg/m³", options.density.value_or(0));
   tinyxml2::XMLDocument doc;
-  if (doc.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS) {
-    rigid::detail::throw_error_at(SourceLocation{source, doc.ErrorLineNum(), 0},
-                                  fmt::format("malformed XML: {}", doc.ErrorStr()));
-  }
+  detail::parse_xml(doc, xml, source);
   InertialFixResult result;
   result.source = source;
   result.format = detect_inertial_format(xml, source);
   const auto* root = doc.RootElement();
-
-  // the old inertials, read as `rigid inertia check` reads them (same traversal order)
-  const std::vector<InertialEntry> entries = read_inertials(xml, source);
-  std::unordered_map<const tinyxml2::XMLElement*, std::size_t> entry_of;
-  {
-    std::function<void(const tinyxml2::XMLElement*)> walk = [&](const tinyxml2::XMLElement* e) {
-      for (const auto* c = e->FirstChildElement(); c != nullptr; c = c->NextSiblingElement()) {
-        if (std::string_view(c->Name()) == "inertial") {
-          const std::size_t n = entry_of.size();
-          entry_of[c] = n;
-        } else {
-          walk(c);
-        }
-      }
-    };
-    walk(root);
-    RIGID_ASSERT(entry_of.size() == entries.size());
-  }
+  const bool mjcf = result.format == InertialFormat::mjcf;
+  // MJCF: its <include>s followed (the included files are read now)
+  std::optional<detail::MjcfDocument> model;
+  if (mjcf) model.emplace(root, source, true);
+  const detail::MjcfDocument* mjcf_model = mjcf ? &*model : nullptr;
+  const auto file_of = [&](const tinyxml2::XMLElement* e) -> const std::string& {
+    return mjcf ? model->file_of(e) : source;
+  };
 
   // every link with its geometry measured
   std::vector<LinkGeometry> links;
-  if (result.format == InertialFormat::mjcf) {
-    links = detail::mjcf_links(root, source);
+  if (mjcf) {
+    links = detail::mjcf_links(*model);
   } else {
     const Resolver files{std::filesystem::path(source).parent_path(), &options.package_paths};
     collect_links(root, result.format, files, options.from, links);
@@ -547,21 +613,31 @@ InertialFixResult fix_inertials(const std::string& xml, const std::string& sourc
                                                 name, fmt::join(names, ", ")));
     }
   }
-  const bool mjcf = result.format == InertialFormat::mjcf;
   const double density = options.density.value_or(1000.0);
   bool density_assumed = false;
 
-  const auto spans = element_spans(xml, source);
-  std::unordered_map<const tinyxml2::XMLElement*, std::size_t> span_of;
-  number_elements(root, span_of);
-  if (span_of.size() != spans.size()) {
-    rigid::detail::throw_error_at(SourceLocation{source, 0, 0},
-                                  fmt::format("could not locate the {} elements in the text "
-                                              "(found {}); the file is left as it is",
-                                              span_of.size(), spans.size()));
+  // the text of every file, by its document: the main one and each included one
+  std::map<const tinyxml2::XMLDocument*, FileText> files;
+  files.emplace(&doc, locate(xml, source, root));
+  std::vector<const tinyxml2::XMLElement*> includes;
+  if (mjcf) {
+    std::function<void(const tinyxml2::XMLElement*)> find = [&](const tinyxml2::XMLElement* e) {
+      for (const auto* c = e->FirstChildElement(); c != nullptr; c = c->NextSiblingElement()) {
+        if (const auto* included = model->included_root(c)) {
+          includes.push_back(c);
+          files.emplace(included->GetDocument(),
+                        locate(model->included_text(included), file_of(included), included));
+          find(included);
+        } else {
+          find(c);
+        }
+      }
+    };
+    find(root);
   }
-  const std::string nl = xml.find("\r\n") != std::string::npos ? "\r\n" : "\n";
-  std::vector<Edit> edits;
+  const auto text_of = [&](const tinyxml2::XMLElement* e) -> FileText& {
+    return files.at(e->GetDocument());
+  };
 
   for (auto& link : links) {
     if (!options.only.empty() &&
@@ -570,15 +646,17 @@ InertialFixResult fix_inertials(const std::string& xml, const std::string& sourc
     }
     FixedInertial f;
     f.name = link.name;
+    f.file = file_of(link.element);
     f.line = link.line;
     f.volume = link.volume;
     f.warnings = std::move(link.warnings);
     f.errors = std::move(link.errors);
     if (link.inertial != nullptr) {
-      if (link.inertial->NextSiblingElement("inertial") != nullptr) {
-        f.errors.push_back("more than one <inertial>; keep one");
-      }
-      f.old = entries[entry_of.at(link.inertial)];
+      const bool more = mjcf ? model->children(link.element, "inertial").size() > 1
+                             : link.inertial->NextSiblingElement("inertial") != nullptr;
+      if (more) f.errors.push_back("more than one <inertial>; keep one");
+      f.old = detail::read_inertial_element(link.inertial, result.format, link.name,
+                                            file_of(link.inertial));
     }
     const bool has_geometry = !link.parts.empty();
     const bool old_valid = f.old && !f.old->problem;
@@ -644,26 +722,29 @@ InertialFixResult fix_inertials(const std::string& xml, const std::string& sourc
       f.fixed = mp;
 
       // the edit: replace the old element, or insert one as the link's first child with the
-      // indentation of its siblings
-      const ElementSpan& parent = spans[span_of.at(link.element)];
-      const auto parent_indent = indentation(xml, parent.begin);
+      // indentation of its siblings (each in the file that holds the element)
+      FileText& body_file = text_of(link.element);
+      const std::string& body_text = *body_file.text;
+      const ElementSpan& parent = body_file.span(link.element);
+      const auto parent_indent = indentation(body_text, parent.begin);
       if (link.inertial != nullptr) {
-        const ElementSpan& old = spans[span_of.at(link.inertial)];
-        const auto own = indentation(xml, old.begin);
+        FileText& file = text_of(link.inertial);
+        const ElementSpan& old = file.span(link.inertial);
+        const auto own = indentation(*file.text, old.begin);
         std::string unit = "  ";
         if (own && parent_indent && own->size() > parent_indent->size() && own->starts_with(*parent_indent)) {
           unit = own->substr(parent_indent->size());
         } else if (own && own->find('\t') != std::string::npos) {
           unit = "\t";
         }
-        edits.push_back({old.begin, old.end - old.begin,
-                         own ? inertial_text(mp, result.format, *own, unit, nl)
-                             : inertial_text(mp, result.format, "", "", "")});
+        file.edits.push_back({old.begin, old.end - old.begin,
+                              own ? inertial_text(mp, result.format, *own, unit, file.nl)
+                                  : inertial_text(mp, result.format, "", "", "")});
       } else {
         const std::string pi = parent_indent.value_or("");
         std::string child_indent = pi + "  ";
         if (const auto* first = link.element->FirstChildElement()) {
-          if (const auto ci = indentation(xml, spans[span_of.at(first)].begin)) child_indent = *ci;
+          if (const auto ci = indentation(body_text, body_file.span(first).begin)) child_indent = *ci;
         }
         std::string unit = "  ";
         if (child_indent.size() > pi.size() && child_indent.starts_with(pi)) {
@@ -673,8 +754,10 @@ InertialFixResult fix_inertials(const std::string& xml, const std::string& sourc
         }
         // a link with geometry has children: its start tag is not self-closing
         RIGID_ASSERT(!parent.self_closing);
-        edits.push_back({parent.start_tag_end, 0,
-                         nl + child_indent + inertial_text(mp, result.format, child_indent, unit, nl)});
+        body_file.edits.push_back(
+            {parent.start_tag_end, 0,
+             body_file.nl + child_indent +
+                 inertial_text(mp, result.format, child_indent, unit, body_file.nl)});
       }
     }
     result.links.push_back(std::move(f));
@@ -685,22 +768,20 @@ InertialFixResult fix_inertials(const std::string& xml, const std::string& sourc
         "with {}, or keep the stated masses with {}", density, setting("density", "RHO"),
         setting("keep_mass")));
   }
-
-  // apply the edits back to front (they do not overlap: one per link)
-  std::sort(edits.begin(), edits.end(), [](const Edit& a, const Edit& b) { return a.at > b.at; });
-  result.text = xml;
-  for (const auto& e : edits) result.text.replace(e.at, e.remove, e.insert);
+  for (const auto* c : includes) {
+    const std::string& included = file_of(model->included_root(c));
+    result.warnings.push_back(fmt::format(
+        "{}:{}: <include file=\"{}\">: the fixed model is written as one file, with the "
+        "included elements in its place; '{}' is not changed",
+        file_of(c), c->GetLineNum(), c->Attribute("file"), included));
+  }
+  result.text = render(files.at(&doc), files, mjcf_model);
   return result;
 }
 
 InertialFixResult fix_inertials_file(const std::string& path, const InertialFixOptions& options) {
-  std::error_code ec;
-  RIGID_REQUIRE(std::filesystem::is_regular_file(path, ec), "'{}' is not a readable file", path);
-  std::ifstream in(path, std::ios::binary);
-  RIGID_REQUIRE(in.good(), "cannot open '{}' for reading", path);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return fix_inertials(text.str(), path, options);
+  // refuses a FIFO or device before opening it (opening a FIFO blocks until a writer comes)
+  return fix_inertials(detail::read_model_file(path), path, options);
 }
 
 namespace {
@@ -721,7 +802,7 @@ nlohmann::json mass_json(double m, const Eigen::Vector3d& c, const Eigen::Matrix
 std::string fix_table_text(const InertialFixResult& r) {
   const char* kind = r.format == InertialFormat::mjcf ? "body" : "link";
   std::size_t width = 4;
-  for (const auto& l : r.links) width = std::max(width, display_name(l).size());
+  for (const auto& l : r.links) width = std::max(width, display_name(l, r.source).size());
   std::string out = fmt::format("{:<{}}  {:<19}  {:>22}  {:<32}  {}\n", kind, width, "reason",
                                 "mass old -> new (kg)", "COM new (m)",
                                 "inertia new about COM (xx yy zz xy xz yz, kg m^2)");
@@ -738,12 +819,13 @@ std::string fix_table_text(const InertialFixResult& r) {
                             short_num(I(1, 2)));
     }
     const std::string reason = l.errors.empty() ? l.reason : "NOT FIXED";
-    out += fmt::format("{:<{}}  {:<19}  {:>22}  {:<32}  {}\n", display_name(l), width, reason,
+    out += fmt::format("{:<{}}  {:<19}  {:>22}  {:<32}  {}\n", display_name(l, r.source), width, reason,
                        old_mass + " -> " + new_mass, com, inertia);
   }
   for (const auto& l : r.links) {
-    if (!l.detail.empty()) out += fmt::format("{} '{}' (line {}): {}: {}\n", kind, l.name, l.line, l.reason, l.detail);
-    for (const auto& w : l.warnings) out += fmt::format("{} '{}' (line {}): warning: {}\n", kind, l.name, l.line, w);
+    const std::string at = place(l, r.source);
+    if (!l.detail.empty()) out += fmt::format("{} '{}' ({}): {}: {}\n", kind, l.name, at, l.reason, l.detail);
+    for (const auto& w : l.warnings) out += fmt::format("{} '{}' ({}): warning: {}\n", kind, l.name, at, w);
   }
   for (const auto& w : r.warnings) out += fmt::format("warning: {}\n", w);
   for (const auto& e : r.errors()) out += fmt::format("error: {}\n", e);
@@ -759,6 +841,7 @@ std::string fix_table_json(const InertialFixResult& r) {
   for (const auto& l : r.links) {
     nlohmann::json e;
     e["name"] = l.name;
+    e["file"] = l.file;
     e["line"] = l.line;
     e["reason"] = l.reason;
     e["detail"] = l.detail;

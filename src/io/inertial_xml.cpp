@@ -4,14 +4,15 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
-#include <fstream>
-#include <sstream>
 #include <string_view>
 
 #include <fmt/format.h>
 #include <tinyxml2.h>
 
+#include "detail/fix_geometry.hpp"
+#include "detail/inertial_element.hpp"
 #include "detail/xml_numbers.hpp"
+#include "detail/xml_parse.hpp"
 #include "rigid/common/error.hpp"
 #include "rigid/lie/euler.hpp"
 #include "rigid/lie/so3.hpp"
@@ -143,43 +144,32 @@ void read_sdf(const tinyxml2::XMLElement* inertial, InertialEntry& entry) {
   entry.inertia_com = R * I_in * R.transpose();
 }
 
-void collect(const tinyxml2::XMLElement* e, InertialFormat format,
-             std::vector<InertialEntry>& out) {
-  for (const auto* child = e->FirstChildElement(); child != nullptr;
-       child = child->NextSiblingElement()) {
+// every <inertial> below `e` in document order (not inside another <inertial>); MJCF
+// through its followed <include>s
+void collect(const tinyxml2::XMLElement* e, InertialFormat format, const std::string& source,
+             const detail::MjcfDocument* mjcf, std::vector<InertialEntry>& out) {
+  const auto children = mjcf != nullptr ? mjcf->children(e) : [e] {
+    std::vector<const tinyxml2::XMLElement*> all;
+    for (const auto* c = e->FirstChildElement(); c != nullptr; c = c->NextSiblingElement()) {
+      all.push_back(c);
+    }
+    return all;
+  }();
+  for (const auto* child : children) {
     if (std::string_view(child->Name()) == "inertial") {
-      InertialEntry entry;
       const char* name = e->Attribute("name");
-      entry.name = name == nullptr ? "" : name;
-      entry.line = child->GetLineNum();
-      try {
-        switch (format) {
-          case InertialFormat::urdf: read_urdf(child, entry); break;
-          case InertialFormat::mjcf: read_mjcf(child, entry); break;
-          case InertialFormat::sdf: read_sdf(child, entry); break;
-        }
-        entry.problem = MassProperties::check(entry.mass, entry.com, entry.inertia_com);
-      } catch (const EntryProblem& p) {
-        entry.problem = p.text;
-      }
-      out.push_back(std::move(entry));
+      out.push_back(detail::read_inertial_element(child, format, name == nullptr ? "" : name,
+                                                  mjcf != nullptr ? mjcf->file_of(child) : source));
     } else {
-      collect(child, format, out);
+      collect(child, format, source, mjcf, out);
     }
   }
 }
 
 const tinyxml2::XMLElement* parse_root(tinyxml2::XMLDocument& doc, const std::string& xml,
                                        const std::string& source) {
-  if (doc.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS) {
-    rigid::detail::throw_error_at(SourceLocation{source, doc.ErrorLineNum(), 0},
-                           fmt::format("malformed XML: {}", doc.ErrorStr()));
-  }
-  const auto* root = doc.RootElement();
-  if (root == nullptr) {
-    rigid::detail::throw_error_at(SourceLocation{source, 0, 0}, "the document has no root element");
-  }
-  return root;
+  detail::parse_xml(doc, xml, source);
+  return doc.RootElement();
 }
 
 InertialFormat format_of(const tinyxml2::XMLElement* root, const std::string& source) {
@@ -324,16 +314,41 @@ std::vector<InertialEntry> read_inertials(const std::string& xml, const std::str
   const auto* root = parse_root(doc, xml, source);
   const InertialFormat format = format_of(root, source);
   std::vector<InertialEntry> out;
-  collect(root, format, out);
+  if (format == InertialFormat::mjcf) {
+    const detail::MjcfDocument mjcf(root, source, true);
+    collect(root, format, source, &mjcf, out);
+  } else {
+    collect(root, format, source, nullptr, out);
+  }
   return out;
 }
 
 std::vector<InertialEntry> read_inertials_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  RIGID_REQUIRE(in.good(), "cannot open '{}' for reading", path);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return read_inertials(text.str(), path);
+  // refuses a FIFO or device before opening it (opening a FIFO blocks until a writer comes)
+  return read_inertials(detail::read_model_file(path), path);
 }
+
+namespace detail {
+
+InertialEntry read_inertial_element(const tinyxml2::XMLElement* inertial, InertialFormat format,
+                                    std::string name, std::string file) {
+  InertialEntry entry;
+  entry.name = std::move(name);
+  entry.file = std::move(file);
+  entry.line = inertial->GetLineNum();
+  try {
+    switch (format) {
+      case InertialFormat::urdf: read_urdf(inertial, entry); break;
+      case InertialFormat::mjcf: read_mjcf(inertial, entry); break;
+      case InertialFormat::sdf: read_sdf(inertial, entry); break;
+    }
+    entry.problem = MassProperties::check(entry.mass, entry.com, entry.inertia_com);
+  } catch (const EntryProblem& p) {
+    entry.problem = p.text;
+  }
+  return entry;
+}
+
+}  // namespace detail
 
 }  // namespace rigid::io

@@ -19,6 +19,7 @@
 #include <tinyxml2.h>
 
 #include "detail/fix_geometry.hpp"
+#include "detail/xml_parse.hpp"
 #include "rigid/common/error.hpp"
 #include "rigid/common/wording.hpp"
 #include "rigid/lie/euler.hpp"
@@ -280,10 +281,13 @@ class GeomReader {
 
   // one geom of a body, measured in the body frame (nothing for a geom outside
   // inertiagrouprange or without mass)
-  void add(const tinyxml2::XMLElement* g, const std::string& childclass, LinkGeometry& link) const {
+  // `file`: the geom's file where it is not its body's (an <include> inside the body)
+  void add(const tinyxml2::XMLElement* g, const std::string& childclass, LinkGeometry& link,
+           const std::string& file = {}) const {
     std::string what = "geom";
     if (const char* n = g->Attribute("name")) what = fmt::format("geom '{}'", n);
-    what += fmt::format(" (line {})", g->GetLineNum());
+    what += file.empty() ? fmt::format(" (line {})", g->GetLineNum())
+                         : fmt::format(" ({}:{})", file, g->GetLineNum());
     try {
       measure(g, childclass, what, link);
     } catch (const GeometryProblem& p) {
@@ -448,7 +452,8 @@ void collect_bodies(const tinyxml2::XMLElement* parent, const std::string& child
     }
     for (const auto* g : doc.children(b, "geom")) {
       try {
-        reader.add(g, cls, link);
+        const std::string& file = doc.file_of(g);
+        reader.add(g, cls, link, file == doc.file_of(b) ? std::string() : file);
       } catch (const GeometryProblem& p) {
         link.errors.push_back(p.text);
       }
@@ -470,35 +475,7 @@ std::vector<LinkGeometry> measured_bodies(const MjcfDocument& doc) {
   return out;
 }
 
-// tinyxml2's errors in plain words
-const char* xml_problem(tinyxml2::XMLError e) {
-  switch (e) {
-    case tinyxml2::XML_ERROR_PARSING_ELEMENT: return "an element is not closed or badly formed";
-    case tinyxml2::XML_ERROR_PARSING_ATTRIBUTE: return "an attribute is badly formed (expected name=\"value\")";
-    case tinyxml2::XML_ERROR_PARSING_TEXT: return "text that is not XML";
-    case tinyxml2::XML_ERROR_PARSING_CDATA: return "an unterminated CDATA section";
-    case tinyxml2::XML_ERROR_PARSING_COMMENT: return "an unterminated comment (expected -->)";
-    case tinyxml2::XML_ERROR_PARSING_DECLARATION: return "a badly formed <?...?> declaration";
-    case tinyxml2::XML_ERROR_PARSING_UNKNOWN: return "an unknown <!...> construct";
-    case tinyxml2::XML_ERROR_EMPTY_DOCUMENT: return "the document is empty";
-    case tinyxml2::XML_ERROR_MISMATCHED_ELEMENT: return "an end tag does not match its start tag";
-    case tinyxml2::XML_ELEMENT_DEPTH_EXCEEDED: return "elements nested too deeply (more than 100 levels)";
-    default: return "the text is not well-formed XML";
-  }
-}
-
 }  // namespace
-
-void parse_xml(tinyxml2::XMLDocument& doc, const std::string& text, const std::string& source) {
-  if (const tinyxml2::XMLError e = doc.Parse(text.c_str(), text.size()); e != tinyxml2::XML_SUCCESS) {
-    rigid::detail::throw_error_at(SourceLocation{source, doc.ErrorLineNum(), 0},
-                                  fmt::format("malformed XML: {}", xml_problem(e)));
-  }
-  if (doc.RootElement() == nullptr) {
-    rigid::detail::throw_error_at(SourceLocation{source, 0, 0},
-                                  "the document has no root element");
-  }
-}
 
 std::string read_model_file(const std::string& path) {
   namespace fs = std::filesystem;
@@ -534,6 +511,15 @@ MjcfDocument::~MjcfDocument() = default;
 const std::string& MjcfDocument::file_of(const tinyxml2::XMLElement* e) const {
   const auto it = file_names_.find(e->GetDocument());
   return it == file_names_.end() ? source_ : it->second;
+}
+
+const tinyxml2::XMLElement* MjcfDocument::included_root(const tinyxml2::XMLElement* include) const {
+  const auto it = include_roots_.find(include);
+  return it == include_roots_.end() ? nullptr : it->second;
+}
+
+const std::string& MjcfDocument::included_text(const tinyxml2::XMLElement* root) const {
+  return included_texts_.at(root);
 }
 
 void MjcfDocument::refuse(const tinyxml2::XMLElement* e, const std::string& message) const {
@@ -576,6 +562,7 @@ void MjcfDocument::load_includes(const tinyxml2::XMLElement* e, std::vector<std:
     }
     file_names_[included.get()] = path;
     include_roots_[c] = root;
+    included_texts_[root] = std::move(text);
     included_docs_.push_back(std::move(included));
     load_includes(root, seen);
   }

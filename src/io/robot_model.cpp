@@ -17,6 +17,7 @@
 #include <tinyxml2.h>
 
 #include "detail/fix_geometry.hpp"
+#include "detail/xml_parse.hpp"
 #include "detail/xml_numbers.hpp"
 #include "rigid/common/error.hpp"
 #include "rigid/common/wording.hpp"

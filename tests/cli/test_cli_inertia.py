@@ -161,4 +161,4 @@ def test_check_malformed_xml(run, tmp_path):
     proc = run("inertia", "check", f, check=False)
     assert f"{f}:2: malformed XML" in proc.stderr
     proc = run("inertia", "check", tmp_path / "missing.urdf", check=False)
-    assert "cannot open" in proc.stderr
+    assert "missing.urdf' does not exist" in proc.stderr

@@ -4,6 +4,7 @@ import json
 import math
 import os
 import re
+import subprocess
 
 import pytest
 
@@ -130,3 +131,117 @@ def test_only_the_named_links_change(run, robot, tmp_path):
     assert '<mass value="24"/>' in text
     assert text.count("<inertial>") == 1
     assert text[text.index('<link name="arm">'):] == ROBOT[ROBOT.index('<link name="arm">'):]
+
+
+# ---------------------------------------------------------------------------------------------
+# MJCF <include>, malformed XML and files that are not regular: `check` and `fix` alike
+
+HUMANOID100 = "/usr/share/mujoco/model/humanoid100/humanoid100.xml"
+
+MAIN_XML = """<mujoco model="m">
+  <worldbody>
+    <body name="base">
+      <geom type="sphere" size="0.1"/>
+      <include file="parts/arm.xml"/>
+    </body>
+  </worldbody>
+</mujoco>
+"""
+
+# line 3: diaginertia 1 2 4 violates I1 + I2 >= I3
+ARM_XML = """<mujoco>
+  <body name="arm">
+    <inertial pos="0 0 0" mass="2" diaginertia="1 2 4"/>
+    <geom type="box" size="0.1 0.2 0.3"/>
+  </body>
+</mujoco>
+"""
+
+
+@pytest.fixture
+def included(tmp_path):
+    (tmp_path / "parts").mkdir()
+    (tmp_path / "parts" / "arm.xml").write_text(ARM_XML)
+    main = tmp_path / "main.xml"
+    main.write_text(MAIN_XML)
+    return main, tmp_path / "parts" / "arm.xml"
+
+
+@pytest.mark.skipif(not os.path.exists(HUMANOID100), reason="MuJoCo's model directory is not installed")
+def test_humanoid100_is_read_through_its_include(run, tmp_path):
+    # no body of it states an <inertial>: check finds nothing wrong
+    proc = run("inertia", "check", HUMANOID100, check=True)
+    assert proc.stdout.endswith("humanoid100.xml: 0 inertials, 0 invalid\n"), proc.stdout
+    # fix measures every body: the humanoid's 16 from humanoid_body.xml, then the 100 objects
+    out = tmp_path / "humanoid100.xml"
+    proc = run("inertia", "fix", HUMANOID100, "--format", "json", "-o", out, check=True)
+    report = json.loads(proc.stdout)
+    assert len(report["links"]) == 116
+    files = [os.path.basename(l["file"]) for l in report["links"]]
+    assert files == ["humanoid_body.xml"] * 16 + ["humanoid100.xml"] * 100
+    assert all(l["reason"] == "missing" for l in report["links"])
+    assert any('<include file="humanoid_body.xml">' in w for w in report["warnings"])
+    # one self-contained file: no include left, every body with its inertial, and it fixes
+    # again to the same numbers (its bodies now keep the written inertials: "auto")
+    text = out.read_text()
+    assert "<include" not in text and text.count("<inertial ") == 116
+    again = json.loads(run("inertia", "fix", out, "--format", "json", check=True).stdout)
+    assert [l["old"]["mass"] for l in again["links"]] == [l["new"]["mass"] for l in report["links"]]
+    run("inertia", "check", out, check=True)
+
+
+def test_check_reports_an_included_inertial_at_its_own_file_and_line(run, included):
+    main, arm = included
+    proc = run("inertia", "check", main, check=False)
+    assert proc.returncode == 1
+    assert f"{arm}:3: 'arm': " in proc.stdout
+    assert "I₁ + I₂ ≥ I₃" in proc.stdout
+    assert f"{main} (with {arm}): 1 inertial, 1 invalid" in proc.stdout
+    # fix reports the body at its own file and line, and replaces its invalid inertial
+    proc = run("inertia", "fix", main, "--format", "json", check=True)
+    arm_row = json.loads(proc.stdout)["links"][1]
+    assert (arm_row["name"], arm_row["file"], arm_row["line"], arm_row["reason"]) == \
+        ("arm", str(arm), 2, "invalid")
+
+
+def test_fix_writes_includes_inline_and_leaves_included_files_alone(run, included, tmp_path):
+    main, arm = included
+    out = tmp_path / "fixed.xml"
+    run("inertia", "fix", main, "-o", out, check=True)
+    text = out.read_text()
+    assert "<include" not in text and '<body name="arm">' in text
+    assert arm.read_text() == ARM_XML and main.read_text() == MAIN_XML
+    proc = run("inertia", "check", out, check=True)
+    assert "2 inertials, 0 invalid" in proc.stdout
+
+
+def test_a_missing_include_is_refused_naming_it(run, included):
+    main, arm = included
+    arm.unlink()
+    for command in ("check", "fix"):
+        proc = run("inertia", command, main, check=False)
+        assert proc.returncode == 1
+        assert f"{main}:5: <include file=\"parts/arm.xml\">: '{arm}' does not exist" in proc.stderr
+
+
+def test_truncated_xml_names_the_file_and_line_in_plain_words(run, tmp_path):
+    f = tmp_path / "cut.xml"
+    f.write_text('<mujoco>\n  <worldbody>\n    <body name="b">\n      <geom type="sph')
+    for command in ("check", "fix"):
+        proc = run("inertia", command, f, check=False)
+        assert proc.returncode == 1
+        assert (f"{f}:4: malformed XML: the file ends inside the element <body> of line 3, in the "
+                f"middle of the start tag <geom: it is cut short, or </body> is missing") in proc.stderr
+        for raw in ("XML_ERROR", "ErrorID", "Line number"):
+            assert raw not in proc.stderr
+
+
+def test_a_fifo_is_refused_without_waiting_for_a_writer(rigid_exe, tmp_path):
+    fifo = tmp_path / "model.urdf"
+    os.mkfifo(fifo)
+    for command in ("check", "fix"):
+        # opening a FIFO for reading blocks until a writer comes: the timeout catches that
+        proc = subprocess.run([rigid_exe, "inertia", command, str(fifo)], capture_output=True,
+                              text=True, timeout=30)
+        assert proc.returncode == 1
+        assert f"'{fifo}' is not a regular file (a directory, FIFO or device)" in proc.stderr

@@ -127,6 +127,37 @@ TEST(InertialFixMujoco, HumanoidMatchesMujocoCompiler) {
   fs::remove_all(dir);
 }
 
+// humanoid100.xml brings its humanoid in with <include file="humanoid_body.xml"/>: fix follows
+// it as MuJoCo does and writes one file. Its 116 bodies (16 of the humanoid, 100 unnamed free
+// objects) have no <inertial>; MuJoCo numbers bodies in document order through the include,
+// which is the order of the report (body k + 1; 0 is the world).
+TEST(InertialFixMujoco, Humanoid100ThroughItsIncludeMatchesMujocoCompiler) {
+  const fs::path model = kModels / "humanoid100" / "humanoid100.xml";
+  ASSERT_TRUE(fs::exists(model)) << "install libmujoco-samples (scripts/install-deps.sh)";
+  const InertialFixResult r = fix_inertials_file(model.string());
+  ASSERT_TRUE(r.ok()) << fmt::format("{}", fmt::join(r.errors(), "\n"));
+  ASSERT_EQ(r.links.size(), 116u);
+  EXPECT_EQ(r.links[0].file, (kModels / "humanoid100" / "humanoid_body.xml").string());
+  EXPECT_EQ(r.links[16].file, model.string());
+  const fs::path dir = scratch("humanoid100");
+  write(dir / "humanoid100.xml", r.text);  // no include left: loads on its own
+  const Model original = load(model);
+  const Model fixed = load(dir / "humanoid100.xml");
+  ASSERT_TRUE(original && fixed);
+  ASSERT_EQ(original->nbody, 117);
+  ASSERT_EQ(fixed->nbody, 117);
+  for (int k = 0; k < 116; ++k) {
+    const auto& link = r.links[static_cast<std::size_t>(k)];
+    ASSERT_TRUE(link.fixed) << k;
+    const Compiled mine{link.fixed->mass(), link.fixed->com(), link.fixed->inertia_com()};
+    const std::string what = fmt::format("body {} '{}'", k + 1, link.name);
+    expect_close(compiled(original.get(), k + 1), mine, what + ": rigid vs MuJoCo's compiler", kRelative);
+    expect_close(compiled(original.get(), k + 1), compiled(fixed.get(), k + 1),
+                 what + ": fixed file vs original, both compiled by MuJoCo", kRelative);
+  }
+  fs::remove_all(dir);
+}
+
 // Every rule the reader follows, in one generated model: default classes (nested, childclass,
 // class=), each primitive type, fromto on capsule/cylinder/box/ellipsoid, every orientation
 // attribute under angle="radian" and a fixed-axis eulerseq, density and mass attributes, a

@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "support/expect_error.hpp"
@@ -311,9 +312,86 @@ TEST_F(InertialFixFiles, SdfShapesIncludingCapsuleAndEllipsoid) {
       read_text(model)));
 }
 
-TEST(InertialFix, MjcfIncludeAndUnknownOnlyAreRefused) {
-  EXPECT_RIGID_ERROR((void)fix_inertials("<mujoco>\n  <include file=\"other.xml\"/>\n</mujoco>", "m.xml"),
-                     "m.xml:2: <include> is not supported");
+// MJCF <include>s are followed (relative to the main file, as MuJoCo reads them): their bodies
+// are fixed with the main file's defaults, reported at their own file and line, and the fixed
+// model is one file with each include replaced by its file's elements; the included files are
+// left as they are.
+TEST_F(InertialFixFiles, MjcfIncludesAreFollowedAndWrittenInline) {
+  const std::string defaults =
+      "<mujoco>\n  <default>\n    <geom density=\"500\"/>\n  </default>\n</mujoco>\n";
+  const std::string arm =
+      "<mujoco>\n"
+      "  <body name=\"arm\" pos=\"0 0 0.5\">\n"
+      "    <inertial pos=\"0 0 0\" mass=\"2\" diaginertia=\"1 2 4\"/>\n"
+      "    <geom type=\"box\" size=\"0.1 0.2 0.3\"/>\n"
+      "  </body>\n"
+      "</mujoco>\n";
+  write("parts/defaults.xml", defaults);
+  write("parts/arm.xml", arm);
+  const fs::path model = write("main.xml",
+                               "<mujoco model=\"m\">\n"
+                               "  <include file=\"parts/defaults.xml\"/>\n"
+                               "  <worldbody>\n"
+                               "    <body name=\"base\">\n"
+                               "      <geom type=\"sphere\" size=\"0.1\"/>\n"
+                               "      <include file=\"parts/arm.xml\"/>\n"
+                               "    </body>\n"
+                               "  </worldbody>\n"
+                               "</mujoco>\n");
+  const InertialFixResult r = fix_inertials_file(model.string());
+  ASSERT_TRUE(r.ok()) << fmt::format("{}", fmt::join(r.errors(), "\n"));
+  ASSERT_EQ(r.links.size(), 2u);
+  EXPECT_EQ(r.links[0].file, model.string());
+  EXPECT_EQ(r.links[0].line, 4);
+  EXPECT_EQ(r.links[0].reason, "missing");
+  EXPECT_EQ(r.links[1].file, (dir_ / "parts" / "arm.xml").string());
+  EXPECT_EQ(r.links[1].line, 2);
+  EXPECT_EQ(r.links[1].reason, "invalid");  // 1 + 2 < 4
+  ASSERT_TRUE(r.links[1].old.has_value());
+  EXPECT_EQ(r.links[1].old->file, r.links[1].file);
+  EXPECT_EQ(r.links[1].old->line, 3);
+  // the included default's density 500 kg/m³; MJCF sizes are half sizes
+  const Eigen::Matrix3d I3 = Eigen::Matrix3d::Identity();
+  const std::vector<Ref> expected = {sphere(500, 0.1), box(500, {0.2, 0.4, 0.6}, I3, {0, 0, 0})};
+  // one self-contained file: the includes' elements in their place, the inertials fixed
+  EXPECT_EQ(r.text.find("<include"), std::string::npos) << r.text;
+  EXPECT_EQ(test::without_inertials(r.text),
+            "<mujoco model=\"m\">\n"
+            "  <default>\n    <geom density=\"500\"/>\n  </default>\n"
+            "  <worldbody>\n"
+            "    <body name=\"base\">\n"
+            "      <geom type=\"sphere\" size=\"0.1\"/>\n"
+            "      <body name=\"arm\" pos=\"0 0 0.5\">\n"
+            "    <geom type=\"box\" size=\"0.1 0.2 0.3\"/>\n"
+            "  </body>\n"
+            "    </body>\n"
+            "  </worldbody>\n"
+            "</mujoco>\n");
+  const auto entries = read_inertials(r.text, "fixed.xml");
+  ASSERT_EQ(entries.size(), 2u);
+  for (std::size_t i = 0; i < 2; ++i) expect_entry(entries[i], expected[i]);
+  EXPECT_EQ(read_text(dir_ / "parts" / "arm.xml"), arm);
+  EXPECT_EQ(read_text(dir_ / "parts" / "defaults.xml"), defaults);
+  const std::string warnings = fmt::format("{}", fmt::join(r.warnings, "\n"));
+  EXPECT_NE(warnings.find(model.string() + ":6: <include file=\"parts/arm.xml\">: the fixed model is "
+                          "written as one file"), std::string::npos) << warnings;
+  // an error of an included body names its file; a missing include is refused naming it
+  write("parts/arm.xml", "<mujoco>\n  <body name=\"arm\">\n    <geom type=\"hfield\" size=\"1 1 1\"/>\n  </body>\n</mujoco>\n");
+  const auto errors = fix_inertials_file(model.string()).errors();
+  ASSERT_EQ(errors.size(), 1u);
+  EXPECT_NE(errors[0].find((dir_ / "parts" / "arm.xml").string() + ":2: body 'arm': geom (line 3)"),
+            std::string::npos) << errors[0];
+  fs::remove(dir_ / "parts" / "arm.xml");
+  EXPECT_RIGID_ERROR((void)fix_inertials_file(model.string()),
+                     model.string() + ":6: <include file=\"parts/arm.xml\">: '" +
+                         (dir_ / "parts" / "arm.xml").string() + "' does not exist");
+  // a FIFO is refused before it is opened (opening it would wait for a writer)
+  const fs::path fifo = dir_ / "fifo.xml";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  EXPECT_RIGID_ERROR((void)fix_inertials_file(fifo.string()), "is not a regular file");
+}
+
+TEST(InertialFix, UnknownOnlyAndMalformedAreRefused) {
   EXPECT_RIGID_ERROR((void)fix_inertials("<robot name=\"r\"><link name=\"a\"/></robot>", "r.urdf",
                                          {.only = {"b"}}),
                      "no link named 'b'; the file has: a");

@@ -2,7 +2,13 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <numbers>
+#include <string>
+
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
@@ -157,9 +163,125 @@ TEST(InertialXml, MalformedAndUnknownDocuments) {
                      "x.xml:1: unknown root element <model>; expected <robot> (URDF), <mujoco> "
                      "(MJCF) or <sdf> (SDF)");
   EXPECT_RIGID_ERROR((void)read_inertials_file("/nonexistent/file.urdf"),
-                     "cannot open '/nonexistent/file.urdf' for reading");
+                     "'/nonexistent/file.urdf' does not exist");
   EXPECT_RIGID_ERROR((void)write_inertial_document(generic_body(), InertialFormat::urdf, {.name = "a<b"}),
                      "name must be non-empty and free of XML special characters");
+}
+
+// The message of the rigid::Error that `f` throws ("" if none).
+template <class F>
+std::string error_of(F&& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// Every reader refuses malformed XML at the file and line, in plain words: never tinyxml2's
+// own error text (its error names, "ErrorID", "Line number").
+TEST(InertialXml, MalformedXmlIsRefusedInPlainWords) {
+  struct Case {
+    const char* xml;
+    const char* expected;  // the whole message
+  };
+  const Case cases[] = {
+      // truncated: the file ends inside an element, named with its line
+      {"<mujoco>\n  <worldbody>\n    <body name=\"b\">\n",
+       "m.xml:3: malformed XML: the file ends inside the element <body> of line 3: it is cut "
+       "short, or </body> is missing"},
+      {"<robot name=\"r\">\n  <link name=\"a\">\n    <inertial>\n      <mass valu",
+       "m.xml:4: malformed XML: the file ends inside the element <inertial> of line 3, in the "
+       "middle of the start tag <mass: it is cut short, or </inertial> is missing"},
+      {"<robot", "m.xml:1: malformed XML: the file ends in the middle of the start tag <robot: it "
+                 "is cut short"},
+      // an element not closed before its parent's end tag
+      {"<robot>\n<link name=\"a\">\n</robot>\n",
+       "m.xml:2: malformed XML: an end tag does not match its start tag: </robot> on line 3 comes "
+       "while <link> of line 2 is open (expected </link> first, or <link .../> for an element "
+       "without content)"},
+      {"hello", "m.xml:1: malformed XML: text where a tag was expected"},
+      {"<robot/>\ntrailing words", "m.xml:2: malformed XML: text where a tag was expected"},
+      {"<robot>\n  <link name=a/>\n</robot>", "m.xml:2: malformed XML: an attribute is badly formed"},
+      {"<robot>\n  <link name=\"a\"\n</robot>", "m.xml:2: malformed XML: a tag is badly formed or not closed"},
+      {"<robot>\n<!-- a comment\n</robot>\n", "m.xml:2: malformed XML: a comment is not closed (expected -->)"},
+      {"", "m.xml:1: malformed XML: the file is empty"},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.xml);
+    const std::string inertials = error_of([&] { (void)read_inertials(c.xml, "m.xml"); });
+    EXPECT_THAT(inertials, ::testing::HasSubstr(c.expected));
+    for (const char* raw : {"XML_ERROR", "ErrorID", "Line number", "Error="}) {
+      EXPECT_EQ(inertials.find(raw), std::string::npos) << inertials;
+    }
+    // the same words from the fix and detect readers
+    EXPECT_EQ(error_of([&] { (void)detect_inertial_format(c.xml, "m.xml"); }), inertials);
+  }
+}
+
+namespace fs = std::filesystem;
+
+fs::path scratch(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("rigid_inertial_xml_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir / "parts");
+  return dir;
+}
+
+void write(const fs::path& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
+
+// MJCF <include file=...> is followed as MuJoCo follows it (relative to the main file's
+// folder): the included inertials are read, each with its own file and line.
+TEST(InertialXml, MjcfIncludesAreFollowedWithTheirFileAndLine) {
+  const fs::path dir = scratch("include");
+  write(dir / "main.xml",
+        "<mujoco>\n"
+        "  <worldbody>\n"
+        "    <body name=\"base\">\n"
+        "      <inertial pos=\"0 0 0\" mass=\"1\" diaginertia=\"1 1 1\"/>\n"
+        "      <include file=\"parts/arm.xml\"/>\n"
+        "    </body>\n"
+        "  </worldbody>\n"
+        "</mujoco>\n");
+  write(dir / "parts" / "arm.xml",
+        "<mujoco>\n"
+        "  <body name=\"arm\">\n"
+        "    <inertial pos=\"0 0 0\" mass=\"2\" diaginertia=\"1 2 4\"/>\n"
+        "  </body>\n"
+        "</mujoco>\n");
+  const std::string main = (dir / "main.xml").string(), arm = (dir / "parts" / "arm.xml").string();
+  const auto e = read_inertials_file(main);
+  ASSERT_EQ(e.size(), 2u);
+  EXPECT_EQ(e[0].file, main);
+  EXPECT_EQ(e[0].line, 4);
+  EXPECT_FALSE(e[0].problem.has_value());
+  EXPECT_EQ(e[1].name, "arm");
+  EXPECT_EQ(e[1].file, arm);
+  EXPECT_EQ(e[1].line, 3);
+  ASSERT_TRUE(e[1].problem.has_value());
+  // 1 + 2 < 4: the triangle inequality fails by 1 kg·m²
+  EXPECT_THAT(*e[1].problem, ::testing::HasSubstr("violate I₁ + I₂ ≥ I₃ by 1 kg·m²"));
+  // an included file that does not parse: its own file and line
+  write(dir / "parts" / "arm.xml", "<mujoco>\n  <body name=\"arm\">\n");
+  EXPECT_RIGID_ERROR((void)read_inertials_file(main),
+                     arm + ":2: malformed XML: the file ends inside the element <body> of line 2");
+  // a missing one: the include's place, naming the file
+  fs::remove(dir / "parts" / "arm.xml");
+  EXPECT_RIGID_ERROR((void)read_inertials_file(main),
+                     main + ":5: <include file=\"parts/arm.xml\">: '" + arm + "' does not exist");
+  fs::remove_all(dir);
+}
+
+// A FIFO (or device) is refused before it is opened: opening a FIFO would wait for a writer.
+TEST(InertialXml, FifoIsRefusedWithoutOpeningIt) {
+  const fs::path dir = scratch("fifo");
+  const fs::path fifo = dir / "model.urdf";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  EXPECT_RIGID_ERROR((void)read_inertials_file(fifo.string()),
+                     "'" + fifo.string() + "' is not a regular file (a directory, FIFO or device)");
+  EXPECT_RIGID_ERROR((void)read_inertials_file(dir.string()), "is not a regular file");
+  fs::remove_all(dir);
 }
 
 // a placed shape written in its own frame (the given rotation) instead of an eigen-decomposition

@@ -38,7 +38,10 @@ struct InertialFixOptions {
 /// What happened to one link/body.
 struct FixedInertial {
   std::string name;
-  int line = 0;  ///< of the link/body element
+  /// The file that holds the link/body element: InertialFixResult::source, or an MJCF file it
+  /// <include>s.
+  std::string file;
+  int line = 0;  ///< of the link/body element, in `file`
   /// "missing", "invalid", "placeholder", "implausible density", "recomputed" (the old one was
   /// plausible; the geometry's replaces it), "kept" (left as it was: no geometry, or an MJCF
   /// inertial the compiler uses as it is).
@@ -58,7 +61,10 @@ struct FixedInertial {
 struct InertialFixResult {
   std::string source;  ///< the file name given to fix_inertials
   InertialFormat format = InertialFormat::urdf;
-  std::string text;  ///< the rewritten document (only meaningful when ok())
+  /// The rewritten document (only meaningful when ok()). An MJCF model's <include>d files are
+  /// written into it (each <include> element replaced by the included file's elements, with
+  /// their inertials fixed): one self-contained file; the included files are not changed.
+  std::string text;
   std::vector<FixedInertial> links;
   std::vector<std::string> warnings;  ///< for the whole file (assumed density, ...)
   [[nodiscard]] bool ok() const;
@@ -74,15 +80,20 @@ struct InertialFixResult {
 [[nodiscard]] std::pair<std::string, std::string> parse_package_path(const std::string& text);
 
 /// Recomputes the inertials of the document `xml` (URDF, SDF or MJCF, detected from the root)
-/// from its geometry. Relative mesh paths resolve against the directory of `source`.
+/// from its geometry. Relative mesh paths resolve against the directory of `source`, and so do
+/// MJCF <include file="..."> elements (MuJoCo's rule), which are followed: their bodies are
+/// fixed too, and the rewritten text holds their elements in place of the include.
 /// Problems of one link are collected in its `errors` (every link is tried); problems of the
 /// whole document throw.
-/// @throws rigid::Error "source:line: ..." for malformed XML, an unknown root, <include>,
-/// a name in options.only that names no link, or a bad option (density not positive).
+/// @throws rigid::Error "source:line: ..." for malformed XML, an unknown root, an <include>
+/// that cannot be read (naming it), a name in options.only that names no link, or a bad option
+/// (density not positive).
 [[nodiscard]] InertialFixResult fix_inertials(const std::string& xml, const std::string& source,
                                               const InertialFixOptions& options = {});
 
-/// fix_inertials on the contents of the file `path`.
+/// fix_inertials on the contents of the file `path`. @throws rigid::Error if it does not exist,
+/// is not a regular file (a directory, FIFO or device: refused before it is opened) or cannot
+/// be read.
 [[nodiscard]] InertialFixResult fix_inertials_file(const std::string& path,
                                                    const InertialFixOptions& options = {});
 

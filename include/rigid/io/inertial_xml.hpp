@@ -56,7 +56,10 @@ struct InertialWriteOptions {
 /// One <inertial> read from a file.
 struct InertialEntry {
   std::string name;  ///< link or body name ("" if the element has none)
-  int line = 0;      ///< line of the <inertial> element
+  /// The file that holds the <inertial> element: the document read, or an MJCF file it
+  /// <include>s.
+  std::string file;
+  int line = 0;      ///< line of the <inertial> element, in `file`
   double mass = 0;   ///< kg
   Eigen::Vector3d com = Eigen::Vector3d::Zero();        ///< COM in the link/body frame (m)
   Eigen::Matrix3d inertia_com = Eigen::Matrix3d::Zero();  ///< about the COM, link/body frame
@@ -70,12 +73,17 @@ struct InertialEntry {
 /// Every inertial in an XML document, in document order; the format is detected from the
 /// root element (robot → URDF, mujoco → MJCF, sdf → SDF). The inertial's own rotation
 /// (URDF origin rpy, MJCF quat, SDF pose rpy) is applied, so entries are in the link frame.
+/// MJCF <include file="..."> elements are followed as MuJoCo follows them (the path is
+/// relative to the folder of `source`; the included file's elements take the include's
+/// place), and their inertials carry their own file and line.
 /// @param source file name used in messages.
-/// @throws rigid::Error "source:line: ..." for malformed XML or an unknown root element.
+/// @throws rigid::Error "source:line: ..." for malformed XML or an unknown root element;
+///   "file:line: ..." for an <include> that cannot be read or parsed (naming the file).
 [[nodiscard]] std::vector<InertialEntry> read_inertials(const std::string& xml,
                                                         const std::string& source);
 
-/// read_inertials on the contents of a file. @throws rigid::Error if it cannot be read.
+/// read_inertials on the contents of a file. @throws rigid::Error if it does not exist, is not
+/// a regular file (a directory, FIFO or device: refused before it is opened) or cannot be read.
 [[nodiscard]] std::vector<InertialEntry> read_inertials_file(const std::string& path);
 
 /// Detected format of a document (as read_inertials does). @throws like read_inertials.

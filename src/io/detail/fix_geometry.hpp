@@ -15,6 +15,7 @@
 #include <Eigen/Core>
 
 #include "rigid/mass/mass_properties.hpp"
+#include "xml_parse.hpp"
 
 namespace tinyxml2 {
 class XMLDocument;
@@ -66,10 +67,6 @@ MassProperties mesh_solid(const std::string& path, const Eigen::Vector3d& scale,
                           const std::string& what, double& volume,
                           std::vector<std::string>& warnings);
 
-/// Parses `text` into `doc`. @throws rigid::Error "source:line: malformed XML: ..." in plain
-/// words (not tinyxml2's error names), or if there is no root element.
-void parse_xml(tinyxml2::XMLDocument& doc, const std::string& text, const std::string& source);
-
 /// The largest model file read (bytes): a robot model is kilobytes to a few megabytes.
 inline constexpr std::uintmax_t kMaxModelFileBytes = 256u << 20u;
 
@@ -103,6 +100,11 @@ class MjcfDocument {
   /// files' elements; only those named `name` unless it is empty.
   [[nodiscard]] std::vector<const tinyxml2::XMLElement*> children(const tinyxml2::XMLElement* e,
                                                                   std::string_view name = {}) const;
+  /// The root element of the file that the followed <include> element `include` brings in
+  /// (its children take the include's place), or nullptr if `include` is none.
+  [[nodiscard]] const tinyxml2::XMLElement* included_root(const tinyxml2::XMLElement* include) const;
+  /// The text of the included file whose root is `root` (an included_root()).
+  [[nodiscard]] const std::string& included_text(const tinyxml2::XMLElement* root) const;
   /// Throws rigid::Error "file:line: message" at `e`.
   [[noreturn]] void refuse(const tinyxml2::XMLElement* e, const std::string& message) const;
 
@@ -116,6 +118,7 @@ class MjcfDocument {
   std::vector<std::unique_ptr<tinyxml2::XMLDocument>> included_docs_;
   std::map<const tinyxml2::XMLDocument*, std::string> file_names_;
   std::map<const tinyxml2::XMLElement*, const tinyxml2::XMLElement*> include_roots_;
+  std::map<const tinyxml2::XMLElement*, std::string> included_texts_;  // by included root
 };
 
 /// <compiler> settings of an MJCF model (MuJoCo's defaults).
