@@ -3,6 +3,7 @@
 // `rigid modes`: linearisation and normal modes of a scene of coordinates.
 #include <memory>
 
+#include "cli_model.hpp"
 #include "cmd_modes.hpp"
 
 inline void add_modes_command(CLI::App& app) {
@@ -22,5 +23,6 @@ inline void add_modes_command(CLI::App& app) {
       ->allow_extra_args(false);
   cmd->add_option("-o,--output", o->output, "also write the modes as JSON to this file");
   cmd->add_flag("--json", o->json, "print the JSON document instead of the text");
+  add_model_options(cmd, o->model);
   cmd->callback([o] { rigid::cli::run_modes(*o); });
 }

@@ -3,6 +3,7 @@
 // `rigid run`, `rigid check` and `rigid eom`: the commands that take a scene file.
 #include <memory>
 
+#include "cli_model.hpp"
 #include "cmd_emit.hpp"
 #include "cmd_run.hpp"
 
@@ -18,6 +19,7 @@ inline void add_scene_options(CLI::App* cmd, rigid::cli::SceneOptions& o) {
                   "coordinates: rk4, dopri5, implicit_midpoint, stormer_verlet; free bodies: rk4, "
                   "exact (closed form, no pivot), splitting2, splitting4, splitting6, midpoint, and "
                   "the further methods of docs/body.md");
+  add_model_options(cmd, o.model);
 }
 
 inline void add_max_memory_option(CLI::App* cmd, rigid::cli::SceneOptions& o) {

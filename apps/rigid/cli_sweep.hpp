@@ -3,6 +3,7 @@
 // `rigid sweep SCENE …` and `rigid sweep merge DIR… -o OUT`.
 #include <memory>
 
+#include "cli_model.hpp"
 #include "cmd_sweep.hpp"
 
 inline void add_sweep_command(CLI::App& app) {
@@ -39,6 +40,7 @@ inline void add_sweep_command(CLI::App& app) {
                   "rigid sweep merge")
       ->type_name("I/N");
   cmd->add_flag("-q,--quiet", opts->quiet, "print nothing on success (no summary, no progress bar)");
+  add_model_options(cmd, opts->model);
 
   auto merge = std::make_shared<rigid::cli::SweepMergeOptions>();
   auto* m = cmd->add_subcommand("merge", "Join the directories of a sweep's shards into the outputs of the "

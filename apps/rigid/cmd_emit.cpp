@@ -25,7 +25,7 @@ std::string check_emit_language(const std::string& language) {
 }
 
 void run_emit(const SceneOptions& opts, const EmitOptions& emit) {
-  scene::Model model = load_scene(opts.scene, opts.set);
+  scene::Model model = load_scene(opts.scene, opts.set, opts.model);
   const std::filesystem::path out(emit.output);
   // the C++ namespace: the output file's stem, else the scene's
   const std::string code = about_scene(opts.scene, [&] {

@@ -15,7 +15,7 @@
 namespace rigid::cli {
 
 void run_modes(const ModesOptions& opts) {
-  const scene::Model model = load_scene(opts.scene, opts.set);
+  const scene::Model model = load_scene(opts.scene, opts.set, opts.model);
   const lagrange::NormalModes modes = about_scene(opts.scene, [&] {
     try {
       return scene::normal_modes(model, opts.at);

@@ -3,6 +3,8 @@
 #include <string>
 #include <vector>
 
+#include "model_flags.hpp"
+
 namespace rigid::cli {
 
 /// Options of `rigid modes SCENE`.
@@ -12,6 +14,7 @@ struct ModesOptions {
   std::vector<std::string> at;    ///< name=value: coordinates held, rates of cyclic coordinates
   std::string output;             ///< JSON file to write (atomically); empty: none
   bool json = false;              ///< print the JSON document instead of the text
+  ModelFlags model;               ///< how a robot model file is read
 };
 
 /// `rigid modes SCENE [--at name=value ...] [-o modes.json]`: finds (or takes) an equilibrium

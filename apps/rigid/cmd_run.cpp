@@ -80,7 +80,7 @@ report::ReportOptions report_options(std::size_t frames) {
 }  // namespace
 
 void run_run(const RunOptions& opts) {
-  const scene::Model model = load_scene(opts.scene.scene, opts.scene.set);
+  const scene::Model model = load_scene(opts.scene.scene, opts.scene.set, opts.scene.model);
   const std::vector<io::OutputFormat> formats = [&] {
     try {
       return model.output_formats(opts.formats);
@@ -147,7 +147,7 @@ void run_report(const ReportOptions& opts) {
 }
 
 void run_check(const SceneOptions& opts) {
-  const scene::Model model = load_scene(opts.scene, opts.set);
+  const scene::Model model = load_scene(opts.scene, opts.set, opts.model);
   model.check(run_options(opts));
   fmt::print("{}", describe_model(opts.scene, model, opts.integrator));
   fmt::print("ok: {} is a valid scene\n", opts.scene);
@@ -166,7 +166,7 @@ void run_eom(const SceneOptions& opts, bool latex, const std::string& format) {
       throw Error(fmt::format("--latex and --format {} ask for two formats; give one", format));
     }
   }
-  const scene::Model model = load_scene(opts.scene, opts.set);
+  const scene::Model model = load_scene(opts.scene, opts.set, opts.model);
   fmt::print("{}", model.equations(f));
 }
 

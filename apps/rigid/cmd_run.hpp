@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "model_flags.hpp"
+
 namespace rigid::cli {
 
 /// Options shared by `rigid run`, `rigid check` and `rigid eom`.
@@ -12,6 +14,7 @@ struct SceneOptions {
   std::vector<std::string> set;    ///< name=value parameter overrides
   std::string integrator;          ///< overrides [simulation] integrator
   std::string max_memory;          ///< overrides [output] max_memory (bytes or "512MiB")
+  ModelFlags model;                ///< how a robot model file is read
 };
 
 /// Options of `rigid run SCENE`.

@@ -18,6 +18,7 @@
 #endif
 
 #include "progress.hpp"
+#include "scene_output.hpp"
 #include "rigid/common/error.hpp"
 #include "rigid/common/wording.hpp"
 #include "rigid/scene/scene.hpp"
@@ -196,7 +197,7 @@ scene::SweepSpec parse_spec(const SweepOptions& opts) {
 
 // Refuses, before any run, the names the scene does not have (one message, not N failed runs).
 void check_names(const scene::SweepIdentity& id) {
-  scene::Scene s = scene::load_scene(id.scene);
+  scene::Scene s = scene::load_scene(id.scene, id.model);
   try {
     scene::apply_overrides(s, id.set);
   } catch (const Error& e) {
@@ -294,7 +295,11 @@ void sweep_on_ranks(const SweepOptions& opts, const scene::SweepIdentity& id, sc
 }  // namespace
 
 void run_sweep(const SweepOptions& opts) {
-  scene::SweepIdentity id{.scene = opts.scene, .set = opts.set, .integrator = opts.integrator, .spec = parse_spec(opts)};
+  scene::SweepIdentity id{.scene = opts.scene,
+                          .set = opts.set,
+                          .integrator = opts.integrator,
+                          .spec = parse_spec(opts),
+                          .model = model_options(opts.model)};
   const scene::Shard shard = [&] {
     if (opts.shard.empty()) return scene::Shard{};
     try {

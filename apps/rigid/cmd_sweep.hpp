@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "model_flags.hpp"
+
 namespace rigid::cli {
 
 /// Options of `rigid sweep SCENE`.
@@ -20,6 +22,7 @@ struct SweepOptions {
   bool keep_trajectories = false;   ///< each run's files in DIR/runs/NNNNN/
   std::string shard;                ///< I/N: the runs i ≡ I (mod N)
   bool quiet = false;
+  ModelFlags model;                 ///< how a robot model file is read
 };
 
 /// Options of `rigid sweep merge DIR... -o OUT`.

@@ -1,6 +1,7 @@
 #include "scene_output.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 
@@ -75,10 +76,28 @@ std::string describe_model(const std::string& scene_file, const scene::Model& mo
   return out;
 }
 
-scene::Model load_scene(const std::string& file, const std::vector<std::string>& set) {
+scene::ModelOptions model_options(const ModelFlags& flags) {
+  scene::ModelOptions o;
+  if (flags.pin_free_root) o.pin_free_root = true;
+  if (flags.inertia_from_geometry) o.inertia_from_geometry = true;
+  if (!flags.density.empty()) {
+    const std::string& text = flags.density;
+    double rho = 0;
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), rho);
+    if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(rho) || !(rho > 0)) {
+      throw Error(fmt::format("--density {}: expected a finite number > 0 (kg/m³)", text));
+    }
+    o.density = rho;
+  }
+  return o;
+}
+
+scene::Model load_scene(const std::string& file, const std::vector<std::string>& set,
+                        const ModelFlags& flags) {
+  const scene::ModelOptions options = model_options(flags);
   scene::Model model = [&] {
     try {
-      return scene::load_model(file, set);
+      return scene::load_model(file, set, options);
     } catch (const Error& e) {
       // an override comes from --set: say so
       const std::string what = e.what();

@@ -7,13 +7,20 @@
 #include <vector>
 
 #include "rigid/common/error.hpp"
+#include "model_flags.hpp"
 #include "rigid/scene/model.hpp"
 
 namespace rigid::cli {
 
+/// The model options of the flags. @throws rigid::Error for a --density that is not a finite
+/// number > 0.
+[[nodiscard]] scene::ModelOptions model_options(const ModelFlags& flags);
+
 /// The scene a subcommand works on, with its `--set` overrides (an override's error starts
-/// with `--set: `); its warnings are printed to standard error as `rigid: warning: …`.
-[[nodiscard]] scene::Model load_scene(const std::string& file, const std::vector<std::string>& set);
+/// with `--set: `) and its model flags; its warnings are printed to standard error as
+/// `rigid: warning: …`.
+[[nodiscard]] scene::Model load_scene(const std::string& file, const std::vector<std::string>& set,
+                                      const ModelFlags& model = {});
 
 /// Runs `work` on the scene in `file`; a rigid::Error it throws that does not already name a place
 /// is rethrown with the scene file in front (`FILE: message`), as load_scene's errors are.

@@ -1286,8 +1286,9 @@ RunResult Model::Impl::run_free(const Method& method, const RunOptions& o) const
   return r;
 }
 
-Model load_model(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
-  Scene s = load_scene(file);
+Model load_model(const std::filesystem::path& file, const std::vector<std::string>& overrides,
+                 const ModelOptions& model) {
+  Scene s = load_scene(file, model);
   apply_overrides(s, overrides);
   return Model(s);
 }

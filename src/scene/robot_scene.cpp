@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 
 #include "rigid/common/error.hpp"
+#include "rigid/common/wording.hpp"
 
 namespace rigid::scene {
 
@@ -270,6 +271,42 @@ io::RobotModel with_coordinate_names(io::RobotModel model) {
 bool looks_like_xml(std::string_view t) {
   const std::size_t first = t.find_first_not_of(" \t\r\n\xef\xbb\xbf");
   return first != std::string_view::npos && t[first] == '<';
+}
+
+io::RobotReadOptions robot_read_options(const ModelOptions& options,
+                                        const std::filesystem::path& file) {
+  io::RobotReadOptions ro;
+  ro.pin_free_root = options.pin_free_root.value_or(false);
+  ro.inertia_from_geometry = options.inertia_from_geometry.value_or(false);
+  if (options.density) {
+    const double rho = *options.density;
+    if (!(std::isfinite(rho) && rho > 0)) {
+      throw Error(fmt::format("{}: density {} kg/m³ is not a density; expected a finite number > 0 "
+                              "(kg/m³)",
+                              file.string(), rho));
+    }
+    if (!ro.inertia_from_geometry) {
+      throw Error(fmt::format("{}: density {} kg/m³ is the density of the links' collision geometry "
+                              "when their inertials are computed from it: give {} with it (without "
+                              "it, the links keep the inertials the file states)",
+                              file.string(), rho, setting("inertia_from_geometry")));
+    }
+    ro.density = rho;
+  }
+  return ro;
+}
+
+Scene scene_from_robot_file(const std::string& xml, const std::filesystem::path& file,
+                            const ModelOptions& options, const std::filesystem::path& scene_file) {
+  const io::RobotReadOptions ro = robot_read_options(options, file);
+  const io::RobotModel model = io::read_robot_model(xml, file.string(), ro);
+  if (options.density && model.format != io::InertialFormat::urdf) {
+    throw Error(fmt::format("{}: density {} kg/m³ applies to a URDF's collision geometry; this is "
+                            "an {} model, whose geoms carry their own density (MJCF: geom density, "
+                            "default 1000 kg/m³)",
+                            file.string(), *options.density, io::to_string(model.format)));
+  }
+  return scene_from_robot(model, scene_file);
 }
 
 Scene scene_from_robot(const io::RobotModel& file_model, const std::filesystem::path& file) {

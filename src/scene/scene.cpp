@@ -15,6 +15,7 @@
 #include <toml++/toml.h>
 
 #include "rigid/common/did_you_mean.hpp"
+#include "rigid/common/wording.hpp"
 #include "rigid/io/run_output.hpp"
 #include "rigid/lagrange/system.hpp"
 #include "rigid/mass/primitive_table.hpp"
@@ -24,9 +25,10 @@ namespace {
 
 using Keys = std::vector<std::string>;
 
-const Keys kTopKeys = {"parameters", "coordinates", "bodies", "constraints", "potentials",
-                       "forces", "springs", "gravity", "simulation", "output",
+const Keys kTopKeys = {"model", "parameters", "coordinates", "bodies", "constraints",
+                       "potentials", "forces", "springs", "gravity", "simulation", "output",
                        "lagrangian", "velocity_constraints"};
+const Keys kModelKeys = {"file", "pin_free_root", "inertia_from_geometry", "density"};
 
 // The parser keeps the file name and turns every toml++ position into a message that
 // starts with file:line:col.
@@ -665,18 +667,28 @@ class NameClaims {
 
   // claims `name` for the `what` declared at `at`; refuses a name in use, and 't' (time)
   void claim(const std::string& name, const toml::node& at, std::string_view what) {
-    if (std::find(names_.begin(), names_.end(), name) != names_.end()) {
-      p_.fail(at, fmt::format("{} '{}' is already defined; names of parameters, coordinates and "
+    const auto it = std::find(names_.begin(), names_.end(), name);
+    if (it != names_.end()) {
+      const std::string& origin = origins_[static_cast<std::size_t>(it - names_.begin())];
+      p_.fail(at, fmt::format("{} '{}' is already defined{}; names of parameters, coordinates and "
                               "bodies must be distinct",
-                              what, name));
+                              what, name, origin.empty() ? "" : " (" + origin + ")"));
     }
     if (name == "t") p_.fail(at, fmt::format("{} may not be called 't' (that is time)", what));
     names_.push_back(name);
+    origins_.emplace_back();
+  }
+
+  // a name declared outside the scene file (a coordinate of its [model]), said as `origin`
+  void reserve(const std::string& name, std::string origin) {
+    names_.push_back(name);
+    origins_.push_back(std::move(origin));
   }
 
  private:
   const Parser& p_;
-  std::vector<std::string> names_;  // every name an expression may use, for clashes
+  std::vector<std::string> names_;    // every name an expression may use, for clashes
+  std::vector<std::string> origins_;  // per name: where it comes from when not from the file
 };
 
 // [parameters]: name = expression, in the file's order.
@@ -697,8 +709,44 @@ void parse_parameters(const toml::table& root, const Parser& p, NameClaims& name
   });
 }
 
+// [[coordinates]] of a scene with [model]: each entry names a joint coordinate of the model and
+// sets its initial value and velocity (those it leaves out keep the model's: q = ref, q̇ = 0).
+void parse_model_coordinates(const toml::table& root, const Parser& p, Scene& s) {
+  std::vector<std::string> joints;
+  for (const Coordinate& c : s.coordinates) joints.push_back(c.name);
+  std::vector<const toml::node*> set_by(s.coordinates.size(), nullptr);
+  p.each_table(root, "coordinates", [&](const toml::table& t, std::size_t i) {
+    const std::string ctx = fmt::format("[[coordinates]] entry {}", i);
+    p.check_keys(t, ctx, {"name", "initial", "velocity"});
+    const toml::node& name_node = p.required(t, t.source(), "name", ctx);
+    const std::string name = p.identifier(name_node, "coordinate name");
+    const auto it = std::find(joints.begin(), joints.end(), name);
+    if (it == joints.end()) {
+      p.fail(name_node, fmt::format("{}: '{}' is not a joint of the model '{}'; in a scene with "
+                                    "[model], [[coordinates]] set the initial values of the "
+                                    "model's joints ({}){}",
+                                    ctx, name, s.model->file.string(), fmt::join(joints, ", "),
+                                    did_you_mean_hint(name, joints)));
+    }
+    const auto k = static_cast<std::size_t>(it - joints.begin());
+    if (set_by[k] != nullptr) {
+      p.fail(name_node, fmt::format("{}: coordinate '{}' is already set at line {}; give each "
+                                    "coordinate one entry",
+                                    ctx, name, set_by[k]->source().begin.line));
+    }
+    set_by[k] = &name_node;
+    Coordinate& c = s.coordinates[k];
+    if (auto n = t.get("initial")) c.initial = p.expression(*n, name + " initial");
+    if (auto n = t.get("velocity")) c.velocity = p.expression(*n, name + " velocity");
+  });
+}
+
 // [[coordinates]]: name, initial and velocity (both 0 when left out).
 void parse_coordinates(const toml::table& root, const Parser& p, NameClaims& names, Scene& s) {
+  if (s.model) {
+    parse_model_coordinates(root, p, s);
+    return;
+  }
   p.each_table(root, "coordinates", [&](const toml::table& t, std::size_t i) {
     const std::string ctx = fmt::format("[[coordinates]] entry {}", i);
     p.check_keys(t, ctx, {"name", "initial", "velocity"});
@@ -717,6 +765,12 @@ void parse_coordinates(const toml::table& root, const Parser& p, NameClaims& nam
 
 // [[bodies]]: a name (body<i> when left out), the mass and the pose.
 void parse_bodies(const toml::table& root, const Parser& p, NameClaims& names, Scene& s) {
+  if (const toml::node* b = root.get("bodies"); b != nullptr && s.model) {
+    p.fail(*b, fmt::format("a scene with [model] takes its bodies from the model file '{}'; adding "
+                           "[[bodies]] to a model's tree is not supported: add them to the model "
+                           "file as links, or write the whole scene with [[bodies]] and no [model]",
+                           s.model->file.string()));
+  }
   p.each_table(root, "bodies", [&](const toml::table& t, std::size_t i) {
     Body b;
     b.where = p.where(t.source());
@@ -807,25 +861,35 @@ void parse_springs(const toml::table& root, const Parser& p, Scene& s) {
   });
 }
 
-// lagrangian = "…" (an expression string) and gravity = [x, y, z] (0 when left out).
+// lagrangian = "…" (an expression string) and gravity = [x, y, z] (0 when left out; a
+// [model]'s gravity, which the key replaces).
 void parse_lagrangian_and_gravity(const toml::table& root, const Parser& p, Scene& s) {
   if (auto n = root.get("lagrangian")) {
     if (!n->is_string()) {
       p.fail(*n, fmt::format("lagrangian must be an expression string such as \"m*l^2/2*theta_dot^2 + "
                              "m*g*l*cos(theta)\", got {}", Parser::type_name(*n)));
     }
+    if (s.lagrangian) {
+      p.fail(*n, fmt::format("the model '{}' has a lagrangian of its own, its joints' armature "
+                             "(a/2*q_dot^2 per joint); a scene's lagrangian cannot be added to it: "
+                             "write its terms as [[potentials]] or [[forces]]",
+                             s.model->file.string()));
+    }
     s.lagrangian = p.multiline_expression(*n, "lagrangian");
   }
   if (auto n = root.get("gravity")) {
     s.gravity = p.expression3(*n, "gravity (m/s², world frame)");
-  } else {
+  } else if (!s.model) {
     for (auto& e : s.gravity) e = Expression{"0", {s.file.string(), 0, 0}, 0.0, false};
   }
 }
 
-// [simulation] (required): t_end, and optionally integrator, dt, tolerance and output_dt.
+// [simulation] (required without [model], whose default is t_end = 5 s): t_end, and
+// optionally integrator, dt, tolerance and output_dt.
 void parse_simulation(const toml::table& root, const Parser& p, Scene& s) {
   const toml::node* sim = root.get("simulation");
+  if (sim == nullptr && s.model) return;
+  s.simulation = Simulation{};
   if (sim == nullptr) {
     p.fail(root.source(), "the scene has no [simulation] table; expected at least t_end (s)");
   }
@@ -991,12 +1055,138 @@ void check_references(const Scene& s) {
   }
 }
 
-Scene parse_document(const toml::table& root, const Parser& p) {
+// The text of `file`, a regular file of at most kMaxSceneFileBytes: `what` names it in messages
+// ("scene file"), `holder` says what the cap is for ("a scene"), `expected` what the file should
+// be ("a TOML file").
+std::string read_input_file(const std::filesystem::path& file, std::string_view what,
+                            std::string_view holder, std::string_view expected) {
+  // only a regular file of at most kMaxSceneFileBytes is read: a device (/dev/zero), a FIFO or
+  // a directory would otherwise be read without end, or fail with the system's words
+  std::error_code ec;
+  const std::filesystem::file_status st = std::filesystem::status(file, ec);
+  if (ec || !std::filesystem::exists(st)) {
+    throw Error(fmt::format("cannot open {} '{}': {}", what, file.string(),
+                            ec ? ec.message() : "no such file"));
+  }
+  if (std::filesystem::is_directory(st)) {
+    throw Error(fmt::format("{} '{}' is a directory; expected {}", what, file.string(), expected));
+  }
+  if (!std::filesystem::is_regular_file(st)) {
+    throw Error(fmt::format("{} '{}' is not a regular file (a device, a pipe or a socket); "
+                            "expected {}",
+                            what, file.string(), expected));
+  }
+  const std::uintmax_t size = std::filesystem::file_size(file, ec);
+  if (!ec && size > kMaxSceneFileBytes) {
+    throw Error(fmt::format("{} '{}' has {} bytes, more than the {} (16 MiB) {} may have", what,
+                            file.string(), size, kMaxSceneFileBytes, holder));
+  }
+  std::ifstream in(file, std::ios::binary);
+  if (!in.good()) {
+    throw Error(fmt::format("cannot open {} '{}': {}", what, file.string(), std::strerror(errno)));
+  }
+  // read in chunks up to one byte past the cap (the file may have grown since it was measured)
+  std::string text;
+  char chunk[65536];
+  while (text.size() <= kMaxSceneFileBytes && in.read(chunk, sizeof chunk).gcount() > 0) {
+    text.append(chunk, static_cast<std::size_t>(in.gcount()));
+  }
+  if (in.bad()) {
+    throw Error(fmt::format("cannot read {} '{}': {}", what, file.string(), std::strerror(errno)));
+  }
+  if (text.size() > kMaxSceneFileBytes) {
+    throw Error(fmt::format("{} '{}' has more than the {} bytes (16 MiB) {} may have", what,
+                            file.string(), kMaxSceneFileBytes, holder));
+  }
+  return text;
+}
+
+// The settings a model option was given, for messages: `pin_free_root = true`, density 500 kg/m³.
+std::string model_options_text(const ModelOptions& o) {
+  std::vector<std::string> given;
+  auto flag = [&](const char* key, const std::optional<bool>& v) {
+    if (v) given.push_back(*v ? setting(key) : fmt::format("{} = false", key));
+  };
+  flag("pin_free_root", o.pin_free_root);
+  flag("inertia_from_geometry", o.inertia_from_geometry);
+  if (o.density) given.push_back(fmt::format("density {} kg/m³", *o.density));
+  return fmt::format("{}", fmt::join(given, ", "));
+}
+
+// [model]: the robot model file the scene is built on (relative to the scene file's directory)
+// and how it is read; `options` override the section's settings. The scene starts as the model's
+// (rigid/scene/robot_scene.hpp), and its coordinates are claimed for the scene's names.
+void parse_model_section(const toml::node& node, const Parser& p, const ModelOptions& options,
+                         NameClaims& names, Scene& s) {
+  const toml::table& t = p.table(node, "[model]");
+  p.check_keys(t, "[model]", kModelKeys);
+  const toml::node& file_node = p.required(t, node.source(), "file", "[model]");
+  const std::filesystem::path given = p.string(file_node, "[model] file");
+  if (given.empty()) {
+    p.fail(file_node, "[model] file is empty; expected the path of a URDF or MJCF file (relative "
+                      "to the scene file's directory)");
+  }
+  ModelSection section;
+  section.file = given.is_absolute() ? given : (p.file().parent_path() / given).lexically_normal();
+  section.where = p.where(file_node.source());
+  ModelOptions read;  // the section's settings, then the options over them
+  if (auto n = t.get("pin_free_root")) read.pin_free_root = p.boolean(*n, "[model] pin_free_root");
+  if (auto n = t.get("inertia_from_geometry")) {
+    read.inertia_from_geometry = p.boolean(*n, "[model] inertia_from_geometry");
+  }
+  const toml::node* density = t.get("density");
+  if (density != nullptr) {
+    const double rho = p.number(*density, "[model] density (kg/m³)");
+    if (!(rho > 0)) {
+      p.fail(*density, fmt::format("[model] density is {} kg/m³; expected a number > 0 (kg/m³)", rho));
+    }
+    read.density = rho;
+  }
+  if (options.pin_free_root) read.pin_free_root = options.pin_free_root;
+  if (options.inertia_from_geometry) read.inertia_from_geometry = options.inertia_from_geometry;
+  if (options.density) read.density = options.density;
+  if (density != nullptr && !options.density && !read.inertia_from_geometry.value_or(false)) {
+    p.fail(*density, "[model] density is the density of the links' collision geometry when their "
+                     "inertials are computed from it: set inertia_from_geometry = true with it "
+                     "(without it, the links keep the inertials the file states)");
+  }
+  // the file itself: its reading errors at the `file` value, its content's at its own lines
+  std::string text;
+  try {
+    text = read_input_file(section.file, "model file", "a model file", "a URDF or MJCF file");
+  } catch (const Error& e) {
+    p.fail(file_node, fmt::format("[model] file: {}", e.what()));
+  }
+  if (!looks_like_xml(text)) {
+    p.fail(file_node, fmt::format("[model] file '{}' is not XML (its first character is not '<'); "
+                                  "expected a URDF or MJCF file",
+                                  section.file.string()));
+  }
+  Scene m = scene_from_robot_file(text, section.file, read, p.file());
+  const io::RobotReadOptions ro = robot_read_options(read, section.file);
+  section.pin_free_root = ro.pin_free_root;
+  section.inertia_from_geometry = ro.inertia_from_geometry;
+  section.density = ro.density;
+  m.model = std::move(section);
+  for (const Coordinate& c : m.coordinates) {
+    names.reserve(c.name, fmt::format("a joint coordinate of the model, {}", to_string(c.where)));
+  }
+  s = std::move(m);
+}
+
+Scene parse_document(const toml::table& root, const Parser& p, const ModelOptions& options) {
   Scene s;
   s.file = p.file();
   p.check_keys(root, "the scene", kTopKeys);
   NameClaims names(p);  // every name an expression may use, for clashes
 
+  if (const toml::node* model = root.get("model")) {
+    parse_model_section(*model, p, options, names, s);
+  } else if (!options.empty()) {
+    throw Error(fmt::format("{}: {} applies to a robot model file (URDF, MJCF) given as the scene "
+                            "or named by a [model] section; this TOML scene has no [model]",
+                            p.file().string(), model_options_text(options)));
+  }
   parse_parameters(root, p, names, s);
   parse_coordinates(root, p, names, s);
   parse_bodies(root, p, names, s);
@@ -1028,7 +1218,8 @@ bool Scene::is_free_body_scene() const {
   return !bodies.empty() && bodies.front().free;
 }
 
-Scene parse_scene(std::string_view toml_text, const std::filesystem::path& file) {
+Scene parse_scene(std::string_view toml_text, const std::filesystem::path& file,
+                  const ModelOptions& model) {
   Parser p(file, toml_text);
   toml::table root;
   try {
@@ -1048,52 +1239,14 @@ Scene parse_scene(std::string_view toml_text, const std::filesystem::path& file)
     }
     detail::throw_error_at(p.where(e.source()), fmt::format("TOML syntax error{}: {}", context, text));
   }
-  return parse_document(root, p);
+  return parse_document(root, p, model);
 }
 
-Scene load_scene(const std::filesystem::path& file) {
-  // only a regular file of at most kMaxSceneFileBytes is read: a device (/dev/zero), a FIFO or
-  // a directory would otherwise be read without end, or fail with the system's words
-  std::error_code ec;
-  const std::filesystem::file_status st = std::filesystem::status(file, ec);
-  if (ec || !std::filesystem::exists(st)) {
-    throw Error(fmt::format("cannot open scene file '{}': {}", file.string(),
-                            ec ? ec.message() : "no such file"));
-  }
-  if (std::filesystem::is_directory(st)) {
-    throw Error(fmt::format("scene file '{}' is a directory; expected a TOML file", file.string()));
-  }
-  if (!std::filesystem::is_regular_file(st)) {
-    throw Error(fmt::format("scene file '{}' is not a regular file (a device, a pipe or a socket); "
-                            "expected a TOML file",
-                            file.string()));
-  }
-  const std::uintmax_t size = std::filesystem::file_size(file, ec);
-  if (!ec && size > kMaxSceneFileBytes) {
-    throw Error(fmt::format("scene file '{}' has {} bytes, more than the {} (16 MiB) a scene may "
-                            "have",
-                            file.string(), size, kMaxSceneFileBytes));
-  }
-  std::ifstream in(file, std::ios::binary);
-  if (!in.good()) {
-    throw Error(fmt::format("cannot open scene file '{}': {}", file.string(), std::strerror(errno)));
-  }
-  // read in chunks up to one byte past the cap (the file may have grown since it was measured)
-  std::string text;
-  char chunk[65536];
-  while (text.size() <= kMaxSceneFileBytes && in.read(chunk, sizeof chunk).gcount() > 0) {
-    text.append(chunk, static_cast<std::size_t>(in.gcount()));
-  }
-  if (in.bad()) {
-    throw Error(fmt::format("cannot read scene file '{}': {}", file.string(), std::strerror(errno)));
-  }
-  if (text.size() > kMaxSceneFileBytes) {
-    throw Error(fmt::format("scene file '{}' has more than the {} bytes (16 MiB) a scene may have",
-                            file.string(), kMaxSceneFileBytes));
-  }
+Scene load_scene(const std::filesystem::path& file, const ModelOptions& model) {
+  const std::string text = read_input_file(file, "scene file", "a scene", "a TOML file");
   // a robot model file (URDF, MJCF) is a scene of its joints (rigid/scene/robot_scene.hpp)
-  if (looks_like_xml(text)) return scene_from_robot(io::read_robot_model(text, file.string()), file);
-  return parse_scene(text, file);
+  if (looks_like_xml(text)) return scene_from_robot_file(text, file, model, file);
+  return parse_scene(text, file, model);
 }
 
 namespace {

@@ -405,6 +405,11 @@ std::string describe(const SweepIdentity& id) {
   std::string d = fmt::format("scene {} (fnv1a64 {})", id.scene.filename().string(), file_hash(id.scene));
   for (const auto& s : id.set) d += fmt::format("; set {}", s);
   if (!id.integrator.empty()) d += fmt::format("; integrator {}", id.integrator);
+  if (id.model.pin_free_root) d += fmt::format("; pin_free_root {}", *id.model.pin_free_root);
+  if (id.model.inertia_from_geometry) {
+    d += fmt::format("; inertia_from_geometry {}", *id.model.inertia_from_geometry);
+  }
+  if (id.model.density) d += fmt::format("; density {}", *id.model.density);
   for (const auto& g : id.spec.grid) d += fmt::format("; grid {}={}:{}:{}", g.name, g.start, g.stop, g.count);
   for (const auto& s : id.spec.sample) {
     d += fmt::format("; sample {}={}({},{})", s.name, distribution_name(s.distribution), s.a, s.b);
@@ -483,7 +488,7 @@ std::vector<std::string> run_overrides(const SweepIdentity& id, const std::vecto
 
 void check_overrides(const SweepIdentity& id) {
   check_spec(id.spec);
-  Scene s = load_scene(id.scene);
+  Scene s = load_scene(id.scene, id.model);
   apply_overrides(s, run_overrides(id, swept_names(id.spec), run_values(id.spec, 0)));
 }
 
@@ -502,7 +507,7 @@ std::vector<SweepRow> run_sweep(const SweepIdentity& id, std::span<const std::si
   // shares every mesh file as read: no run pays for the derivation or reads a mesh. When that
   // first model cannot be built (its values are refused), each run builds its own and records
   // its own error, as without the prototype.
-  const Scene base = load_scene(id.scene);
+  const Scene base = load_scene(id.scene, id.model);
   std::shared_ptr<const Model> prototype;
   if (!indices.empty()) {
     try {

@@ -151,9 +151,11 @@ class Model {
   std::unique_ptr<Impl> impl_;
 };
 
-/// Reads a scene file, applies `name=value` parameter overrides and builds the model: what
-/// the command line and Python do with a scene path.
+/// Reads a scene file (a robot model file read with `model`'s settings, or a TOML scene whose
+/// `[model]` settings they override), applies `name=value` parameter overrides and builds the
+/// model: what the command line and Python do with a scene path.
 /// @throws rigid::Error as load_scene, apply_overrides and Model do.
-[[nodiscard]] Model load_model(const std::filesystem::path& file, const std::vector<std::string>& overrides = {});
+[[nodiscard]] Model load_model(const std::filesystem::path& file, const std::vector<std::string>& overrides = {},
+                               const ModelOptions& model = {});
 
 }  // namespace rigid::scene

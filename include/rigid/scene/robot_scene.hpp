@@ -35,6 +35,23 @@ inline constexpr std::size_t kMaxRobotChainJoints = 7;
 [[nodiscard]] Scene scene_from_robot(const io::RobotModel& model,
                                      const std::filesystem::path& file);
 
+/// The options io::read_robot_model takes, from `options` (a field left unset: its default);
+/// `file` names the model in messages.
+/// @throws rigid::Error for a density that is not finite and > 0, or that is set without
+///   inertia_from_geometry (it would change nothing).
+[[nodiscard]] io::RobotReadOptions robot_read_options(const ModelOptions& options,
+                                                      const std::filesystem::path& file);
+
+/// The scene of the robot model `xml`, the text of `file`, read with `options`
+/// (robot_read_options); `scene_file` is the scene's file (for messages and the default output
+/// directory): `file` itself, or the TOML scene whose `[model]` names it.
+/// @throws rigid::Error as robot_read_options, io::read_robot_model and scene_from_robot do,
+///   and for a density set for a model other than URDF (an MJCF geom carries its own).
+[[nodiscard]] Scene scene_from_robot_file(const std::string& xml,
+                                          const std::filesystem::path& file,
+                                          const ModelOptions& options,
+                                          const std::filesystem::path& scene_file);
+
 /// True when `text` is an XML document (its first non-blank character is '<'): a robot model
 /// rather than a TOML scene.
 [[nodiscard]] bool looks_like_xml(std::string_view text);

@@ -202,10 +202,45 @@ struct Output {
   std::vector<MetricSpec> metrics;
 };
 
+/// How a robot model file (URDF, MJCF) is read where a scene takes one: a model file given as
+/// the scene, or the file of a scene's `[model]` section. A field left unset keeps the
+/// section's setting (else the default, io::RobotReadOptions's); a field set overrides it (the
+/// command line's --pin-free-root, --inertia-from-geometry, --density; Python's keywords). A
+/// TOML scene without `[model]` reads no model file, so a field set for it is refused.
+struct ModelOptions {
+  /// A free joint on a body of the world is welded where it stands instead of refused.
+  std::optional<bool> pin_free_root{};
+  /// Every link's inertial from its geometry (MJCF: MuJoCo's compiler's rules; URDF: the
+  /// collision geometry at `density`; a link without collision keeps its stated inertial).
+  std::optional<bool> inertia_from_geometry{};
+  /// kg/m³, finite and > 0: the density of a URDF's collision geometry, used with
+  /// inertia_from_geometry (default 1000).
+  std::optional<double> density{};
+
+  /// True when no field is set.
+  [[nodiscard]] bool empty() const {
+    return !pin_free_root && !inertia_from_geometry && !density;
+  }
+};
+
+/// `[model]`: the robot model file a scene is built on, and how it was read (the section's
+/// settings with ModelOptions over them).
+struct ModelSection {
+  std::filesystem::path file;  ///< resolved against the scene file's directory
+  bool pin_free_root = false;
+  bool inertia_from_geometry = false;
+  double density = 1000;  ///< kg/m³
+  SourceLocation where;   ///< the `file` value
+};
+
 /// A whole scene as written, checked for structure, types and names but not yet turned
 /// into a model (that needs the expression parser; see rigid::scene::build).
 struct Scene {
   std::filesystem::path file;
+  /// Set when the scene is built on a robot model file (`[model]`): its bodies, coordinates,
+  /// gravity, damping forces, spring potentials and armature come from that file, and the
+  /// scene's own entries add to them (docs/scene-format.md, "[model]").
+  std::optional<ModelSection> model;
   std::vector<Parameter> parameters;
   std::vector<Coordinate> coordinates;
   std::vector<Body> bodies;
@@ -227,18 +262,25 @@ struct Scene {
   [[nodiscard]] bool is_free_body_scene() const;
 };
 
-/// Parses a scene from TOML text; `file` is used in messages and to resolve mesh paths.
+/// Parses a scene from TOML text; `file` is used in messages and to resolve mesh paths and a
+/// `[model]` file. `model` overrides the settings of a `[model]` section.
 /// @throws rigid::Error starting with "file:line:col:" for TOML syntax errors, unknown
-///         keys (with a "did you mean" suggestion), wrong types and missing fields.
-[[nodiscard]] Scene parse_scene(std::string_view toml_text, const std::filesystem::path& file);
+///         keys (with a "did you mean" suggestion), wrong types and missing fields; the
+///         model file's errors start with its own file:line. A `model` option set for a scene
+///         without `[model]` is refused.
+[[nodiscard]] Scene parse_scene(std::string_view toml_text, const std::filesystem::path& file,
+                                const ModelOptions& model = {});
 
 /// Largest scene file that is read (16 MiB).
 inline constexpr std::uintmax_t kMaxSceneFileBytes = std::uintmax_t{16} << 20;
 
-/// Reads and parses a scene file: a regular file of at most kMaxSceneFileBytes.
+/// Reads and parses a scene file: a regular file of at most kMaxSceneFileBytes, TOML or a robot
+/// model file (URDF, MJCF; rigid/scene/robot_scene.hpp) read with `model`'s settings.
 /// @throws rigid::Error if it is missing, a directory, not a regular file (a device such as
-///   /dev/zero, a pipe), larger than the cap, cannot be read, or cannot be parsed.
-[[nodiscard]] Scene load_scene(const std::filesystem::path& file);
+///   /dev/zero, a pipe), larger than the cap, cannot be read, or cannot be parsed, and for a
+///   `model` option that does not apply (set for a TOML scene without `[model]`; a density
+///   without inertia_from_geometry, or for a model other than URDF; a density ≤ 0).
+[[nodiscard]] Scene load_scene(const std::filesystem::path& file, const ModelOptions& model = {});
 
 /// The names an override may set, as the scene file nests them: each parameter by its plain
 /// name, `simulation.<key>` (t_end, dt, tolerance, output_dt, integrator), `<coordinate>.initial`

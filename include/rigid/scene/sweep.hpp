@@ -29,6 +29,7 @@
 
 #include "rigid/common/wording.hpp"
 #include "rigid/io/table.hpp"
+#include "rigid/scene/scene.hpp"
 
 namespace rigid::scene {
 
@@ -120,9 +121,10 @@ struct SweepIdentity {
   std::vector<std::string> set{};  ///< overrides every run gets (before its own)
   std::string integrator{};      ///< empty: the scene's
   SweepSpec spec{};
+  ModelOptions model{};          ///< how a robot model file of the scene is read (load_scene)
 };
 /// A readable, canonical description: the scene's content hash (FNV-1a 64, hex), the set, the
-/// integrator, the axes, samples and seed. @throws rigid::Error if the scene cannot be read.
+/// integrator, the model options set, the axes, samples and seed. @throws rigid::Error if the scene cannot be read.
 [[nodiscard]] std::string describe(const SweepIdentity& identity);
 
 /// The journal of a sweep's directory, DIR/.journal.jsonl: a header line
