@@ -177,6 +177,25 @@ def robot_models(out):
     write(out, "robot_model", "include.xml",
           '<mujoco>\n  <worldbody>\n    <body name="a"><include file="part.xml"/></body>\n'
           '  </worldbody>\n</mujoco>\n')
+    write(out, "robot_model", "model.sdf",
+          '<sdf version="1.6">\n  <world name="w">\n    <gravity>0 0 -1.6</gravity>\n'
+          '    <model name="m">\n      <pose>1 2 3 0 0 0.5</pose>\n'
+          '      <link name="base"><pose>0 0 0.5 0 0 0</pose></link>\n'
+          '      <link name="cart"><pose degrees="true">0.2 0 0.5 0 0 90</pose><inertial>'
+          '<pose>0 0 0.1 0 0.3 0</pose><mass>2</mass><inertia><ixx>0.1</ixx><ixy>0.01</ixy>'
+          '<iyy>0.2</iyy><izz>0.3</izz></inertia></inertial></link>\n'
+          '      <link name="arm"><pose rotation_format="quat_xyzw">0.2 0 0.8 0 0.7 0 0.7</pose>'
+          '</link>\n      <link name="tool"><pose>0.2 0.3 0.8 0 0 0</pose></link>\n'
+          '      <joint name="weld" type="fixed"><parent>world</parent><child>base</child></joint>\n'
+          '      <joint name="rail" type="prismatic"><parent>base</parent><child>cart</child>'
+          '<axis><xyz>1 0 0</xyz><dynamics><damping>2</damping><spring_stiffness>30'
+          '</spring_stiffness><spring_reference>0.1</spring_reference></dynamics></axis></joint>\n'
+          '      <joint name="spin" type="continuous"><parent>cart</parent><child>arm</child>'
+          '<pose relative_to="__model__">0 0.05 0.8 0 0 0</pose><axis><xyz>0 0 1</xyz>'
+          '<use_parent_model_frame>true</use_parent_model_frame></axis></joint>\n'
+          '      <joint name="hand" type="revolute"><parent>arm</parent><child>tool</child>'
+          '<axis><xyz expressed_in="__model__">0 1 0</xyz></axis></joint>\n'
+          '    </model>\n  </world>\n</sdf>\n')
 
 
 def expressions(out):

@@ -1,7 +1,8 @@
-// Fuzz target: io::read_robot_model on a URDF/MJCF document (the URDF tree and its refusals,
+// Fuzz target: io::read_robot_model on a URDF/MJCF/SDF document (the URDF tree and its refusals,
 // MJCF bodies, joints, default classes, orientations, <include> of files that do not exist,
-// inertials from geoms). What it reads must be a tree with proper parts: every parent comes
-// before its child, rotations are rotations, axes are unit vectors, inertials are checked.
+// inertials from geoms; SDF models and worlds, poses in their frames). What it reads must be a
+// tree with proper parts: every parent comes before its child, rotations are rotations, axes
+// are unit vectors, inertials are checked.
 #include <cmath>
 #include <string>
 

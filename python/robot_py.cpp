@@ -1,4 +1,4 @@
-// rigid.robot: a robot model file (URDF, MJCF) as a kinematic tree with its dynamics in
+// rigid.robot: a robot model file (URDF, MJCF, SDF) as a kinematic tree with its dynamics in
 // numbers: M(q), the bias and passive forces, inverse and forward dynamics (rigid::robot::
 // TreeDynamics, MuJoCo's conventions, docs/robots.md). Arrays are numpy vectors of length
 // dof, in the coordinates' order.
@@ -36,12 +36,12 @@ Eigen::VectorXd coordinates_arg(const TreeDynamics& t, const py::handle& value,
 void bind_robot(py::module_& m) {
   auto robot = m.def_submodule(
       "robot",
-      "Robot model files (URDF, MJCF) as kinematic trees with their dynamics in numbers: "
+      "Robot model files (URDF, MJCF, SDF) as kinematic trees with their dynamics in numbers: "
       "M(q) q̈ = τ − b(q, q̇) + p(q, q̇), MuJoCo's conventions (docs/robots.md).");
 
   py::class_<TreeDynamics, std::shared_ptr<TreeDynamics>>(
       robot, "Robot",
-      "A kinematic tree read from a URDF or MJCF file: links, hinge and slide joints (the "
+      "A kinematic tree read from a URDF, MJCF or SDF file: links, hinge and slide joints (the "
       "coordinates, depth first from the root, MuJoCo's order), inertials and gravity. Immutable; "
       "every method may be called from any thread.")
       .def(py::init([](const py::object& file, bool pin_free_root) {

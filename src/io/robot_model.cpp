@@ -18,6 +18,7 @@
 
 #include "detail/fix_geometry.hpp"
 #include "detail/xml_parse.hpp"
+#include "detail/sdf_model.hpp"
 #include "detail/xml_numbers.hpp"
 #include "rigid/common/error.hpp"
 #include "rigid/common/wording.hpp"
@@ -632,10 +633,11 @@ RobotModel read_robot_model(const std::string& xml, const std::string& source,
   const std::string_view name = root->Name();
   if (name == "robot") return read_urdf(root, xml, source, options);
   if (name == "mujoco") return read_mjcf(root, source, options);
+  if (name == "sdf") return detail::read_sdf_model(root, xml, source, options);  // sdf_model.cpp
   refuse_at(source, root,
-            fmt::format("root element <{}>: expected <robot> (URDF) or <mujoco> "
-                        "(MJCF){}",
-                        name, name == "sdf" ? "; SDF is not yet read" : ""));
+            fmt::format("root element <{}>: expected <robot> (URDF), <mujoco> (MJCF) or <sdf> "
+                        "(SDFormat)",
+                        name));
 }
 
 RobotModel read_robot_model_file(const std::string& path, const RobotReadOptions& options) {

@@ -266,9 +266,11 @@ TEST(RobotModelUrdf, MalformedXmlInPlainWords) {
         << what;
     EXPECT_EQ(what.find("ErrorID"), std::string::npos) << what;
   }
-  EXPECT_RIGID_ERROR((void)read_robot_model("<sdf/>", "x.sdf"),
-                     "x.sdf:1: root element <sdf>: expected <robot> (URDF) or <mujoco> (MJCF); SDF "
-                     "is not yet read");
+  EXPECT_RIGID_ERROR((void)read_robot_model("<model/>", "x.xml"),
+                     "x.xml:1: root element <model>: expected <robot> (URDF), <mujoco> (MJCF) or "
+                     "<sdf> (SDFormat)");
+  // <sdf> goes to the SDF reader (tests/robot/sdf_model_test.cpp)
+  EXPECT_RIGID_ERROR((void)read_robot_model("<sdf/>", "x.sdf"), "x.sdf:1: <sdf> has no 'version'");
   EXPECT_RIGID_ERROR((void)read_robot_model("", "e.urdf"), "e.urdf");
 }
 

@@ -1,8 +1,8 @@
 #pragma once
 
-/// Kinematic trees of robot model files (URDF, MJCF): the links, where each sits on its parent,
-/// the joints that move it, and its inertial, as the file states them. docs/robots.md has the
-/// conventions; rigid::robot turns a tree into its equations of motion.
+/// Kinematic trees of robot model files (URDF, MJCF, SDFormat): the links, where each sits on
+/// its parent, the joints that move it, and its inertial, as the file states them.
+/// docs/robots.md has the conventions; rigid::robot turns a tree into its equations of motion.
 ///
 /// Conventions (MuJoCo's, so that a model reads alike from URDF and MJCF):
 ///  - A link's frame L sits on its parent's frame (or the world's) at `position`, rotated by
@@ -24,6 +24,15 @@
 ///    MuJoCo); inertials follow <compiler inertiafromgeom> ("auto": a body's <inertial>, else
 ///    its geoms). <include file> is relative to the main file's directory and a file is
 ///    included at most once (MuJoCo's XML reference); messages name the included file.
+///  - SDF (SDFormat 1.4–1.10, sdformat.org/spec; src/io/sdf_model.cpp): the one <model> of the
+///    file or of its one <world>. Link <pose>s are in the model frame (the model's <pose>
+///    places it in the world); a joint's <pose> is its frame in the child link's frame, so
+///    `anchor` is the joint frame's origin and the axis is <axis><xyz> in the joint frame
+///    (the model frame with use_parent_model_frame, expressed_in="__model__" or version ≤
+///    1.4); the file's poses are q = 0. revolute and continuous are hinges, prismatic a
+///    slide, fixed welds the child; a root link without a joint to the world is welded where
+///    it stands, as URDF's. Passive terms are <axis><dynamics> damping, spring_stiffness and
+///    spring_reference. A link without <inertial> has SDFormat's default: 1 kg, unit inertia.
 
 #include <optional>
 #include <string>
@@ -99,12 +108,14 @@ struct RobotReadOptions {
   double density = 1000;  ///< kg/m³, URDF geometry with inertia_from_geometry
 };
 
-/// The tree of a URDF or MJCF document (detected from the root element, as read_inertials
-/// does); `source` names it in messages and is the base of relative paths (<include>, meshes).
+/// The tree of a URDF, MJCF or SDF document (detected from the root element, as
+/// read_inertials does); `source` names it in messages and is the base of relative paths
+/// (<include>, meshes).
 /// @throws rigid::Error "file:line: ..." for malformed XML, a missing or unknown parent, a
-///   loop, several roots (URDF), an unsupported joint (ball, free unless pinned, planar,
-///   floating, mimic), an unusable attribute or an invalid inertial (naming the link and
-///   MassProperties::check's reason).
+///   loop, several roots (URDF, SDF), an unsupported joint (ball, free unless pinned, planar,
+///   floating, mimic; SDF universal, revolute2, screw, gearbox), SDF <include>, nested
+///   models, a world of several models, an unusable attribute or an invalid inertial (naming
+///   the link and MassProperties::check's reason).
 [[nodiscard]] RobotModel read_robot_model(const std::string& xml, const std::string& source,
                                           const RobotReadOptions& options = {});
 
