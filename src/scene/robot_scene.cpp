@@ -216,27 +216,6 @@ void add_passive_terms(const io::RobotModel& model, Scene& s) {
   if (!armature.empty()) s.lagrangian = text(armature, SourceLocation{model.source, 0, 0});
 }
 
-// The symbolic equations of a chain grow about threefold per joint (a spatial 7-joint arm:
-// 10 s and 5 MB of text; 5 joints: 0.1 s), so a deeper chain is refused with the reason
-// rather than left to run for minutes. Its dynamics in numbers: rigid.robot.Robot.
-void refuse_deep_chains(const io::RobotModel& model) {
-  std::vector<std::size_t> depth(model.links.size(), 0);
-  for (std::size_t i = 0; i < model.links.size(); ++i) {
-    const io::RobotLink& link = model.links[i];
-    depth[i] =
-        (link.parent >= 0 ? depth[static_cast<std::size_t>(link.parent)] : 0) + link.joints.size();
-    if (depth[i] > kMaxRobotChainJoints) {
-      rigid::detail::throw_error_at(
-          where_of(model, link, link.line),
-          fmt::format("link '{}' hangs from the world through {} joints; the symbolic equations of "
-                      "a chain deeper than {} joints are not yet derived in reasonable time (a "
-                      "7-joint arm takes ~10 s). Its dynamics in numbers (M(q), bias and passive "
-                      "forces, forward and inverse dynamics): Python's rigid.robot.Robot",
-                      link.name, depth[i], kMaxRobotChainJoints));
-    }
-  }
-}
-
 // A coordinate's name is its joint's, usable in expressions: an unnamed joint (MJCF allows
 // them) is q<i> (its index), and a character other than a letter, a digit or '_' becomes '_'
 // ("r-hip.x" → "r_hip_x"; a leading digit gains "q_"). Two joints whose names become one are
@@ -324,7 +303,6 @@ Scene scene_from_robot(const io::RobotModel& file_model, const std::filesystem::
     rigid::detail::throw_error_at(top, "the model has no joint (every link is fixed), so it has no "
                                        "equations of motion");
   }
-  refuse_deep_chains(model);
   std::vector<TreeBody> bodies = moving_bodies(model);
   merge_massless(model, bodies);
   for (const TreeBody& b : bodies) {

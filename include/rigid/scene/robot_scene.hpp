@@ -24,14 +24,9 @@
 
 namespace rigid::scene {
 
-/// The deepest chain of joints (root to leaf) whose symbolic equations are derived; deeper
-/// trees are refused (their derivation grows about threefold per joint).
-inline constexpr std::size_t kMaxRobotChainJoints = 7;
-
 /// The scene of a robot model; `file` is the model file (the scene's file, for messages and
 /// the default output directory).
-/// @throws rigid::Error naming the link for a massless moving link that cannot be merged, or
-///   for a chain of more than kMaxRobotChainJoints joints.
+/// @throws rigid::Error naming the link for a massless moving link that cannot be merged.
 [[nodiscard]] Scene scene_from_robot(const io::RobotModel& model,
                                      const std::filesystem::path& file);
 
