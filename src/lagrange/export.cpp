@@ -70,7 +70,7 @@ const std::set<std::string>& python_reserved() {
       "False", "None", "True", "and", "as", "assert", "async", "await", "break", "class",
       "continue", "def", "del", "elif", "else", "except", "finally", "for", "from", "global",
       "if", "import", "in", "is", "lambda", "nonlocal", "not", "or", "pass", "raise", "return",
-      "try", "while", "with", "yield", "q", "q_dot", "t", "math"};
+      "try", "while", "with", "yield", "q", "q_dot", "q_ddot", "tau", "t", "math"};
   return kWords;
 }
 
@@ -332,6 +332,78 @@ std::string cpp_function(const System::Impl& s, const FunctionSpec& fn,
   return out + "}\n";
 }
 
+// The inverse and forward dynamics of a system without constraints, on the M and f of
+// mass_matrix_and_forces (plain loops: the file stays dependency-free). A system with
+// constraints gets a comment saying why they are missing: its multipliers enter the equations.
+std::string cpp_dynamics(const System::Impl& s) {
+  if (s.m > 0) {
+    return fmt::format(
+        "// inverse_dynamics and forward_dynamics are not exported: the system has constraints (m = "
+        "{}),\n// whose multipliers λ enter M q̈ = f + τ + Gᵀλ (with G q̈ = γ) and are not in "
+        "M and f alone.\n",
+        s.m);
+  }
+  const auto n = static_cast<std::size_t>(s.n);
+  auto array = [](std::string_view type, std::string_view name, std::size_t size) {
+    return fmt::format("{} {}[{}]", type, name, size);
+  };
+  std::string out = fmt::format(
+      "/// τ = M q̈ − f (inverse dynamics): the generalized force that, added to the model's own "
+      "forces,\n/// gives the motion the acceleration q̈.\n"
+      "inline void inverse_dynamics({}, {}, {}, double t, {}, const Parameters& p = {{}}) {{\n",
+      array("const double", "q", n), array("const double", "q_dot", n),
+      array("const double", "q_ddot", n), array("double", "tau", n));
+  out += "  constexpr int n = kNumCoordinates;\n"
+         "  double M[n * n];\n"
+         "  double f[n];\n"
+         "  mass_matrix_and_forces(q, q_dot, t, M, f, p);\n"
+         "  for (int i = 0; i < n; ++i) {\n"
+         "    double s = 0.0;\n"
+         "    for (int j = 0; j < n; ++j) s += M[i * n + j] * q_ddot[j];\n"
+         "    tau[i] = s - f[i];\n"
+         "  }\n"
+         "}\n\n";
+  out += fmt::format(
+      "/// q̈ = M⁻¹ (f + τ) (forward dynamics), M factored in place as L Lᵀ (Cholesky). Returns "
+      "false,\n/// q_ddot unchanged, where a pivot is not positive (or NaN): M is not positive "
+      "definite there,\n/// which a valid model's never is.\n"
+      "[[nodiscard]] inline bool forward_dynamics({}, {}, {}, double t, {}, const Parameters& p = "
+      "{{}}) {{\n",
+      array("const double", "q", n), array("const double", "q_dot", n),
+      array("const double", "tau", n), array("double", "q_ddot", n));
+  out += "  constexpr int n = kNumCoordinates;\n"
+         "  double L[n * n];\n"
+         "  double b[n];\n"
+         "  mass_matrix_and_forces(q, q_dot, t, L, b, p);\n"
+         "  for (int i = 0; i < n; ++i) b[i] += tau[i];\n"
+         "  // L Lᵀ = M, column by column: L's lower triangle overwrites M's\n"
+         "  for (int j = 0; j < n; ++j) {\n"
+         "    double d = L[j * n + j];\n"
+         "    for (int k = 0; k < j; ++k) d -= L[j * n + k] * L[j * n + k];\n"
+         "    if (!(d > 0.0)) return false;\n"
+         "    const double l = std::sqrt(d);\n"
+         "    L[j * n + j] = l;\n"
+         "    for (int i = j + 1; i < n; ++i) {\n"
+         "      double s = L[i * n + j];\n"
+         "      for (int k = 0; k < j; ++k) s -= L[i * n + k] * L[j * n + k];\n"
+         "      L[i * n + j] = s / l;\n"
+         "    }\n"
+         "  }\n"
+         "  // L y = b, then Lᵀ x = y (y and x overwrite b)\n"
+         "  for (int i = 0; i < n; ++i) {\n"
+         "    for (int k = 0; k < i; ++k) b[i] -= L[i * n + k] * b[k];\n"
+         "    b[i] /= L[i * n + i];\n"
+         "  }\n"
+         "  for (int i = n - 1; i >= 0; --i) {\n"
+         "    for (int k = i + 1; k < n; ++k) b[i] -= L[k * n + i] * b[k];\n"
+         "    b[i] /= L[i * n + i];\n"
+         "  }\n"
+         "  for (int i = 0; i < n; ++i) q_ddot[i] = b[i];\n"
+         "  return true;\n"
+         "}\n";
+  return out;
+}
+
 // ----------------------------------------------------------------------------------------
 // Python
 
@@ -393,6 +465,82 @@ std::string python_function(const System::Impl& s, const FunctionSpec& fn,
     results.push_back(fmt::format("[{}]", fmt::join(g, ", ")));
   }
   out += fmt::format("    return {}\n", fmt::join(results, ", "));
+  return out;
+}
+
+// The Python counterpart of cpp_dynamics: the same operations in the same order, so the same
+// numbers.
+std::string python_dynamics(const System::Impl& s, const std::vector<std::string>& params) {
+  if (s.m > 0) {
+    return fmt::format(
+        "# inverse_dynamics and forward_dynamics are not exported: the system has constraints (m = "
+        "{}),\n# whose multipliers λ enter M q̈ = f + τ + Gᵀλ (with G q̈ = γ) and are not in "
+        "M and f alone.\n",
+        s.m);
+  }
+  std::string signature, call;
+  for (std::size_t k = 0; k < params.size(); ++k) {
+    signature += fmt::format(", {}={}", params[k], literal(s.param_values[k], true));
+    call += fmt::format(", {0}={0}", params[k]);
+  }
+  if (!params.empty()) signature = ", *" + signature;
+  std::string out =
+      "# M and f under a name that no keyword argument (a parameter) can hide\n"
+      "_mass_matrix_and_forces = mass_matrix_and_forces\n\n\n"
+      "def _inverse_dynamics(M, f, q_ddot):\n"
+      "    tau = []\n"
+      "    for i in range(len(f)):\n"
+      "        s = 0.0\n"
+      "        for j in range(len(f)):\n"
+      "            s += M[i][j] * q_ddot[j]\n"
+      "        tau.append(s - f[i])\n"
+      "    return tau\n\n\n"
+      "def _forward_dynamics(M, f, tau):\n"
+      "    n = len(f)\n"
+      "    b = [f[i] + tau[i] for i in range(n)]\n"
+      "    L = M  # L Lᵀ = M, column by column: L's lower triangle overwrites M's\n"
+      "    for j in range(n):\n"
+      "        d = L[j][j]\n"
+      "        for k in range(j):\n"
+      "            d -= L[j][k] * L[j][k]\n"
+      "        if not d > 0.0:\n"
+      "            raise ValueError(f\"forward_dynamics: the mass matrix is not positive definite "
+      "at this q: pivot {j} ({COORDINATES[j]}) of its Cholesky factorization is {d!r}, expected > "
+      "0; check the model's masses, inertias and parameters\")\n"
+      "        l = math.sqrt(d)\n"
+      "        L[j][j] = l\n"
+      "        for i in range(j + 1, n):\n"
+      "            s = L[i][j]\n"
+      "            for k in range(j):\n"
+      "                s -= L[i][k] * L[j][k]\n"
+      "            L[i][j] = s / l\n"
+      "    # L y = b, then Lᵀ x = y (y and x overwrite b)\n"
+      "    for i in range(n):\n"
+      "        for k in range(i):\n"
+      "            b[i] -= L[i][k] * b[k]\n"
+      "        b[i] /= L[i][i]\n"
+      "    for i in range(n - 1, -1, -1):\n"
+      "        for k in range(i + 1, n):\n"
+      "            b[i] -= L[k][i] * b[k]\n"
+      "        b[i] /= L[i][i]\n"
+      "    return b\n\n\n";
+  out += fmt::format(
+      "def inverse_dynamics(q, q_dot, q_ddot, t=0.0{}):\n"
+      "    \"\"\"τ = M q̈ − f (inverse dynamics): the generalized force that, added to the model's "
+      "own forces, gives the motion the acceleration q̈.\"\"\"\n"
+      "    _qdd = _vector(q_ddot, {}, \"q_ddot\")\n"
+      "    _M, _f = _mass_matrix_and_forces(q, q_dot, t{})\n"
+      "    return _inverse_dynamics(_M, _f, _qdd)\n\n\n",
+      signature, s.n, call);
+  out += fmt::format(
+      "def forward_dynamics(q, q_dot, tau, t=0.0{}):\n"
+      "    \"\"\"q̈ = M⁻¹ (f + τ) (forward dynamics) by a Cholesky factorization M = L Lᵀ; raises "
+      "ValueError where M is not positive definite (a pivot ≤ 0 or NaN), which a valid model's "
+      "never is.\"\"\"\n"
+      "    _tau = _vector(tau, {}, \"tau\")\n"
+      "    _M, _f = _mass_matrix_and_forces(q, q_dot, t{})\n"
+      "    return _forward_dynamics(_M, _f, _tau)\n",
+      signature, s.n, call);
   return out;
 }
 
@@ -468,6 +616,8 @@ std::string emit_cpp(const System& system, const ExportOptions& options) {
     out += "\n";
     out += cpp_function(s, fn, params);
   }
+  out += "\n";
+  out += cpp_dynamics(s);
   out += fmt::format("\n}}  // namespace {}\n", ns);
   return out;
 }
@@ -512,6 +662,8 @@ std::string emit_python(const System& system, const ExportOptions& options) {
     out += "\n\n";
     out += python_function(s, fn, params);
   }
+  out += "\n\n";
+  out += python_dynamics(s, params);
   return out;
 }
 

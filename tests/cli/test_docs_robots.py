@@ -45,3 +45,23 @@ def test_every_python_block_runs(scratch, block):
     cwd, env = scratch
     r = subprocess.run([sys.executable, "-c", block], cwd=cwd, env=env, capture_output=True, text=True, timeout=120)
     assert r.returncode == 0, f"{block}\n{r.stdout}\n{r.stderr}"
+
+
+def test_every_cpp_block_builds_and_runs(scratch):
+    """A ```cpp block starts `// FILE.cpp: build and run with` followed by `//   COMMAND` lines:
+    the block is written to FILE.cpp and the commands run in order (the system's compiler)."""
+    cwd, env = scratch
+    for block in blocks("cpp"):
+        lines = block.splitlines()
+        head = re.match(r"// (\S+\.cpp): build and run with$", lines[0])
+        if head is None:
+            continue
+        (cwd / head[1]).write_text(block)
+        for line in lines[1:]:
+            command = re.match(r"//   (.+)$", line)
+            if command is None:
+                break
+            r = subprocess.run(command[1], shell=True, cwd=cwd, env=env, capture_output=True, text=True,
+                               timeout=120)
+            assert r.returncode == 0, f"{command[1]}\n{r.stdout}\n{r.stderr}"
+    assert any(re.match(r"// \S+\.cpp: build and run with\n", b) for b in blocks("cpp"))

@@ -87,6 +87,54 @@ TEST(Export, ReservedParameterNamesAreMarked) {
   EXPECT_THAT(py, HasSubstr("\"lambda\": \"lambda_\""));
 }
 
+TEST(Export, DynamicsFunctionsOnlyWithoutConstraints) {
+  // without constraints: inverse and forward dynamics on mass_matrix_and_forces
+  SystemSpec free_slider = slider_spec();
+  free_slider.constraints.clear();
+  const System free_sys(free_slider);
+  const std::string cpp = emit_cpp(free_sys), py = emit_python(free_sys);
+  EXPECT_THAT(cpp, HasSubstr("inline void inverse_dynamics(const double q[2], const double q_dot[2], "
+                             "const double q_ddot[2], double t, double tau[2], const Parameters& p = {}) {"));
+  EXPECT_THAT(cpp, HasSubstr("[[nodiscard]] inline bool forward_dynamics(const double q[2], const double "
+                             "q_dot[2], const double tau[2], double t, double q_ddot[2], const Parameters& p = {}) {"));
+  EXPECT_THAT(cpp, HasSubstr("  mass_matrix_and_forces(q, q_dot, t, M, f, p);\n"));
+  EXPECT_THAT(py, HasSubstr("def inverse_dynamics(q, q_dot, q_ddot, t=0.0, *, m=2.0, l=0.5, g=9.81, a=0.3):"));
+  EXPECT_THAT(py, HasSubstr("def forward_dynamics(q, q_dot, tau, t=0.0, *, m=2.0, l=0.5, g=9.81, a=0.3):"));
+  EXPECT_THAT(py, HasSubstr("_mass_matrix_and_forces(q, q_dot, t, m=m, l=l, g=g, a=a)"));
+  // still only <cmath> and `math`: no linear-algebra library
+  EXPECT_EQ(cpp.find("#include"), cpp.rfind("#include"));
+  EXPECT_THAT(py, Not(HasSubstr("numpy")));
+  EXPECT_EQ(py.find("\nimport "), py.rfind("\nimport "));  // `import math` only
+  // the functions before them are those of the system's file without them: the new ones are
+  // added at the end
+  const std::size_t end_cpp = cpp.find("/// τ = M q̈ − f");
+  ASSERT_NE(end_cpp, std::string::npos);
+  EXPECT_EQ(cpp.find("inline void constraint_gamma("), cpp.rfind("inline void constraint_gamma("));
+  EXPECT_LT(cpp.find("inline void constraint_gamma("), end_cpp);
+
+  // with a constraint: neither, and a comment saying why
+  const System sys(slider_spec());
+  const std::string ccpp = emit_cpp(sys), cpy = emit_python(sys);
+  for (const std::string& code : {ccpp, cpy}) {
+    EXPECT_THAT(code, Not(HasSubstr("inverse_dynamics(")));
+    EXPECT_THAT(code, Not(HasSubstr("forward_dynamics(")));
+    EXPECT_THAT(code, HasSubstr("inverse_dynamics and forward_dynamics are not exported: the system has "
+                                "constraints (m = 1),"));
+  }
+}
+
+TEST(Export, PythonMarksParametersNamedLikeTheDynamicsArguments) {
+  SystemSpec spec;
+  spec.parameters = {{"tau", 2.0}, {"q_ddot", 3.0}};
+  spec.coordinates = {{"x", 0.0, 0.0}};
+  spec.lagrangian = "tau*x_dot^2/2 - q_ddot*x^2/2";
+  const std::string py = emit_python(System(spec));
+  EXPECT_THAT(py, HasSubstr("def forward_dynamics(q, q_dot, tau, t=0.0, *, tau_=2.0, q_ddot_=3.0):"));
+  EXPECT_THAT(py, HasSubstr("\"tau\": \"tau_\""));
+  // C++ reads them as p.tau, p.q_ddot: no mark
+  EXPECT_THAT(emit_cpp(System(spec)), HasSubstr("double tau = 2.0;"));
+}
+
 TEST(Export, ConstraintTermsSatisfyTheEquationsOfMotion) {
   // q̈ and λ from the engine satisfy M q̈ = f + Gᵀλ and G q̈ = γ with the G and γ returned
   const System sys(slider_spec());

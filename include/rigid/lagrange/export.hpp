@@ -38,16 +38,27 @@ struct ExportOptions {
 /// common-subexpression-eliminated tape of its outputs, with the operations of the engine's
 /// tape in the same order, so it computes the engine's numbers (bitwise, on the same platform
 /// and libm). Parameters are named arguments: `forces(q, qd, t, f, {.m1 = 2.0})`.
+/// For a system without constraints (m = 0) also, on mass_matrix_and_forces:
+///   void inverse_dynamics(q, q_dot, const double q_ddot[n], t, double tau[n], p = {});
+///       // τ = M q̈ − f: the generalized force that, added to f, gives the acceleration q̈
+///   [[nodiscard]] bool forward_dynamics(q, q_dot, const double tau[n], t, double q_ddot[n], p);
+///       // q̈ = M⁻¹ (f + τ) by an in-place Cholesky L Lᵀ = M (plain loops); false, q_ddot
+///       // unchanged, where a pivot is ≤ 0 or NaN (M not positive definite)
+/// A system with constraints gets a comment line in their place: its multipliers λ enter
+/// M q̈ = f + τ + Gᵀλ.
 [[nodiscard]] std::string emit_cpp(const System& system, const ExportOptions& options = {});
 
 /// One Python module (only `math`) with the same functions, returning lists:
 ///   mass_matrix(q, t=0.0, *, <name>=<value>, ...) -> M (n lists of n floats)
 ///   forces(q, q_dot, t=0.0, *, ...) -> f;  mass_matrix_and_forces(...) -> (M, f)
 ///   constraint_jacobian(q, t=0.0, *, ...) -> G (m lists of n);  constraint_gamma(...) -> γ
+///   inverse_dynamics(q, q_dot, q_ddot, t=0.0, *, ...) -> τ          (m = 0 only, as in C++)
+///   forward_dynamics(q, q_dot, tau, t=0.0, *, ...) -> q̈; ValueError where M is not
+///       positive definite (a Cholesky pivot ≤ 0 or NaN)
 /// and COORDINATES, CONSTRAINTS, PARAMETERS (name → default). A parameter whose name is a
-/// Python keyword, an argument's name (q, q_dot, t), `math` or starts with '_' takes a
-/// trailing or leading mark (listed in PARAMETER_NAMES). Where C++ gives inf or NaN (a
-/// division by 0, sqrt of a negative number), Python's math raises ValueError or
+/// Python keyword, an argument's name (q, q_dot, q_ddot, tau, t), `math` or starts with '_'
+/// takes a trailing or leading mark (listed in PARAMETER_NAMES). Where C++ gives inf or NaN
+/// (a division by 0, sqrt of a negative number), Python's math raises ValueError or
 /// ZeroDivisionError.
 [[nodiscard]] std::string emit_python(const System& system, const ExportOptions& options = {});
 
