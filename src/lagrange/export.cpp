@@ -226,6 +226,7 @@ Tape function_tape(const System::Impl& s, const Parts& parts) {
   inputs.push_back(s.t);
   inputs.insert(inputs.end(), s.params.begin(), s.params.end());
   detail::TapeBuilder b(inputs, inputs.size() - s.params.size());  // as System's
+  detail::define_intermediates(b, s);
   const auto n = static_cast<std::size_t>(s.n);
   // the order of System's dynamics tape: M's upper triangle, f, G, γ
   if (parts.M) {

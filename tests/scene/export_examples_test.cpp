@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include "arm7.hpp"
 #include "atwood.hpp"
 #include "cart_arm.hpp"
 #include "cone_pendulum.hpp"
@@ -164,9 +165,11 @@ struct ExportedDynamics {
   }
 
 TEST(ExportExamples, InverseAndForwardDynamicsAgreeWithMfAndTheEngine) {
-  // the 3-joint cart_arm.urdf (a prismatic and two hinges) and the unconstrained scenes
+  // the 3-joint cart_arm.urdf (a prismatic and two hinges), the 7-joint arm7.urdf (derived by
+  // the tree's recursions) and the unconstrained scenes
   const std::vector<ExportedDynamics> models = {
       RIGID_EXPORTED_DYNAMICS(cart_arm, "cart_arm.urdf"),
+      RIGID_EXPORTED_DYNAMICS(arm7, "arm7.urdf"),
       RIGID_EXPORTED_DYNAMICS(double_pendulum, "double_pendulum.toml"),
       RIGID_EXPORTED_DYNAMICS(cone_pendulum, "cone_pendulum.toml"),
       RIGID_EXPORTED_DYNAMICS(physical_pendulum, "physical_pendulum.toml"),
