@@ -282,20 +282,32 @@ void bind_scene(py::module_& m) {
   py::class_<Model>(m, "Scene",
                     "A scene file turned into a model (parameters evaluated, mass properties and "
                     "equations built). Errors are rigid.Error with file:line:col.")
-      .def(py::init([](const py::object& path, const std::vector<std::string>& set) {
+      .def(py::init([](const py::object& path, const std::vector<std::string>& set,
+                       std::optional<bool> pin_free_root, std::optional<bool> inertia_from_geometry,
+                       std::optional<double> density) {
              const std::string file = cv::path(path, {"rigid.Scene", "path"});
              // a str is always a file name: scene text is refused with the remedy, never parsed
              if ((file.find('\n') != std::string::npos || file.find('[') != std::string::npos) && !cv::is_file(file)) {
                throw rigid::Error("rigid.Scene(): the path looks like TOML text: load a scene given as "
                                   "text with rigid.Scene.from_string(text)");
              }
-             return cv::reading("rigid.Scene", file, [&] { return rigid::scene::load_model(file, set); });
+             const rigid::scene::ModelOptions model{.pin_free_root = pin_free_root,
+                                                    .inertia_from_geometry = inertia_from_geometry,
+                                                    .density = density};
+             return cv::reading("rigid.Scene", file,
+                                [&] { return rigid::scene::load_model(file, set, model); });
            }),
-           py::arg("path"), py::arg("set") = std::vector<std::string>{},
-           "Loads a TOML scene file (a str or pathlib.Path; mesh paths are relative to its "
-           "directory; errors start with file:line:col); `set` holds 'name=value' overrides: "
-           "parameters, simulation.<key>, <coordinate>.initial/.velocity, <body>.omega "
-           "(docs/scene-format.md). Text is loaded by Scene.from_string.")
+           py::arg("path"), py::arg("set") = std::vector<std::string>{}, py::kw_only(),
+           py::arg("pin_free_root") = py::none(), py::arg("inertia_from_geometry") = py::none(),
+           py::arg("density") = py::none(),
+           "Loads a TOML scene file or a robot model file (URDF, MJCF; a str or pathlib.Path; mesh "
+           "and [model] paths are relative to its directory; errors start with file:line:col); "
+           "`set` holds 'name=value' overrides: parameters, simulation.<key>, "
+           "<coordinate>.initial/.velocity, <body>.omega (docs/scene-format.md). pin_free_root, "
+           "inertia_from_geometry and density (kg/m³, a URDF's collision geometry with "
+           "inertia_from_geometry) say how the robot model file is read, the one given or the one "
+           "[model] names (over the section's settings; None: the section's, else False, False, "
+           "1000); a TOML scene without [model] refuses them. Text is loaded by Scene.from_string.")
       .def_static(
           "from_string",
           [](const std::string& text, const std::vector<std::string>& set, const py::object& name) {

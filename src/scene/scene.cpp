@@ -1183,9 +1183,11 @@ Scene parse_document(const toml::table& root, const Parser& p, const ModelOption
   if (const toml::node* model = root.get("model")) {
     parse_model_section(*model, p, options, names, s);
   } else if (!options.empty()) {
-    throw Error(fmt::format("{}: {} applies to a robot model file (URDF, MJCF) given as the scene "
-                            "or named by a [model] section; this TOML scene has no [model]",
-                            p.file().string(), model_options_text(options)));
+    const std::string given = model_options_text(options);
+    throw Error(fmt::format("{}: {} {} to a robot model file (URDF, MJCF) given as the scene or "
+                            "named by a [model] section; this TOML scene has no [model]",
+                            p.file().string(), given,
+                            given.find(", ") == std::string::npos ? "applies" : "apply"));
   }
   parse_parameters(root, p, names, s);
   parse_coordinates(root, p, names, s);

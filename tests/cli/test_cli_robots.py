@@ -337,3 +337,131 @@ def test_arm7_sdf_prints_the_urdfs_equations(run):
         f.append(np.array([evaluate(e, values) for e in d["forcing"]["text"]]))
     np.testing.assert_allclose(M[1], M[0], rtol=0, atol=1e-12 * np.abs(M[0]).max())
     np.testing.assert_allclose(f[1], f[0], rtol=0, atol=1e-12 * np.abs(f[0]).max())
+
+
+# --- 7. how a model file is read: --pin-free-root, --inertia-from-geometry, --density, [model] --
+
+ARM7 = EXAMPLES / "arm7.urdf"
+ARM7_PD = EXAMPLES / "robots" / "arm7_pd.toml"
+SCENE_VERBS = (["check"], ["eom"], ["modes"], ["run", "-q", "-o"], ["sweep", "--grid", "m1=1:2:2", "-q", "-o"])
+
+BOX_URDF = """<?xml version="1.0"?>
+<robot name="box">
+  <link name="base"/>
+  <link name="box">
+    <inertial>
+      <mass value="1"/>
+      <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/>
+    </inertial>
+    <collision>
+      <origin xyz="0 0 -0.5"/>
+      <geometry><box size="0.1 0.2 0.3"/></geometry>
+    </collision>
+  </link>
+  <joint name="hinge" type="continuous">
+    <parent link="base"/>
+    <child link="box"/>
+    <axis xyz="0 1 0"/>
+  </joint>
+</robot>
+"""
+
+
+def test_arm7_from_geometry_keeps_its_inertials(run):
+    """arm7.urdf has no collision geometry, so with --inertia-from-geometry every link keeps its
+    stated inertial (the rule of `rigid inertia fix`): the option is accepted and the equations
+    are the same bytes (they print alike from separate processes, tests/cli/test_eom.py)."""
+    assert "<collision" not in ARM7.read_text()
+    plain = json.loads(run("eom", ARM7, "--format", "json", check=True).stdout)
+    from_geometry = json.loads(run("eom", ARM7, "--format", "json", "--inertia-from-geometry",
+                                   check=True).stdout)
+    assert from_geometry["mass_matrix"] == plain["mass_matrix"]
+    assert from_geometry["forcing"] == plain["forcing"]
+
+
+def test_inertia_from_geometry_and_density_reach_the_links(run, tmp_path):
+    # the box's mass at density ρ: ρ · 0.1 · 0.2 · 0.3 m³ (its stated inertial says 1 kg)
+    box = tmp_path / "box.urdf"
+    box.write_text(BOX_URDF)
+    for flags, mass in (([], "1"), (["--inertia-from-geometry"], "6"),
+                        (["--inertia-from-geometry", "--density", "500"], "3")):
+        out = run("check", box, *flags, check=True).stdout
+        assert f"box          mass {mass} kg," in out, (flags, out)
+    # a density alone would change nothing: refused, naming the flag it goes with
+    proc = run("check", box, "--density", "500", check=False)
+    assert proc.returncode == 1 and "--inertia-from-geometry" in proc.stderr, proc.stderr
+    for bad in ("0", "-2", "nan", "x"):
+        proc = run("check", box, "--inertia-from-geometry", f"--density={bad}", check=False)
+        assert proc.returncode == 1, proc.stderr
+        assert proc.stderr == f"{PREFIX}--density {bad}: expected a finite number > 0 (kg/m³)\n"
+    # Python: the same keywords
+    body = rigid.Scene(str(box), inertia_from_geometry=True, density=500).bodies["box"]
+    assert body.mass == pytest.approx(500 * 0.1 * 0.2 * 0.3, rel=1e-15)
+
+
+def test_pinned_humanoid_gets_past_the_free_joint(run):
+    if not HUMANOID.exists():
+        pytest.skip("MuJoCo's model directory is not installed")
+    refused = run("check", HUMANOID, check=False)
+    assert refused.returncode == 1 and f"{HUMANOID}:67: joint 'root' (type free)" in refused.stderr
+    pinned = run("check", HUMANOID, "--pin-free-root")
+    # read pinned, the model may pass or be refused for another reason (a chain too deep for the
+    # symbolic equations), but not for its free joint
+    assert pinned.returncode in (0, 1), pinned.stderr
+    assert "'root'" not in pinned.stderr and "free" not in pinned.stderr, pinned.stderr
+    if pinned.returncode == 0:
+        assert "coordinates: abdomen_z" in pinned.stdout
+
+
+@pytest.mark.parametrize("flags", [["--pin-free-root"], ["--inertia-from-geometry"],
+                                   ["--inertia-from-geometry", "--density", "500"]])
+def test_model_flags_are_refused_for_a_toml_scene_without_model(run, tmp_path, flags):
+    atwood = EXAMPLES / "atwood.toml"
+    for verb in SCENE_VERBS:
+        out = [tmp_path / "out"] if verb[-1] == "-o" else []
+        proc = run(verb[0], atwood, *verb[1:], *out, *flags, check=False)
+        assert proc.returncode == 1, (verb, proc.stderr)
+        said = "--pin-free-root applies" if len(flags) == 1 and flags[0] == "--pin-free-root" else \
+            "--inertia-from-geometry applies" if len(flags) == 1 else \
+            "--inertia-from-geometry, density 500 kg/m³ apply"
+        assert proc.stderr.startswith(f"{PREFIX}{atwood}: {said} to a robot model file"), proc.stderr
+        assert proc.stderr.rstrip().endswith("this TOML scene has no [model]"), proc.stderr
+        assert not (tmp_path / "out").exists()
+    with pytest.raises(rigid.Error, match="pin_free_root=True applies to a robot model file"):
+        rigid.Scene(str(atwood), pin_free_root=True)
+
+
+def test_a_model_scene_adds_its_forces_and_takes_the_flags(run, tmp_path):
+    # the example's two PD torques are the generalized forces of joint2 and joint4, the others'
+    # are the joints' damping alone
+    doc = json.loads(run("eom", ARM7_PD, "--format", "json", check=True).stdout)
+    assert doc["coordinates"] == [f"joint{i}" for i in range(1, 8)]
+    sympy = pytest.importorskip("sympy")
+    damping = ["0.5", "0.5", "0.4", "0.4", "0.2", "0.2", "0.1"]  # arm7.urdf's, N·m·s/rad
+    pd = {2: "-kp*(joint2 - shoulder_target) - kd*joint2_dot",
+          4: "-kp*(joint4 - elbow_target) - kd*joint4_dot"}
+    for i, printed in enumerate(doc["forcing_generalized"]["text"], start=1):
+        expected = f"-{damping[i - 1]}*joint{i}_dot" + (f" + ({pd[i]})" if i in pd else "")
+        # as exact rationals: the printed 1/2 and the file's 0.5 are the same number
+        difference = sympy.sympify(printed.replace("^", "**"), rational=True) - \
+            sympy.sympify(expected, rational=True)
+        assert sympy.expand(difference) == 0, (i, printed, expected)
+    out = run("check", ARM7_PD, check=True).stdout
+    assert "kp = 200 kd = 20" in out and "t_end = 2 s" in out
+    # the flags go over the section: arm7 has no collision geometry, so its links stay as stated
+    assert run("check", ARM7_PD, "--inertia-from-geometry", check=True).stdout == out
+    proc = run("check", ARM7_PD, "--density", "500", check=False)
+    assert proc.returncode == 1 and "--inertia-from-geometry" in proc.stderr
+    # a sweep of the controller's gain: one model, two runs
+    run("sweep", ARM7_PD, "--grid", "kp=100:200:2", "-o", tmp_path / "sweep", "-q", check=True)
+    with open(tmp_path / "sweep" / "runs.csv", newline="") as f:
+        rows = list(csv.reader(f))
+    assert "shoulder_final" in rows[0] and len(rows) == 3, rows
+
+
+def test_the_scene_format_pages_model_example_is_the_example_file():
+    """docs/scene-format.md shows examples/robots/arm7_pd.toml as it is, which the tests above run."""
+    page = (EXAMPLES.parent / "docs" / "scene-format.md").read_text()
+    section = page[page.index("### `[model]`"):]
+    block = section[section.index("```toml\n") + len("```toml\n"):]
+    assert block[:block.index("```")] == ARM7_PD.read_text()
