@@ -4,6 +4,8 @@
 // constraints where the model has them) and the parts that are the same work as ours
 // (mj_kinematics + mj_comPos + mj_crb for M; + mj_comVel + mj_rne for the bias). Models: the
 // seven-joint arm of examples/arm7.urdf and MuJoCo's humanoid pinned at the torso (21 hinges).
+// And the symbolic side: the file's scene derived and compiled (the tree's recursions on named
+// intermediates), its printed equations, and its compiled tape's M and f per call.
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -18,7 +20,10 @@
 #include <unistd.h>
 
 #include "rigid/io/robot_model.hpp"
+#include "rigid/lagrange/system.hpp"
 #include "rigid/robot/tree_dynamics.hpp"
+#include "rigid/scene/model.hpp"
+#include "rigid/scene/robot_scene.hpp"
 #include "support/mjcf_text.hpp"
 
 namespace {
@@ -144,6 +149,50 @@ void BM_MuJoCo_forward(benchmark::State& state) {
   }
 }
 
+// the model file → its scene → its System: read, derive, compile the tapes
+rigid::scene::Model derived_model(int which) {
+  const std::string file = which == 0 ? (kSource / "examples" / "arm7.urdf").string() : kHumanoid.string();
+  rigid::io::RobotReadOptions o;
+  o.pin_free_root = which == 1;
+  return rigid::scene::Model(
+      rigid::scene::scene_from_robot(rigid::io::read_robot_model_file(file, o), file));
+}
+
+void BM_Robot_derive(benchmark::State& state) {
+  const int which = static_cast<int>(state.range(0));
+  state.SetLabel(name_of(which));
+  for (auto _ : state) benchmark::DoNotOptimize(derived_model(which).system().tape_size());
+}
+
+// what `rigid eom` adds: the equations simplified and printed (text, LaTeX)
+void BM_Robot_deriveAndPrint(benchmark::State& state) {
+  const int which = static_cast<int>(state.range(0));
+  state.SetLabel(name_of(which));
+  for (auto _ : state) {
+    const rigid::scene::Model m = derived_model(which);
+    benchmark::DoNotOptimize(m.system().equations().text.size());
+  }
+}
+
+// the compiled tape's M and f of M q̈ = f (passive terms included) at one state
+void BM_Robot_tapeMf(benchmark::State& state) {
+  const int which = static_cast<int>(state.range(0));
+  state.SetLabel(name_of(which));
+  static const rigid::scene::Model arm = derived_model(0), humanoid = derived_model(1);
+  const rigid::lagrange::System& system = (which == 0 ? arm : humanoid).system();
+  rigid::lagrange::Workspace w = system.make_workspace();
+  Pair& p = model(which);
+  Eigen::MatrixXd M;
+  Eigen::VectorXd f;
+  for (auto _ : state) {
+    system.mass_matrix_and_forces(w, 0.0, p.q, p.v, M, f);
+    benchmark::DoNotOptimize(f.data());
+  }
+}
+
+BENCHMARK(BM_Robot_derive)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Robot_deriveAndPrint)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Robot_tapeMf)->Arg(0)->Arg(1);
 BENCHMARK(BM_Robot_massMatrix)->Arg(0)->Arg(1);
 BENCHMARK(BM_MuJoCo_massMatrix)->Arg(0)->Arg(1);
 BENCHMARK(BM_Robot_biasForces)->Arg(0)->Arg(1);
