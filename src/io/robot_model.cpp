@@ -412,8 +412,9 @@ std::optional<RobotJoint> mjcf_joint(const Mjcf& m, const XMLElement* j,
             "joint '{}' (type {}): ball and free joints (floating bases) are not yet supported{}",
             name, type,
             type == "free" && world_child
-                ? "; the robot pinned where its root stands is read by Python's "
-                  "rigid.robot.Robot(file, pin_free_root=True)"
+                ? "; to read the robot pinned where its root stands: --pin-free-root, a "
+                  "scene's [model] pin_free_root = true, or rigid.robot.Robot(file, "
+                  "pin_free_root=True)"
                 : ""));
   }
   if (type != "hinge" && type != "slide") {

@@ -459,8 +459,9 @@ TEST(RobotModelMjcf, RefusesBallAndFreeJointsUnlessPinned) {
 </mujoco>)";
   EXPECT_RIGID_ERROR((void)read_robot_model(xml, "f.xml"),
                      "f.xml:4: joint 'root' (type free): ball and free joints (floating bases) are "
-                     "not yet supported; the robot pinned where its root stands is read by "
-                     "Python's rigid.robot.Robot(file, pin_free_root=True)");
+                     "not yet supported; to read the robot pinned where its root stands: "
+                     "--pin-free-root, a scene's [model] pin_free_root = true, or "
+                     "rigid.robot.Robot(file, pin_free_root=True)");
   EXPECT_RIGID_ERROR((void)read_robot_model(xml, "f.xml", {.pin_free_root = true}),
                      "f.xml:5: joint 'ball' (type ball): ball and free joints (floating bases) are "
                      "not yet supported");
