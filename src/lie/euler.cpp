@@ -78,6 +78,10 @@ std::string EulerConvention::name() const {
 
 SO3d from_euler(const Eigen::Vector3d& angles, const EulerConvention& conv) {
   RIGID_REQUIRE(angles.allFinite(), "Euler angles {} have a non-finite component", to_string(angles.transpose()));
+  RIGID_REQUIRE((angles.array().abs() <= kMaxAngle).all(),
+                "Euler angles {} rad: an angle is too large, expected |angle| <= kMaxAngle = {:.0e} "
+                "rad (beyond, rounding has lost the fraction of a turn)",
+                to_string(angles.transpose()), kMaxAngle);
   const SO3d r0 = axis_rotation(conv.axes[0], angles(0));
   const SO3d r1 = axis_rotation(conv.axes[1], angles(1));
   const SO3d r2 = axis_rotation(conv.axes[2], angles(2));

@@ -4,6 +4,7 @@
 
 #include "rigid/common/error.hpp"
 #include "rigid/common/format.hpp"
+#include "lie/detail/interpolation.hpp"
 #include "lie/detail/value_of.hpp"
 
 namespace rigid {
@@ -66,10 +67,23 @@ SE2<Scalar> SE2<Scalar>::from_matrix(const Matrix3& T, double tol) {
 
 template <typename Scalar>
 SE2<Scalar> SE2<Scalar>::exp(const Tangent& xi) {
+  const Eigen::Vector3d xd(value_of(xi(0)), value_of(xi(1)), value_of(xi(2)));
+  RIGID_REQUIRE_AS("SE2::exp", xd.allFinite(), "tangent vector {} has a non-finite component",
+                   to_string(xd.transpose()));
   const Coefficients<Scalar> k = coefficients(xi(2));
   // V ρ with V = [[a, −b], [b, a]].
   const Vector2 t(k.a * xi(0) - k.b * xi(1), k.b * xi(0) + k.a * xi(1));
   return SE2(SO2<Scalar>::exp(typename SO2<Scalar>::Tangent(xi(2))), t);
+}
+
+template <typename Scalar>
+SE2<Scalar> SE2<Scalar>::interpolate(const SE2& b, const Scalar& s) const {
+  detail::require_finite_fraction("SE2::interpolate", value_of(s));
+  const Tangent xi = s * (inverse() * b).log();
+  const Eigen::Vector3d xd(value_of(xi(0)), value_of(xi(1)), value_of(xi(2)));
+  detail::require_interpolated_turn("SE2::interpolate", value_of(s), xd.cwiseAbs().maxCoeff(),
+                                    std::abs(xd(2)));
+  return *this * exp(xi);
 }
 
 template <typename Scalar>

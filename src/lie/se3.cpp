@@ -4,6 +4,7 @@
 
 #include "rigid/common/error.hpp"
 #include "rigid/common/format.hpp"
+#include "lie/detail/interpolation.hpp"
 #include "lie/detail/value_of.hpp"
 
 namespace rigid {
@@ -28,9 +29,24 @@ SE3<Scalar> SE3<Scalar>::from_matrix(const Matrix4& T, double tol) {
 
 template <typename Scalar>
 SE3<Scalar> SE3<Scalar>::exp(const Vector6& xi) {
+  Eigen::Matrix<double, 6, 1> xd;
+  for (int i = 0; i < 6; ++i) xd(i) = value_of(xi(i));
+  RIGID_REQUIRE_AS("SE3::exp", xd.allFinite(), "tangent vector {} has a non-finite component",
+                   to_string(xd.transpose()));
   const Vector3 rho = xi.template head<3>();
   const Vector3 omega = xi.template tail<3>();
   return SE3(SO3<Scalar>::exp(omega), SO3<Scalar>::left_jacobian(omega) * rho);
+}
+
+template <typename Scalar>
+SE3<Scalar> SE3<Scalar>::interpolate(const SE3& b, const Scalar& s) const {
+  detail::require_finite_fraction("SE3::interpolate", value_of(s));
+  const Vector6 xi = s * (inverse() * b).log();
+  Eigen::Matrix<double, 6, 1> xd;
+  for (int i = 0; i < 6; ++i) xd(i) = value_of(xi(i));
+  detail::require_interpolated_turn("SE3::interpolate", value_of(s), xd.cwiseAbs().maxCoeff(),
+                                    xd.tail<3>().stableNorm());
+  return *this * exp(xi);
 }
 
 template <typename Scalar>

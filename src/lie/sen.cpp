@@ -7,6 +7,7 @@
 
 #include "rigid/common/error.hpp"
 #include "rigid/common/format.hpp"
+#include "lie/detail/interpolation.hpp"
 #include "lie/detail/phi.hpp"
 
 namespace rigid {
@@ -139,6 +140,15 @@ SEn SEn::inverse() const {
   SOn Ri = R_.inverse();
   VectorXd t = -(Ri.matrix() * t_);
   return SEn(std::move(Ri), std::move(t), true);
+}
+
+SEn SEn::interpolate(const SEn& b, double s) const {
+  detail::require_finite_fraction("SEn::interpolate", s);
+  const Tangent xi = s * (inverse() * b).log();
+  const Eigen::Index n = t_.size();
+  const double largest_rotation = xi.tail(xi.size() - n).cwiseAbs().maxCoeff();
+  detail::require_interpolated_turn("SEn::interpolate", s, xi.cwiseAbs().maxCoeff(), largest_rotation);
+  return *this * exp(xi);
 }
 
 SEn SEn::operator*(const SEn& b) const {

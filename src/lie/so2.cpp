@@ -7,6 +7,7 @@
 
 #include "rigid/common/error.hpp"
 #include "rigid/common/format.hpp"
+#include "lie/detail/interpolation.hpp"
 #include "lie/detail/value_of.hpp"
 
 namespace rigid {
@@ -24,7 +25,20 @@ SO2<Scalar> SO2<Scalar>::from_angle_unchecked(const Scalar& theta) {
 template <typename Scalar>
 SO2<Scalar> SO2<Scalar>::from_angle(const Scalar& theta) {
   RIGID_REQUIRE(std::isfinite(value_of(theta)), "angle {} is not finite", value_of(theta));
+  RIGID_REQUIRE(std::abs(value_of(theta)) <= kMaxAngle,
+                "angle {} rad is too large: expected |angle| <= kMaxAngle = {:.0e} rad (beyond, "
+                "rounding has lost the fraction of a turn)",
+                value_of(theta), kMaxAngle);
   return from_angle_unchecked(theta);
+}
+
+template <typename Scalar>
+SO2<Scalar> SO2<Scalar>::interpolate(const SO2& b, const Scalar& s) const {
+  detail::require_finite_fraction("SO2::interpolate", value_of(s));
+  const Scalar theta = s * (inverse() * b).angle();
+  detail::require_interpolated_turn("SO2::interpolate", value_of(s), std::abs(value_of(theta)),
+                                    std::abs(value_of(theta)));
+  return *this * from_angle_unchecked(theta);
 }
 
 template <typename Scalar>

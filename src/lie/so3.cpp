@@ -4,6 +4,7 @@
 
 #include "rigid/common/error.hpp"
 #include "rigid/common/format.hpp"
+#include "lie/detail/interpolation.hpp"
 #include "lie/detail/value_of.hpp"
 
 namespace rigid {
@@ -39,6 +40,26 @@ void jacobian_coefficients(const Scalar& theta2, Scalar& a, Scalar& b, Scalar& c
   a = (1.0 - co) / theta2;
   b = (theta - s) / (theta2 * theta);
   c = 1.0 / theta2 - (1.0 + co) / (2.0 * theta * s);
+}
+
+// rigid::Error "<function>(): rotation vector [..] has a non-finite component" or "... is too
+// long: ..." for a rotation vector refused by exp (out of line: the exp path stays small).
+[[noreturn, gnu::cold, gnu::noinline]] void refuse_rotation_vector(const char* function,
+                                                                  const Eigen::Vector3d& w) {
+  if (!w.allFinite()) {
+    detail::throw_error(function, fmt::format("rotation vector {} has a non-finite component",
+                                              to_string(w.transpose())));
+  }
+  detail::throw_error(
+      function,
+      fmt::format("rotation vector {} is too long: angle |ω| = {:.6g} rad, expected at most "
+                  "kMaxAngle = {:.0e} rad (beyond, rounding has lost the fraction of a turn)",
+                  to_string(w.transpose()), w.stableNorm(), kMaxAngle));
+}
+
+template <typename Vector3>
+Eigen::Vector3d values_of(const Vector3& v) {
+  return {value_of(v(0)), value_of(v(1)), value_of(v(2))};
 }
 
 }  // namespace
@@ -137,6 +158,10 @@ SO3<Scalar> SO3<Scalar>::from_axis_angle(const Vector3& axis, const Scalar& angl
   const Eigen::Vector3d a(value_of(axis(0)), value_of(axis(1)), value_of(axis(2)));
   RIGID_REQUIRE(a.allFinite(), "axis {} has a non-finite component", to_string(a.transpose()));
   RIGID_REQUIRE(std::isfinite(value_of(angle)), "angle {} is not finite", value_of(angle));
+  RIGID_REQUIRE(std::abs(value_of(angle)) <= kMaxAngle,
+                "angle {} rad is too large: expected |angle| <= kMaxAngle = {:.0e} rad (beyond, "
+                "rounding has lost the fraction of a turn)",
+                value_of(angle), kMaxAngle);
   RIGID_REQUIRE(a.norm() > 1e-12, "axis {} has norm {}, expected a nonzero axis (norm > 1e-12)",
                 to_string(a.transpose()), a.norm());
   const Scalar n = sqrt(axis.squaredNorm());
@@ -155,6 +180,9 @@ SO3<Scalar> SO3<Scalar>::exp(const Vector3& omega) {
     w = 1.0 - theta2 / 8.0;
     k = 0.5 - theta2 / 48.0;
   } else {
+    // (also false for NaN: a non-finite ω, or one whose |ω|² overflows)
+    if (!(value_of(theta2) <= kMaxAngle * kMaxAngle)) [[unlikely]]
+      refuse_rotation_vector("SO3::exp", values_of(omega));
     const Scalar theta = sqrt(theta2);
     w = cos(0.5 * theta);
     k = sin(0.5 * theta) / theta;
@@ -172,6 +200,9 @@ template <typename Scalar>
 typename SO3<Scalar>::Vector3 SO3<Scalar>::log() const {
   using std::atan2;
   using std::sqrt;
+  RIGID_REQUIRE_AS("SO3::log", !std::isnan(value_of(q_(0))),
+                   "the rotation is SO3::invalid() (the NaN marker of a diverged computation), "
+                   "expected a valid rotation");
   // Use the representative with w ≥ 0 so that the angle lies in [0, π].
   const Scalar sign = value_of(q_(0)) < 0.0 ? Scalar(-1.0) : Scalar(1.0);
   const Scalar w = sign * q_(0);
@@ -194,8 +225,21 @@ Scalar SO3<Scalar>::angle() const {
   using std::abs;
   using std::atan2;
   using std::sqrt;
+  RIGID_REQUIRE_AS("SO3::angle", !std::isnan(value_of(q_(0))),
+                   "the rotation is SO3::invalid() (the NaN marker of a diverged computation), "
+                   "expected a valid rotation");
   const Scalar n = sqrt(q_.template tail<3>().squaredNorm());
   return 2.0 * atan2(n, abs(q_(0)));
+}
+
+template <typename Scalar>
+SO3<Scalar> SO3<Scalar>::interpolate(const SO3& b, const Scalar& s) const {
+  detail::require_finite_fraction("SO3::interpolate", value_of(s));
+  const Vector3 omega = s * (inverse() * b).log();
+  const Eigen::Vector3d w = values_of(omega);
+  detail::require_interpolated_turn("SO3::interpolate", value_of(s), w.cwiseAbs().maxCoeff(),
+                                    w.stableNorm());
+  return *this * exp(omega);
 }
 
 template <typename Scalar>

@@ -15,6 +15,7 @@
 #include "rigid/common/error.hpp"
 #include "rigid/common/format.hpp"
 #include "rigid/lie/orthogonal.hpp"
+#include "lie/detail/interpolation.hpp"
 #include "lie/detail/phi.hpp"
 
 namespace rigid {
@@ -226,6 +227,15 @@ SOn SOn::sample(int n, std::mt19937_64& rng) {
     if (QR(i, i) < 0.0) Q.col(i) *= -1.0;
   if (Q.determinant() < 0.0) Q.col(0) *= -1.0;
   return SOn(std::move(Q));
+}
+
+SOn SOn::interpolate(const SOn& b, double s) const {
+  detail::require_finite_fraction("SOn::interpolate", s);
+  const Tangent omega = s * (inverse() * b).log();
+  // the largest plane angle bounds each tangent entry and is at most √2 times the largest
+  const double largest = omega.cwiseAbs().maxCoeff();
+  detail::require_interpolated_turn("SOn::interpolate", s, largest, largest);
+  return *this * exp(omega);
 }
 
 SOn SOn::operator*(const SOn& b) const {

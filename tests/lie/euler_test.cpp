@@ -1,4 +1,5 @@
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <random>
 
@@ -87,6 +88,19 @@ TEST(Euler, BadInput) {
                      "YXY, YZY, ZXZ, ZYZ");
   EXPECT_RIGID_ERROR((void)from_euler(Eigen::Vector3d(0, NAN, 0), EulerConvention{}),
                      "Euler angles [0, nan, 0] have a non-finite component");
+}
+
+TEST(Euler, FromEulerRefusesAnglesBeyondTheLimit) {
+  // 1e300 rad: cos and sin of it are defined, but the fraction of a turn is long lost; the
+  // rotation was NaN before this was refused (|ω|² overflowed in exp)
+  EXPECT_RIGID_ERROR((void)from_euler(Eigen::Vector3d(1e300, 0, 0), EulerConvention::parse("ZYX", true)),
+                     "from_euler(): Euler angles [1e+300, 0, 0] rad: an angle is too large, expected "
+                     "|angle| <= kMaxAngle = 1e+15 rad");
+  EXPECT_RIGID_ERROR((void)from_euler(Eigen::Vector3d(0, 0, -2e15), EulerConvention::parse("XYZ", false)),
+                     "an angle is too large");
+  // the limit itself is accepted: a unit quaternion (4 ulps)
+  const SO3d R = from_euler(Eigen::Vector3d(kMaxAngle, -kMaxAngle, 0.5), EulerConvention::parse("ZYX", true));
+  EXPECT_NEAR(R.quaternion().norm(), 1.0, 4 * std::numeric_limits<double>::epsilon());
 }
 
 }  // namespace

@@ -137,5 +137,22 @@ TEST(SE2, BadInput) {
   EXPECT_RIGID_ERROR((void)SE2d::from_matrix(T), "is not a rotation");
 }
 
+TEST(SO2, ExpAndInterpolateRefuseNonFiniteAndHugeAngles) {
+  EXPECT_RIGID_ERROR((void)SO2d::exp(SO2d::Tangent(std::nan(""))), "angle nan is not finite");
+  EXPECT_RIGID_ERROR((void)SO2d::from_angle(1e300), "angle 1e+300 rad is too large");
+  const SO2d a = SO2d::identity(), b = SO2d::from_angle(0.5);
+  EXPECT_RIGID_ERROR((void)a.interpolate(b, std::nan("")),
+                     "SO2::interpolate(): fraction s = nan is not finite");
+  EXPECT_RIGID_ERROR((void)a.interpolate(b, 1e300), "turning by at most kMaxAngle");
+}
+
+TEST(SE2, ExpAndInterpolateRefuseNonFiniteInput) {
+  EXPECT_RIGID_ERROR((void)SE2d::exp(SE2d::Tangent(1, std::nan(""), 0)),
+                     "SE2::exp(): tangent vector [1, nan, 0] has a non-finite component");
+  const SE2d a = SE2d::identity(), b = SE2d::exp(SE2d::Tangent(1, 2, 0.5));
+  EXPECT_RIGID_ERROR((void)a.interpolate(b, INFINITY),
+                     "SE2::interpolate(): fraction s = inf is not finite");
+}
+
 }  // namespace
 }  // namespace rigid

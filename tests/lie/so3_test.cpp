@@ -1,6 +1,7 @@
 // SO3 and SE3 against closed forms, the hard angles (1e-12, π − 1e-9, π) and bad input.
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <random>
 
@@ -244,6 +245,65 @@ TEST(SE3, BadInput) {
   T = Eigen::Matrix4d::Identity();
   T(0, 0) = 1.1;
   EXPECT_RIGID_ERROR((void)SE3d::from_matrix(T), "is not a rotation");
+}
+
+TEST(SO3, ExpRefusesNonFiniteAndMeaninglessRotationVectors) {
+  const double nan = std::nan("");
+  EXPECT_RIGID_ERROR((void)SO3d::exp(Eigen::Vector3d(0, nan, 0)),
+                     "SO3::exp(): rotation vector [0, nan, 0] has a non-finite component");
+  EXPECT_RIGID_ERROR((void)SO3d::exp(Eigen::Vector3d(INFINITY, 0, 0)), "non-finite component");
+  // |ω|² overflows at 1e200: refused as too long, not returned as NaN
+  EXPECT_RIGID_ERROR((void)SO3d::exp(Eigen::Vector3d(1e200, 0, 0)),
+                     "rotation vector [1e+200, 0, 0] is too long: angle |ω| = 1e+200 rad, expected "
+                     "at most kMaxAngle = 1e+15 rad");
+  EXPECT_RIGID_ERROR((void)SO3d::exp(Eigen::Vector3d(0, 0, 1.01e15)), "is too long");
+  // the limit itself is accepted, and gives a unit quaternion (|q| = 1 to rounding: 4 ulps)
+  const SO3d R = SO3d::exp(Eigen::Vector3d(0, 0, kMaxAngle));
+  EXPECT_NEAR(R.quaternion().norm(), 1.0, 4 * std::numeric_limits<double>::epsilon());
+}
+
+TEST(SO3, FromAxisAngleRefusesAnAngleBeyondTheLimit) {
+  EXPECT_RIGID_ERROR((void)SO3d::from_axis_angle(Eigen::Vector3d::UnitX(), 1e300),
+                     "from_axis_angle(): angle 1e+300 rad is too large: expected |angle| <= "
+                     "kMaxAngle = 1e+15 rad");
+  EXPECT_RIGID_ERROR((void)SO3d::from_axis_angle(Eigen::Vector3d::UnitX(), std::nan("")),
+                     "angle nan is not finite");
+}
+
+TEST(SO3, InterpolateRefusesANonFiniteOrHugeFraction) {
+  const SO3d a = SO3d::identity();
+  const SO3d b = SO3d::exp(Eigen::Vector3d(0, 0, 1.0));
+  EXPECT_RIGID_ERROR((void)a.interpolate(b, std::nan("")),
+                     "SO3::interpolate(): fraction s = nan is not finite, expected a finite s");
+  EXPECT_RIGID_ERROR((void)a.interpolate(b, INFINITY), "fraction s = inf is not finite");
+  // s · angle = 1e300 rad: beyond kMaxAngle
+  EXPECT_RIGID_ERROR((void)a.interpolate(b, 1e300),
+                     "SO3::interpolate(): fraction s = 1e+300 gives the tangent s · log(a⁻¹ b) with "
+                     "largest entry 1e+300");
+  // a finite s far outside [0, 1] stays allowed: the rotation by s rad about z (4 ulps)
+  const SO3d far = a.interpolate(b, 7.0);
+  EXPECT_NEAR((far.log() - Eigen::Vector3d(0, 0, 7.0 - 2.0 * pi)).norm(), 0.0, 1e-14);
+}
+
+TEST(SO3, LogAndAngleRefuseTheInvalidMarker) {
+  EXPECT_RIGID_ERROR((void)SO3d::invalid().log(), "SO3::log(): the rotation is SO3::invalid()");
+  EXPECT_RIGID_ERROR((void)SO3d::invalid().angle(), "SO3::angle(): the rotation is SO3::invalid()");
+}
+
+TEST(SE3, ExpAndInterpolateRefuseNonFiniteInput) {
+  Eigen::Matrix<double, 6, 1> xi = Eigen::Matrix<double, 6, 1>::Zero();
+  xi(1) = std::nan("");
+  EXPECT_RIGID_ERROR((void)SE3d::exp(xi), "SE3::exp(): tangent vector [0, nan, 0, 0, 0, 0] has a "
+                                          "non-finite component");
+  xi(1) = 0.0;
+  xi(4) = 1e200;
+  EXPECT_RIGID_ERROR((void)SE3d::exp(xi), "SO3::exp(): rotation vector [0, 1e+200, 0] is too long");
+  const SE3d a = SE3d::identity();
+  const SE3d b(SO3d::exp(Eigen::Vector3d(0.1, 0, 0)), Eigen::Vector3d(1, 2, 3));
+  EXPECT_RIGID_ERROR((void)a.interpolate(b, std::nan("")),
+                     "SE3::interpolate(): fraction s = nan is not finite");
+  // a translation of 1e308 · 3 overflows: refused, not returned as inf
+  EXPECT_RIGID_ERROR((void)a.interpolate(b, 1e308), "expected a finite tangent");
 }
 
 }  // namespace

@@ -279,5 +279,20 @@ TEST(SEn, BadInput) {
   EXPECT_RIGID_ERROR((void)(SEn::identity(2) * SEn::identity(3)), "SO(2) and SO(3) differ");
 }
 
+TEST(SOn, InterpolateRefusesANonFiniteOrHugeFraction) {
+  const SOn a = SOn::identity(4);
+  const SOn b = SOn::exp(Eigen::VectorXd::Constant(6, 0.1));
+  EXPECT_RIGID_ERROR((void)a.interpolate(b, std::nan("")),
+                     "SOn::interpolate(): fraction s = nan is not finite");
+  EXPECT_RIGID_ERROR((void)a.interpolate(b, 1e300), "turning by at most kMaxAngle");
+}
+
+TEST(SEn, InterpolateRefusesANonFiniteFraction) {
+  const SEn a = SEn::identity(3);
+  const SEn b = SEn::exp(Eigen::VectorXd::Constant(6, 0.1));
+  EXPECT_RIGID_ERROR((void)a.interpolate(b, -INFINITY),
+                     "SEn::interpolate(): fraction s = -inf is not finite");
+}
+
 }  // namespace
 }  // namespace rigid

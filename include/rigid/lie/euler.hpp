@@ -27,7 +27,8 @@ struct EulerConvention {
 /// The 12 valid axis sequences, in the order listed by error messages.
 [[nodiscard]] const std::array<std::string_view, 12>& euler_sequences();
 
-/// Rotation from Euler angles (radians). @throws rigid::Error if an angle is not finite.
+/// Rotation from Euler angles (radians). @throws rigid::Error if an angle is not finite or
+/// exceeds kMaxAngle in magnitude.
 [[nodiscard]] SO3d from_euler(const Eigen::Vector3d& angles, const EulerConvention& convention);
 
 /// Euler angles (radians) of R. The middle angle is in [−π/2, π/2] (Tait–Bryan) or [0, π]

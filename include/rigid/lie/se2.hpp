@@ -4,6 +4,8 @@
 
 #include <Eigen/Core>
 
+#include "rigid/lie/angle_limit.hpp"
+
 #include "rigid/common/scalars.hpp"
 #include "rigid/lie/so2.hpp"
 
@@ -89,9 +91,9 @@ class SE2 {
   /// Acts on a free vector (no translation): R v.
   [[nodiscard]] Vector2 act_vector(const Vector2& v) const { return R_ * v; }
   /// Geodesic interpolation a · exp(s · log(a⁻¹ b)).
-  [[nodiscard]] SE2 interpolate(const SE2& b, const Scalar& s) const {
-    return *this * exp(s * (inverse() * b).log());
-  }
+  /// @throws rigid::Error if s is not finite, or s · log(a⁻¹ b) is not finite or turns by
+  /// more than kMaxAngle.
+  [[nodiscard]] SE2 interpolate(const SE2& b, const Scalar& s) const;
 
  private:
   SO2<Scalar> R_;

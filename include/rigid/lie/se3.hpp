@@ -33,7 +33,7 @@ class SE3 {
   /// or the rotation block is not a rotation (see SO3::from_matrix).
   [[nodiscard]] static SE3 from_matrix(const Matrix4& T, double tol = 1e-9);
 
-  /// exp(ρ, ω) = (exp(ω), Jl(ω) ρ).
+  /// exp(ρ, ω) = (exp(ω), Jl(ω) ρ). @throws rigid::Error if ξ is not finite or |ω| > kMaxAngle.
   [[nodiscard]] static SE3 exp(const Vector6& xi);
   [[nodiscard]] static Matrix4 hat(const Vector6& xi);
   [[nodiscard]] static Vector6 vee(const Matrix4& m);
@@ -70,9 +70,9 @@ class SE3 {
   /// Acts on a free vector (no translation): R v.
   [[nodiscard]] Vector3 act_vector(const Vector3& v) const { return R_ * v; }
   /// Geodesic interpolation a · exp(s · log(a⁻¹ b)).
-  [[nodiscard]] SE3 interpolate(const SE3& b, const Scalar& s) const {
-    return *this * exp(s * (inverse() * b).log());
-  }
+  /// @throws rigid::Error if s is not finite, or s · log(a⁻¹ b) is not finite or turns by
+  /// more than kMaxAngle.
+  [[nodiscard]] SE3 interpolate(const SE3& b, const Scalar& s) const;
 
  private:
   SO3<Scalar> R_;

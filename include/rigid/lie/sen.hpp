@@ -4,6 +4,8 @@
 
 #include <Eigen/Core>
 
+#include "rigid/lie/angle_limit.hpp"
+
 #include "rigid/lie/son.hpp"
 
 namespace rigid {
@@ -69,9 +71,9 @@ class SEn {
   /// Acts on a free vector (no translation): R v.
   [[nodiscard]] Eigen::VectorXd act_vector(const Eigen::VectorXd& v) const { return R_ * v; }
   /// Geodesic interpolation a · exp(s · log(a⁻¹ b)).
-  [[nodiscard]] SEn interpolate(const SEn& b, double s) const {
-    return *this * exp(s * (inverse() * b).log());
-  }
+  /// @throws rigid::Error if s is not finite, or s · log(a⁻¹ b) is not finite or turns by
+  /// more than kMaxAngle.
+  [[nodiscard]] SEn interpolate(const SEn& b, double s) const;
 
  private:
   SEn(SOn R, Eigen::VectorXd t, bool /*unchecked*/) : R_(std::move(R)), t_(std::move(t)) {}

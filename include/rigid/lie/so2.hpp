@@ -4,6 +4,8 @@
 
 #include <Eigen/Core>
 
+#include "rigid/lie/angle_limit.hpp"
+
 #include "rigid/common/scalars.hpp"
 
 namespace rigid {
@@ -28,7 +30,8 @@ class SO2 {
 
   /// The identity rotation.
   [[nodiscard]] static SO2 identity() { return SO2(Scalar(1), Scalar(0)); }
-  /// Rotation by `theta` radians, counter-clockwise. @throws rigid::Error if theta is not finite.
+  /// Rotation by `theta` radians, counter-clockwise. @throws rigid::Error if theta is not finite
+  /// or |theta| > kMaxAngle.
   [[nodiscard]] static SO2 from_angle(const Scalar& theta);
   /// Unit complex number c + i s; a non-unit input is normalised.
   /// @throws rigid::Error if a component is not finite or the norm is below 1e-12.
@@ -37,8 +40,8 @@ class SO2 {
   /// det R < 0 (the message gives the defect and the determinant).
   [[nodiscard]] static SO2 from_matrix(const Matrix2& R, double tol = 1e-9);
 
-  /// Exponential map: angle θ → e^{iθ}.
-  [[nodiscard]] static SO2 exp(const Tangent& theta) { return from_angle_unchecked(theta(0)); }
+  /// Exponential map: angle θ → e^{iθ}. @throws rigid::Error as from_angle.
+  [[nodiscard]] static SO2 exp(const Tangent& theta) { return from_angle(theta(0)); }
   /// hat(θ) = [[0, −θ], [θ, 0]].
   [[nodiscard]] static Matrix2 hat(const Tangent& theta) {
     Matrix2 m;
@@ -87,9 +90,9 @@ class SO2 {
     return Vector2(c_ * v(0) - s_ * v(1), s_ * v(0) + c_ * v(1));
   }
   /// Geodesic interpolation a · exp(s · log(a⁻¹ b)).
-  [[nodiscard]] SO2 interpolate(const SO2& b, const Scalar& s) const {
-    return *this * exp(s * (inverse() * b).log());
-  }
+  /// @throws rigid::Error if s is not finite, or s · log(a⁻¹ b) is not finite or turns by
+  /// more than kMaxAngle.
+  [[nodiscard]] SO2 interpolate(const SO2& b, const Scalar& s) const;
   /// True if the two represent the same rotation within `tol` (|angle of a⁻¹ b|, radians).
   [[nodiscard]] bool is_approx(const SO2& b, double tol = 1e-12) const;
 

@@ -13,6 +13,7 @@
 #include <Eigen/Geometry>  // cross
 
 #include "rigid/common/scalars.hpp"
+#include "rigid/lie/angle_limit.hpp"
 
 namespace rigid {
 
@@ -86,10 +87,12 @@ class SO3 {
   /// for a matrix that is only roughly orthonormal.
   [[nodiscard]] static SO3 from_matrix(const Matrix3& R, double tol = 1e-9);
   /// Rotation of `angle` radians about `axis` (normalised). @throws rigid::Error on a zero
-  /// or non-finite axis, or a non-finite angle.
+  /// or non-finite axis, or an angle that is not finite or exceeds kMaxAngle in magnitude.
   [[nodiscard]] static SO3 from_axis_angle(const Vector3& axis, const Scalar& angle);
 
   /// Exponential map: rotation vector ω → rotation (accurate for small |ω|).
+  /// @throws rigid::Error if ω is not finite or |ω| > kMaxAngle (the check costs one
+  /// comparison of |ω|², computed anyway).
   [[nodiscard]] static SO3 exp(const Vector3& omega);
   /// Skew matrix hat(ω), hat(ω) v = ω × v.
   [[nodiscard]] static Matrix3 hat(const Vector3& w) {
@@ -119,8 +122,9 @@ class SO3 {
   [[nodiscard]] static SO3 sample(std::mt19937_64& rng);
 
   /// Logarithm: rotation vector with angle in [0, π], accurate near 0 and near π.
+  /// @throws rigid::Error for invalid() (the marker of a diverged computation).
   [[nodiscard]] Vector3 log() const;
-  /// Rotation angle in [0, π].
+  /// Rotation angle in [0, π]. @throws rigid::Error for invalid().
   [[nodiscard]] Scalar angle() const;
   /// Rotation matrix (for SO3 the adjoint equals the matrix).
   [[nodiscard]] Matrix3 matrix() const;
@@ -207,10 +211,9 @@ class SO3 {
     r.q_ = f * q_;
     return r;
   }
-  /// Geodesic interpolation a · exp(s · log(a⁻¹ b)), s ∈ [0, 1] (any s allowed).
-  [[nodiscard]] SO3 interpolate(const SO3& b, const Scalar& s) const {
-    return *this * exp(s * (inverse() * b).log());
-  }
+  /// Geodesic interpolation a · exp(s · log(a⁻¹ b)), s ∈ [0, 1] (any finite s allowed).
+  /// @throws rigid::Error if s is not finite or the turn |s| · angle(a⁻¹ b) exceeds kMaxAngle.
+  [[nodiscard]] SO3 interpolate(const SO3& b, const Scalar& s) const;
   /// True if the two represent the same rotation within `tol` (angle of a⁻¹ b, radians).
   [[nodiscard]] bool is_approx(const SO3& b, double tol = 1e-12) const;
 

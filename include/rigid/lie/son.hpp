@@ -5,6 +5,8 @@
 
 #include <Eigen/Core>
 
+#include "rigid/lie/angle_limit.hpp"
+
 namespace rigid {
 
 /// Rotation group SO(n) for any n ≥ 2 chosen at run time, stored as an n×n rotation matrix
@@ -86,9 +88,9 @@ class SOn {
   /// Rotates a point or vector of Rⁿ. @throws rigid::Error on a size mismatch.
   [[nodiscard]] Eigen::VectorXd operator*(const Eigen::VectorXd& v) const;
   /// Geodesic interpolation a · exp(s · log(a⁻¹ b)).
-  [[nodiscard]] SOn interpolate(const SOn& b, double s) const {
-    return *this * exp(s * (inverse() * b).log());
-  }
+  /// @throws rigid::Error if s is not finite, or s · log(a⁻¹ b) is not finite or turns by
+  /// more than kMaxAngle.
+  [[nodiscard]] SOn interpolate(const SOn& b, double s) const;
   /// True if max|Ra − Rb| ≤ tol. @throws rigid::Error if the two n differ.
   [[nodiscard]] bool is_approx(const SOn& b, double tol = 1e-12) const;
 
