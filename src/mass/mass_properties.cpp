@@ -141,7 +141,12 @@ std::optional<std::string> MassProperties::check(double mass, const Eigen::Vecto
 
 Eigen::Matrix3d MassProperties::inertia_about(const Eigen::Vector3d& p_OQ_B) const {
   RIGID_REQUIRE(p_OQ_B.allFinite(), "point must be finite, got {} m", to_string(p_OQ_B.transpose()));
-  return I_C_B_ + parallel_axis_term(mass_, p_OC_B_ - p_OQ_B);
+  const Eigen::Matrix3d I_Q = I_C_B_ + parallel_axis_term(mass_, p_OC_B_ - p_OQ_B);
+  RIGID_REQUIRE(I_Q.allFinite(),
+                "the inertia about the point {} m overflows a double (mass {} kg, center of mass "
+                "{} m): I = {} kg·m²; expected finite entries (a nearer point, or other units)",
+                to_string(p_OQ_B.transpose()), mass_, to_string(p_OC_B_.transpose()), to_string(I_Q));
+  return I_Q;
 }
 
 double MassProperties::inertia_about_axis(const Eigen::Vector3d& p_OQ_B,
@@ -154,12 +159,15 @@ double MassProperties::inertia_about_axis(const Eigen::Vector3d& p_OQ_B,
 
 MassProperties MassProperties::shifted(const Eigen::Vector3d& d_B) const {
   RIGID_REQUIRE(d_B.allFinite(), "shift must be finite, got {} m", to_string(d_B.transpose()));
-  return MassProperties(Unchecked{}, mass_, p_OC_B_ + d_B, I_C_B_);
+  const Eigen::Vector3d p = p_OC_B_ + d_B;
+  RIGID_REQUIRE(p.allFinite(), "the shifted center of mass {} + {} m overflows a double",
+                to_string(p_OC_B_.transpose()), to_string(d_B.transpose()));
+  return MassProperties(Unchecked{}, mass_, p, I_C_B_);
 }
 
 MassProperties MassProperties::rotated(const Eigen::Matrix3d& R_AB) const {
   require_rotation(R_AB, "rotated");
-  return MassProperties(Unchecked{}, mass_, R_AB * p_OC_B_, R_AB * I_C_B_ * R_AB.transpose());
+  return finite_result("rotated", mass_, R_AB * p_OC_B_, R_AB * I_C_B_ * R_AB.transpose());
 }
 
 MassProperties MassProperties::rotated(const SO3<double>& R_AB) const {
@@ -175,8 +183,8 @@ MassProperties MassProperties::transformed(const Eigen::Matrix3d& R_AB,
   require_rotation(R_AB, "transformed");
   RIGID_REQUIRE(p_AB_A.allFinite(), "translation must be finite, got {} m",
                 to_string(p_AB_A.transpose()));
-  return MassProperties(Unchecked{}, mass_, R_AB * p_OC_B_ + p_AB_A,
-                        R_AB * I_C_B_ * R_AB.transpose());
+  return finite_result("transformed", mass_, R_AB * p_OC_B_ + p_AB_A,
+                       R_AB * I_C_B_ * R_AB.transpose());
 }
 
 PrincipalAxes MassProperties::principal_axes() const {
@@ -213,6 +221,15 @@ PrincipalAxes MassProperties::principal_axes() const {
   return PrincipalAxes{moments, R};
 }
 
+MassProperties MassProperties::finite_result(const char* function, double mass,
+                                             const Eigen::Vector3d& p, const Eigen::Matrix3d& I) {
+  RIGID_REQUIRE_AS(function, std::isfinite(mass) && p.allFinite() && I.allFinite(),
+                   "the result overflows a double: mass {} kg, center of mass {} m, inertia {} "
+                   "kg·m²; expected finite mass properties (other units, or a nearer frame)",
+                   mass, to_string(p.transpose()), to_string(I));
+  return MassProperties(Unchecked{}, mass, p, I);
+}
+
 std::optional<std::string> check_rotational_moments(const Eigen::Vector3d& moments) {
   if (!moments.allFinite()) {
     return fmt::format("principal moments must be finite, got {} kg·m²", to_string(moments.transpose()));
@@ -244,8 +261,8 @@ MassProperties combine(std::span<const MassProperties> parts) {
   for (const auto& p : parts) {
     I += p.inertia_com() + parallel_axis_term(p.mass(), p.com() - com);
   }
-  // a sum of physical tensors is physical: no re-check needed.
-  return MassProperties(MassProperties::Unchecked{}, mass, com, 0.5 * (I + I.transpose()));
+  // a sum of physical tensors is physical: no re-check needed, but the sums may overflow
+  return MassProperties::finite_result("combine", mass, com, 0.5 * (I + I.transpose()));
 }
 
 MassProperties combine(const MassProperties& a, const MassProperties& b) {

@@ -11,13 +11,21 @@
 namespace rigid::mass {
 
 Eigen::Matrix4d pseudo_inertia(const MassProperties& mp) {
-  // [Wensing2017, eq. 9]: Σ about O from I_O, h = m c
-  const Eigen::Matrix3d I_O = mp.inertia_about(Eigen::Vector3d::Zero());
+  // [Wensing2017, eq. 9]: Σ about O from I_O (the parallel-axis theorem, as inertia_about), h = m c
+  const Eigen::Vector3d& c = mp.com();
+  const Eigen::Matrix3d I_O =
+      mp.inertia_com() +
+      mp.mass() * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
   Eigen::Matrix4d J;
   J.topLeftCorner<3, 3>() = 0.5 * I_O.trace() * Eigen::Matrix3d::Identity() - I_O;
-  J.topRightCorner<3, 1>() = mp.mass() * mp.com();
-  J.bottomLeftCorner<1, 3>() = mp.mass() * mp.com().transpose();
+  J.topRightCorner<3, 1>() = mp.mass() * c;
+  J.bottomLeftCorner<1, 3>() = mp.mass() * c.transpose();
   J(3, 3) = mp.mass();
+  RIGID_REQUIRE(J.allFinite(),
+                "the pseudo-inertia of the body (mass {} kg, center of mass {} m from the origin) "
+                "overflows a double: J = {}; expected finite entries (state the body in smaller "
+                "units, or about an origin nearer its center of mass)",
+                mp.mass(), to_string(c.transpose()), to_string(J));
   return J;
 }
 
@@ -87,13 +95,25 @@ LogCholesky log_cholesky(const MassProperties& mp) {
                 sigma(0), sigma(1), sigma(2));
   bool ok = false;
   const Eigen::Matrix4d U = upper_cholesky(J, ok);
-  RIGID_ASSERT(ok && U(3, 3) > 0.0);
+  // (J is finite and, by the check above, positive definite; a factorisation that fails
+  // anyway has lost it in rounding: entries of very different magnitudes)
+  RIGID_REQUIRE(ok && U(3, 3) > 0.0 && U.allFinite(),
+                "the Cholesky factorisation of the pseudo-inertia J = {} failed in rounding "
+                "(mass {} kg, center of mass {} m from the origin); expected a J whose entries "
+                "are of comparable magnitudes (state the body in other units, or about an origin "
+                "nearer its center of mass)",
+                to_string(J), mp.mass(), to_string(mp.com().transpose()));
   // [Rucker2022, eq. 8]: U = e^α [[e^d₁, s₁₂, s₁₃, t₁], [0, e^d₂, s₂₃, t₂], [0, 0, e^d₃, t₃], [0, 0, 0, 1]]
   const double ea = U(3, 3);
   const Eigen::Matrix4d V = U / ea;
   LogCholesky theta;
   theta << std::log(ea), std::log(V(0, 0)), std::log(V(1, 1)), std::log(V(2, 2)), V(0, 1), V(1, 2), V(0, 2),
       V(0, 3), V(1, 3), V(2, 3);
+  RIGID_REQUIRE(theta.allFinite(),
+                "the log-Cholesky parameters of the body (mass {} kg, center of mass {} m from "
+                "the origin) overflow a double: θ = {}; expected finite parameters (state the "
+                "body in other units)",
+                mp.mass(), to_string(mp.com().transpose()), to_string(theta.transpose()));
   return theta;
 }
 

@@ -257,5 +257,22 @@ TEST(MassProperties, Formatter) {
             "kg·m²}");
 }
 
+TEST(MassProperties, RefusesResultsThatOverflow) {
+  const MassProperties heavy(1e308, Eigen::Vector3d(1, 0, 0), Eigen::Matrix3d::Identity());
+  // m |d|² = 1e308 · 100 overflows
+  EXPECT_RIGID_ERROR((void)heavy.inertia_about(Eigen::Vector3d(-9, 0, 0)),
+                     "inertia_about(): the inertia about the point [-9, 0, 0] m overflows a double");
+  EXPECT_RIGID_ERROR((void)heavy.inertia_about_axis(Eigen::Vector3d(0, 10, 0), Eigen::Vector3d::UnitX()),
+                     "overflows a double");
+  const MassProperties far(1.0, Eigen::Vector3d(1e308, 0, 0), Eigen::Matrix3d::Identity());
+  EXPECT_RIGID_ERROR((void)far.shifted(Eigen::Vector3d(1e308, 0, 0)),
+                     "shifted(): the shifted center of mass [1e+308, 0, 0] + [1e+308, 0, 0] m "
+                     "overflows a double");
+  EXPECT_RIGID_ERROR((void)far.transformed(Eigen::Matrix3d::Identity(), Eigen::Vector3d(1e308, 0, 0)),
+                     "transformed(): the result overflows a double");
+  // two bodies of 1e308 kg: the total mass overflows
+  EXPECT_RIGID_ERROR((void)combine(heavy, heavy), "combine(): the result overflows a double");
+}
+
 }  // namespace
 }  // namespace rigid

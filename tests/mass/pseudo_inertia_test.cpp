@@ -111,5 +111,24 @@ TEST(PseudoInertia, InvalidParametersAreRefusedWithTheReason) {
   EXPECT_RIGID_ERROR((void)mass::from_log_cholesky(huge), "log-Cholesky parameters must be finite");
 }
 
+TEST(PseudoInertia, RefusesABodyWhosePseudoInertiaOverflows) {
+  // a unit cube of 1e308 kg with its COM 10 m from O: m |c|² = 1e310 overflows (printed as inf
+  // and nan before)
+  const MassProperties heavy(1e308, Eigen::Vector3d(10, 0, 0),
+                             Eigen::Vector3d::Constant(1e308 / 6.0).asDiagonal().toDenseMatrix());
+  EXPECT_RIGID_ERROR((void)mass::pseudo_inertia(heavy),
+                     "pseudo_inertia(): the pseudo-inertia of the body (mass 1e+308 kg, center of "
+                     "mass [10, 0, 0] m from the origin) overflows a double");
+  EXPECT_RIGID_ERROR((void)mass::log_cholesky(heavy), "overflows a double");
+  // about its own COM the same body has a finite pseudo-inertia; its log-Cholesky parameters
+  // are finite (α = ½ ln m)
+  const MassProperties at_com(1e308, Eigen::Vector3d::Zero(),
+                              Eigen::Vector3d::Constant(1e308 / 6.0).asDiagonal().toDenseMatrix());
+  EXPECT_TRUE(mass::pseudo_inertia(at_com).allFinite());
+  const mass::LogCholesky th = mass::log_cholesky(at_com);
+  EXPECT_TRUE(th.allFinite());
+  EXPECT_NEAR(th(0), 0.5 * std::log(1e308), ulps(8) * 355.0);  // α = ½ ln m to 8 ulps of 355
+}
+
 }  // namespace
 }  // namespace rigid

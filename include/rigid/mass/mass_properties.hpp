@@ -66,6 +66,7 @@ class MassProperties {
 
   /// Inertia about the point Q (p_OQ_B from the origin, m), expressed in B, by the
   /// parallel-axis theorem: I_Q = I_C + m (|d|² 1 − d dᵀ), d = p_QC = p_OC − p_OQ.
+  /// @throws rigid::Error if p_OQ_B is not finite or I_Q overflows a double.
   [[nodiscard]] Eigen::Matrix3d inertia_about(const Eigen::Vector3d& p_OQ_B) const;
 
   /// Moment of inertia about the line through Q (p_OQ_B) along unit_B: uᵀ I_Q u (kg·m²).
@@ -75,14 +76,17 @@ class MassProperties {
 
   /// The same body moved by d_B (m): the COM becomes p_OC_B + d_B, the inertia is unchanged.
   /// Equivalently, the same body described from the origin O' = O − d_B.
+  /// @throws rigid::Error if d_B is not finite or the new COM overflows.
   [[nodiscard]] MassProperties shifted(const Eigen::Vector3d& d_B) const;
 
   /// The same body re-expressed in frame A (common origin): p_OC_A = R_AB p_OC_B,
-  /// I_C_A = R_AB I_C_B R_ABᵀ. @throws rigid::Error if R_AB is not a rotation within 1e-9.
+  /// I_C_A = R_AB I_C_B R_ABᵀ. @throws rigid::Error if R_AB is not a rotation within 1e-9
+  /// (or the result overflows).
   [[nodiscard]] MassProperties rotated(const Eigen::Matrix3d& R_AB) const;
 
   /// The same body expressed in frame A where the pose of B in A is (R_AB, p_AB_A):
-  /// p_AC_A = R_AB p_OC_B + p_AB_A, I_C_A = R_AB I_C_B R_ABᵀ.
+  /// p_AC_A = R_AB p_OC_B + p_AB_A, I_C_A = R_AB I_C_B R_ABᵀ. @throws rigid::Error if R_AB is
+  /// not a rotation, p_AB_A is not finite or the result overflows.
   [[nodiscard]] MassProperties transformed(const Eigen::Matrix3d& R_AB,
                                            const Eigen::Vector3d& p_AB_A) const;
 
@@ -102,6 +106,10 @@ class MassProperties {
   struct Unchecked {};
   MassProperties(Unchecked, double mass, const Eigen::Vector3d& p, const Eigen::Matrix3d& I)
       : mass_(mass), p_OC_B_(p), I_C_B_(0.5 * (I + I.transpose())) {}
+  /// MassProperties(Unchecked, …) of a computed result, refused (rigid::Error naming
+  /// `function`) when a sum or product of finite inputs overflowed.
+  static MassProperties finite_result(const char* function, double mass, const Eigen::Vector3d& p,
+                                      const Eigen::Matrix3d& I);
   friend MassProperties combine(std::span<const MassProperties> parts);
 
   double mass_;
@@ -119,7 +127,7 @@ class MassProperties {
 
 /// Mass properties of the union of bodies expressed in the same frame: masses add, the COM
 /// is the mass-weighted mean, inertias are shifted to the new COM and added.
-/// @throws rigid::Error if parts is empty.
+/// @throws rigid::Error if parts is empty or a sum overflows a double.
 [[nodiscard]] MassProperties combine(std::span<const MassProperties> parts);
 /// combine of two bodies.
 [[nodiscard]] MassProperties combine(const MassProperties& a, const MassProperties& b);

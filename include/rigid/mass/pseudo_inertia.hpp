@@ -17,6 +17,8 @@ using LogCholesky = Eigen::Matrix<double, 10, 1>;
 
 /// The pseudo-inertia J = [[Σ, h], [hᵀ, m]] (4×4) of the body about the frame origin O, in B:
 /// Σ = ∫ρ r rᵀ dV = ½ tr(I_O) 1 − I_O (kg·m²), h = m p_OC_B (kg·m), m (kg) [Wensing2017, eq. 9].
+/// @throws rigid::Error if an entry of J overflows a double (m |p_OC|² for a heavy body far
+///   from O, a mass near the largest double), naming the mass and the COM.
 [[nodiscard]] Eigen::Matrix4d pseudo_inertia(const MassProperties& mp);
 
 /// The body of a pseudo-inertia J (about O, in B): m = J₃₃, p_OC = h/m,
@@ -31,6 +33,7 @@ using LogCholesky = Eigen::Matrix<double, 10, 1>;
 /// Cholesky factor of the reversed J (J = U Uᵀ, U upper triangular with a positive diagonal).
 /// @throws rigid::Error if J is only semidefinite (a rod, a plate, a point mass: Σ_C has a zero
 ///   eigenvalue, below 1e-12 of tr Σ_C), which has no logarithm.
+///   Also if J overflows (as pseudo_inertia) or its factorisation or a parameter is not finite.
 [[nodiscard]] LogCholesky log_cholesky(const MassProperties& mp);
 
 /// J = U Uᵀ of log-Cholesky parameters θ: positive definite for every finite θ.
