@@ -65,14 +65,22 @@ for (const c of cases) {
       assert.deepEqual(problems, []);
       const title = await page.title();
       assert.ok(title.startsWith('rigid — '), `title: ${title}`);
-      // the equations, when the run has them, are typeset: KaTeX output and no fallback source
-      const eq = await page.evaluate(() => ({
-        latex: JSON.parse(document.getElementById('rigid-report-data').textContent).equations_latex,
-        typeset: document.querySelectorAll('.equations .katex').length,
-        failed: [...document.querySelectorAll('.equations .note')].map((e) => e.textContent),
-      }));
+      // the equations, when the run has them, are typeset (after `ready`, when the page is
+      // idle): KaTeX output and no fallback source; these scenes' blocks are short, none collapsed
+      const eq = await page.evaluate(async () => {
+        await window.rigidReport.equationsTypeset();
+        return {
+          latex: JSON.parse(document.getElementById('rigid-report-data').textContent).equations_latex,
+          typeset: document.querySelectorAll('.equations .katex').length,
+          pending: document.querySelectorAll('.equations .pending').length,
+          collapsed: document.querySelectorAll('.equations details').length,
+          failed: [...document.querySelectorAll('.equations .note, .equations .katex-error')].map((e) => e.textContent),
+        };
+      });
       if (eq.latex) {
         assert.ok(eq.typeset >= 1, 'the equations were not typeset');
+        assert.equal(eq.pending, 0);
+        assert.equal(eq.collapsed, 0);
         assert.deepEqual(eq.failed, []);
       }
     });

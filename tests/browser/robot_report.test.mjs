@@ -1,7 +1,9 @@
 // The report page of a robot run: MuJoCo's humanoid pinned at the torso (21 hinges, 12 moving
 // bodies) and arm7.urdf. The page names the file's joints as its coordinates and its moving
 // links as its bodies, and the 3D view draws the links where the run puts them: the first and
-// last frames differ, and one time drawn twice gives the same pixels.
+// last frames differ, and one time drawn twice gives the same pixels. The long blocks of the
+// equations (the tree's intermediates, the mass matrix) start collapsed under a summary that
+// counts them, and are typeset when opened.
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
 import { existsSync, mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
@@ -58,6 +60,10 @@ const cases = [
     model: kHumanoid,
     // from MuJoCo's pose (arms raised, bent at the elbows) the arms fall under gravity
     args: ['--pin-free-root', '--set', 'simulation.t_end=1', '--report-frames', '40'],
+    eomArgs: ['--pin-free-root'],
+    // the blocks opened by the equations test: the mass matrix (a whole humanoid is ~10 s of
+    // typesetting on the test machines)
+    open: /^M\(q\)/,
     dof: 21,
     nBodies: 12,
     // measured: 1.7 % of the 1168 × 560 canvas changes between t = 0 and t = 1 s (the arms);
@@ -69,6 +75,8 @@ const cases = [
     model: join(root, 'examples', 'arm7.urdf'),
     // q = 0 is the upright equilibrium: tilted at joint2, the arm swings down
     args: ['--set', 'joint2.initial=0.6', '--set', 'simulation.t_end=1', '--report-frames', '20'],
+    eomArgs: [],
+    open: /./,
     dof: 7,
     nBodies: 7,
     // measured: 3.1 %; from q = 0 (no tilt) the arm stays put and 0 % changes
@@ -133,6 +141,62 @@ for (const c of cases) {
       assert.equal(again.changed, 0, `t = ${ts[0]} drawn twice differs: ${JSON.stringify(again)}`);
       writeFileSync(screenshotPath(`${c.name}-3d-first.png`), first);
       writeFileSync(screenshotPath(`${c.name}-3d-last.png`), last);
+    });
+
+    test('long equation blocks start collapsed, say what they hold, and typeset when opened', async () => {
+      // what the blocks hold, from `rigid eom`'s JSON rather than from the page's LaTeX
+      const eom = JSON.parse(execFileSync(rigidExe, ['eom', c.model, ...c.eomArgs, '--format', 'json'],
+        { encoding: 'utf8', maxBuffer: 256 << 20 }));
+      const n = eom.intermediates.length;
+      const [rows, cols] = [eom.mass_matrix.text.length, eom.mass_matrix.text[0].length];
+      assert.ok(n > 0, 'a tree derived by its recursions has intermediates');
+      // each intermediate's definition is its row's only "=", so the typeset "=" count them
+      assert.ok(eom.intermediates.every((i) => !i.latex.includes('=')));
+      const blocks = () => page.evaluate(() => [...document.querySelectorAll('.equations details')].map((d) => ({
+        summary: d.querySelector('summary').textContent,
+        open: d.open,
+        pieces: d.querySelectorAll('.formula').length,
+        typeset: d.querySelectorAll('.formula > .katex-display').length,
+        pending: d.querySelectorAll('.pending').length,
+        failed: [...d.querySelectorAll('.note, .katex-error')].map((e) => e.textContent),
+        // KaTeX sets a relation as <span class="mrel">
+        equals: [...d.querySelectorAll('.mrel')].filter((e) => e.textContent === '=').length,
+      })));
+      const before = await blocks();
+      const where = before.find((b) => b.summary.startsWith('where'));
+      const mass = before.find((b) => b.summary.startsWith('M(q)'));
+      assert.ok(where, `no collapsed "where" block: ${JSON.stringify(before.map((b) => b.summary))}`);
+      assert.ok(mass, `no collapsed mass matrix block: ${JSON.stringify(before.map((b) => b.summary))}`);
+      assert.ok(where.summary.endsWith(`— ${n.toLocaleString('en-US')} intermediates`), where.summary);
+      assert.ok(mass.summary.includes(`— ${rows} × ${cols} mass matrix`), mass.summary);
+      // collapsed: nothing typeset until opened
+      for (const b of before) {
+        assert.equal(b.open, false, b.summary);
+        assert.equal(b.typeset, 0, b.summary);
+      }
+
+      await page.evaluate(async (source) => {
+        const re = new RegExp(source);
+        for (const d of document.querySelectorAll('.equations details')) {
+          if (re.test(d.querySelector('summary').textContent)) d.open = true;
+        }
+        await window.rigidReport.equationsTypeset();
+      }, c.open.source);
+      const after = await blocks();
+      const opened = after.filter((b) => c.open.test(b.summary));
+      assert.ok(opened.length >= 1);
+      for (const b of opened) {
+        assert.equal(b.open, true, b.summary);
+        assert.ok(b.pieces >= 1, b.summary);
+        assert.equal(b.typeset, b.pieces, `${b.summary}: ${b.typeset} of ${b.pieces} pieces typeset`);
+        assert.equal(b.pending, 0, b.summary);
+        assert.deepEqual(b.failed, [], b.summary);
+        if (b.summary.startsWith('where')) assert.equal(b.equals, n, 'one "=" per intermediate');
+        if (b.summary.startsWith('M(q)')) assert.equal(b.equals, 2, 'M = … and f = …');
+        if (b.summary.startsWith('equations of motion')) assert.equal(b.equals, c.dof, 'one equation per coordinate');
+      }
+      for (const b of after.filter((x) => !c.open.test(x.summary))) assert.equal(b.typeset, 0, b.summary);
+      assert.deepEqual(problems, []);
     });
   });
 }

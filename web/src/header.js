@@ -1,7 +1,7 @@
 // The header of the page: the scene, its parameters, the integrator and its step statistics,
-// the conservation summary, the equations of motion (KaTeX), every body's inertia and the size
-// rule of the page's data.
-import katex from 'katex';
+// the conservation summary, the equations of motion (KaTeX, typeset lazily: equations.js), every
+// body's inertia and the size rule of the page's data.
+import { buildEquations } from './equations.js';
 import { el, num, table, vec } from './format.js';
 
 const kDiagnosticUnits = [
@@ -13,50 +13,6 @@ const kDiagnosticUnits = [
 function diagnosticUnit(name) {
   for (const [re, unit] of kDiagnosticUnits) if (re.test(name)) return unit;
   return '';
-}
-
-// rigid's LaTeX (`rigid eom --format latex`) is a list of blocks: a `% caption` line, then
-// either one \begin{…}…\end{…} environment or one equation per line. Each block is typeset
-// on its own under its caption.
-export function latexBlocks(latex) {
-  const blocks = [];
-  let block = null;
-  let env = null;
-  const open = (caption) => { block = { caption, formulas: [] }; blocks.push(block); };
-  for (const raw of latex.split('\n')) {
-    const line = raw.trim();
-    if (env !== null) {
-      env.push(raw);
-      if (/^\\end\{/.test(line)) { block.formulas.push(env.join('\n')); env = null; }
-      continue;
-    }
-    if (!line) continue;
-    if (line.startsWith('%')) { open(line.slice(1).trim()); continue; }
-    if (!block) open('');
-    if (/^\\begin\{/.test(line) && !/\\end\{[^}]*\}\s*$/.test(line)) env = [raw];
-    else block.formulas.push(line);
-  }
-  if (env !== null) block.formulas.push(env.join('\n'));
-  return blocks;
-}
-
-function equations(latex) {
-  const box = el('div', { class: 'equations' });
-  for (const { caption, formulas } of latexBlocks(latex)) {
-    if (caption) box.append(el('p', { class: 'caption', text: caption }));
-    for (const f of formulas) {
-      const math = el('div', { class: 'formula' });
-      try {
-        katex.render(f, math, { displayMode: true, throwOnError: true, output: 'html' });
-      } catch (e) {
-        // a formula KaTeX cannot typeset is shown as its source, with the reason
-        math.append(el('p', { class: 'note', text: `KaTeX could not typeset this formula: ${e.message}` }),
-          el('pre', { text: f }));
-      }
-      box.append(math);
-    }
-  }
-  return box;
 }
 
 function inertiaMatrix(I) {
@@ -71,6 +27,7 @@ function pageLength() {
   return n;
 }
 
+/** Builds the header into `root`; returns {equationsTypeset} (see buildEquations). */
 export function buildHeader(report, root) {
   const h = el('header', { class: 'report-header' });
   const s = report.scene ?? {};
@@ -111,8 +68,11 @@ export function buildHeader(report, root) {
       el('ul', {}, ...warnings.map((w) => el('li', { text: String(w) })))));
   }
 
+  let equationsTypeset = () => Promise.resolve();
   if (report.equations_latex) {
-    h.append(el('section', {}, el('h2', { text: 'Equations of motion' }), equations(report.equations_latex)));
+    const eq = buildEquations(report.equations_latex);
+    h.append(el('section', {}, el('h2', { text: 'Equations of motion' }), eq.box));
+    equationsTypeset = eq.typeset;
   }
 
   const bodies = report.bodies ?? [];
@@ -139,4 +99,5 @@ export function buildHeader(report, root) {
     `Data: ${f.count} frames; ` + (note.includes(rule) ? note : [rule, note].filter((x) => x).join('; ')) +
     `. Page: about ${num(pageLength() / 1e6, 3)} MB.`));
   root.append(h);
+  return { equationsTypeset };
 }

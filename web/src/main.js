@@ -1,6 +1,8 @@
 // Entry of the report page: reads the run's data from the JSON script element and builds the
 // page (header, 3D view, plots) into document.body. For tests and scripts it exposes
-// window.rigidReport = {setTime(t), time(), ready, plots: {group: uPlot}}.
+// window.rigidReport = {setTime(t), time(), ready, plots: {group: uPlot}, equationsTypeset()}:
+// `ready` resolves once the page is built and drawn; the equations are typeset after it, a few
+// at a time (equations.js), and equationsTypeset() resolves when every open block's are.
 import { decodeArray, readReport } from './data.js';
 import { el } from './format.js';
 import { buildHeader } from './header.js';
@@ -20,7 +22,8 @@ function main() {
     const ts = decodeArray(report.frames.t);
     const page = el('main', { class: 'rigid-report' });
     document.body.append(page);
-    buildHeader(report, page);
+    const header = buildHeader(report, page);
+    api.equationsTypeset = header.equationsTypeset;
     const stage = el('section', { class: 'stage' }, el('h2', { text: 'Motion' }));
     page.append(stage);
     const player = new Player(ts, stage);
