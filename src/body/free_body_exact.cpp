@@ -43,6 +43,11 @@ FreeBodyExact::FreeBodyExact(const Eigen::Vector3d& I_B, const Eigen::Vector3d& 
   energy_ = 0.5 * (I.array() * w.array().square()).sum();
   const double L2 = (I.array().square() * w.array().square()).sum();
   L_norm_ = std::sqrt(L2);
+  RIGID_REQUIRE(std::isfinite(energy_) && std::isfinite(L2),
+                "initial body angular velocity {} rad/s with principal moments {} kg·m² overflows: "
+                "kinetic energy {} J, |L|² = {} (kg·m²/s)²; expected a motion whose energy and "
+                "|L|² are finite doubles",
+                rigid::to_string(w0_B.transpose()), rigid::to_string(I_B.transpose()), energy_, L2);
 
   const bool eq12 = I(1) - I(0) <= kEqualMoments * I(2);
   const bool eq23 = I(2) - I(1) <= kEqualMoments * I(2);
@@ -61,6 +66,7 @@ FreeBodyExact::FreeBodyExact(const Eigen::Vector3d& I_B, const Eigen::Vector3d& 
       sym_axis_ = 0;
       Omega_ = (I(0) - I(2)) * w(0) / I(2);
     }
+    phase_rate_ = std::abs(Omega_);
     return;
   }
   case_ = FreeBodyCase::kAsymmetric;
@@ -92,6 +98,7 @@ FreeBodyExact::FreeBodyExact(const Eigen::Vector3d& I_B, const Eigen::Vector3d& 
   a_sn_ = std::sqrt(std::max(0.0, A / (I2 * (Id - I2))));
   a_dn_ = std::sqrt(std::max(0.0, B / (Id * (Id - Ic))));
   lambda_ = std::sqrt(std::max(0.0, (Id - I2) * B / (Ic * I2 * Id)));
+  phase_rate_ = lambda_;
   // k² = (I2 − Ic) A / ((Id − I2) B) and, by the identity (Id − I2)B − (I2 − Ic)A
   // = (Id − Ic) D, k'² = 1 − k² = (Id − Ic) D / ((Id − I2) B): k' keeps full relative
   // precision near the separatrix.
@@ -193,7 +200,22 @@ Eigen::Vector3d FreeBodyExact::omega_sorted(double t) const {
   return omega_sorted_at(phase(lambda_ * t + u0_));
 }
 
+void FreeBodyExact::require_time(const char* function, double t) const {
+  RIGID_REQUIRE_AS(function, std::isfinite(t), "time t = {} s is not finite, expected a finite time",
+                   t);
+  RIGID_REQUIRE_AS(function, std::abs(phase_rate_ * t) <= kMaxAngle,
+                   "time t = {} s is too far: the phase of ω(t) there is {:.6g} rad, expected at "
+                   "most kMaxAngle = {:.0e} rad (beyond, rounding has lost the fraction of a "
+                   "period), i.e. |t| <= {:.6g} s",
+                   t, phase_rate_ * t, kMaxAngle, max_time());
+}
+
+double FreeBodyExact::max_time() const {
+  return phase_rate_ > 0.0 ? kMaxAngle / phase_rate_ : std::numeric_limits<double>::infinity();
+}
+
 Eigen::Vector3d FreeBodyExact::omega_body(double t) const {
+  require_time("omega_body", t);
   const Eigen::Vector3d ws = omega_sorted(t);
   Eigen::Vector3d out;
   for (int s = 0; s < 3; ++s) out(perm_[s]) = flip_ * ws(s);
@@ -436,6 +458,7 @@ SO3d FreeBodyMotion::q_Q(const Eigen::Vector3d& w_S) const {
 }
 
 SO3d FreeBodyMotion::orientation(double t) const {
+  omega_.require_time("orientation", t);
   const SO3d R_WP = orientation_impl(t, false);
   return R_BP_is_identity() ? R_WP : R_WP * R_BP_.inverse();
 }
@@ -444,6 +467,12 @@ SO3d FreeBodyMotion::orientation_impl(double t, bool carlson) const {
   const FreeBodyExact& e = omega_;
   if (uniform_) {
     // ω constant: R_WB(t) = R_WB(0) exp(t ω̂).
+    const double turn = std::abs(t) * e.w0_sorted_.norm();
+    RIGID_REQUIRE_AS("orientation", turn <= kMaxAngle,
+                     "time t = {} s is too far: the body has turned by {:.6g} rad there, expected "
+                     "at most kMaxAngle = {:.0e} rad (beyond, rounding has lost the fraction of a "
+                     "turn), i.e. |t| <= {:.6g} s",
+                     t, turn, kMaxAngle, kMaxAngle / e.w0_sorted_.norm());
     return q0_WB_ * SO3d::exp(t * (q_SB_.inverse() * e.w0_sorted_));
   }
   Eigen::Vector3d w_S;
@@ -462,6 +491,11 @@ SO3d FreeBodyMotion::orientation_impl(double t, bool carlson) const {
       psi += pi_coef_ * (elliptic_pi(ph) - Pi_u0_);
     }
   }
+  RIGID_REQUIRE_AS("orientation", std::abs(psi) <= kMaxAngle,
+                   "time t = {} s is too far: the precession angle ψ there is {:.6g} rad, expected "
+                   "at most kMaxAngle = {:.0e} rad (beyond, rounding has lost the fraction of a "
+                   "turn)",
+                   t, psi, kMaxAngle);
   // R_WB = M R_e3(ψ) Q(t)ᵀ R_SB, with Q = R_z(α) R_x(−θ) in the (a, b, d) axes (cos θ = l_d,
   // sin θ = s = √(l_a² + l_b²), cos α = l_b/s, sin α = −l_a/s: the columns of q_Q below), so
   // R_e3(ψ) Qᵀ = R_z(ψ) R_x(θ) R_z(−α), whose quaternion (z-x-z Euler angles) is

@@ -47,6 +47,15 @@ FreeBodyState step_rk4(const Eigen::Vector3d& I_B, const FreeBodyState& s, doubl
   return {SO3d::from_integrated_quaternion(q1), w0 + h / 6.0 * (k1w + 2.0 * k2w + 2.0 * k3w + k4w)};
 }
 
+// SO3d::exp(theta) for the update of a step, or SO3d::invalid() where theta is not finite or
+// longer than kMaxAngle (a diverged step: left for the caller's finiteness check, which names
+// the component and t, rather than refused by exp here).
+SO3d step_rotation(const Eigen::Vector3d& theta) {
+  if (!(theta.squaredNorm() <= kMaxAngle * kMaxAngle)) [[unlikely]]
+    return SO3d::invalid();
+  return SO3d::exp(theta);
+}
+
 // sin x and cos x − 1 for |x| ≤ 0.5 by their Maclaurin series [DLMF, eqs. 4.19.1, 4.19.2]:
 //   sin x     = x − x³/3! + … + x¹³/13!   (first dropped term x¹⁵/15! ≤ 2.3e-17 < ε/4 · sin x)
 //   cos x − 1 = −x²/2! + … − x¹⁴/14!      (first dropped term x¹⁶/16! ≤ 7e-19)
@@ -222,7 +231,7 @@ FreeBodyState step_midpoint(const Eigen::Vector3d& I_B, const FreeBodyState& s, 
   if (!stopped && s.w_B.allFinite()) [[unlikely]]
     require_midpoint_converged(I_B, s, h, L0, L1);
   const Eigen::Vector3d wm = (0.5 * (L0 + L1)).cwiseQuotient(I_B);
-  return {s.R_WB * SO3d::exp(h * wm), L1.cwiseQuotient(I_B)};
+  return {s.R_WB * step_rotation(h * wm), L1.cwiseQuotient(I_B)};
 }
 
 FreeBodyState step_rkmk4(const Eigen::Vector3d& I_B, const FreeBodyState& st, double h) {
@@ -245,7 +254,7 @@ FreeBodyState step_rkmk4(const Eigen::Vector3d& I_B, const FreeBodyState& st, do
   const Eigen::Vector3d th4 = h * k3t, w4 = w0 + h * k3w;
   const Eigen::Vector3d k4t = theta_dot(th4, w4), k4w = euler_rhs<double>(I_B, w4, z);
   const Eigen::Vector3d theta = h / 6.0 * (k1t + 2.0 * k2t + 2.0 * k3t + k4t);
-  return {(st.R_WB * SO3d::exp(theta)).renormalized(), w0 + h / 6.0 * (k1w + 2.0 * k2w + 2.0 * k3w + k4w)};
+  return {(st.R_WB * step_rotation(theta)).renormalized(), w0 + h / 6.0 * (k1w + 2.0 * k2w + 2.0 * k3w + k4w)};
 }
 
 // Refuses a Moser–Veselov step whose iteration did not stop or left |q| ≥ 1: converged unless

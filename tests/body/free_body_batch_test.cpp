@@ -81,5 +81,33 @@ TEST(FreeBodyBatch, NamesTheBodyWhoseImplicitStepDoesNotConverge) {
   EXPECT_EQ(s[2].w_B, before[2].w_B);
 }
 
+TEST(StepFreeBodies, RefusesBadInputNamingTheBody) {
+  const std::vector<Eigen::Vector3d> I{{1, 2, 3}, {1, 2, 3}};
+  std::vector<FreeBodyState> s(2);
+  s[0].w_B = Eigen::Vector3d(0.1, 0.2, 0.3);
+  s[1].w_B = Eigen::Vector3d(0, std::nan(""), 0);
+  const std::vector<FreeBodyState> before = s;
+  EXPECT_RIGID_ERROR(step_free_bodies(FreeBodyMethod::kSplitting2, I, s, 0.01),
+                     "step_free_bodies(): body 1: the state is not finite: w_B.y = nan");
+  EXPECT_NE(s[0].w_B, before[0].w_B);  // the bodies before the refused one have been stepped
+  EXPECT_TRUE(std::isnan(s[1].w_B(1)));  // the refused body is left as it was
+  s[1].w_B = Eigen::Vector3d(0, 0, 1);
+  const std::vector<Eigen::Vector3d> bad_I{{1, 2, 3}, {1, -2, 3}};
+  EXPECT_RIGID_ERROR(step_free_bodies(FreeBodyMethod::kRk4, bad_I, s, 0.01),
+                     "body 1: principal moments [1, -2, 3] kg·m² must be positive and finite");
+  const std::vector<Eigen::Vector3d> nan_I{{std::nan(""), 2, 3}, {1, 2, 3}};
+  EXPECT_RIGID_ERROR(step_free_bodies(FreeBodyMethod::kRk4, nan_I, s, 0.01),
+                     "body 0: principal moments [nan, 2, 3] kg·m² must be positive and finite");
+}
+
+TEST(StepFreeBodies, RefusesAStepThatDiverges) {
+  // RK4 with h |ω| = 1e200: the stages overflow (ω̇ ~ ω² = 1e200, then 1e600), the state is NaN
+  const std::vector<Eigen::Vector3d> I{{1, 2, 3}};
+  std::vector<FreeBodyState> s(1);
+  s[0].w_B = Eigen::Vector3d(1e100, 1e100, 1e100);
+  EXPECT_RIGID_ERROR(step_free_bodies(FreeBodyMethod::kRk4, I, s, 1e100),
+                     "step_free_bodies(): body 0: the step of h = 1e+100 s diverged");
+}
+
 }  // namespace
 }  // namespace rigid::body

@@ -421,5 +421,46 @@ TEST(FreeBodyMotion, AnyBodyFrameThroughMassProperties) {
   }
 }
 
+TEST(FreeBodyExact, RefusesANonFiniteOrTooDistantTime) {
+  const FreeBodyExact e(Eigen::Vector3d(1, 2, 3), Eigen::Vector3d(1, 0.5, 0.2));
+  ASSERT_EQ(e.solution_case(), FreeBodyCase::kAsymmetric);
+  EXPECT_RIGID_ERROR((void)e.omega_body(std::nan("")),
+                     "omega_body(): time t = nan s is not finite, expected a finite time");
+  EXPECT_RIGID_ERROR((void)e.omega_body(-INFINITY), "time t = -inf s is not finite");
+  EXPECT_RIGID_ERROR((void)e.omega_body(1e300),
+                     "omega_body(): time t = 1e+300 s is too far: the phase of ω(t) there is");
+  // below max_time the result is finite (the energy is conserved to rounding of the phase)
+  ASSERT_TRUE(std::isfinite(e.max_time()));
+  EXPECT_TRUE(e.omega_body(0.5 * e.max_time()).allFinite());
+  EXPECT_RIGID_ERROR((void)e.omega_body(2.0 * e.max_time()), "is too far");
+  // constant ω (a sphere): every finite time is accepted
+  const FreeBodyExact sphere(Eigen::Vector3d(2, 2, 2), Eigen::Vector3d(0, 0, 1));
+  EXPECT_EQ(sphere.max_time(), INFINITY);
+  EXPECT_EQ(sphere.omega_body(1e300), Eigen::Vector3d(0, 0, 1));
+}
+
+TEST(FreeBodyExact, RefusesAMotionWhoseEnergyOverflows) {
+  EXPECT_RIGID_ERROR(FreeBodyExact(Eigen::Vector3d(1, 2, 3), Eigen::Vector3d(1e200, 0, 0)),
+                     "FreeBodyExact(): initial body angular velocity [1e+200, 0, 0] rad/s with "
+                     "principal moments [1, 2, 3] kg·m² overflows");
+}
+
+TEST(FreeBodyMotion, OrientationRefusesANonFiniteOrTooDistantTime) {
+  // before the check, t = 1e300 reached an internal assertion on a NaN quaternion
+  const FreeBodyMotion m(Eigen::Vector3d(1, 2, 3), SO3d::identity(), Eigen::Vector3d(1, 0.5, 0.2));
+  EXPECT_RIGID_ERROR((void)m.orientation(std::nan("")), "orientation(): time t = nan s is not finite");
+  EXPECT_RIGID_ERROR((void)m.orientation(1e300), "orientation(): time t = 1e+300 s is too far");
+  EXPECT_RIGID_ERROR((void)m.state(1e300), "time t = 1e+300 s is too far");
+  EXPECT_RIGID_ERROR((void)m.omega_body(std::nan("")), "omega_body(): time t = nan s is not finite");
+  // a uniform rotation (sphere) at 1 rad/s: refused once it has turned beyond kMaxAngle
+  const FreeBodyMotion sphere(Eigen::Vector3d(2, 2, 2), SO3d::identity(), Eigen::Vector3d(0, 0, 1));
+  EXPECT_RIGID_ERROR((void)sphere.orientation(2e15),
+                     "orientation(): time t = 2000000000000000 s is too far: the body has turned by 2e+15 rad");
+  // the symmetric top: its precession angle grows without bound
+  const FreeBodyMotion top(Eigen::Vector3d(1, 1, 2), SO3d::identity(), Eigen::Vector3d(0.3, 0, 1));
+  EXPECT_RIGID_ERROR((void)top.orientation(1e300), "is too far");
+  EXPECT_NEAR(top.orientation(1e3).quaternion().norm(), 1.0, 1e-15);  // |q| = 1 to 4 ulps
+}
+
 }  // namespace
 }  // namespace rigid::body

@@ -16,10 +16,13 @@ namespace rigid::body {
 
 /// Advances every `states[i]` by one step h (s) of `method` with principal moments
 /// `I_B[i]` (kg·m²), bitwise equal to `step_free_body(method, I_B[i], states[i], h)`.
-/// @throws rigid::Error if the spans differ in length or h is not positive and finite, or the
-/// step of a body does not converge (midpoint, moser_veselov: step_free_body's error with
-/// "body i: " in front; the bodies before i have been stepped, body i and those after it not).
-/// Moments and states are not checked per body (this is the hot loop): pass moments > 0.
+/// @throws rigid::Error if the spans differ in length or h is not positive and finite, or, with
+/// "body i: " in front, a body's moments are not positive and finite or its state is not finite,
+/// or the step of a body does not converge (midpoint, moser_veselov: step_free_body's error) —
+/// the bodies before i have been stepped, body i and those after it not — or a body's state
+/// after the step is not finite (the step diverged: the first such body is named; every body
+/// has been stepped). The checks are a few comparisons per body as it is loaded for its step
+/// and one running sum of the results, not a test per sub-step.
 void step_free_bodies(FreeBodyMethod method, std::span<const Eigen::Vector3d> I_B,
                       std::span<FreeBodyState> states, double h);
 

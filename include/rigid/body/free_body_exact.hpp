@@ -32,11 +32,17 @@ class FreeBodyExact {
  public:
   /// `I_B`: principal moments about the COM (kg·m², any order); `w0_B`: body angular velocity
   /// at t = 0 (rad/s).
-  /// @throws rigid::Error if I_B fails rigid::check_rotational_moments or w0_B is not finite.
+  /// @throws rigid::Error if I_B fails rigid::check_rotational_moments, w0_B is not finite, or
+  /// the kinetic energy or |L| overflows.
   FreeBodyExact(const Eigen::Vector3d& I_B, const Eigen::Vector3d& w0_B);
 
   /// Body angular velocity at time t (s), any sign of t.
+  /// @throws rigid::Error if t is not finite or the phase of the motion at t exceeds kMaxAngle
+  /// (rad; there rounding has lost the fraction of a period): |t| ≤ max_time().
   [[nodiscard]] Eigen::Vector3d omega_body(double t) const;
+  /// The largest |t| (s) that omega_body accepts: kMaxAngle over the rate of the phase
+  /// (infinite when ω is constant).
+  [[nodiscard]] double max_time() const;
 
   [[nodiscard]] FreeBodyCase solution_case() const { return case_; }
   /// Elliptic modulus k (0 for symmetric/sphere, 1 on the separatrix).
@@ -78,8 +84,12 @@ class FreeBodyExact {
   int sym_axis_ = 2;
   double Omega_ = 0;
   double energy_ = 0, L_norm_ = 0;
+  double phase_rate_ = 0;  // rad/s of the phase of ω(t): λ (asymmetric), |Ω| (symmetric), else 0
 
   [[nodiscard]] Eigen::Vector3d omega_sorted(double t) const;
+  /// rigid::Error "<function>(): time t = … s …" unless t is finite and |phase_rate_ t| ≤
+  /// kMaxAngle.
+  void require_time(const char* function, double t) const;
 };
 
 /// Exact motion of the torque-free rigid body: orientation R_WB(t) and body angular
@@ -111,7 +121,7 @@ class FreeBodyMotion {
  public:
   /// `I_B`: principal moments (kg·m², any order; B is a principal frame);
   /// `R0_WB`: initial orientation; `w0_B`: initial body angular velocity (rad/s).
-  /// @throws rigid::Error if I_B fails rigid::check_rotational_moments or w0_B is not finite.
+  /// @throws rigid::Error as FreeBodyExact's constructor.
   FreeBodyMotion(const Eigen::Vector3d& I_B, const SO3d& R0_WB, const Eigen::Vector3d& w0_B);
 
   /// The motion of a body with mass properties `mass_B` in any body frame B (its inertia about
@@ -121,12 +131,14 @@ class FreeBodyMotion {
   FreeBodyMotion(const MassProperties& mass_B, const SO3d& R0_WB, const Eigen::Vector3d& w0_B);
 
   /// Orientation R_WB(t) (body to world) at time t (s), any sign of t.
+  /// @throws rigid::Error if t is not finite or an angle of the motion at t (the phase of ω,
+  /// the precession ψ, the turn t|ω| of a uniform rotation) exceeds kMaxAngle (rad).
   [[nodiscard]] SO3d orientation(double t) const;
-  /// Body angular velocity ω_B(t) (rad/s).
+  /// Body angular velocity ω_B(t) (rad/s). @throws rigid::Error as FreeBodyExact::omega_body.
   [[nodiscard]] Eigen::Vector3d omega_body(double t) const {
     return R_BP_is_identity() ? omega_.omega_body(t) : Eigen::Vector3d(R_BP_ * omega_.omega_body(t));
   }
-  /// (R_WB(t), ω_B(t)).
+  /// (R_WB(t), ω_B(t)). @throws rigid::Error as orientation.
   [[nodiscard]] FreeBodyState state(double t) const;
   /// Constant world angular momentum L_W = R_WB I ω_B (kg·m²/s).
   [[nodiscard]] const Eigen::Vector3d& angular_momentum_world() const { return L_W_; }

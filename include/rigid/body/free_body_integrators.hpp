@@ -83,6 +83,10 @@ enum class FreeBodyMethod {
 /// @throws rigid::Error for a midpoint or Moser–Veselov step that does not converge, naming the
 /// method, h, |ω|, the residual reached relative to |L| and the tolerance, with the remedy
 /// (a smaller step). rigid::integrate::march puts the step number and t in front.
+/// This is the kernel of every march (simulate_free_body, RigidBody, HeavyTop) and is not
+/// checked per call: pass moments > 0, a finite state and h > 0. A step that diverges returns
+/// a non-finite state (SO3d::invalid() for the rotation) for the caller's finiteness check
+/// (find_nonfinite); step_free_bodies checks its inputs and results once per batch.
 [[nodiscard]] FreeBodyState step_free_body(FreeBodyMethod method, const Eigen::Vector3d& I_B,
                                            const FreeBodyState& state, double h);
 
