@@ -60,6 +60,25 @@ Eigen::Vector3d moments_arg(const py::handle& I, const cv::Arg& arg) {
   return v;
 }
 
+// A time t (s) from Python: a number (TypeError naming it otherwise), finite (rigid.Error).
+double time_arg(const py::object& t, const cv::Arg& arg) {
+  const double v = cv::number(t, arg);
+  if (!std::isfinite(v)) cv::refuse(arg, fmt::format("must be a finite time (s); got {}", v));
+  return v;
+}
+
+// f() with a library refusal (a time too far for the closed form) prefixed by the Python
+// function and the argument 't'.
+template <class F>
+auto at_time(const cv::Arg& arg, F f) {
+  try {
+    return f();
+  } catch (const rigid::Error& e) {
+    throw rigid::Error(fmt::format("{}(): argument '{}': {}", arg.function, arg.name,
+                                   rigid::strip_function_names(e.what())));
+  }
+}
+
 // A step h (s): positive and finite.
 double step_arg(double h, std::string_view function) {
   if (!(std::isfinite(h) && h > 0)) {
@@ -411,7 +430,20 @@ void bind_body(py::module_& m) {
            py::arg("principal_moments"), py::arg("omega_body"),
            "The motion of ω_B (rad/s, principal body frame) for principal moments I_B (kg·m²) "
            "from ω_B(0) = omega_body.")
-      .def("omega_body", &rigid::body::FreeBodyExact::omega_body, py::arg("t"), "Body angular velocity at t (s).")
+      .def(
+          "omega_body",
+          [](const rigid::body::FreeBodyExact& e, const py::object& t) {
+            const cv::Arg arg{"rigid.body.FreeBodyExact.omega_body", "t"};
+            const double time = time_arg(t, arg);
+            return at_time(arg, [&] { return Eigen::Vector3d(e.omega_body(time)); });
+          },
+          py::arg("t"),
+          "Body angular velocity at t (s); raises rigid.Error if t is not finite or beyond "
+          "max_time.")
+      .def_property_readonly("max_time", &rigid::body::FreeBodyExact::max_time,
+                             "The largest |t| (s) omega_body accepts: 1e15 rad over the rate of "
+                             "the phase of ω (beyond, rounding has lost the fraction of a "
+                             "period); inf when ω is constant.")
       .def_property_readonly("period", &rigid::body::FreeBodyExact::period, "Period of ω_B(t) (s; inf on a separatrix).")
       .def_property_readonly("modulus", &rigid::body::FreeBodyExact::modulus, "Elliptic modulus k.")
       .def_property_readonly("energy", &rigid::body::FreeBodyExact::energy, "Kinetic energy ½ ωᵀ I ω (J).")
@@ -440,11 +472,22 @@ void bind_body(py::module_& m) {
            "The motion of a body with these mass properties in any body frame.")
       .def(
           "orientation",
-          [](const rigid::body::FreeBodyMotion& motion, double t) {
-            return Eigen::Vector4d(motion.orientation(t).quaternion());
+          [](const rigid::body::FreeBodyMotion& motion, const py::object& t) {
+            const cv::Arg arg{"rigid.body.FreeBodyMotion.orientation", "t"};
+            const double time = time_arg(t, arg);
+            return at_time(arg, [&] { return Eigen::Vector4d(motion.orientation(time).quaternion()); });
           },
-          py::arg("t"), "Orientation R_WB(t) as a quaternion (w, x, y, z).")
-      .def("omega_body", &rigid::body::FreeBodyMotion::omega_body, py::arg("t"), "Body angular velocity at t (s).")
+          py::arg("t"),
+          "Orientation R_WB(t) as a quaternion (w, x, y, z); raises rigid.Error if t is not "
+          "finite or so far that an angle of the motion exceeds 1e15 rad.")
+      .def(
+          "omega_body",
+          [](const rigid::body::FreeBodyMotion& motion, const py::object& t) {
+            const cv::Arg arg{"rigid.body.FreeBodyMotion.omega_body", "t"};
+            const double time = time_arg(t, arg);
+            return at_time(arg, [&] { return Eigen::Vector3d(motion.omega_body(time)); });
+          },
+          py::arg("t"), "Body angular velocity at t (s); raises rigid.Error as orientation.")
       .def_property_readonly("angular_momentum_world", &rigid::body::FreeBodyMotion::angular_momentum_world,
                              "L_W (kg·m²/s), constant.")
       .def_property_readonly("period", [](const rigid::body::FreeBodyMotion& motion) { return motion.omega_solution().period(); },
@@ -485,6 +528,12 @@ void bind_body(py::module_& m) {
         const auto stepper = rigid::body::free_body_method_from_name(method);
         const rigid::body::FreeBodyState s{rotation_arg(q_wxyz, {f, "q_wxyz"}), cv::vector3(w_B, {f, "omega_body"})};
         const auto next = rigid::body::step_free_body(stepper, moments_arg(I_B, {f, "principal_moments"}), s, step_arg(h, f));
+        // the kernel leaves a diverged step non-finite for a march's check: refused here
+        if (const auto bad = rigid::body::find_nonfinite(next)) {
+          throw rigid::Error(fmt::format("{}(): the step of h = {} s diverged: {} = {} after it, expected a "
+                                         "finite state (a smaller step h)",
+                                         f, h, bad->component, bad->value));
+        }
         return py::make_tuple(Eigen::Vector4d(next.R_WB.quaternion()), next.w_B);
       },
       py::arg("method"), py::arg("principal_moments"), py::arg("q_wxyz"), py::arg("omega_body"), py::arg("h"),

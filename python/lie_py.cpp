@@ -16,6 +16,7 @@
 
 #include "convert.hpp"
 #include "rigid/common/format.hpp"
+#include "rigid/common/wording.hpp"
 #include "rigid/lie.hpp"
 #include "rotation_vector.hpp"
 
@@ -236,12 +237,28 @@ std::vector<G> draw_samples(std::uint64_t seed, int count, Draw draw) {
 
 // The methods every group binds alike, on its elements: the matrix, the adjoint, the inverse
 // and the geodesic interpolation.
+// `prefix` is the group as Python users call it ("rigid.SE3"): interpolate's refusals name it
+// and the argument (a non-finite s, or s so large that the turn is meaningless).
 template <class G>
-void bind_element_methods(py::class_<G>& cls, const GroupDocs& d) {
+void bind_element_methods(py::class_<G>& cls, const std::string& prefix, const GroupDocs& d) {
   cls.def("matrix", &G::matrix, d.matrix.c_str())
       .def("adjoint", &G::adjoint, d.adjoint.c_str())
       .def("inverse", &G::inverse, d.inverse.c_str())
-      .def("interpolate", &G::interpolate, py::arg("other"), py::arg("s"), d.interpolate.c_str());
+      .def(
+          "interpolate",
+          [function = prefix + ".interpolate"](const G& a, const G& b, const py::object& s) {
+            const cv::Arg arg{function, "s"};
+            const double fraction = cv::number(s, arg);
+            if (!std::isfinite(fraction))
+              cv::refuse(arg, fmt::format("must be finite; got {}", fraction));
+            try {
+              return a.interpolate(b, fraction);
+            } catch (const rigid::Error& e) {
+              throw rigid::Error(fmt::format("{}(): argument 's': {}", function,
+                                             rigid::strip_function_names(e.what())));
+            }
+          },
+          py::arg("other"), py::arg("s"), d.interpolate.c_str());
 }
 
 // from_matrix(M, tol) of every group; `name` is the matrix argument ("R" or "T").
@@ -343,7 +360,7 @@ void bind_so2(py::module_& m) {
           "complex", [](const SO2d& R) { return Eigen::Vector2d(R.real(), R.imag()); }, "(c, s)")
       .def("is_approx", &SO2d::is_approx, py::arg("other"), py::arg("tol") = 1e-12,
            d.is_approx.c_str());
-  bind_element_methods(cls, d);
+  bind_element_methods(cls, "rigid.SO2", d);
   def_mul_fixed<SO2d, 2>(cls, "SO2.__mul__",
                          "Composition self * other (other: an SO2), or the rotated vector R v "
                          "(other: shape (2,)).");
@@ -383,7 +400,7 @@ void bind_se2(py::module_& m) {
           },
           py::arg("v"), d.act_vector.c_str());
   bind_motion_parts(cls, d);
-  bind_element_methods(cls, d);
+  bind_element_methods(cls, "rigid.SE2", d);
   def_mul_fixed<SE2d, 2>(cls, "SE2.__mul__",
                          "Composition self * other (other: an SE2), or the moved point R p + t "
                          "(other: shape (2,)).");
@@ -420,7 +437,7 @@ void bind_son(py::module_& m) {
       .def("homogeneous", &SOn::homogeneous, d.homogeneous.c_str())
       .def("is_approx", &SOn::is_approx, py::arg("other"), py::arg("tol") = 1e-12,
            d.is_approx.c_str());
-  bind_element_methods(cls, d);
+  bind_element_methods(cls, "rigid.SOn", d);
   cls.def(
          "__mul__",
          [](const SOn& a, const py::object& other) {
@@ -469,7 +486,7 @@ void bind_sen(py::module_& m) {
           },
           py::arg("v"), d.act_vector.c_str());
   bind_motion_parts(cls, d);
-  bind_element_methods(cls, d);
+  bind_element_methods(cls, "rigid.SEn", d);
   cls.def(
          "__mul__",
          [](const SEn& a, const py::object& other) {
@@ -533,15 +550,22 @@ void bind_so3(py::module_& m) {
   bind_tangent_maps(cls, "rigid.SO3", size, d);
   bind_from_matrix(cls, "rigid.SO3", size, "R", d);
   cls.def_static(
-         "from_quaternion", &SO3d::from_quaternion, py::arg("w"), py::arg("x"), py::arg("y"),
-         py::arg("z"),
+         "from_quaternion",
+         [](const py::object& w, const py::object& x, const py::object& y, const py::object& z) {
+           // numbers (a TypeError naming the argument otherwise); the library refuses NaN
+           constexpr std::string_view f = "rigid.SO3.from_quaternion";
+           return SO3d::from_quaternion(cv::number(w, {f, "w"}), cv::number(x, {f, "x"}),
+                                        cv::number(y, {f, "y"}), cv::number(z, {f, "z"}));
+         },
+         py::arg("w"), py::arg("x"), py::arg("y"), py::arg("z"),
          "The rotation of the quaternion (w, x, y, z), normalised; raises rigid.Error if it is "
          "not finite or its norm is below 1e-12.")
       .def_static(
           "from_axis_angle",
-          [](const py::object& axis, double angle) {
-            return SO3d::from_axis_angle(
-                cv::fixed_vector<3>(axis, {"rigid.SO3.from_axis_angle", "axis"}), angle);
+          [](const py::object& axis, const py::object& angle) {
+            constexpr std::string_view f = "rigid.SO3.from_axis_angle";
+            return SO3d::from_axis_angle(cv::fixed_vector<3>(axis, {f, "axis"}),
+                                         cv::number(angle, {f, "angle"}));
           },
           py::arg("axis"), py::arg("angle"), d.from_axis_angle.c_str())
       .def_static(
@@ -558,7 +582,7 @@ void bind_so3(py::module_& m) {
       .def("quaternion", &SO3d::quaternion, "(w, x, y, z)")
       .def("is_approx", &SO3d::is_approx, py::arg("other"), py::arg("tol") = 1e-12,
            d.is_approx.c_str());
-  bind_element_methods(cls, d);
+  bind_element_methods(cls, "rigid.SO3", d);
   def_mul_fixed<SO3d, 3>(cls, "SO3.__mul__",
                          "Composition self * other (R_AC = R_AB * R_BC; other: an SO3), or the "
                          "rotated vector R v (v_A = R_AB v_B; other: shape (3,)).");
@@ -585,7 +609,7 @@ void bind_se3(py::module_& m) {
   bind_from_matrix(cls, "rigid.SE3", size, "T", d);
   cls.def("log", &SE3d::log, d.log.c_str());
   bind_motion_parts(cls, d);
-  bind_element_methods(cls, d);
+  bind_element_methods(cls, "rigid.SE3", d);
   def_mul_fixed<SE3d, 3>(cls, "SE3.__mul__",
                          "Composition self * other (X_AC = X_AB * X_BC; other: an SE3), or the "
                          "moved point R p + t (other: shape (3,)).");

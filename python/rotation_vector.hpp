@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <Eigen/Core>
+#include <cmath>
 #include <string_view>
 
 #include "rigid/common/error.hpp"
@@ -30,14 +31,15 @@ inline void require_finite_vector(const Eigen::Vector3d& v, std::string_view wha
 
 /// SO3d::exp(omega), or rigid::Error (without a function name: the caller names the function,
 /// the argument and the row) for a non-finite omega or one whose |ω|² overflows.
+/// A vector longer than kMaxAngle rad (but whose |ω|² is finite) is refused by SO3d::exp in its
+/// words ("is too long: angle |ω| = … rad, expected at most kMaxAngle …").
 inline SO3d exp_of_rotation_vector(const Eigen::Vector3d& omega) {
   require_finite_vector(omega, "rotation vector");
-  const SO3d R = SO3d::exp(omega);
-  if (!R.quaternion().allFinite()) [[unlikely]] {
+  if (!std::isfinite(omega.squaredNorm())) [[unlikely]] {
     throw rigid::Error(fmt::format("rotation vector {} is too long: |ω|² overflows",
                                    rigid::to_string(omega.transpose())));
   }
-  return R;
+  return SO3d::exp(omega);
 }
 
 }  // namespace rigid::python

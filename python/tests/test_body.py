@@ -285,3 +285,37 @@ def test_a_load_that_returns_garbage_is_named():
     body.add_load(lambda t, s: ([2.0, 0, 0], [0, 0, 0]))
     out = body.simulate(*args)
     np.testing.assert_allclose(out["p_world"][-1], [0.5 * 1.0 * 0.1**2, 0, 0], rtol=1e-13)
+
+
+# Times that are not finite, or so far that the phase of the motion has lost its fraction of a
+# turn (beyond 1e15 rad), are refused with rigid.Error naming the function and 't' (before:
+# NaN, or an internal error on a NaN quaternion).
+def test_free_body_motion_refuses_a_non_finite_or_too_distant_time():
+    e = rigid.body.FreeBodyExact(I, W0)
+    with pytest.raises(rigid.Error, match=r"rigid\.body\.FreeBodyExact\.omega_body\(\): argument 't' "
+                       r"must be a finite time \(s\); got nan"):
+        e.omega_body(math.nan)
+    with pytest.raises(rigid.Error, match=r"argument 't': time t = 1e\+300 s is too far"):
+        e.omega_body(1e300)
+    assert np.all(np.isfinite(e.omega_body(0.5 * e.max_time)))
+    m = rigid.body.FreeBodyMotion(I, [1.0, 0.0, 0.0, 0.0], W0)
+    with pytest.raises(rigid.Error, match=r"rigid\.body\.FreeBodyMotion\.orientation\(\): argument 't': "
+                       r"time t = 1e\+300 s is too far"):
+        m.orientation(1e300)
+    with pytest.raises(rigid.Error, match=r"FreeBodyMotion\.omega_body\(\): argument 't' must be a finite"):
+        m.omega_body(math.inf)
+    with pytest.raises(TypeError, match=r"FreeBodyMotion\.orientation\(\): argument 't' must be a number"):
+        m.orientation("soon")
+
+
+def test_free_body_exact_refuses_an_energy_that_overflows():
+    with pytest.raises(rigid.Error, match=r"initial body angular velocity \[1e\+200, 0, 0\] rad/s .* overflows"):
+        rigid.body.FreeBodyExact(I, [1e200, 0.0, 0.0])
+
+
+def test_steps_refuse_a_step_that_diverges():
+    # RK4 with h |ω| = 1e200 overflows in its stages: refused, not returned as NaN
+    with pytest.raises(rigid.Error, match=r"step_free_body\(\): the step of h = 1e\+100 s diverged"):
+        rigid.body.step_free_body("rk4", I, [1.0, 0, 0, 0], [1e100, 1e100, 1e100], 1e100)
+    with pytest.raises(rigid.Error, match=r"body 0: the step of h = 1e\+100 s diverged"):
+        rigid.body.step_free_bodies("rk4", [I], [[1.0, 0, 0, 0]], [[1e100, 1e100, 1e100]], 1e100)

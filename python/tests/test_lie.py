@@ -173,3 +173,47 @@ def test_mul_composes_elements_and_acts_on_arrays():
     Z = rigid.SEn(Q, [1, 2, 3, 4])
     assert isinstance(Z * Z, rigid.SEn)
     assert np.abs(Z * [1, 0, 0, 0] - (Q.matrix()[:, 0] + [1.0, 2, 3, 4])).max() < 1e-14
+
+
+# Refusals of non-finite input and of angles beyond kMaxAngle = 1e15 rad (where the fraction
+# of a turn is lost in rounding): rigid.Error naming the function and the argument, never a
+# NaN result.
+def test_so3_from_euler_refuses_an_angle_too_large_to_mean_a_rotation():
+    with pytest.raises(rigid.Error, match=r"so3\.from_euler\(\): argument 'angles': Euler angles "
+                       r"\[1e\+300, 0, 0\] rad: an angle is too large, expected \|angle\| <= "
+                       r"kMaxAngle = 1e\+15 rad"):
+        rigid.so3.from_euler([1e300, 0, 0], "ZYX")
+    with pytest.raises(rigid.Error, match=r"an angle is too large"):
+        rigid.SO3.from_euler([0.0, 2e15, 0.0], "XYZ")
+    # the limit itself gives a unit quaternion
+    assert np.linalg.norm(rigid.so3.from_euler([1e15, 0, 0], "ZYX")) == pytest.approx(1.0, abs=1e-15)
+
+
+@pytest.mark.parametrize("group, a, b", [
+    ("SE3", rigid.SE3.identity(), rigid.SE3(rigid.SO3.exp([0.1, 0, 0]), [1.0, 2.0, 3.0])),
+    ("SO3", rigid.SO3.identity(), rigid.SO3.exp([0.1, 0, 0])),
+    ("SE2", rigid.SE2.identity(), rigid.SE2.exp([1.0, 2.0, 0.5])),
+    ("SO2", rigid.SO2.identity(), rigid.SO2.exp(0.5)),
+    ("SOn", rigid.SOn.identity(4), rigid.SOn.exp([0.1] * 6)),
+    ("SEn", rigid.SEn.identity(3), rigid.SEn.exp([0.1] * 6)),
+])
+def test_interpolate_refuses_a_non_finite_or_huge_fraction(group, a, b):
+    for s in (math.nan, math.inf):
+        with pytest.raises(rigid.Error, match=rf"rigid\.{group}\.interpolate\(\): argument 's' "
+                           rf"must be finite; got {s}"):
+            a.interpolate(b, s)
+    with pytest.raises(rigid.Error, match=rf"rigid\.{group}\.interpolate\(\): argument 's': "
+                       r"fraction s = 1e\+300 gives the tangent"):
+        a.interpolate(b, 1e300)
+    # a string is no number: a TypeError naming the argument (not pybind11's overload list)
+    with pytest.raises(TypeError, match=rf"rigid\.{group}\.interpolate\(\): argument 's' must be a number"):
+        a.interpolate(b, "half")
+    a.interpolate(b, 0.5)  # still works
+
+
+def test_so3_exp_refuses_a_vector_longer_than_the_angle_limit():
+    with pytest.raises(rigid.Error, match=r"rigid\.SO3\.exp\(\): argument 'omega': rotation vector "
+                       r"\[2000000000000000, 0, 0\] is too long: angle \|ω\| = 2e\+15 rad"):
+        rigid.SO3.exp([2e15, 0, 0])
+    with pytest.raises(rigid.Error, match=r"argument 'angle'|angle 1e\+300 rad is too large"):
+        rigid.SO3.from_axis_angle([0, 0, 1], 1e300)

@@ -182,3 +182,16 @@ def test_laminae_point_sets_and_polygon_moments():
     assert rigid.mass.check_rotational_moments([1.0, 2.0, 2.5]) is None
     assert "violate" in rigid.mass.check_rotational_moments([1.0, 2.0, 4.0])
     assert rigid.mass.check_rotational_moments([0.0, 1.0, 1.0]) is not None  # a thin rod does not turn
+
+
+def test_pseudo_inertia_and_log_cholesky_refuse_a_body_that_overflows():
+    # 1e308 kg with its COM 10 m from the origin: m |c|² = 1e310 overflows a double; refused
+    # (rather than returned with inf and nan entries)
+    heavy = rigid.MassProperties(1e308, [10.0, 0.0, 0.0], np.diag([1e308 / 6] * 3))
+    with pytest.raises(rigid.Error, match=r"the pseudo-inertia of the body \(mass 1e\+308 kg, center "
+                       r"of mass \[10, 0, 0\] m from the origin\) overflows a double"):
+        rigid.mass.pseudo_inertia(heavy)
+    with pytest.raises(rigid.Error, match="overflows a double"):
+        rigid.mass.log_cholesky(heavy)
+    with pytest.raises(rigid.Error, match=r"the inertia about the point \[-9, 0, 0\] m overflows"):
+        heavy.inertia_about([-9.0, 0.0, 0.0])
