@@ -144,8 +144,8 @@ Eigen::Matrix3d MassProperties::inertia_about(const Eigen::Vector3d& p_OQ_B) con
   const Eigen::Matrix3d I_Q = I_C_B_ + parallel_axis_term(mass_, p_OC_B_ - p_OQ_B);
   RIGID_REQUIRE(I_Q.allFinite(),
                 "the inertia about the point {} m overflows a double (mass {} kg, center of mass "
-                "{} m): I = {} kg·m²; expected finite entries (a nearer point, or other units)",
-                to_string(p_OQ_B.transpose()), mass_, to_string(p_OC_B_.transpose()), to_string(I_Q));
+                "{} m); expected finite entries (a nearer point, or other units)",
+                to_string(p_OQ_B.transpose()), mass_, to_string(p_OC_B_.transpose()));
   return I_Q;
 }
 
@@ -224,9 +224,9 @@ PrincipalAxes MassProperties::principal_axes() const {
 MassProperties MassProperties::finite_result(const char* function, double mass,
                                              const Eigen::Vector3d& p, const Eigen::Matrix3d& I) {
   RIGID_REQUIRE_AS(function, std::isfinite(mass) && p.allFinite() && I.allFinite(),
-                   "the result overflows a double: mass {} kg, center of mass {} m, inertia {} "
-                   "kg·m²; expected finite mass properties (other units, or a nearer frame)",
-                   mass, to_string(p.transpose()), to_string(I));
+                   "the result overflows a double (its {}); expected finite mass properties "
+                   "(other units, or a nearer frame)",
+                   !std::isfinite(mass) ? "mass" : !p.allFinite() ? "center of mass" : "inertia");
   return MassProperties(Unchecked{}, mass, p, I);
 }
 

@@ -23,9 +23,9 @@ Eigen::Matrix4d pseudo_inertia(const MassProperties& mp) {
   J(3, 3) = mp.mass();
   RIGID_REQUIRE(J.allFinite(),
                 "the pseudo-inertia of the body (mass {} kg, center of mass {} m from the origin) "
-                "overflows a double: J = {}; expected finite entries (state the body in smaller "
-                "units, or about an origin nearer its center of mass)",
-                mp.mass(), to_string(c.transpose()), to_string(J));
+                "overflows a double; expected finite entries (state the body in smaller units, or "
+                "about an origin nearer its center of mass)",
+                mp.mass(), to_string(c.transpose()));
   return J;
 }
 
@@ -111,9 +111,9 @@ LogCholesky log_cholesky(const MassProperties& mp) {
       V(0, 3), V(1, 3), V(2, 3);
   RIGID_REQUIRE(theta.allFinite(),
                 "the log-Cholesky parameters of the body (mass {} kg, center of mass {} m from "
-                "the origin) overflow a double: θ = {}; expected finite parameters (state the "
-                "body in other units)",
-                mp.mass(), to_string(mp.com().transpose()), to_string(theta.transpose()));
+                "the origin) overflow a double; expected finite parameters (state the body in "
+                "other units)",
+                mp.mass(), to_string(mp.com().transpose()));
   return theta;
 }
 
