@@ -1,7 +1,7 @@
 #include "rigid/body/free_body_batch.hpp"
 
 #include <cmath>
-#include <limits>
+#include <algorithm>
 
 #include "rigid/common/error.hpp"
 #include "rigid/common/format.hpp"
@@ -9,8 +9,6 @@
 namespace rigid::body {
 
 namespace {
-
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // The refusal of body b when its moments are not positive and finite or its state is not
 // finite (out of line: the check in the loop is a few comparisons). Returns when the state is
@@ -50,17 +48,17 @@ void step_free_bodies(FreeBodyMethod method, std::span<const Eigen::Vector3d> I_
                 I_B.size(), states.size());
   RIGID_REQUIRE(std::isfinite(h) && h > 0, "step h must be positive and finite, got {} s", h);
   // Each body's input is checked as it is loaded for its step (a separate pass over the batch
-  // first would read it from memory twice: 5-10 % of a splitting2 step at 1e5 bodies): moments
-  // in (0, ∞) (false for NaN) and a finite sum of the state's components (non-finite if one of
-  // them is; finite components whose sum overflows fall through to the scan, which accepts
-  // them). `&`, not `&&`: one branch per body. One kernel for one body and for many:
+  // first would read it from memory twice: 5-10 % of a splitting2 step at 1e5 bodies): the
+  // smallest moment positive (false for NaN) and a finite sum of the moments and the state's
+  // components (non-finite if one of them is; finite values whose sum overflows fall through
+  // to the scan, which accepts them). `&`, not `&&`: one branch per body. One kernel for one body and for many:
   // step_free_body's splitting path is already the merged half-angle kernel
   // (free_body_integrators.cpp), so there is no second copy here.
   double sum = 0.0;  // of every component after the step: non-finite iff one of them is (or overflow)
   for (std::size_t b = 0; b < states.size(); ++b) {
     const Eigen::Vector3d& I = I_B[b];
-    const bool ok = (I(0) > 0.0) & (I(0) < kInf) & (I(1) > 0.0) & (I(1) < kInf) & (I(2) > 0.0) &
-                    (I(2) < kInf) & std::isfinite(states[b].R_WB.quaternion().sum() + states[b].w_B.sum());
+    const bool ok = (std::min({I(0), I(1), I(2)}) > 0.0) &
+                    std::isfinite(I.sum() + states[b].R_WB.quaternion().sum() + states[b].w_B.sum());
     if (!ok) [[unlikely]]
       refuse_body_input(b, I, states[b]);
     try {
