@@ -11,6 +11,7 @@
 #include <cctype>
 #include <cmath>
 #include <set>
+#include <utility>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -37,72 +38,215 @@ const System::Impl& impl_of(const System& system) {
 
 // ----------------------------------------------------------------------------------------
 // names
+//
+// Every name of the user's that the export writes as an identifier (a parameter: a C++
+// struct member and designated initializer, a Python keyword argument; the C++ namespace)
+// passes through export_identifiers(), one rule for both languages:
+//   1. characters other than letters, digits and '_' become '_'; an empty name, or one
+//      starting with a digit, takes "model_" in front (only a file name can need this);
+//   2. a name starting with '_' takes a 'p' in front: such names are the implementation's
+//      (C and C++ reserve "__x" and "_X" everywhere, "_x" at namespace scope; the Python
+//      module's own names start with '_');
+//   3. a name that is reserved (below) or already a name of another parameter takes a '_'
+//      at its end, again until it is neither.
+// The coordinates' and constraints' names are written as string literals and in comments
+// only, so they keep their names.
 
-const std::set<std::string>& cpp_reserved() {
-  // keywords, alternative tokens, the macros of <cmath>/<cerrno> a member could meet, and the
-  // struct's own name (a trailing '_' never makes another of these)
-  static const std::set<std::string> kWords = {
-      "alignas", "alignof", "and", "and_eq", "asm", "auto", "bitand", "bitor", "bool", "break",
-      "case", "catch", "char", "char8_t", "char16_t", "char32_t", "class", "compl", "concept",
-      "const", "consteval", "constexpr", "constinit", "const_cast", "continue", "co_await",
-      "co_return", "co_yield", "decltype", "default", "delete", "do", "double", "dynamic_cast",
-      "else", "enum", "explicit", "export", "extern", "false", "float", "for", "friend", "goto",
-      "if", "inline", "int", "long", "mutable", "namespace", "new", "noexcept", "not", "not_eq",
-      "nullptr", "operator", "or", "or_eq", "private", "protected", "public", "register",
-      "reinterpret_cast", "requires", "return", "short", "signed", "sizeof", "static",
-      "static_assert", "static_cast", "struct", "switch", "template", "this", "thread_local",
-      "throw", "true", "try", "typedef", "typeid", "typename", "union", "unsigned", "using",
-      "virtual", "void", "volatile", "wchar_t", "while", "xor", "xor_eq", "final", "override",
-      "import", "module", "errno", "NAN", "INFINITY", "HUGE_VAL", "HUGE_VALF", "HUGE_VALL",
-      "EDOM", "ERANGE", "EILSEQ", "MATH_ERRNO", "MATH_ERREXCEPT", "math_errhandling", "assert",
-      "NULL", "Parameters", "std", "M_E", "M_LOG2E", "M_LOG10E", "M_LN2", "M_LN10", "M_PI",
-      "M_PI_2", "M_PI_4", "M_1_PI", "M_2_PI", "M_2_SQRTPI", "M_SQRT2", "M_SQRT1_2", "FP_NAN",
-      "FP_INFINITE", "FP_ZERO", "FP_SUBNORMAL", "FP_NORMAL", "FP_ILOGB0", "FP_ILOGBNAN",
-      "FP_FAST_FMA", "FP_FAST_FMAF", "FP_FAST_FMAL"};
-  return kWords;
+// C++20 keywords and alternative tokens, identifiers with a special meaning, keywords of the
+// technical specifications (transactional memory, reflection), C11/C23 keywords without a
+// leading '_' and GNU's `typeof` (a keyword of g++ and clang++ in their default gnu++ modes).
+constexpr std::string_view kCppKeywords[] = {
+    "alignas", "alignof", "and", "and_eq", "asm", "atomic_cancel", "atomic_commit",
+    "atomic_noexcept", "auto", "bitand", "bitor", "bool", "break", "case", "catch", "char",
+    "char8_t", "char16_t", "char32_t", "class", "compl", "concept", "const", "consteval",
+    "constexpr", "constinit", "const_cast", "continue", "co_await", "co_return", "co_yield",
+    "decltype", "default", "delete", "do", "double", "dynamic_cast", "else", "enum", "explicit",
+    "export", "extern", "false", "float", "for", "friend", "goto", "if", "inline", "int", "long",
+    "mutable", "namespace", "new", "noexcept", "not", "not_eq", "nullptr", "operator", "or",
+    "or_eq", "private", "protected", "public", "reflexpr", "register", "reinterpret_cast",
+    "requires", "return", "short", "signed", "sizeof", "static", "static_assert", "static_cast",
+    "struct", "switch", "synchronized", "template", "this", "thread_local", "throw", "true", "try",
+    "typedef", "typeid", "typename", "union", "unsigned", "using", "virtual", "void", "volatile",
+    "wchar_t", "while", "xor", "xor_eq", "final", "override", "import", "module",
+    "transaction_safe", "transaction_safe_dynamic", "restrict", "typeof", "typeof_unqual"};
+
+// Object-like macros a member could meet: the system names GCC and Clang predefine on Linux in
+// their gnu modes (`echo | g++ -std=gnu++20 -dM -E -x c++ -`: linux, unix; i386 with -m32;
+// mips, sparc on those targets; sun, vax, m68k, hppa on others), and those <cmath> defines
+// with glibc (`echo '#include <cmath>' | g++ -dM -E -x c++ -`, the names without a leading
+// '_'; the M_ constants are kMathConstants below). A function-like macro expands only before
+// '(', which never follows a parameter's name in the exported code.
+constexpr std::string_view kCppMacros[] = {
+    "linux", "unix", "i386", "mips", "sparc", "sun", "vax", "m68k", "hppa", "errno", "assert",
+    "math_errhandling", "NULL", "NAN", "INFINITY", "HUGE_VAL", "HUGE_VALF", "HUGE_VALL",
+    "HUGE_VAL_F32", "HUGE_VAL_F64", "HUGE_VAL_F128", "HUGE_VAL_F32X", "HUGE_VAL_F64X", "SNAN",
+    "SNANF", "SNANL", "SNANF32", "SNANF64", "SNANF128", "SNANF32X", "SNANF64X", "MAXFLOAT",
+    "EDOM", "ERANGE", "EILSEQ", "MATH_ERRNO", "MATH_ERREXCEPT", "FP_NAN", "FP_INFINITE",
+    "FP_ZERO", "FP_SUBNORMAL", "FP_NORMAL", "FP_ILOGB0", "FP_ILOGBNAN", "FP_LLOGB0",
+    "FP_LLOGBNAN", "FP_FAST_FMA", "FP_FAST_FMAF", "FP_FAST_FMAL", "FP_INT_UPWARD",
+    "FP_INT_DOWNWARD", "FP_INT_TOWARDZERO", "FP_INT_TONEARESTFROMZERO", "FP_INT_TONEAREST",
+    "EXIT_SUCCESS", "EXIT_FAILURE", "RAND_MAX", "MB_CUR_MAX", "BIG_ENDIAN", "LITTLE_ENDIAN",
+    "PDP_ENDIAN", "BYTE_ORDER", "FD_SETSIZE", "NFDBITS", "WNOHANG", "WUNTRACED", "WSTOPPED",
+    "WEXITED", "WCONTINUED", "WNOWAIT"};
+
+// glibc's M_ constants, each with the suffixes of its float types (M_PI, M_PIf, M_PIl, ...).
+constexpr std::string_view kMathConstants[] = {"E",     "LOG2E", "LOG10E", "LN2",      "LN10",
+                                               "PI",    "PI_2",  "PI_4",   "1_PI",     "2_PI",
+                                               "2_SQRTPI", "SQRT2", "SQRT1_2"};
+
+// The suffixes of the C library's float types: double, float, long double, _FloatN, _FloatNx.
+constexpr std::string_view kFloatSuffixes[] = {"",    "f",    "l",    "f16",  "f32",
+                                               "f64", "f128", "f32x", "f64x", "f128x"};
+
+// The functions of <math.h> (C23 and glibc's), each also with the suffixes above and glibc's
+// reentrant "_r": at global scope where the namespace is, they clash with it.
+constexpr std::string_view kMathFunctions[] = {
+    "acos", "asin", "atan", "atan2", "cos", "sin", "tan", "acosh", "asinh", "atanh", "cosh",
+    "sinh", "tanh", "acospi", "asinpi", "atanpi", "atan2pi", "cospi", "sinpi", "tanpi", "exp",
+    "exp2", "exp10", "expm1", "exp2m1", "exp10m1", "frexp", "ilogb", "llogb", "ldexp", "log",
+    "log10", "log2", "log1p", "logp1", "log2p1", "log10p1", "logb", "modf", "scalbn", "scalbln",
+    "scalb", "cbrt", "fabs", "hypot", "pow", "pown", "powr", "rootn", "rsqrt", "compoundn",
+    "sqrt", "erf", "erfc", "lgamma", "tgamma", "gamma", "ceil", "floor", "nearbyint", "rint",
+    "lrint", "llrint", "round", "lround", "llround", "roundeven", "trunc", "fromfp", "fromfpx",
+    "ufromfp", "ufromfpx", "fmod", "remainder", "remquo", "drem", "copysign", "nan", "nextafter",
+    "nexttoward", "nextup", "nextdown", "canonicalize", "fdim", "fmax", "fmin", "fmaxmag",
+    "fminmag", "fmaximum", "fminimum", "fmaximum_mag", "fminimum_mag", "fmaximum_num",
+    "fminimum_num", "fmaximum_mag_num", "fminimum_mag_num", "fma", "getpayload",
+    "setpayload", "setpayloadsig", "totalorder", "totalordermag", "j0", "j1", "jn", "y0", "y1",
+    "yn", "significand", "finite", "isinf", "isnan", "iszero", "issignaling", "iscanonical",
+    "iseqsig", "sincos", "pow10"};
+
+// The narrowing functions: <type><operation><suffix> (fadd, daddl, f32mulf64, ...).
+constexpr std::string_view kNarrowingTypes[] = {"f", "d", "f32", "f64", "f128", "f32x", "f64x"};
+constexpr std::string_view kNarrowingOps[] = {"add", "sub", "mul", "div", "fma", "sqrt"};
+
+// The other names <cmath> declares at global scope with glibc (its <stdlib.h> and POSIX types;
+// `echo '#include <cmath>' | g++ -std=gnu++20 -E -x c++ -` declares them).
+constexpr std::string_view kCGlobals[] = {
+    "main", "std", "abort", "abs", "labs", "llabs", "div", "ldiv", "lldiv", "div_t", "ldiv_t",
+    "lldiv_t", "aligned_alloc", "alloca", "malloc", "calloc", "realloc", "reallocarray", "free",
+    "valloc", "posix_memalign", "arc4random", "arc4random_buf", "arc4random_uniform", "atexit",
+    "at_quick_exit", "on_exit", "exit", "quick_exit", "atof", "atoi", "atol", "atoll", "bsearch", "qsort", "qsort_r", "canonicalize_file_name",
+    "clearenv", "getenv", "secure_getenv", "putenv", "setenv", "unsetenv", "drand48", "erand48",
+    "lrand48", "nrand48", "mrand48", "jrand48", "srand48", "seed48", "lcong48", "drand48_r",
+    "erand48_r", "lrand48_r", "nrand48_r", "mrand48_r", "jrand48_r", "srand48_r", "seed48_r",
+    "lcong48_r", "drand48_data", "rand", "rand_r", "srand", "random", "srandom", "random_r",
+    "srandom_r", "random_data", "initstate", "initstate_r", "setstate", "setstate_r", "ecvt",
+    "fcvt", "gcvt", "ecvt_r", "fcvt_r", "qecvt", "qfcvt", "qgcvt", "qecvt_r", "qfcvt_r", "l64a",
+    "a64l", "getloadavg", "getpt", "getsubopt", "grantpt", "unlockpt", "ptsname", "ptsname_r",
+    "posix_openpt", "mblen", "mbtowc", "wctomb", "mbstowcs", "wcstombs", "mkdtemp", "mktemp",
+    "mkstemp", "mkstemp64", "mkstemps", "mkstemps64", "mkostemp", "mkostemp64", "mkostemps",
+    "mkostemps64", "realpath", "rpmatch", "system", "select", "pselect", "signgam",
+    "comparison_fn_t", "double_t", "float_t", "size_t", "ssize_t", "wchar_t", "int8_t",
+    "int16_t", "int32_t", "int64_t", "u_int8_t", "u_int16_t", "u_int32_t", "u_int64_t",
+    "u_char", "u_short", "u_int", "u_long", "u_quad_t", "quad_t", "uint", "ulong", "ushort",
+    "register_t", "blkcnt_t", "blkcnt64_t", "blksize_t", "caddr_t", "clock_t", "clockid_t",
+    "daddr_t", "dev_t", "fd_mask", "fd_set", "fsblkcnt_t", "fsblkcnt64_t", "fsfilcnt_t",
+    "fsfilcnt64_t", "fsid_t", "gid_t", "id_t", "ino_t", "ino64_t", "key_t", "locale_t", "loff_t",
+    "mode_t", "nlink_t", "off_t", "off64_t", "pid_t", "sigset_t", "suseconds_t", "time_t",
+    "timer_t", "timespec", "timeval", "uid_t", "useconds_t", "pthread_t", "pthread_attr_t",
+    "pthread_barrier_t", "pthread_barrierattr_t", "pthread_cond_t", "pthread_condattr_t",
+    "pthread_key_t", "pthread_mutex_t", "pthread_mutexattr_t", "pthread_once_t",
+    "pthread_rwlock_t", "pthread_rwlockattr_t", "pthread_spinlock_t", "max_align_t",
+    "ptrdiff_t"};
+
+// Python's keywords and soft keywords (keyword.kwlist, keyword.softkwlist and 3.12's `type`),
+// the functions' own arguments, and the module and builtins the generated code calls.
+constexpr std::string_view kPythonWords[] = {
+    "False", "None", "True", "and", "as", "assert", "async", "await", "break", "class",
+    "continue", "def", "del", "elif", "else", "except", "finally", "for", "from", "global", "if",
+    "import", "in", "is", "lambda", "nonlocal", "not", "or", "pass", "raise", "return", "try",
+    "while", "with", "yield", "match", "case", "type", "q", "q_dot", "q_ddot", "tau", "t",
+    "math", "float", "len", "range", "ValueError"};
+
+template <std::size_t N>
+bool contains(const std::string_view (&words)[N], std::string_view name) {
+  return std::find(std::begin(words), std::end(words), name) != std::end(words);
 }
 
-bool cpp_needs_mark(const std::string& name) { return cpp_reserved().count(name) > 0; }
-
-const std::set<std::string>& python_reserved() {
-  // keywords and the names the generated functions use
-  static const std::set<std::string> kWords = {
-      "False", "None", "True", "and", "as", "assert", "async", "await", "break", "class",
-      "continue", "def", "del", "elif", "else", "except", "finally", "for", "from", "global",
-      "if", "import", "in", "is", "lambda", "nonlocal", "not", "or", "pass", "raise", "return",
-      "try", "while", "with", "yield", "q", "q_dot", "q_ddot", "tau", "t", "math"};
-  return kWords;
+// `name` is a function of <math.h> with one of its type suffixes (and an optional "_r"), or
+// one of the string conversions of <stdlib.h> (strtod, strfromf128, strtof64_l, ...).
+bool math_function(std::string_view name) {
+  if (name.starts_with("strto") || name.starts_with("strfrom")) {
+    if (name.ends_with("_l")) name.remove_suffix(2);
+    name.remove_prefix(name.starts_with("strto") ? 5 : 7);
+    // strtod, strtold, strtol, strtoll, strtoul, strtoull, strtoq, strtouq; strtof, strtof128, ...
+    for (std::string_view integer : {"d", "ld", "l", "ll", "ul", "ull", "q", "uq"}) {
+      if (name == integer) return true;
+    }
+    return !name.empty() && contains(kFloatSuffixes, name);
+  }
+  if (name.ends_with("_r")) name.remove_suffix(2);
+  for (std::string_view suffix : kFloatSuffixes) {
+    if (name.size() <= suffix.size() || !name.ends_with(suffix)) continue;
+    const std::string_view base = name.substr(0, name.size() - suffix.size());
+    if (contains(kMathFunctions, base)) return true;
+    for (std::string_view type : kNarrowingTypes) {
+      if (base.starts_with(type) && contains(kNarrowingOps, base.substr(type.size()))) return true;
+    }
+  }
+  return false;
 }
 
-// Unique identifiers for the parameters: a reserved name takes a trailing '_' (a Python name
-// starting with '_', which the generated code keeps for itself, a leading 'p'), repeated
-// until it is unused.
-std::vector<std::string> identifiers(const std::vector<std::string>& names, bool python) {
+bool math_constant(std::string_view name) {
+  if (!name.starts_with("M_")) return false;
+  name.remove_prefix(2);
+  for (std::string_view suffix : kFloatSuffixes) {
+    if (name.size() > suffix.size() && name.ends_with(suffix) &&
+        contains(kMathConstants, name.substr(0, name.size() - suffix.size()))) {
+      return true;
+    }
+  }
+  return false;
+}
+
+// Where an exported identifier lives: what it may not be called there.
+enum class Scope {
+  kMember,     // a C++ Parameters member or a Python keyword argument
+  kNamespace,  // the C++ namespace, at global scope beside <cmath>'s declarations and main()
+};
+
+bool reserved(std::string_view name, Language language, Scope scope) {
+  // no reserved name ends with '_' (none of the lists' words, none the patterns match), so
+  // step 3 of the rule ends: one '_' makes a name unreserved, more make it unused
+  if (name.ends_with("_")) return false;
+  if (language == Language::kPython) return contains(kPythonWords, name);
+  if (contains(kCppKeywords, name) || contains(kCppMacros, name) || math_constant(name)) {
+    return true;
+  }
+  if (scope == Scope::kMember) return name == "Parameters";  // a member may not name its class
+  return contains(kCGlobals, name) || math_function(name);
+}
+
+// The identifiers of `names` under the rule above, in order; distinct when the names are.
+std::vector<std::string> export_identifiers(const std::vector<std::string>& names,
+                                            Language language, Scope scope) {
   std::set<std::string> used(names.begin(), names.end());
   std::vector<std::string> out;
   for (const std::string& name : names) {
-    const bool reserved = python ? python_reserved().count(name) > 0 || name.starts_with("_")
-                                 : cpp_needs_mark(name);
-    if (!reserved) {
-      out.push_back(name);
+    std::string id;
+    for (char c : name) id += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+    if (id.empty() || std::isdigit(static_cast<unsigned char>(id[0]))) id = "model_" + id;
+    if (id.starts_with("_")) id = "p" + id;
+    if (id == name && !reserved(id, language, scope)) {
+      out.push_back(id);
       continue;
     }
-    std::string id = python && name.starts_with("_") ? fmt::format("p{}", name) : fmt::format("{}_", name);
-    while (used.count(id) || (python ? python_reserved().count(id) > 0 : cpp_needs_mark(id))) {
-      id += "_";
-    }
+    while (reserved(id, language, scope) || used.count(id) > 0) id += "_";
     used.insert(id);
     out.push_back(id);
   }
   return out;
 }
 
-std::string namespace_name(const std::string& requested) {
-  std::string id;
-  for (char c : requested) id += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
-  if (id.empty() || std::isdigit(static_cast<unsigned char>(id[0]))) id = fmt::format("model_{}", id);
-  while (cpp_needs_mark(id)) id += "_";
-  return id;
+// The renamed identifiers as "old → new" lines for the file's header comment.
+std::vector<std::string> renamed(const std::vector<std::string>& names,
+                                 const std::vector<std::string>& ids) {
+  std::vector<std::string> out;
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    if (names[k] != ids[k]) out.push_back(fmt::format("{} → {}", names[k], ids[k]));
+  }
+  return out;
 }
 
 // ----------------------------------------------------------------------------------------
@@ -245,8 +389,11 @@ Tape function_tape(const System::Impl& s, const Parts& parts) {
   return b.build();
 }
 
+// The file's first comment. `renames` ("old → new") are the user's names written under
+// another identifier, listed after `rule` (the sentence that says why), wrapped at 100 columns.
 std::string header_comment(const System::Impl& s, const ExportOptions& options,
-                           std::string_view mark) {
+                           std::string_view mark, const std::vector<std::string>& renames,
+                           std::string_view rule) {
   std::string out;
   auto line = [&](const std::string& text) {
     out += fmt::format("{}{}{}\n", mark, text.empty() ? "" : " ", text);
@@ -274,6 +421,38 @@ std::string header_comment(const System::Impl& s, const ExportOptions& options,
     line("Constraints: none (m = 0; G and γ are empty).");
   }
   line("Units: SI (the model's parameters and coordinates as given).");
+  if (!renames.empty()) {
+    // columns as displayed: UTF-8 continuation bytes ("→" is three bytes) take none
+    auto columns = [](const std::string& text) {
+      return static_cast<std::size_t>(std::count_if(text.begin(), text.end(), [](char c) {
+        return (static_cast<unsigned char>(c) & 0xC0) != 0x80;
+      }));
+    };
+    line("");
+    // the words of the rule, then the names, wrapped at 100 columns
+    std::vector<std::string> words;
+    std::string word;
+    for (char c : fmt::format("Renamed ({}):", rule)) {
+      if (c != ' ') {
+        word += c;
+      } else if (!word.empty()) {
+        words.push_back(std::exchange(word, ""));
+      }
+    }
+    words.push_back(word);
+    for (std::size_t k = 0; k < renames.size(); ++k) {
+      words.push_back(renames[k] + (k + 1 < renames.size() ? "," : "."));
+    }
+    std::string text;
+    for (const std::string& w : words) {
+      if (!text.empty() && mark.size() + 1 + columns(text) + 1 + columns(w) > 100) {
+        line(text);
+        text = " ";
+      }
+      text += text.empty() || text == " " ? w : " " + w;
+    }
+    line(text);
+  }
   return out;
 }
 
@@ -575,9 +754,16 @@ const System::Impl& exportable(const System& system) {
 std::string emit_cpp(const System& system, const ExportOptions& options) {
   detail::SymbolicLock lock;  // the functions' tapes are compiled from the expressions
   const System::Impl& s = exportable(system);
-  const std::vector<std::string> params = identifiers(s.param_names, false);
-  const std::string ns = namespace_name(options.name);
-  std::string out = header_comment(s, options, "//");
+  const std::vector<std::string> params =
+      export_identifiers(s.param_names, Language::kCpp, Scope::kMember);
+  const std::string ns = export_identifiers({options.name}, Language::kCpp, Scope::kNamespace)[0];
+  std::vector<std::string> renames = renamed(s.param_names, params);
+  if (ns != options.name) renames.push_back(fmt::format("namespace {} → {}", options.name, ns));
+  std::string out = header_comment(
+      s, options, "//", renames,
+      "a name starting with '_' takes a 'p' in front; a C or C++ keyword, a macro of the "
+      "compiler or <cmath>, and for the namespace main or a name <cmath> declares, take '_' at "
+      "the end until unused");
   out += "//\n// Arrays are row-major: M[i*n + j], G[k*n + i]. Parameters are named arguments with\n"
          "// the model's values as defaults: forces(q, q_dot, t, f, {.name = value}).\n";
   out += "#pragma once\n\n#include <cmath>\n\n";
@@ -593,9 +779,8 @@ std::string emit_cpp(const System& system, const ExportOptions& options) {
     out += fmt::format("inline constexpr const char* kConstraintNames[] = {{{}}};\n", fmt::join(names, ", "));
   }
   out += "\n/// The model's parameters (SI), defaults as in the model";
-  bool renamed = false;
-  for (std::size_t k = 0; k < params.size(); ++k) renamed = renamed || params[k] != s.param_names[k];
-  out += renamed ? "; a name that is a C++ keyword or macro takes a trailing '_'.\n" : ".\n";
+  out += params != s.param_names ? "; the renamed ones (see above) name the model's in a comment.\n"
+                                 : ".\n";
   out += "struct Parameters {\n";
   for (std::size_t k = 0; k < params.size(); ++k) {
     out += fmt::format("  double {} = {};{}\n", params[k], literal(s.param_values[k], false),
@@ -626,8 +811,12 @@ std::string emit_cpp(const System& system, const ExportOptions& options) {
 std::string emit_python(const System& system, const ExportOptions& options) {
   detail::SymbolicLock lock;  // the functions' tapes are compiled from the expressions
   const System::Impl& s = exportable(system);
-  const std::vector<std::string> params = identifiers(s.param_names, true);
-  std::string out = header_comment(s, options, "#");
+  const std::vector<std::string> params =
+      export_identifiers(s.param_names, Language::kPython, Scope::kMember);
+  std::string out = header_comment(s, options, "#", renamed(s.param_names, params),
+                                   "a name starting with '_' takes a 'p' in front; a Python "
+                                   "keyword or a name the module uses takes '_' at the end until "
+                                   "unused");
   out += "#\n# Matrices are lists of rows. Parameters are keyword arguments with the model's values\n"
          "# as defaults: forces(q, q_dot, t, m1=2.0).\n";
   out += "import math\n\n";

@@ -2,8 +2,10 @@
 rigid.lagrange.System.emit. The exported Python module is imported and compared with the
 engine (M, f, G, γ); the command line and Python give the same bytes and the same refusals."""
 import importlib.util
+import keyword
 import math
 import pathlib
+import re
 import subprocess
 import sys
 
@@ -232,3 +234,192 @@ def test_a_system_with_constraints_exports_no_dynamics_and_says_why(run, languag
     code = run("eom", EXAMPLES / "atwood.toml", "--emit", language, check=True).stdout
     assert "inverse_dynamics(" not in code and "forward_dynamics(" not in code
     assert "inverse_dynamics and forward_dynamics are not exported: the system has constraints (m = 2)" in code
+
+
+# ------------------------------------------------------------------------------------------
+# names: the exported code builds and runs whatever the scene's names (docs/lagrange.md,
+# "Names"). Every C++20 keyword and alternative token, C's keywords, the compiler's
+# predefined and <cmath>'s object-like macros (read from the compiler), Python's keywords,
+# soft keywords and the builtins the module calls, and the names the files use themselves.
+CPP_KEYWORDS = """alignas alignof and and_eq asm auto bitand bitor bool break case catch char
+    char8_t char16_t char32_t class compl concept const consteval constexpr constinit const_cast
+    continue co_await co_return co_yield decltype default delete do double dynamic_cast else enum
+    explicit export extern false float for friend goto if inline int long mutable namespace new
+    noexcept not not_eq nullptr operator or or_eq private protected public register
+    reinterpret_cast requires return short signed sizeof static static_assert static_cast struct
+    switch template this thread_local throw true try typedef typeid typename union unsigned using
+    virtual void volatile wchar_t while xor xor_eq final override import module atomic_cancel
+    atomic_commit atomic_noexcept synchronized reflexpr transaction_safe typeof""".split()
+C_KEYWORDS = """restrict typeof_unqual _Alignas _Alignof _Atomic _Bool _Complex _Generic _Imaginary
+    _Noreturn _Static_assert _Thread_local _BitInt _Decimal32 _Pragma""".split()
+# system macros of GCC and Clang on Linux targets (x86-32, MIPS, SPARC, ...; gnu modes)
+SYSTEM_MACROS = ["linux", "i386", "mips", "sparc", "sun", "vax", "m68k", "hppa"]
+PYTHON_WORDS = sorted(set(keyword.kwlist + keyword.softkwlist) - {"_"}) + [
+    "_", "type", "float", "range", "len", "math", "ValueError", "print", "list"]
+# the exported files' own names: arguments, locals, helpers, functions, types
+FILE_NAMES = """q q_dot q_ddot tau M f G gamma p n L b s d l i j k v x std detail pow_int
+    Parameters kNumCoordinates kNumConstraints kCoordinateNames mass_matrix forces
+    mass_matrix_and_forces constraint_jacobian constraint_gamma inverse_dynamics forward_dynamics
+    main COORDINATES CONSTRAINTS PARAMETERS PARAMETER_NAMES _vector _pow_int _q _qd _qdd _tau _M
+    _f _v0 _v1 _mass_matrix_and_forces _inverse_dynamics _forward_dynamics p_v0 float_ sin_
+    model_""".split()
+# the coordinates' names: written as strings only, so kept
+COORDINATES = ["lambda", "unix"]
+
+
+def object_like_macros(std):
+    """The object-like macros of the compiler and <cmath> in `std` (g++ -dM)."""
+    out = subprocess.run(["g++", f"-std={std}", "-dM", "-E", "-x", "c++", "-"],
+                         input="#include <cmath>\n", capture_output=True, text=True, check=True)
+    names = set()
+    for line in out.stdout.splitlines():
+        name = line.split()[1]
+        if "(" not in name:
+            names.add(name)
+    return names
+
+
+def keyword_scene(tmp_path, names):
+    """A ball at (x, y, 0) = (lambda, unix + 0.1 sin(lambda)) under gravity −g ŷ, pushed along
+    unix by Q = Σ cₖ nameₖ with weights cₖ: every parameter enters f, each once (a product
+    of their sum with the coordinates' terms would multiply the exported code's size)."""
+    lines = ["gravity = [0, \"-g\", 0]", "[parameters]", "g = 9.81"]
+    push = []
+    for k, name in enumerate(names):
+        lines.append(f"{name} = {0.5 + 0.001 * k!r}")
+        push.append(f"{1 + k % 7}e-3*{name}")
+    for c in COORDINATES:
+        lines += ["[[coordinates]]", f"name = \"{c}\"", "initial = 0.2", "velocity = 0.1"]
+    lines += ["[[bodies]]", "name = \"ball\"", "primitive = \"solid_sphere\"", "radius = 0.1",
+              "mass = 1.5", "position = [\"lambda\", \"unix + 0.1*sin(lambda)\", 0]",
+              "[[forces]]", "coordinate = \"unix\"", f"expression = \"{' + '.join(push)}\"",
+              "[simulation]", "t_end = 1.0"]
+    scene = tmp_path / "names.toml"
+    scene.write_text("\n".join(lines) + "\n")
+    return scene
+
+
+def test_exported_code_builds_and_runs_whatever_the_names(run, tmp_path):
+    macros = object_like_macros("c++20") | object_like_macros("gnu++20")
+    names = sorted(set(CPP_KEYWORDS + C_KEYWORDS + SYSTEM_MACROS + PYTHON_WORDS + FILE_NAMES) | macros)
+    # g is the scene's gravity, t is time, the coordinates are named below
+    names = [n for n in names if n not in ["g", "t"] + COORDINATES]
+    scene = keyword_scene(tmp_path, names)
+    # the scene takes every name as a parameter (the export's input): all of them, by name
+    model = rigid.Scene(scene)
+    assert sorted(model.parameters) == sorted(names + ["g"])
+    system = model.system
+    assert system.coordinate_names == COORDINATES
+
+    # C++: written as main.hpp (its namespace is then not `main`), built with int main() in
+    # both dialects (gnu++20 predefines linux and unix), M and f at two states printed
+    hpp = tmp_path / "main.hpp"
+    run("eom", scene, "--emit", "c++", "-o", hpp, check=True)
+    text = hpp.read_text()
+    assert "namespace main_ {" in text
+    # renamed: keywords and macros take '_', names starting with '_' a 'p'; listed up top
+    # (float_ is a parameter of its own: float takes two)
+    for old, new in [("float", "float__"), ("linux", "linux_"), ("i386", "i386_"), ("M_PI", "M_PI_"), ("_Complex", "p_Complex"),
+                     ("__linux__", "p__linux__"), ("Parameters", "Parameters_"),
+                     ("typeof", "typeof_")]:
+        assert f"  double {new} = " in text, (old, new)
+        assert f" {old} → {new}" in text
+    assert " main → main_." in text.split("#pragma once")[0]
+    # kept: names that C++ reads as p.name (no macro or keyword there)
+    for kept in ["float_", "q", "tau", "M", "std", "mass_matrix", "math", "range", "None"]:
+        assert f"  double {kept} = " in text, kept
+    source = tmp_path / "use.cpp"
+    source.write_text(
+        "#include <cstdio>\n#include \"main.hpp\"\n"
+        "int main() {\n"
+        "  const double q[2] = {0.3, -0.4}, qd[2] = {0.7, 1.1};\n"
+        "  double M[4], f[2];\n"
+        "  main_::mass_matrix_and_forces(q, qd, 0.0, M, f);\n"
+        "  for (double v : M) std::printf(\"%.17g\\n\", v);\n"
+        "  for (double v : f) std::printf(\"%.17g\\n\", v);\n"
+        "  main_::mass_matrix_and_forces(q, qd, 0.0, M, f, {.linux_ = 2.5});\n"
+        "  for (double v : M) std::printf(\"%.17g\\n\", v);\n"
+        "  for (double v : f) std::printf(\"%.17g\\n\", v);\n"
+        "}\n")
+    q, qd = np.array([0.3, -0.4]), np.array([0.7, 1.1])
+    M0, f0 = system.mass_matrix_and_forces(0.0, q, qd)
+    M1, f1 = rigid.Scene(scene, set=["linux=2.5"]).system.mass_matrix_and_forces(0.0, q, qd)
+    # the override moves Q by its weight times the change (round-off of the sum, ~1e-15 of
+    # |Q| ≈ 3, against a change of ~1e-3: rel 1e-9 is ample)
+    k = names.index("linux")
+    assert f1[1] - f0[1] == pytest.approx((1 + k % 7) * 1e-3 * (2.5 - (0.5 + 0.001 * k)), rel=1e-9)
+    for std in ["c++20", "gnu++20"]:
+        exe = tmp_path / f"use_{std}"
+        build = subprocess.run(["g++", f"-std={std}", "-Wall", "-Wextra", "-Werror", "-O1",
+                                "-o", exe, source], capture_output=True, text=True, timeout=120)
+        assert build.returncode == 0, build.stderr[:4000]
+        values = [float(v) for v in subprocess.run([exe], capture_output=True, text=True,
+                                                    check=True).stdout.split()]
+        close(np.reshape(values[0:4], (2, 2)), M0)
+        close(values[4:6], f0)
+        close(np.reshape(values[6:10], (2, 2)), M1)
+        close(values[10:12], f1)
+
+    # Python: keyword arguments under the module's names, run and compared with the engine
+    py = tmp_path / "names_eom.py"
+    run("eom", scene, "--emit", "python", "-o", py, check=True)
+    eom = import_file(py, "names_eom")
+    renames = eom.PARAMETER_NAMES
+    assert list(eom.COORDINATES) == COORDINATES
+    for old, new in [("float", "float__"), ("float_", "float_"), ("None", "None_"),
+                     ("range", "range_"), ("match", "match_"), ("q_ddot", "q_ddot_"), ("_", "p_"),
+                     ("_vector", "p_vector"), ("_Complex", "p_Complex"), ("_v0", "p_v0_")]:
+        assert renames[old] == new
+    assert renames["linux"] == "linux" and renames["M"] == "M"  # not reserved in Python
+    assert len(set(renames.values())) == len(renames)  # distinct
+    for new in renames.values():
+        assert new.isidentifier() and not keyword.iskeyword(new) and not new.startswith("_")
+    close(eom.mass_matrix(q), M0)
+    M, f = eom.mass_matrix_and_forces(q, qd)
+    close(M, M0)
+    close(f, f0)
+    M, f = eom.mass_matrix_and_forces(q, qd, **{renames["linux"]: 2.5})
+    close(M, M1)
+    close(f, f1)
+    # the dynamics functions call the module's helpers past every keyword argument
+    tau = eom.inverse_dynamics(q, qd, [0.5, -1.0])
+    close(eom.forward_dynamics(q, qd, tau), [0.5, -1.0])
+
+
+def test_the_namespace_is_never_a_name_beside_it(tmp_path):
+    # the namespace sits at global scope beside <cmath>'s declarations, its macros and main():
+    # every identifier of the preprocessed <cmath> and every object-like macro, tried as a
+    # namespace there, gives the names the compiler refuses (the export must rename them)
+    pre = subprocess.run(["g++", "-std=gnu++20", "-E", "-x", "c++", "-"], input="#include <cmath>\n",
+                         capture_output=True, text=True, check=True).stdout
+    ids = set()
+    for line in pre.splitlines():
+        if not line.startswith("#"):
+            ids.update(re.findall(r"\b[A-Za-z][A-Za-z0-9_]*\b", line))
+    ids |= {m for m in object_like_macros("gnu++20") if not m.startswith("_")}
+    ids = sorted(ids - set(CPP_KEYWORDS + C_KEYWORDS))  # keywords: refused by the parser alone
+    probe = tmp_path / "probe.cpp"
+    probe.write_text("#include <cmath>\n" + "".join(f"namespace {w} {{}}\n" for w in ids))
+    errors = subprocess.run(["g++", "-std=gnu++20", "-fsyntax-only", "-fmax-errors=0", probe],
+                            capture_output=True, text=True).stderr
+    lines = {int(m) for m in re.findall(rf"^{re.escape(str(probe))}:(\d+):\d+: error", errors, re.M)}
+    clashes = sorted({ids[line - 2] for line in lines if 2 <= line < len(ids) + 2})
+    assert {"sin", "expf", "div", "random", "size_t", "M_PI", "linux", "NULL"} <= set(clashes)
+
+    system = rigid.Scene(EXAMPLES / "physical_pendulum.toml").system
+    names = clashes + ["main", "std", "float", "_Foo", "__x", "2d", "my-model", ""]
+    spaces = {}
+    for name in names:
+        ns = re.search(r"^namespace (\w+) \{$", system.emit("c++", name=name), re.M).group(1)
+        assert ns != name
+        spaces[name] = ns
+    assert spaces["sin"] == "sin_" and spaces["main"] == "main_" and spaces["_Foo"] == "p_Foo"
+    assert spaces["my-model"] == "my_model" and spaces["2d"] == "model_2d"
+    # the new names build beside <cmath> and main(), in both dialects
+    probe.write_text("#include <cmath>\n" +
+                     "".join(f"namespace {ns} {{ inline int k = 1; }}\n" for ns in set(spaces.values())) +
+                     "int main() { return sin_::k - 1; }\n")
+    for std in ["c++20", "gnu++20"]:
+        build = subprocess.run(["g++", f"-std={std}", "-Wall", "-Werror", "-fsyntax-only", probe],
+                               capture_output=True, text=True)
+        assert build.returncode == 0, build.stderr[:4000]

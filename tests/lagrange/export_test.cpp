@@ -1,6 +1,9 @@
 #include "rigid/lagrange/export.hpp"
 
 #include <cmath>
+#include <utility>
+
+#include <fmt/format.h>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -79,12 +82,81 @@ TEST(Export, ReservedParameterNamesAreMarked) {
   EXPECT_THAT(cpp, HasSubstr("double M_PI_ = 5.0;"));
   EXPECT_THAT(cpp, HasSubstr("double lambda = 1.0;"));
   EXPECT_THAT(cpp, HasSubstr("double q = 3.0;"));
+  EXPECT_THAT(cpp, HasSubstr("double p_k = 4.0;"));  // '_' first: the implementation's
   // Python: keywords, argument names, and names starting with '_'
   EXPECT_THAT(py, HasSubstr("lambda_=1.0"));
   EXPECT_THAT(py, HasSubstr("q_=3.0"));
   EXPECT_THAT(py, HasSubstr("p_k=4.0"));
   EXPECT_THAT(py, HasSubstr("class_=2.0"));
   EXPECT_THAT(py, HasSubstr("\"lambda\": \"lambda_\""));
+}
+
+TEST(Export, OneRuleRenamesForBothLanguagesAndTheHeaderListsIt) {
+  SystemSpec spec;
+  spec.parameters = {{"float", 1.0}, {"float_", 2.0}, {"linux", 3.0}, {"_Complex", 4.0},
+                     {"Parameters", 5.0}, {"M", 6.0}, {"range", 7.0}, {"typeof", 8.0}};
+  spec.coordinates = {{"x", 0.0, 0.0}};
+  spec.lagrangian = "float*float_*linux*_Complex*Parameters*M*range*typeof*x_dot^2/2";
+  const System sys(spec);
+  ExportOptions o;
+  o.name = "main";
+  const std::string cpp = emit_cpp(sys, o), py = emit_python(sys, o);
+  // C++: keywords and macros take '_' until unused (float_ is taken: float__), a name starting
+  // with '_' a 'p', a member may not name its struct; M and range are members p.M, p.range
+  EXPECT_THAT(cpp, HasSubstr("  double float__ = 1.0;  // float\n  double float_ = 2.0;\n"));
+  EXPECT_THAT(cpp, HasSubstr("  double linux_ = 3.0;  // linux\n"));
+  EXPECT_THAT(cpp, HasSubstr("  double p_Complex = 4.0;  // _Complex\n"));
+  EXPECT_THAT(cpp, HasSubstr("  double Parameters_ = 5.0;  // Parameters\n"));
+  EXPECT_THAT(cpp, HasSubstr("  double M = 6.0;\n  double range = 7.0;\n  double typeof_ = 8.0;"));
+  EXPECT_THAT(cpp, HasSubstr("namespace main_ {"));
+  EXPECT_THAT(cpp, HasSubstr("}  // namespace main_\n"));
+  // the header comment (before the code) lists each rename
+  const std::string cpp_header = cpp.substr(0, cpp.find("#pragma once"));
+  for (const char* item : {"float → float__,", "linux → linux_,", "_Complex → p_Complex,",
+                           "Parameters → Parameters_,", "typeof → typeof_,",
+                           "namespace main → main_."}) {
+    EXPECT_THAT(cpp_header, HasSubstr(item));
+  }
+  EXPECT_THAT(cpp_header, Not(HasSubstr("float_ →")));
+  // Python: the same rule with Python's words; linux, Parameters and typeof are names there
+  EXPECT_THAT(py, HasSubstr("def forces(q, q_dot, t=0.0, *, float__=1.0, float_=2.0, linux=3.0, "
+                            "p_Complex=4.0, Parameters=5.0, M=6.0, range_=7.0, typeof=8.0):"));
+  const std::string py_header = py.substr(0, py.find("import math"));
+  for (const char* item : {"float → float__,", "_Complex → p_Complex,", "range → range_."}) {
+    EXPECT_THAT(py_header, HasSubstr(item));
+  }
+  EXPECT_THAT(py_header, Not(HasSubstr("linux →")));
+  // the header's lines stay within 100 columns (UTF-8 continuation bytes take none)
+  for (const std::string& header : {cpp_header, py_header}) {
+    std::size_t columns = 0;
+    for (char c : header) {
+      if (c == '\n') {
+        columns = 0;
+      } else if ((static_cast<unsigned char>(c) & 0xC0) != 0x80) {
+        EXPECT_LE(++columns, 100u) << header;
+      }
+    }
+  }
+}
+
+TEST(Export, TheNamespaceIsNeverANameBesideIt) {
+  // at global scope beside main(), std and what <cmath> declares or defines there
+  const System sys(slider_spec());
+  const std::pair<const char*, const char*> cases[] = {
+      {"main", "main_"},        {"std", "std_"},           {"sin", "sin_"},
+      {"expf128", "expf128_"},  {"lgammaf_r", "lgammaf_r_"}, {"f32addf64", "f32addf64_"},
+      {"daddl", "daddl_"},      {"strtod_l", "strtod_l_"}, {"random", "random_"},
+      {"strfromf128", "strfromf128_"}, {"strtoull", "strtoull_"}, {"strtol_", "strtol_"},
+      {"size_t", "size_t_"},    {"linux", "linux_"},       {"M_PIl", "M_PIl_"},
+      {"NULL", "NULL_"},        {"float", "float_"},       {"and", "and_"},
+      {"_Model", "p_Model"},    {"__x", "p__x"},           {"2d", "model_2d"},
+      {"my-model", "my_model"}, {"", "model_"},            {"sine", "sine"},
+      {"pendulum", "pendulum"}};
+  for (const auto& [name, expected] : cases) {
+    ExportOptions o;
+    o.name = name;
+    EXPECT_THAT(emit_cpp(sys, o), HasSubstr(fmt::format("\nnamespace {} {{\n", expected))) << name;
+  }
 }
 
 TEST(Export, DynamicsFunctionsOnlyWithoutConstraints) {

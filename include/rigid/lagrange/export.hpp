@@ -20,7 +20,9 @@ enum class Language { kCpp, kPython };
 
 /// What the exported file is called and where its equations come from (for its comments).
 struct ExportOptions {
-  /// The C++ namespace of the functions (made an identifier: other characters become '_').
+  /// The C++ namespace of the functions, made an identifier by the export's naming rule
+  /// (other characters become '_'; `main`, `std`, keywords, macros and the names <cmath>
+  /// declares take a trailing '_': "main" gives `namespace main_`).
   std::string name = "model";
   /// Where the system came from (a scene file), named in the file's first comment; may be empty.
   std::string source{};
@@ -46,6 +48,12 @@ struct ExportOptions {
 ///       // unchanged, where a pivot is ≤ 0 or NaN (M not positive definite)
 /// A system with constraints gets a comment line in their place: its multipliers λ enter
 /// M q̈ = f + τ + Gᵀλ.
+/// Names: the export writes the user's names as identifiers under one rule for both languages
+/// (docs/lagrange.md, "Names"): a name starting with '_' takes a 'p' in front, then a reserved
+/// name (here: a C or C++ keyword, a macro of the compiler or <cmath>, `Parameters`) or one
+/// another parameter has takes '_' at its end until it is neither. The file's first comment
+/// lists the renames ("float → float_"); the struct names the model's name beside a renamed
+/// member. So the file builds with -std=c++20 and -std=gnu++20 whatever the model's names.
 [[nodiscard]] std::string emit_cpp(const System& system, const ExportOptions& options = {});
 
 /// One Python module (only `math`) with the same functions, returning lists:
@@ -55,9 +63,10 @@ struct ExportOptions {
 ///   inverse_dynamics(q, q_dot, q_ddot, t=0.0, *, ...) -> τ          (m = 0 only, as in C++)
 ///   forward_dynamics(q, q_dot, tau, t=0.0, *, ...) -> q̈; ValueError where M is not
 ///       positive definite (a Cholesky pivot ≤ 0 or NaN)
-/// and COORDINATES, CONSTRAINTS, PARAMETERS (name → default). A parameter whose name is a
-/// Python keyword, an argument's name (q, q_dot, q_ddot, tau, t), `math` or starts with '_'
-/// takes a trailing or leading mark (listed in PARAMETER_NAMES). Where C++ gives inf or NaN
+/// and COORDINATES, CONSTRAINTS, PARAMETERS (name → default). A parameter's keyword argument
+/// follows emit_cpp's rule with Python's reserved names (keywords and soft keywords, the
+/// arguments q, q_dot, q_ddot, tau, t, and math, float, len, range, ValueError); the renames
+/// are listed in the first comment and PARAMETER_NAMES (name → argument). Where C++ gives inf or NaN
 /// (a division by 0, sqrt of a negative number), Python's math raises ValueError or
 /// ZeroDivisionError.
 [[nodiscard]] std::string emit_python(const System& system, const ExportOptions& options = {});
