@@ -284,7 +284,7 @@ void bind_scene(py::module_& m) {
                     "equations built). Errors are rigid.Error with file:line:col.")
       .def(py::init([](const py::object& path, const std::vector<std::string>& set,
                        std::optional<bool> pin_free_root, std::optional<bool> inertia_from_geometry,
-                       std::optional<double> density) {
+                       std::optional<double> density, std::optional<bool> symbolic_inertia) {
              const std::string file = cv::path(path, {"rigid.Scene", "path"});
              // a str is always a file name: scene text is refused with the remedy, never parsed
              if ((file.find('\n') != std::string::npos || file.find('[') != std::string::npos) && !cv::is_file(file)) {
@@ -293,13 +293,14 @@ void bind_scene(py::module_& m) {
              }
              const rigid::scene::ModelOptions model{.pin_free_root = pin_free_root,
                                                     .inertia_from_geometry = inertia_from_geometry,
-                                                    .density = density};
+                                                    .density = density,
+                                                    .symbolic_inertia = symbolic_inertia};
              return cv::reading("rigid.Scene", file,
                                 [&] { return rigid::scene::load_model(file, set, model); });
            }),
            py::arg("path"), py::arg("set") = std::vector<std::string>{}, py::kw_only(),
            py::arg("pin_free_root") = py::none(), py::arg("inertia_from_geometry") = py::none(),
-           py::arg("density") = py::none(),
+           py::arg("density") = py::none(), py::arg("symbolic_inertia") = py::none(),
            "Loads a TOML scene file or a robot model file (URDF, MJCF; a str or pathlib.Path; mesh "
            "and [model] paths are relative to its directory; errors start with file:line:col); "
            "`set` holds 'name=value' overrides: parameters, simulation.<key>, "
@@ -307,7 +308,8 @@ void bind_scene(py::module_& m) {
            "inertia_from_geometry and density (kg/m³, a URDF's collision geometry with "
            "inertia_from_geometry) say how the robot model file is read, the one given or the one "
            "[model] names (over the section's settings; None: the section's, else False, False, "
-           "1000); a TOML scene without [model] refuses them. Text is loaded by Scene.from_string.")
+           "1000); symbolic_inertia keeps each link's mass, COM and inertia as the parameters m_<link>, "
+           "com_<link>_x.., I_<link>_xx..; a TOML scene without [model] refuses them. Text is loaded by Scene.from_string.")
       .def_static(
           "from_string",
           [](const std::string& text, const std::vector<std::string>& set, const py::object& name) {

@@ -1,7 +1,8 @@
 #pragma once
 // Included by main.cpp only (the one translation unit that sees CLI11), through the cli_<verb>.hpp
 // of the commands that take a scene.
-// --pin-free-root, --inertia-from-geometry and --density: how a robot model file is read.
+// --pin-free-root, --inertia-from-geometry, --density and --symbolic-inertia: how a robot model
+// file is read.
 #include "model_flags.hpp"
 
 inline void add_model_options(CLI::App* cmd, rigid::cli::ModelFlags& o) {
@@ -15,4 +16,8 @@ inline void add_model_options(CLI::App* cmd, rigid::cli::ModelFlags& o) {
                   "with --inertia-from-geometry: the density of a URDF's collision geometry "
                   "(kg/m³, default 1000)")
       ->type_name("KG_PER_M3");
+  cmd->add_flag("--symbolic-inertia", o.symbolic_inertia,
+                "robot model file: each link's mass, COM and inertia as the parameters m_<link>, "
+                "com_<link>_x.. and I_<link>_xx.. (the file's values), kept as symbols in the "
+                "equations and code, changed by --set and sweeps");
 }

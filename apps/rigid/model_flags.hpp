@@ -11,6 +11,7 @@ struct ModelFlags {
   bool pin_free_root = false;          ///< --pin-free-root
   bool inertia_from_geometry = false;  ///< --inertia-from-geometry
   std::string density;                 ///< --density KG_PER_M3 as given; empty: not given
+  bool symbolic_inertia = false;       ///< --symbolic-inertia
 };
 
 }  // namespace rigid::cli

@@ -80,6 +80,7 @@ scene::ModelOptions model_options(const ModelFlags& flags) {
   scene::ModelOptions o;
   if (flags.pin_free_root) o.pin_free_root = true;
   if (flags.inertia_from_geometry) o.inertia_from_geometry = true;
+  if (flags.symbolic_inertia) o.symbolic_inertia = true;
   if (!flags.density.empty()) {
     const std::string& text = flags.density;
     double rho = 0;

@@ -141,8 +141,27 @@ std::string joint_amount(const io::RobotJoint& j) {
   return j.ref == 0 ? j.name : fmt::format("{} - ({})", j.name, number_text(j.ref));
 }
 
+// `name` made an identifier: a character other than a letter, a digit or '_' becomes '_', a
+// leading digit gains "n_"
+std::string identifier(std::string name) {
+  for (char& c : name) {
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_') c = '_';
+  }
+  if (name.empty() || std::isdigit(static_cast<unsigned char>(name.front()))) name = "n_" + name;
+  return name;
+}
+
+// The body's mass property `value` as written in the scene: the number, or with
+// `symbolic_inertia` the parameter `name` holding it (added to the scene's parameters).
+Expression mass_property(Scene& s, bool symbolic_inertia, const std::string& name, double value,
+                         const SourceLocation& where) {
+  if (!symbolic_inertia) return number(value, where);
+  s.parameters.push_back(Parameter{name, number(value, where)});
+  return text(name, where);
+}
+
 Body scene_body(const io::RobotModel& model, const std::vector<TreeBody>& bodies,
-                const TreeBody& b) {
+                const TreeBody& b, bool symbolic_inertia, Scene& s) {
   const io::RobotLink& link = model.links[b.link];
   const SourceLocation where = where_of(model, link, link.line);
   Body out;
@@ -177,16 +196,26 @@ Body scene_body(const io::RobotModel& model, const std::vector<TreeBody>& bodies
   MassSpec& m = out.mass;
   m.kind = MassSpec::Kind::kExplicit;
   m.where = where;
-  m.mass = number(b.mass, where);
+  const std::string id = identifier(link.name);
+  m.mass = mass_property(s, symbolic_inertia, "m_" + id, b.mass, where);
   const Eigen::Vector3d c = b.first_moment / b.mass;
   const Eigen::Matrix3d I_c =
       b.inertia_origin -
       b.mass * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
-  for (std::size_t k = 0; k < 3; ++k) m.com[k] = number(c(static_cast<Eigen::Index>(k)), where);
+  constexpr std::array<const char*, 3> kAxes{"x", "y", "z"};
+  for (std::size_t k = 0; k < 3; ++k) {
+    m.com[k] = mass_property(s, symbolic_inertia, fmt::format("com_{}_{}", id, kAxes[k]),
+                             c(static_cast<Eigen::Index>(k)), where);
+  }
   constexpr std::array<std::array<int, 2>, 6> kElements{
       {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {0, 2}, {1, 2}}};
-  for (std::size_t k = 0; k < 6; ++k)
-    m.inertia[k] = number(I_c(kElements[k][0], kElements[k][1]), where);
+  for (std::size_t k = 0; k < 6; ++k) {
+    const auto [row, col] = kElements[k];
+    m.inertia[k] = mass_property(
+        s, symbolic_inertia,
+        fmt::format("I_{}_{}{}", id, kAxes[static_cast<std::size_t>(row)], kAxes[static_cast<std::size_t>(col)]),
+        I_c(row, col), where);
+  }
   return out;
 }
 
@@ -285,10 +314,11 @@ Scene scene_from_robot_file(const std::string& xml, const std::filesystem::path&
                             "default 1000 kg/m³)",
                             file.string(), *options.density, io::to_string(model.format)));
   }
-  return scene_from_robot(model, scene_file);
+  return scene_from_robot(model, scene_file, options.symbolic_inertia.value_or(false));
 }
 
-Scene scene_from_robot(const io::RobotModel& file_model, const std::filesystem::path& file) {
+Scene scene_from_robot(const io::RobotModel& file_model, const std::filesystem::path& file,
+                       bool symbolic_inertia) {
   const io::RobotModel model = with_coordinate_names(file_model);
   Scene s;
   s.file = file;
@@ -306,7 +336,7 @@ Scene scene_from_robot(const io::RobotModel& file_model, const std::filesystem::
   std::vector<TreeBody> bodies = moving_bodies(model);
   merge_massless(model, bodies);
   for (const TreeBody& b : bodies) {
-    if (!b.merged_away) s.bodies.push_back(scene_body(model, bodies, b));
+    if (!b.merged_away) s.bodies.push_back(scene_body(model, bodies, b, symbolic_inertia, s));
   }
   for (std::size_t k = 0; k < 3; ++k)
     s.gravity[k] = number(model.gravity(static_cast<Eigen::Index>(k)), top);

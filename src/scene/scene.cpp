@@ -28,7 +28,8 @@ using Keys = std::vector<std::string>;
 const Keys kTopKeys = {"model", "parameters", "coordinates", "bodies", "constraints",
                        "potentials", "forces", "springs", "gravity", "simulation", "output",
                        "lagrangian", "velocity_constraints"};
-const Keys kModelKeys = {"file", "pin_free_root", "inertia_from_geometry", "density"};
+const Keys kModelKeys = {"file", "pin_free_root", "inertia_from_geometry", "density",
+                         "symbolic_inertia"};
 
 // The parser keeps the file name and turns every toml++ position into a message that
 // starts with file:line:col.
@@ -1109,6 +1110,7 @@ std::string model_options_text(const ModelOptions& o) {
   };
   flag("pin_free_root", o.pin_free_root);
   flag("inertia_from_geometry", o.inertia_from_geometry);
+  flag("symbolic_inertia", o.symbolic_inertia);
   if (o.density) given.push_back(fmt::format("density {} kg/m³", *o.density));
   return fmt::format("{}", fmt::join(given, ", "));
 }
@@ -1134,6 +1136,9 @@ void parse_model_section(const toml::node& node, const Parser& p, const ModelOpt
   if (auto n = t.get("inertia_from_geometry")) {
     read.inertia_from_geometry = p.boolean(*n, "[model] inertia_from_geometry");
   }
+  if (auto n = t.get("symbolic_inertia")) {
+    read.symbolic_inertia = p.boolean(*n, "[model] symbolic_inertia");
+  }
   const toml::node* density = t.get("density");
   if (density != nullptr) {
     const double rho = p.number(*density, "[model] density (kg/m³)");
@@ -1145,6 +1150,7 @@ void parse_model_section(const toml::node& node, const Parser& p, const ModelOpt
   if (options.pin_free_root) read.pin_free_root = options.pin_free_root;
   if (options.inertia_from_geometry) read.inertia_from_geometry = options.inertia_from_geometry;
   if (options.density) read.density = options.density;
+  if (options.symbolic_inertia) read.symbolic_inertia = options.symbolic_inertia;
   if (density != nullptr && !options.density && !read.inertia_from_geometry.value_or(false)) {
     p.fail(*density, "[model] density is the density of the links' collision geometry when their "
                      "inertials are computed from it: set inertia_from_geometry = true with it "
@@ -1167,9 +1173,14 @@ void parse_model_section(const toml::node& node, const Parser& p, const ModelOpt
   section.pin_free_root = ro.pin_free_root;
   section.inertia_from_geometry = ro.inertia_from_geometry;
   section.density = ro.density;
+  section.symbolic_inertia = read.symbolic_inertia.value_or(false);
   m.model = std::move(section);
   for (const Coordinate& c : m.coordinates) {
     names.reserve(c.name, fmt::format("a joint coordinate of the model, {}", to_string(c.where)));
+  }
+  for (const Parameter& q : m.parameters) {
+    names.reserve(q.name, fmt::format("an inertial parameter of the model (symbolic_inertia), {}",
+                                      to_string(q.value.where)));
   }
   s = std::move(m);
 }

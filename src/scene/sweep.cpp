@@ -410,6 +410,7 @@ std::string describe(const SweepIdentity& id) {
     d += fmt::format("; inertia_from_geometry {}", *id.model.inertia_from_geometry);
   }
   if (id.model.density) d += fmt::format("; density {}", *id.model.density);
+  if (id.model.symbolic_inertia) d += fmt::format("; symbolic_inertia {}", *id.model.symbolic_inertia);
   for (const auto& g : id.spec.grid) d += fmt::format("; grid {}={}:{}:{}", g.name, g.start, g.stop, g.count);
   for (const auto& s : id.spec.sample) {
     d += fmt::format("; sample {}={}({},{})", s.name, distribution_name(s.distribution), s.a, s.b);

@@ -492,3 +492,24 @@ def test_the_scene_format_pages_model_example_is_the_example_file():
     section = page[page.index("### `[model]`"):]
     block = section[section.index("```toml\n") + len("```toml\n"):]
     assert block[:block.index("```")] == ARM7_PD.read_text()
+
+
+def test_symbolic_inertia_keeps_the_links_inertials_as_parameters(run):
+    # the parameters carry the file's values: at them the equations are the numeric ones (M at
+    # the reference pose, the tape of both to a few ulps); --set moves a mass; Python alike
+    model = EXAMPLES / "cart_arm.urdf"
+    numeric = json.loads(run("modes", model, "--json", check=True).stdout)
+    symbolic = json.loads(run("modes", model, "--symbolic-inertia", "--json", check=True).stdout)
+    assert np.allclose(symbolic["M"], numeric["M"], rtol=1e-13, atol=1e-15)
+    doc = json.loads(run("eom", model, "--symbolic-inertia", "--format", "json", check=True).stdout)
+    names = [p["name"] for p in doc["parameters"]]
+    assert names[:10] == ["m_cart", "com_cart_x", "com_cart_y", "com_cart_z", "I_cart_xx",
+                          "I_cart_yy", "I_cart_zz", "I_cart_xy", "I_cart_xz", "I_cart_yz"]
+    assert "m_cart" in doc["mass_matrix"]["text"][0][0]
+    # x is the cart's slide: M_xx is the total mass, so a heavier cart adds exactly its excess
+    heavier = json.loads(run("modes", model, "--symbolic-inertia", "--set", "m_cart=12.5",
+                             "--json", check=True).stdout)
+    m_cart = next(p["value"] for p in doc["parameters"] if p["name"] == "m_cart")
+    assert heavier["M"][0][0] == pytest.approx(numeric["M"][0][0] + 12.5 - m_cart, rel=1e-14)
+    scene = rigid.Scene(str(model), symbolic_inertia=True)
+    assert list(scene.system.parameters)[:2] == ["m_cart", "com_cart_x"]

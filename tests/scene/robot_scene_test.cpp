@@ -233,6 +233,62 @@ TEST(RobotScene, PinnedHumanoidEqualsTreeDynamics) {
   }
 }
 
+// With symbolic inertia the links' mass properties are parameters (m_<link>, com_<link>_x,
+// I_<link>_xx …) with the file's values: the same equations at those values, and at changed
+// values the equations of the file with the link's inertial changed (TreeDynamics of an edited
+// RobotModel: an independent path); an impossible value is refused naming the body.
+TEST(RobotScene, SymbolicInertiaParametersAreTheLinksInertials) {
+  const fs::path file = kExamples / "arm7.urdf";
+  ModelOptions symbolic;
+  symbolic.symbolic_inertia = true;
+  const Model model(load_scene(file, symbolic));
+  const lagrange::System& system = model.system();
+  const std::vector<lagrange::Parameter> params = system.parameters();
+  ASSERT_EQ(params.size(), 7u * 10u);  // 7 links × (m, COM 3, inertia 6)
+  EXPECT_EQ(params[0].name, "m_link1");
+  EXPECT_EQ(params[4].name, "I_link1_xx");
+  EXPECT_EQ(params[9].name, "I_link1_yz");
+  io::RobotModel robot = io::read_robot_model_file(file.string());
+  // link3 heavier, its COM moved and its inertia changed: in the scene by parameters, in the
+  // file's model by hand
+  std::size_t link3 = 0;
+  while (robot.links[link3].name != "link3") ++link3;
+  lagrange::Workspace w = system.make_workspace();
+  Eigen::Matrix3d& I3 = robot.links[link3].inertia_com;
+  w.set_parameters({{"m_link3", 2.5},
+                    {"com_link3_y", 0.05},
+                    {"I_link3_xx", I3(0, 0) * 1.5},
+                    {"I_link3_yy", I3(1, 1) * 1.5},
+                    {"I_link3_zz", I3(2, 2) * 1.5}});
+  robot.links[link3].mass = 2.5;
+  robot.links[link3].com.y() = 0.05;
+  for (int k = 0; k < 3; ++k) I3(k, k) *= 1.5;
+  const robot::TreeDynamics changed(robot);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1.5, 1.5);
+  for (int state = 0; state < 5; ++state) {
+    Eigen::VectorXd q(7), v(7);
+    for (Eigen::Index i = 0; i < 7; ++i) {
+      q(i) = u(rng);
+      v(i) = 2 * u(rng);
+    }
+    Eigen::MatrixXd M;
+    Eigen::VectorXd f;
+    system.mass_matrix_and_forces(w, 0.0, q, v, M, f);
+    const Eigen::MatrixXd M_ref = changed.mass_matrix(q);
+    const Eigen::VectorXd f_ref = -changed.bias_forces(q, v) + changed.passive_forces(q, v);
+    // as expect_same_equations
+    EXPECT_LT((M - M_ref).cwiseAbs().maxCoeff(), 1e-10 * M_ref.cwiseAbs().maxCoeff());
+    EXPECT_LT((f - f_ref).cwiseAbs().maxCoeff(), 1e-10 * std::max(1.0, f_ref.cwiseAbs().maxCoeff()));
+  }
+  try {
+    w.set_parameter("I_link3_zz", 1e3);  // breaks the triangle inequality I_xx + I_yy ≥ I_zz
+    FAIL() << "expected rigid::Error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("link3"), std::string::npos) << e.what();
+  }
+}
+
 // Coordinates are the joints' names made usable in expressions: an unnamed MJCF joint is q<i>,
 // other characters become '_'; two joints that would share a name are refused, naming both.
 TEST(RobotScene, CoordinateNamesFromJointNames) {

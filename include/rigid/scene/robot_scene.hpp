@@ -26,9 +26,12 @@ namespace rigid::scene {
 
 /// The scene of a robot model; `file` is the model file (the scene's file, for messages and
 /// the default output directory).
+/// With `symbolic_inertia`, each body's mass, COM and inertia are scene parameters
+/// (ModelOptions::symbolic_inertia; a body that absorbed welded links carries their sum).
 /// @throws rigid::Error naming the link for a massless moving link that cannot be merged.
 [[nodiscard]] Scene scene_from_robot(const io::RobotModel& model,
-                                     const std::filesystem::path& file);
+                                     const std::filesystem::path& file,
+                                     bool symbolic_inertia = false);
 
 /// The options io::read_robot_model takes, from `options` (a field left unset: its default);
 /// `file` names the model in messages.

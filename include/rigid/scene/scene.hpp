@@ -216,10 +216,14 @@ struct ModelOptions {
   /// kg/m³, finite and > 0: the density of a URDF's collision geometry, used with
   /// inertia_from_geometry (default 1000).
   std::optional<double> density{};
+  /// Each link's mass, COM (in its frame) and inertia about the COM (in its frame) as the scene
+  /// parameters m_<link>, com_<link>_x … and I_<link>_xx, _yy, _zz, _xy, _xz, _yz (SI), whose
+  /// values are the file's: the equations keep them as symbols, `--set` and sweeps change them.
+  std::optional<bool> symbolic_inertia{};
 
   /// True when no field is set.
   [[nodiscard]] bool empty() const {
-    return !pin_free_root && !inertia_from_geometry && !density;
+    return !pin_free_root && !inertia_from_geometry && !density && !symbolic_inertia;
   }
 };
 
@@ -230,6 +234,7 @@ struct ModelSection {
   bool pin_free_root = false;
   bool inertia_from_geometry = false;
   double density = 1000;  ///< kg/m³
+  bool symbolic_inertia = false;
   SourceLocation where;   ///< the `file` value
 };
 
