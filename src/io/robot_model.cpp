@@ -244,27 +244,6 @@ void set_urdf_inertial(const XMLElement* l, const std::map<int, InertialEntry>& 
   link.inertia_com = e.inertia_com;
 }
 
-// every link's inertial from its collision geometry, measured as `rigid inertia fix` does
-// (links without geometry keep their stated inertial, as there)
-void set_urdf_geometry_inertials(const std::string& xml, const std::string& file,
-                                 const RobotReadOptions& options, std::vector<RobotLink>& links) {
-  RIGID_REQUIRE_AS("read_robot_model", options.density > 0 && std::isfinite(options.density),
-                   "density must be positive and finite, got {} kg/m³", options.density);
-  InertialFixOptions fix;
-  fix.density = options.density;
-  const InertialFixResult r = fix_inertials(xml, file, fix);
-  r.require_ok();
-  for (const auto& f : r.links) {
-    if (!f.fixed) continue;
-    for (auto& link : links) {
-      if (link.name != f.name) continue;
-      link.mass = f.fixed->mass();
-      link.com = f.fixed->com();
-      link.inertia_com = f.fixed->inertia_com();
-    }
-  }
-}
-
 RobotJoint urdf_joint(const UrdfJoint& j, const std::string& file) {
   RobotJoint joint;
   joint.name = j.name;
@@ -336,7 +315,7 @@ RobotModel read_urdf(const XMLElement* robot, const std::string& xml, const std:
                           "their joints form a loop; expected a tree",
                           fmt::join(cut, ", "), model.links.front().name));
   }
-  if (options.inertia_from_geometry) set_urdf_geometry_inertials(xml, file, options, model.links);
+  if (options.inertia_from_geometry) detail::set_geometry_inertials(xml, file, options, model.links);
   for (std::size_t i = 0; i < model.links.size(); ++i) {
     require_valid_inertial(file, tree.links[tree.link_index.at(model.links[i].name)],
                            model.links[i], "link");
@@ -644,5 +623,29 @@ RobotModel read_robot_model(const std::string& xml, const std::string& source,
 RobotModel read_robot_model_file(const std::string& path, const RobotReadOptions& options) {
   return read_robot_model(detail::read_model_file(path), path, options);
 }
+
+namespace detail {
+
+// (declared in detail/sdf_model.hpp)
+void set_geometry_inertials(const std::string& xml, const std::string& file,
+                            const RobotReadOptions& options, std::vector<RobotLink>& links) {
+  RIGID_REQUIRE_AS("read_robot_model", options.density > 0 && std::isfinite(options.density),
+                   "density must be positive and finite, got {} kg/m³", options.density);
+  InertialFixOptions fix;
+  fix.density = options.density;
+  const InertialFixResult r = fix_inertials(xml, file, fix);
+  r.require_ok();
+  for (const auto& f : r.links) {
+    if (!f.fixed) continue;
+    for (auto& link : links) {
+      if (link.name != f.name) continue;
+      link.mass = f.fixed->mass();
+      link.com = f.fixed->com();
+      link.inertia_com = f.fixed->inertia_com();
+    }
+  }
+}
+
+}  // namespace detail
 
 }  // namespace rigid::io

@@ -529,27 +529,6 @@ void set_inertial(const SdfTree& tree, const XMLElement* l, RobotLink& link) {
   link.inertia_com = pose.X.R * I_C * pose.X.R.transpose();
 }
 
-// every link's inertial from its collision geometry, measured as `rigid inertia fix` does
-// (links without geometry keep their stated inertial, as there)
-void set_geometry_inertials(const std::string& xml, const std::string& file,
-                            const RobotReadOptions& options, std::vector<RobotLink>& links) {
-  RIGID_REQUIRE_AS("read_robot_model", options.density > 0 && std::isfinite(options.density),
-                   "density must be positive and finite, got {} kg/m³", options.density);
-  InertialFixOptions fix;
-  fix.density = options.density;
-  const InertialFixResult r = fix_inertials(xml, file, fix);
-  r.require_ok();
-  for (const auto& f : r.links) {
-    if (!f.fixed) continue;
-    for (auto& link : links) {
-      if (link.name != f.name) continue;
-      link.mass = f.fixed->mass();
-      link.com = f.fixed->com();
-      link.inertia_com = f.fixed->inertia_com();
-    }
-  }
-}
-
 // `index` and its subtree, depth first, children in the file order of their joints
 void add_link(const SdfTree& tree, int index, int parent, std::vector<RobotLink>& out) {
   const XMLElement* l = tree.links[index];
@@ -618,7 +597,7 @@ RobotModel read_sdf_model(const XMLElement* sdf, const std::string& xml, const s
                           "form a loop; expected a tree",
                           fmt::join(cut, ", "), model.links.front().name));
   }
-  if (options.inertia_from_geometry) set_geometry_inertials(xml, file, options, model.links);
+  if (options.inertia_from_geometry) detail::set_geometry_inertials(xml, file, options, model.links);
   for (const RobotLink& link : model.links) {
     if (link.mass == 0 && link.inertia_com.isZero(0)) continue;  // a massless frame, stated
     if (const auto problem = MassProperties::check(link.mass, link.com, link.inertia_com)) {
