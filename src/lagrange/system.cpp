@@ -425,15 +425,20 @@ void split_given_lagrangian(const System::Impl& s, const ex& L_given, ex& T_give
 
 // Sets s.T, s.V and s.L from the bodies, springs, potentials and the given Lagrangian; returns
 // the outputs of the mass and pose tapes.
-BodyTerms derive_energies(System::Impl& s, const SystemSpec& spec, const ExpressionReader& reader) {
+// The gravity g_W (m/s², constants) and the given Lagrangian (0 when empty) of `spec`.
+std::pair<Vec3, ex> gravity_and_given_lagrangian(const SystemSpec& spec, const ExpressionReader& reader) {
   Vec3 gravity;
   for (int k = 0; k < 3; ++k) gravity[k] = reader.parse_constant(spec.gravity_W[k], fmt::format("gravity[{}]", k));
-
-  // assemble T and V
   ex L_given = 0;
   if (spec.lagrangian.text.find_first_not_of(" \t") != std::string::npos) {
     L_given = reader.parse(spec.lagrangian, "Lagrangian", true).expand();
   }
+  return {gravity, L_given};
+}
+
+BodyTerms derive_energies(System::Impl& s, const SystemSpec& spec, const ExpressionReader& reader) {
+  // assemble T and V
+  const auto [gravity, L_given] = gravity_and_given_lagrangian(spec, reader);
   BodyTerms terms;
   for (std::size_t i = 0; i < spec.bodies.size(); ++i) add_body(s, reader, spec, i, gravity, terms);
   add_springs(spec, reader, terms.poses, terms.V);
@@ -581,12 +586,7 @@ std::vector<detail::TreeBody> tree_bodies(System::Impl& s, const SystemSpec& spe
 BodyTerms derive_recursive(System::Impl& s, const SystemSpec& spec, const ExpressionReader& reader,
                            const Names& names) {
   const auto n = static_cast<std::size_t>(s.n);
-  Vec3 gravity;
-  for (int k = 0; k < 3; ++k) gravity[k] = reader.parse_constant(spec.gravity_W[k], fmt::format("gravity[{}]", k));
-  ex L_given = 0;
-  if (spec.lagrangian.text.find_first_not_of(" \t") != std::string::npos) {
-    L_given = reader.parse(spec.lagrangian, "Lagrangian", true).expand();
-  }
+  const auto [gravity, L_given] = gravity_and_given_lagrangian(spec, reader);
   BodyTerms terms;
   const std::vector<detail::TreeBody> bodies = tree_bodies(s, spec, reader, terms);
   std::set<std::string> taken(reserved_names());
