@@ -37,21 +37,17 @@ fs::path write(const std::string& name, const std::string& text) {
   return p;
 }
 
-// M and f = −b + p of the scene's symbolic system and of TreeDynamics at random states, to 1e-10
-// relative to the largest entry: the tape evaluates the expanded expressions (a few hundred
-// terms, each a handful of roundings), TreeDynamics the recursive sums.
-void expect_same_equations(const fs::path& file, unsigned seed) {
-  const Model model(load_scene(file));
-  const robot::TreeDynamics tree(io::read_robot_model_file(file.string()));
-  const lagrange::System& system = model.system();
+// M and f = −b + p of the scene's symbolic system (evaluated through `w`) and of TreeDynamics
+// at `states` random states, to 1e-10 relative to the largest entry: the tape evaluates the
+// expanded expressions (a few hundred terms, each a handful of roundings) or the recursions'
+// intermediates, TreeDynamics its own recursive sums in another order.
+void expect_same_at_random_states(const lagrange::System& system, lagrange::Workspace& w,
+                                  const robot::TreeDynamics& tree, unsigned seed, int states) {
   ASSERT_EQ(static_cast<std::size_t>(system.num_coordinates()), tree.dof());
-  EXPECT_EQ(system.coordinate_names(), tree.model().coordinate_names());
-  EXPECT_TRUE(system.initial_q().isApprox(tree.reference_configuration(), 0.0) ||
-              system.initial_q() == tree.reference_configuration());
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(-1.5, 1.5);
   const auto n = static_cast<Eigen::Index>(tree.dof());
-  for (int state = 0; state < 10; ++state) {
+  for (int state = 0; state < states; ++state) {
     Eigen::VectorXd q(n), v(n);
     for (Eigen::Index i = 0; i < n; ++i) {
       q(i) = u(rng);
@@ -59,7 +55,7 @@ void expect_same_equations(const fs::path& file, unsigned seed) {
     }
     Eigen::MatrixXd M;
     Eigen::VectorXd f;
-    system.mass_matrix_and_forces(0.0, q, v, M, f);
+    system.mass_matrix_and_forces(w, 0.0, q, v, M, f);
     const Eigen::MatrixXd M_ref = tree.mass_matrix(q);
     const Eigen::VectorXd f_ref = -tree.bias_forces(q, v) + tree.passive_forces(q, v);
     EXPECT_LT((M - M_ref).cwiseAbs().maxCoeff(), 1e-10 * M_ref.cwiseAbs().maxCoeff())
@@ -71,6 +67,19 @@ void expect_same_equations(const fs::path& file, unsigned seed) {
         << f.transpose() << "\n"
         << f_ref.transpose();
   }
+}
+
+// The same for a model file read both ways, with its coordinates' names and initial values.
+void expect_same_equations(const fs::path& file, unsigned seed) {
+  const Model model(load_scene(file));
+  const robot::TreeDynamics tree(io::read_robot_model_file(file.string()));
+  const lagrange::System& system = model.system();
+  ASSERT_EQ(static_cast<std::size_t>(system.num_coordinates()), tree.dof());
+  EXPECT_EQ(system.coordinate_names(), tree.model().coordinate_names());
+  EXPECT_TRUE(system.initial_q().isApprox(tree.reference_configuration(), 0.0) ||
+              system.initial_q() == tree.reference_configuration());
+  lagrange::Workspace w = system.make_workspace();
+  expect_same_at_random_states(system, w, tree, seed, 10);
 }
 
 TEST(RobotScene, UrdfWithPrismaticContinuousAndFixedJoints) {
@@ -211,26 +220,8 @@ TEST(RobotScene, PinnedHumanoidEqualsTreeDynamics) {
   const io::RobotModel robot = io::read_robot_model_file(file.string(), pin);
   const Model model(scene_from_robot(robot, file));
   const robot::TreeDynamics tree(robot);
-  const lagrange::System& system = model.system();
-  ASSERT_EQ(static_cast<std::size_t>(system.num_coordinates()), tree.dof());
-  std::mt19937 rng(21);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  const auto n = static_cast<Eigen::Index>(tree.dof());
-  for (int state = 0; state < 5; ++state) {
-    Eigen::VectorXd q(n), v(n);
-    for (Eigen::Index i = 0; i < n; ++i) {
-      q(i) = u(rng);
-      v(i) = 3 * u(rng);
-    }
-    Eigen::MatrixXd M;
-    Eigen::VectorXd f;
-    system.mass_matrix_and_forces(0.0, q, v, M, f);
-    const Eigen::MatrixXd M_ref = tree.mass_matrix(q);
-    const Eigen::VectorXd f_ref = -tree.bias_forces(q, v) + tree.passive_forces(q, v);
-    // as expect_same_equations: two recursions in two orders of summation
-    EXPECT_LT((M - M_ref).cwiseAbs().maxCoeff(), 1e-10 * M_ref.cwiseAbs().maxCoeff());
-    EXPECT_LT((f - f_ref).cwiseAbs().maxCoeff(), 1e-10 * std::max(1.0, f_ref.cwiseAbs().maxCoeff()));
-  }
+  lagrange::Workspace w = model.system().make_workspace();
+  expect_same_at_random_states(model.system(), w, tree, 21, 5);
 }
 
 // With symbolic inertia the links' mass properties are parameters (m_<link>, com_<link>_x,
@@ -264,23 +255,7 @@ TEST(RobotScene, SymbolicInertiaParametersAreTheLinksInertials) {
   robot.links[link3].com.y() = 0.05;
   for (int k = 0; k < 3; ++k) I3(k, k) *= 1.5;
   const robot::TreeDynamics changed(robot);
-  std::mt19937 rng(3);
-  std::uniform_real_distribution<double> u(-1.5, 1.5);
-  for (int state = 0; state < 5; ++state) {
-    Eigen::VectorXd q(7), v(7);
-    for (Eigen::Index i = 0; i < 7; ++i) {
-      q(i) = u(rng);
-      v(i) = 2 * u(rng);
-    }
-    Eigen::MatrixXd M;
-    Eigen::VectorXd f;
-    system.mass_matrix_and_forces(w, 0.0, q, v, M, f);
-    const Eigen::MatrixXd M_ref = changed.mass_matrix(q);
-    const Eigen::VectorXd f_ref = -changed.bias_forces(q, v) + changed.passive_forces(q, v);
-    // as expect_same_equations
-    EXPECT_LT((M - M_ref).cwiseAbs().maxCoeff(), 1e-10 * M_ref.cwiseAbs().maxCoeff());
-    EXPECT_LT((f - f_ref).cwiseAbs().maxCoeff(), 1e-10 * std::max(1.0, f_ref.cwiseAbs().maxCoeff()));
-  }
+  expect_same_at_random_states(system, w, changed, 3, 5);
   try {
     w.set_parameter("I_link3_zz", 1e3);  // breaks the triangle inequality I_xx + I_yy ≥ I_zz
     FAIL() << "expected rigid::Error";
