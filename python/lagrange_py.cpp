@@ -216,6 +216,16 @@ void bind_equations(py::module_& m) {
       .def_readonly("cyclic", &Equations::cyclic, "The cyclic coordinates (L independent of them).")
       .def_readonly("cyclic_momenta", &Equations::cyclic_momenta,
                     "∂L/∂q̇ of each cyclic coordinate (conserved), one Printed each.")
+      .def_property_readonly(
+          "intermediates",
+          [](const Equations& e) {
+            py::list out;
+            for (const auto& [name, value] : e.intermediates) out.append(py::make_tuple(name, value));
+            return out;
+          },
+          "The named intermediates of a tree derived by its recursions, in the order they are "
+          "defined, each from those before it: [(name, definition)], both Printed. Empty for an "
+          "expanded derivation.")
       .def_property_readonly("symbols", &symbols_as_dicts,
                              "Every symbol of the equations: [{'name', 'latex', 'role', 'unit'}] "
                              "(role: coordinate, velocity, parameter, ...; SI unit when known).")

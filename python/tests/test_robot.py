@@ -10,6 +10,7 @@ entry: both sides round once per operation on quantities of order 1 (≈ 50 oper
 a wrong sign, axis or inertia changes entries by ≥ 1e-3.
 """
 import pathlib
+import re
 import threading
 import xml.etree.ElementTree as ET
 
@@ -196,3 +197,18 @@ def test_threads_share_one_robot():
     for t in threads:
         t.join()
     assert not failures
+
+
+def test_a_deep_trees_equations_carry_their_intermediates():
+    # arm7 (7 joints on one chain) is derived by the tree's recursions: M and f name the
+    # intermediates, each defined before use; cart_arm (3 joints) keeps the expanded form
+    eq = rigid.Scene(str(ROOT / "examples" / "arm7.urdf")).system.equations()
+    names = [name.text for name, _ in eq.intermediates]
+    assert len(names) == len(set(names)) > 50
+    defined = set()
+    for name, value in eq.intermediates:
+        used = set(re.findall(r"[A-Za-z_][A-Za-z0-9_]*", value.text)) & set(names)
+        assert used <= defined, (name.text, used - defined)
+        defined.add(name.text)
+    assert any(n in eq.mass_matrix[1][1].text for n in names)
+    assert rigid.Scene(str(ROOT / "examples" / "cart_arm.urdf")).system.equations().intermediates == []
