@@ -46,6 +46,17 @@ int main(int argc, char** argv) {
   add_modes_command(app);
   add_sweep_command(app);
 
+  // One rule for empty arguments, before CLI11 sees them (an empty positional followed by an
+  // option sent its parser into an endless loop): no argument of rigid may be empty.
+  for (int i = 1; i < argc; ++i) {
+    if (argv[i][0] == '\0') {
+      std::fprintf(stderr,
+                   "rigid: error: argument %d is empty%s%s%s; every argument needs a value (a file, a "
+                   "number, a name): remove it or give one\n",
+                   i, i > 1 ? " (after '" : "", i > 1 ? argv[i - 1] : "", i > 1 ? "')" : "");
+      return kExitUsage;
+    }
+  }
   try {
     app.parse(argc, argv);
     if (app.get_subcommands().empty()) {

@@ -241,3 +241,15 @@ def test_rotation_of_huge_quaternion_components_is_finite(run):
     proc = run("rotation", "--quaternion", "1e308,1e308,0,0", check=True)
     assert "nan" not in proc.stdout
     assert "quaternion (w, x, y, z): [0.7071067811865475, 0.7071067811865475, 0, 0]" in proc.stdout
+
+
+@pytest.mark.parametrize("argv", [["rotation", "", "--unit", "deg"], ["", "run"], ["run", ""],
+                                  ["inertia", "box", "--mass", ""], ["sweep", "", "-n", "3"],
+                                  ["eom", "examples/atwood.toml", "--format", ""]])
+def test_an_empty_argument_is_a_usage_error_at_once(rigid_exe, argv):
+    # `rigid rotation '' --unit deg` looped forever in the argument parser; every empty argument
+    # is refused before parsing, naming its position (exit 2: usage), in well under the timeout
+    proc = subprocess.run([rigid_exe, *argv], capture_output=True, text=True, timeout=20)
+    assert proc.returncode == 2, proc.stderr
+    position = argv.index("") + 1
+    assert f"argument {position} is empty" in proc.stderr and "Traceback" not in proc.stderr
