@@ -22,9 +22,12 @@ inline void add_sweep_command(CLI::App& app) {
                   "(repeatable; with -n)")
       ->type_name("NAME=DIST(A,B)")
       ->allow_extra_args(false);
-  cmd->add_option("-n,--samples", opts->samples, "the number of Monte Carlo runs (with --sample)");
+  cmd->add_option("-n,--samples", opts->samples, "the number of Monte Carlo runs (with --sample)")
+      ->type_name("N");
   cmd->add_option("--seed", opts->seed,
-                  "the seed of the sample (default 0); a run's values depend only on the seed and its index");
+                  "the seed of the sample: an integer from 0 to 2^64 - 1 (default 0); a run's "
+                  "values depend only on the seed and its index")
+      ->type_name("SEED");
   cmd->add_option("--set", opts->set, "an override every run gets: name=value (repeatable)")
       ->type_name("NAME=VALUE")
       ->allow_extra_args(false);

@@ -15,8 +15,8 @@ struct SweepOptions {
   std::string integrator;           ///< overrides [simulation] integrator
   std::vector<std::string> grid;    ///< NAME=START:STOP:COUNT
   std::vector<std::string> sample;  ///< NAME=DIST(A,B)
-  std::uint64_t samples = 0;        ///< -n: the number of Monte Carlo runs
-  std::uint64_t seed = 0;
+  std::string samples;              ///< -n: the number of Monte Carlo runs, as given (empty: 0)
+  std::string seed;                 ///< --seed as given (empty: 0)
   std::string output;               ///< the sweep's directory (default out/<scene stem>-sweep)
   unsigned threads = 0;             ///< 0: the cores (shared by the MPI ranks of a node)
   bool keep_trajectories = false;   ///< each run's files in DIR/runs/NNNNN/

@@ -14,6 +14,8 @@ import pytest
 
 import rigid
 
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+
 PENDULUM = """\
 [parameters]
 m = {m}
@@ -253,3 +255,20 @@ def test_an_empty_argument_is_a_usage_error_at_once(rigid_exe, argv):
     assert proc.returncode == 2, proc.stderr
     position = argv.index("") + 1
     assert f"argument {position} is empty" in proc.stderr and "Traceback" not in proc.stderr
+
+
+@pytest.mark.parametrize("option, value, ok", [("--seed", "-1", False), ("--seed", str(2**64), False),
+                                               ("--seed", "1.5", False), ("--seed", str(2**64 - 1), True),
+                                               ("-n", "-1", False), ("-n", "2.5", False)])
+def test_seeds_and_counts_are_whole_numbers_in_range(rigid_exe, tmp_path, option, value, ok):
+    # −1 wrapped to 2^64 − 1 and 2^64 saturated to it: three seeds gave one sample
+    args = [rigid_exe, "sweep", str(ROOT / "examples" / "physical_pendulum.toml"), "--sample",
+            "L=uniform(0.5,1)", "-o", str(tmp_path / "sweep"), "-q", option, value]
+    if option != "-n":
+        args += ["-n", "2"]
+    proc = subprocess.run(args, capture_output=True, text=True, timeout=120)
+    if ok:
+        assert proc.returncode == 0, proc.stderr
+    else:
+        assert proc.returncode == 1 and f"{option} {value}: " in proc.stderr, proc.stderr
+        assert "whole number from 0 to 18446744073709551615" in proc.stderr
