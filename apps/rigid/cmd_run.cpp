@@ -61,18 +61,21 @@ class Progress {
   ProgressBar bar_;
 };
 
-// The report's options from --report-frames (0: the default), refused before any work when
-// this build has no page.
-report::ReportOptions report_options(std::size_t frames) {
+// The report's options from --report-frames as given (empty: the default), refused before any
+// work when this build has no page.
+report::ReportOptions report_options(const std::string& frames_text) {
   if (!report::available()) {
     throw Error("this rigid was built without the report page (CMake option RIGID_REPORT=OFF, a "
                 "build without node): rebuild with the ci or release preset to write reports");
   }
   report::ReportOptions o;
-  if (frames != 0) o.max_frames = frames;
-  if (o.max_frames < report::kMinMaxFrames || o.max_frames > report::kMaxMaxFrames) {
-    throw Error(fmt::format("--report-frames {}: expected a number of frames from {} to {}", frames,
-                            report::kMinMaxFrames, report::kMaxMaxFrames));
+  if (!frames_text.empty()) {
+    const std::uint64_t frames = unsigned_option(frames_text, "--report-frames", "the number of frames");
+    if (frames < report::kMinMaxFrames || frames > report::kMaxMaxFrames) {
+      throw Error(fmt::format("--report-frames {}: expected a number of frames from {} to {}", frames,
+                              report::kMinMaxFrames, report::kMaxMaxFrames));
+    }
+    o.max_frames = static_cast<std::size_t>(frames);
   }
   return o;
 }
@@ -96,7 +99,7 @@ void run_run(const RunOptions& opts) {
   std::optional<report::ReportOptions> report_opts;
   if (opts.report) {
     report_opts = report_options(opts.report_frames);
-  } else if (opts.report_frames != 0) {
+  } else if (!opts.report_frames.empty()) {
     throw Error("--report-frames sets the frames of the report: give --report with it");
   }
 

@@ -24,14 +24,14 @@ struct RunOptions {
   std::vector<std::string> formats;   ///< overrides [output] formats: csv, npy, json
   bool quiet = false;                 ///< no summary and no progress bar
   bool report = false;                ///< also write report.html (docs/report.md)
-  std::size_t report_frames = 0;      ///< most frames of the report; 0: the default (2000)
+  std::string report_frames;          ///< most frames of the report, as given; empty: the default (2000)
 };
 
 /// Options of `rigid report DIR`.
 struct ReportOptions {
   std::string directory;              ///< an earlier run's output directory
   std::string output;                 ///< the page; empty: DIR/report.html
-  std::size_t report_frames = 0;      ///< most frames; 0: the default (2000)
+  std::string report_frames;          ///< most frames, as given; empty: the default (2000)
 };
 
 /// `rigid report DIR`: the report page of an earlier run, from its trajectory.csv, its

@@ -31,21 +31,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// An option's unsigned integer as given: decimal digits only, 0 to 2^64 − 1 (CLI11 would wrap
-// −1 to 2^64 − 1 and saturate 2^64 to it, so that three seeds gave one sample); empty: 0.
-std::uint64_t unsigned_option(const std::string& text, const char* option, const char* what) {
-  if (text.empty()) return 0;
-  std::uint64_t value = 0;
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (text.find_first_not_of("0123456789") != std::string::npos || ec != std::errc() ||
-      end != text.data() + text.size()) {
-    throw Error(fmt::format("{} {}: {} must be a whole number from 0 to 18446744073709551615 "
-                            "(2^64 - 1){}",
-                            option, text, what,
-                            ec == std::errc::result_out_of_range ? ", and this is larger" : ""));
-  }
-  return value;
-}
 
 // Set by Ctrl-C: no run starts after it, the runs in flight stop (their march polls it), the
 // finished ones are in the journal.

@@ -112,4 +112,18 @@ scene::Model load_scene(const std::string& file, const std::vector<std::string>&
   return model;
 }
 
+std::uint64_t unsigned_option(const std::string& text, const char* option, const char* what) {
+  if (text.empty()) return 0;
+  std::uint64_t value = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (text.find_first_not_of("0123456789") != std::string::npos || ec != std::errc() ||
+      end != text.data() + text.size()) {
+    throw Error(fmt::format("{} {}: {} must be a whole number from 0 to 18446744073709551615 "
+                            "(2^64 - 1){}",
+                            option, text, what,
+                            ec == std::errc::result_out_of_range ? ", and this is larger" : ""));
+  }
+  return value;
+}
+
 }  // namespace rigid::cli

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <filesystem>
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -36,6 +37,11 @@ decltype(auto) about_scene(const std::string& file, Work&& work) {
     throw Error(file + ": " + std::string(what));
   }
 }
+
+/// An option's whole number as given: decimal digits only, 0 to 2^64 − 1 (CLI11 would wrap −1
+/// to 2^64 − 1 and saturate 2^64 to it); empty: 0. `what` names it in the refusal.
+/// @throws rigid::Error "OPTION TEXT: WHAT must be a whole number from 0 to …".
+[[nodiscard]] std::uint64_t unsigned_option(const std::string& text, const char* option, const char* what);
 
 /// The human summary `rigid run` prints.
 [[nodiscard]] std::string describe_run(const std::string& scene_file, const scene::Model& model,
