@@ -166,7 +166,8 @@ bool print_constraints(const System::Impl& s, Printer& printer, Equations& eq) {
   return time_dependent;
 }
 
-// The symbols' table: a coordinate inside an angle is in rad; otherwise the equations do not say.
+// The symbols' table: a coordinate inside an angle or turning a joint is in rad, one sliding a joint
+// (and inside no angle) in m; otherwise the equations do not say.
 std::vector<EquationSymbol> symbols_table(const System::Impl& s) {
   const auto n = static_cast<std::size_t>(s.n);
   std::vector<EquationSymbol> symbols;
@@ -175,10 +176,16 @@ std::vector<EquationSymbol> symbols_table(const System::Impl& s) {
     bool angle = in_angle(s.L, s.q[i]);
     for (const ex& a : s.aux_def) angle = angle || in_angle(a, s.q[i]);
     for (const ex& g : s.g) angle = angle || in_angle(g, s.q[i]);
-    const std::string unit = angle ? "rad" : "m or rad";
+    // a slide joint's amount is a length unless something takes its sine too
+    const std::string& joint = s.joint_unit.empty() ? std::string() : s.joint_unit[i];
+    const bool length = joint == "m" && !angle;
+    angle = angle || joint == "rad";
+    const std::string unit = length ? "m" : angle ? "rad" : "m or rad";
+    const std::string per_s = length ? "m/s" : angle ? "rad/s" : "m/s or rad/s";
+    const std::string per_s2 = length ? "m/s^2" : angle ? "rad/s^2" : "m/s^2 or rad/s^2";
     symbols.push_back({s.q[i].get_name(), tex(s.q[i]), "coordinate", unit});
-    symbols.push_back({s.qd[i].get_name(), tex(s.qd[i]), "velocity", angle ? "rad/s" : "m/s or rad/s"});
-    symbols.push_back({s.qdd[i].get_name(), tex(s.qdd[i]), "acceleration", angle ? "rad/s^2" : "m/s^2 or rad/s^2"});
+    symbols.push_back({s.qd[i].get_name(), tex(s.qd[i]), "velocity", per_s});
+    symbols.push_back({s.qdd[i].get_name(), tex(s.qdd[i]), "acceleration", per_s2});
   }
   for (std::size_t k = 0; k < s.lambda.size(); ++k) {
     symbols.push_back({s.lambda[k].get_name(), tex(s.lambda[k]),

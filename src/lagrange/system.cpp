@@ -779,6 +779,20 @@ void derive(System::Impl& s, const SystemSpec& spec) {
   // symbol table, with every name checked once
   Names names;
   declare_symbols(s, spec, names);
+  // a coordinate that is a joint's amount as written has that joint's unit
+  s.joint_unit.assign(static_cast<std::size_t>(s.n), "");
+  for (const Body& b : spec.bodies) {
+    for (const JointMotion& J : b.joints) {
+      const std::string& a = J.amount.text;
+      const auto first = a.find_first_not_of(" \t"), last = a.find_last_not_of(" \t");
+      if (first == std::string::npos) continue;
+      const auto it = std::find(s.coord_names.begin(), s.coord_names.end(), a.substr(first, last - first + 1));
+      if (it == s.coord_names.end()) continue;
+      std::string& unit = s.joint_unit[static_cast<std::size_t>(it - s.coord_names.begin())];
+      const std::string mine = J.kind == JointMotion::Kind::kTurn ? "rad" : "m";
+      unit = unit.empty() || unit == mine ? mine : "mixed";
+    }
+  }
   const ExpressionReader reader(s, names);
 
   // T, V and L; generalized forces; the Euler–Lagrange equations (of the expanded L, or by

@@ -513,3 +513,11 @@ def test_symbolic_inertia_keeps_the_links_inertials_as_parameters(run):
     assert heavier["M"][0][0] == pytest.approx(numeric["M"][0][0] + 12.5 - m_cart, rel=1e-14)
     scene = rigid.Scene(str(model), symbolic_inertia=True)
     assert list(scene.system.parameters)[:2] == ["m_cart", "com_cart_x"]
+
+
+def test_the_printed_units_follow_the_joints(run):
+    # cart_arm: x is the cart's prismatic joint (a length), shoulder and elbow hinges (angles)
+    doc = json.loads(run("eom", EXAMPLES / "cart_arm.urdf", "--format", "json", check=True).stdout)
+    units = {s["name"]: s["unit"] for s in doc["symbols"]}
+    assert (units["x"], units["x_dot"], units["x_ddot"]) == ("m", "m/s", "m/s^2")
+    assert (units["shoulder"], units["elbow_dot"]) == ("rad", "rad/s")

@@ -34,6 +34,9 @@ struct System::Impl {
   std::vector<GiNaC::symbol> aux;
   std::vector<GiNaC::ex> aux_def;
   std::vector<GiNaC::ex> f_potential;
+  // per coordinate: "m" when it is the amount of a slide joint, "rad" of a turn, else empty
+  // (the printed equations' units; set from the joints as written)
+  std::vector<std::string> joint_unit;
   std::vector<int> cyclic_index;
   bool verlet_ok = false;
   // compiled: inputs (q, q̇, t, parameters) for dyn, diag and pose; the parameters alone for
