@@ -155,17 +155,7 @@ std::vector<ElementSpan> element_spans(std::string_view s, const std::string& so
       i = e;
     } else {
       // a start tag: to the '>' outside quoted attribute values
-      std::size_t k = i + 1;
-      char quote = 0;
-      for (; k < s.size(); ++k) {
-        if (quote != 0) {
-          if (s[k] == quote) quote = 0;
-        } else if (s[k] == '"' || s[k] == '\'') {
-          quote = s[k];
-        } else if (s[k] == '>') {
-          break;
-        }
-      }
+      const std::size_t k = detail::start_tag_end(s, i);
       if (k >= s.size()) fail(i);
       ElementSpan span;
       span.begin = i;

@@ -125,17 +125,7 @@ Scan scan(std::string_view s) {
       continue;
     }
     // a start tag: to the '>' outside quoted attribute values
-    std::size_t k = i + 1;
-    char quote = 0;
-    for (; k < s.size(); ++k) {
-      if (quote != 0) {
-        if (s[k] == quote) quote = 0;
-      } else if (s[k] == '"' || s[k] == '\'') {
-        quote = s[k];
-      } else if (s[k] == '>') {
-        break;
-      }
-    }
+    const std::size_t k = start_tag_end(s, i);
     if (k >= s.size()) {
       out.unfinished = i;
       out.unfinished_kind = fmt::format("the start tag <{}", name_at(i + 1));
@@ -185,6 +175,20 @@ std::optional<std::string> truncation(std::string_view text, const Scan& s) {
 }
 
 }  // namespace
+
+std::size_t start_tag_end(std::string_view s, std::size_t at) {
+  char quote = 0;
+  for (std::size_t k = at + 1; k < s.size(); ++k) {
+    if (quote != 0) {
+      if (s[k] == quote) quote = 0;
+    } else if (s[k] == '"' || s[k] == '\'') {
+      quote = s[k];
+    } else if (s[k] == '>') {
+      return k;
+    }
+  }
+  return s.size();
+}
 
 void parse_xml(tinyxml2::XMLDocument& doc, const std::string& text, const std::string& source) {
   if (const tinyxml2::XMLError e = doc.Parse(text.c_str(), text.size());
