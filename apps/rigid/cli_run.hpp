@@ -6,6 +6,7 @@
 #include "cli_model.hpp"
 #include "cmd_emit.hpp"
 #include "cmd_run.hpp"
+#include "cli_regressor.hpp"
 
 inline void add_scene_options(CLI::App* cmd, rigid::cli::SceneOptions& o) {
   cmd->add_option("SCENE", o.scene, "scene file (TOML; see docs/scene-format.md)")->required();
@@ -83,7 +84,13 @@ inline void add_run_command(CLI::App& app) {
   e->add_option("-o,--output", emit->output, "with --emit: the file to write (default: standard output)")
       ->needs(emit_opt)
       ->type_name("FILE");
-  e->callback([eom, latex, format, emit] {
+  auto regressor = std::make_shared<rigid::cli::RegressorOptions>();
+  add_regressor_options(e, *regressor);
+  e->callback([eom, latex, format, emit, regressor] {
+    if (regressor->enabled) {
+      rigid::cli::run_regressor(*eom, *regressor, {*latex, *format, emit->language});
+      return;
+    }
     if (!emit->language.empty()) {
       if (*latex || !format->empty()) {
         throw rigid::Error("--latex and --format print the equations; --emit writes them as code: use one");
