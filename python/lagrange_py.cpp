@@ -360,15 +360,23 @@ void bind_system_description(py::class_<System>& cls) {
            "rigid.lagrange.Equations with each quantity as text and LaTeX.")
       .def(
           "emit",
-          [](const System& s, const std::string& language, const std::string& name) {
+          [](const System& s, const std::string& language, const std::string& name, bool flat) {
             rigid::lagrange::ExportOptions o;
             o.name = name;
-            return rigid::lagrange::emit(s, rigid::lagrange::parse_language(language), o);
+            o.flat = flat;
+            const auto lang = rigid::lagrange::parse_language(language);
+            if (flat && lang != rigid::lagrange::Language::kCpp) {
+              throw rigid::Error("flat=True is a layout of the C++ export (global functions "
+                                 "without t); the Python module has one layout");
+            }
+            return rigid::lagrange::emit(s, lang, o);
           },
-          py::arg("language"), py::arg("name") = "model",
+          py::arg("language"), py::arg("name") = "model", py::arg("flat") = false,
           "The equations of motion (M, f, G, γ) as one dependency-free source file: language "
           "'c++' (a header, <cmath> only, namespace `name`) or 'python' (a module, math only); "
-          "parameters are named arguments with the current values as defaults.");
+          "parameters are named arguments with the current values as defaults. flat=True (C++): "
+          "the dynamics at global scope without t (mass_matrix, inverse_dynamics, "
+          "forward_dynamics and their derivatives), as `rigid eom --emit c++ --flat`.");
 }
 
 // A System evaluated at (t, q) or (t, q, q̇): constraint residuals, energies and body poses.

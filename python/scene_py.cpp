@@ -371,13 +371,14 @@ void bind_scene(py::module_& m) {
           "or 'json' (latex=True is format='latex').")
       .def(
           "emit",
-          [](const Model& mo, const std::string& language, const std::string& name) {
-            return rigid::scene::emit_code(mo, language, name);
+          [](const Model& mo, const std::string& language, const std::string& name, bool flat) {
+            return rigid::scene::emit_code(mo, language, name, flat);
           },
-          py::arg("language"), py::arg("name") = std::string{},
+          py::arg("language"), py::arg("name") = std::string{}, py::arg("flat") = false,
           "The equations of motion (M, f, G, γ) as one dependency-free source file: 'c++' (a "
           "header, <cmath> only; namespace `name`, default the file's stem) or 'python' (a "
-          "module, math only), with the scene's parameters as defaults.")
+          "module, math only), with the scene's parameters as defaults. flat=True (C++): the "
+          "dynamics at global scope without t, as `rigid eom --emit c++ --flat`.")
       .def_property_readonly("system", &Model::system, py::return_value_policy::reference_internal,
                              "The rigid.lagrange.System of a coordinate scene.")
       .def(

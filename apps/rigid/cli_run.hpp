@@ -84,6 +84,11 @@ inline void add_run_command(CLI::App& app) {
   e->add_option("-o,--output", emit->output, "with --emit: the file to write (default: standard output)")
       ->needs(emit_opt)
       ->type_name("FILE");
+  e->add_flag("--flat", emit->flat,
+              "with --emit c++: the dynamics as robot code calls them, at global scope and without "
+              "t: mass_matrix, inverse_dynamics, forward_dynamics (factored along the tree) and "
+              "their derivatives")
+      ->needs(emit_opt);
   auto regressor = std::make_shared<rigid::cli::RegressorOptions>();
   add_regressor_options(e, *regressor);
   e->callback([eom, latex, format, emit, regressor] {

@@ -29,7 +29,7 @@ void run_emit(const SceneOptions& opts, const EmitOptions& emit) {
   const std::filesystem::path out(emit.output);
   // the C++ namespace: the output file's stem, else the scene's
   const std::string code = about_scene(opts.scene, [&] {
-    return scene::emit_code(model, emit.language, out.empty() ? "" : out.stem().string());
+    return scene::emit_code(model, emit.language, out.empty() ? "" : out.stem().string(), emit.flat);
   });
   if (out.empty()) {
     std::fwrite(code.data(), 1, code.size(), stdout);

@@ -10,6 +10,7 @@ namespace rigid::cli {
 struct EmitOptions {
   std::string language;  ///< c++ or python; empty: print the equations instead
   std::string output;    ///< the file to write (atomically); empty: standard output
+  bool flat = false;     ///< C++: the flat layout (lagrange::ExportOptions::flat)
 };
 
 /// "" for a known --emit language, else the reason (an unknown name, with a close match).

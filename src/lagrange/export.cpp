@@ -18,6 +18,7 @@
 
 #include "rigid/common/did_you_mean.hpp"
 #include "rigid/common/error.hpp"
+#include "detail/derivatives.hpp"
 #include "detail/symbolic_lock.hpp"
 #include "detail/system_impl.hpp"
 #include "detail/tape.hpp"
@@ -255,6 +256,7 @@ std::vector<std::string> renamed(const std::vector<std::string>& names,
 struct Syntax {
   bool python = false;
   std::vector<std::string> inputs;  // the text of each input slot
+  std::string pow_int = "detail::pow_int";  // C++: the file's binary powering
 };
 
 std::string literal(double v, bool python) {
@@ -278,6 +280,30 @@ class TapePrinter {
     for (std::size_t k = 0; k < code.size(); ++k) {
       out += fmt::format("{}{}{} = {}{}\n", indent, syntax_.python ? "" : "const double ",
                          local(k), expression(code[k]), syntax_.python ? "" : ";");
+    }
+    return out;
+  }
+  // The instructions split in two, each part one line per instruction: those that read no
+  // input slot of `deferred` (directly or through another instruction), then those that do;
+  // so code between the parts may compute the deferred inputs from the first part's outputs.
+  [[nodiscard]] std::pair<std::string, std::string> split_body(
+      std::string_view indent, const std::vector<bool>& deferred) const {
+    const auto& code = tape_.instructions();
+    const std::size_t base = tape_.num_inputs() + tape_.constants().size();
+    std::vector<bool> late(code.size(), false);
+    auto reads_late = [&](std::int32_t slot) {
+      const auto s = static_cast<std::size_t>(slot);
+      if (s < tape_.num_inputs()) return static_cast<bool>(deferred[s]);
+      return s >= base && late[s - base];
+    };
+    std::pair<std::string, std::string> out;
+    for (std::size_t k = 0; k < code.size(); ++k) {
+      const Instruction& in = code[k];
+      const bool binary = in.op == Op::kAdd || in.op == Op::kSub || in.op == Op::kMul ||
+                          in.op == Op::kDiv || in.op == Op::kPow;
+      late[k] = reads_late(in.a) || (binary && reads_late(in.b));
+      (late[k] ? out.second : out.first) +=
+          fmt::format("{}const double {} = {};\n", indent, local(k), expression(in));
     }
     return out;
   }
@@ -312,7 +338,7 @@ class TapePrinter {
       case Op::kInv: return "1.0 / " + a;
       case Op::kSquare: return a + " * " + a;
       case Op::kPow: return fmt::format("{}({}, {})", syntax_.python ? "math.pow" : "std::pow", a, b());
-      case Op::kPowInt: return fmt::format("{}({}, {})", syntax_.python ? "_pow_int" : "detail::pow_int", a, in.b);
+      case Op::kPowInt: return fmt::format("{}({}, {})", syntax_.python ? "_pow_int" : syntax_.pow_int, a, in.b);
       case Op::kSqrt: return call("std::sqrt", "math.sqrt", in.a);
       case Op::kInvSqrt: return "1.0 / " + call("std::sqrt", "math.sqrt", in.a);
       case Op::kSin: return call("std::sin", "math.sin", in.a);
@@ -332,7 +358,7 @@ class TapePrinter {
   }
 
   const Tape& tape_;
-  const Syntax& syntax_;
+  const Syntax syntax_;  // a copy: callers pass temporaries
 };
 
 // ----------------------------------------------------------------------------------------
@@ -726,6 +752,327 @@ std::string python_dynamics(const System::Impl& s, const std::vector<std::string
 
 std::string quoted(const std::string& s) { return "\"" + s + "\""; }
 
+// ----------------------------------------------------------------------------------------
+// C++, flat layout (ExportOptions::flat)
+
+// The tree of the coordinates as M's pattern shows it: λ(j) = the last i < j with M_ij not
+// identically zero (−1: none), kept where every such M_ij lies on the chain λ(j), λ(λ(j)), …
+// (a tree's M: i is a joint on the path to j); otherwise the chain λ(j) = j − 1 (dense M).
+// Factoring M = Lᵀ D L along λ then fills nothing outside the pairs of a coordinate and its
+// ancestors [Featherstone2008, §6.5 "LTDL"].
+std::vector<int> coordinate_tree(const System::Impl& s) {
+  const auto n = static_cast<std::size_t>(s.n);
+  std::vector<int> lambda(n, -1);
+  auto nonzero = [&](std::size_t i, std::size_t j) { return !s.M[i * n + j].is_zero(); };
+  for (std::size_t j = 0; j < n; ++j) {
+    for (std::size_t i = 0; i < j; ++i) {
+      if (nonzero(i, j)) lambda[j] = static_cast<int>(i);
+    }
+  }
+  for (std::size_t j = 0; j < n; ++j) {
+    std::vector<bool> on_chain(n, false);
+    for (int i = lambda[j]; i >= 0; i = lambda[static_cast<std::size_t>(i)]) {
+      on_chain[static_cast<std::size_t>(i)] = true;
+    }
+    for (std::size_t i = 0; i < j; ++i) {
+      if (nonzero(i, j) && !on_chain[i]) {
+        for (std::size_t k = 0; k < n; ++k) lambda[k] = static_cast<int>(k) - 1;
+        return lambda;
+      }
+    }
+  }
+  return lambda;
+}
+
+// The ancestors of k along λ, nearest first.
+std::vector<std::size_t> ancestors(const std::vector<int>& lambda, std::size_t k) {
+  std::vector<std::size_t> out;
+  for (int i = lambda[k]; i >= 0; i = lambda[static_cast<std::size_t>(i)]) {
+    out.push_back(static_cast<std::size_t>(i));
+  }
+  return out;
+}
+
+// The file's factor() and solve(), unrolled along λ: H holds M on the pairs (k, i), i = k or an
+// ancestor of k, at H[k*n + i]; factor() overwrites it with D (diagonal) and L (unit lower
+// triangular, M = Lᵀ D L); solve() overwrites x with M⁻¹ x.
+std::string flat_factor_and_solve(const std::vector<int>& lambda) {
+  const std::size_t n = lambda.size();
+  std::string out =
+      "/// M = Lᵀ D L in place along the tree of the coordinates (Featherstone, \"Rigid Body "
+      "Dynamics\n/// Algorithms\", 2008, §6.5): H[k*n + i] holds M_ki for i = k and each "
+      "ancestor i of k, and\n/// receives D_kk and L_ki. Returns false where a pivot D_kk is not "
+      "positive (or is NaN).\n"
+      "[[nodiscard]] inline bool factor(double* H) {\n";
+  std::string pivots;
+  for (std::size_t k = n; k-- > 0;) {
+    for (std::size_t i : ancestors(lambda, k)) {
+      out += fmt::format("  {{\n    const double a = H[{}] / H[{}];\n", k * n + i, k * n + k);
+      out += fmt::format("    H[{}] -= a * H[{}];\n", i * n + i, k * n + i);
+      for (std::size_t j : ancestors(lambda, i)) {
+        out += fmt::format("    H[{}] -= a * H[{}];\n", i * n + j, k * n + j);
+      }
+      out += fmt::format("    H[{}] = a;\n  }}\n", k * n + i);
+    }
+  }
+  for (std::size_t k = 0; k < n; ++k) {
+    pivots += fmt::format("{}(H[{}] > 0.0)", k ? " & " : "", k * n + k);
+  }
+  out += fmt::format("  return {};\n}}\n\n", pivots);
+  out += "/// x ← M⁻¹ x, with H from factor(): Lᵀ y = x, z = D⁻¹ y, L x = z.\n"
+         "inline void solve(const double* H, double* x) {\n";
+  for (std::size_t i = n; i-- > 0;) {
+    for (std::size_t j : ancestors(lambda, i)) {
+      out += fmt::format("  x[{}] -= H[{}] * x[{}];\n", j, i * n + j, i);
+    }
+  }
+  for (std::size_t i = 0; i < n; ++i) out += fmt::format("  x[{}] /= H[{}];\n", i, i * n + i);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j : ancestors(lambda, i)) {
+      out += fmt::format("  x[{}] -= H[{}] * x[{}];\n", i, i * n + j, j);
+    }
+  }
+  return out + "}\n";
+}
+
+// One tape over the flat layout's inputs (q, q̇, q̈, t, parameters), with the intermediates
+// and any derivative intermediates defined first.
+Tape flat_tape(const System::Impl& s, const std::vector<GiNaC::ex>& outputs,
+               const std::vector<std::pair<GiNaC::symbol, GiNaC::ex>>& extra) {
+  std::vector<GiNaC::symbol> inputs;
+  inputs.insert(inputs.end(), s.q.begin(), s.q.end());
+  inputs.insert(inputs.end(), s.qd.begin(), s.qd.end());
+  inputs.insert(inputs.end(), s.qdd.begin(), s.qdd.end());
+  inputs.push_back(s.t);
+  inputs.insert(inputs.end(), s.params.begin(), s.params.end());
+  detail::TapeBuilder b(inputs, inputs.size() - s.params.size());
+  detail::define_intermediates(b, s);
+  for (const auto& [name, value] : extra) b.define(name, value);
+  for (const GiNaC::ex& e : outputs) b.add_output(e);
+  return b.build();
+}
+
+// The flat functions' text of the inputs: q, q_dot and q_ddot (or `qdd`, the local of
+// forward_dynamics_derivatives), t = 0 (the system does not depend on it) and p.<name>.
+Syntax flat_syntax(std::size_t n, const std::vector<std::string>& params,
+                   std::string_view q_ddot, const std::string& pow_int) {
+  Syntax syntax;
+  for (std::size_t i = 0; i < n; ++i) syntax.inputs.push_back(fmt::format("q[{}]", i));
+  for (std::size_t i = 0; i < n; ++i) syntax.inputs.push_back(fmt::format("q_dot[{}]", i));
+  for (std::size_t i = 0; i < n; ++i) syntax.inputs.push_back(fmt::format("{}[{}]", q_ddot, i));
+  syntax.inputs.emplace_back("0.0");
+  for (const std::string& p : params) syntax.inputs.push_back("p." + p);
+  syntax.pow_int = pow_int;
+  return syntax;
+}
+
+// τ = M q̈ − f in the symbols q̈: for a tree, its inverse dynamics in body coordinates plus
+// what the rest of the system (a given Lagrangian, potentials, generalized forces) adds.
+std::vector<GiNaC::ex> flat_tau(const System::Impl& s) {
+  const auto n = static_cast<std::size_t>(s.n);
+  const bool tree = !s.id_tau.empty();
+  std::vector<GiNaC::ex> tau(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    GiNaC::ex e = tree ? s.id_tau[i] - (s.f[i] - s.tree_bias[i]).expand() : -s.f[i];
+    for (std::size_t j = 0; j < n; ++j) {
+      const GiNaC::ex Mij = tree ? (s.M[i * n + j] - s.tree_M[i * n + j]).expand() : s.M[i * n + j];
+      e += Mij * s.qdd[j];
+    }
+    tau[i] = e;
+  }
+  return tau;
+}
+
+// The definitions the flat tapes add after the system's intermediates: the body-coordinate
+// inverse dynamics', then `more`.
+std::vector<std::pair<GiNaC::symbol, GiNaC::ex>> flat_definitions(
+    const System::Impl& s, const std::vector<std::pair<GiNaC::symbol, GiNaC::ex>>& more) {
+  std::vector<std::pair<GiNaC::symbol, GiNaC::ex>> out;
+  for (std::size_t k = 0; k < s.id_aux.size(); ++k) out.emplace_back(s.id_aux[k], s.id_aux_def[k]);
+  out.insert(out.end(), more.begin(), more.end());
+  return out;
+}
+
+std::string flat_functions(const System::Impl& s, const std::vector<std::string>& params,
+                           const std::string& helpers) {
+  const auto n = static_cast<std::size_t>(s.n);
+  const std::vector<int> lambda = coordinate_tree(s);
+  const std::string pow_int = helpers + "::pow_int";
+  const std::vector<bool> none(3 * n + 1 + params.size(), false);
+  // M's pairs (k, i), i = k or an ancestor of k: the entries factor() reads
+  std::vector<std::pair<std::size_t, std::size_t>> pairs;
+  for (std::size_t k = 0; k < n; ++k) {
+    pairs.emplace_back(k, k);
+    for (std::size_t i : ancestors(lambda, k)) pairs.emplace_back(k, i);
+  }
+  std::string out;
+
+  // mass_matrix
+  {
+    std::vector<GiNaC::ex> outputs;
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = i; j < n; ++j) outputs.push_back(s.M[i * n + j]);
+    const Tape tape = flat_tape(s, outputs, {});
+    const Syntax syntax = flat_syntax(n, params, "q_ddot", pow_int);
+    const TapePrinter printer(tape, syntax);
+    out += "/// M(q), nv × nv, row-major: the mass matrix (kinetic energy ½ q̇ᵀ M q̇).\n"
+           "inline void mass_matrix([[maybe_unused]] const double* q, double* M, "
+           "[[maybe_unused]] const Parameters& p = {}) {\n";
+    out += printer.split_body("  ", none).first;
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      for (std::size_t j = i; j < n; ++j) {
+        const std::string v = printer.output(k++);
+        out += fmt::format("  M[{}] = {};\n", i * n + j, v);
+        if (j != i) out += fmt::format("  M[{}] = {};\n", j * n + i, v);
+      }
+    }
+    out += "}\n\n";
+  }
+  const std::vector<GiNaC::ex> tau = flat_tau(s);
+  // inverse_dynamics
+  {
+    const Tape tape = flat_tape(s, tau, flat_definitions(s, {}));
+    const TapePrinter printer(tape, flat_syntax(n, params, "q_ddot", pow_int));
+    out += "/// τ = M(q) q̈ − f(q, q̇) (inverse dynamics): the joint forces that give the "
+           "accelerations q̈.\n"
+           "inline void inverse_dynamics([[maybe_unused]] const double* q, [[maybe_unused]] "
+           "const double* q_dot,\n                             [[maybe_unused]] const double* "
+           "q_ddot, double* tau,\n                             [[maybe_unused]] const "
+           "Parameters& p = {}) {\n";
+    out += printer.split_body("  ", none).first;
+    for (std::size_t i = 0; i < n; ++i) out += fmt::format("  tau[{}] = {};\n", i, printer.output(i));
+    out += "}\n\n";
+  }
+  // the part of forward_dynamics and its derivatives that factors M and solves for q̈
+  auto solve_text = [&](const TapePrinter& printer, std::string_view on_failure) {
+    std::string text = fmt::format("  double H[{}];\n", n * n);
+    std::size_t k = 0;
+    for (const auto& [r, c] : pairs) text += fmt::format("  H[{}] = {};\n", r * n + c, printer.output(k++));
+    text += fmt::format("  double x[{}];\n", n);
+    for (std::size_t i = 0; i < n; ++i) {
+      text += fmt::format("  x[{}] = {} + tau[{}];\n", i, printer.output(k++), i);
+    }
+    text += fmt::format("  if (!{}::factor(H)) {{\n{}    return;\n  }}\n", helpers, on_failure);
+    text += fmt::format("  {}::solve(H, x);\n", helpers);
+    return text;
+  };
+  std::vector<GiNaC::ex> mass_and_forces;
+  for (const auto& [r, c] : pairs) mass_and_forces.push_back(s.M[c * n + r]);
+  mass_and_forces.insert(mass_and_forces.end(), s.f.begin(), s.f.end());
+  // forward_dynamics
+  {
+    const Tape tape = flat_tape(s, mass_and_forces, {});
+    const TapePrinter printer(tape, flat_syntax(n, params, "q_ddot", pow_int));
+    out += "/// q̈ = M(q)⁻¹ (f(q, q̇) + τ) (forward dynamics), M factored along the tree (factor()).\n"
+           "/// Where M is not positive definite (a pivot ≤ 0: parameters no body can have) "
+           "q_ddot is NaN.\n"
+           "inline void forward_dynamics([[maybe_unused]] const double* q, [[maybe_unused]] "
+           "const double* q_dot,\n                             const double* tau, double* "
+           "q_ddot, [[maybe_unused]] const Parameters& p = {}) {\n";
+    out += printer.split_body("  ", none).first;
+    out += solve_text(printer, fmt::format("    for (int i = 0; i < {}; ++i) q_ddot[i] = std::nan(\"\");\n", n));
+    out += fmt::format("  for (int i = 0; i < {}; ++i) q_ddot[i] = x[i];\n}}\n\n", n);
+  }
+  // the derivatives of τ, through the intermediates
+  std::vector<GiNaC::symbol> vars(s.q.begin(), s.q.end());
+  vars.insert(vars.end(), s.qd.begin(), s.qd.end());
+  std::vector<GiNaC::symbol> aux = s.aux;
+  aux.insert(aux.end(), s.id_aux.begin(), s.id_aux.end());
+  std::vector<GiNaC::ex> defs = s.aux_def;
+  defs.insert(defs.end(), s.id_aux_def.begin(), s.id_aux_def.end());
+  const detail::ForwardDerivatives D = detail::forward_derivatives(aux, defs, tau, vars);
+  const auto definitions = flat_definitions(s, D.definitions);
+  auto dtau = [&](std::size_t i, std::size_t j) -> const GiNaC::ex& { return D.d[i * 2 * n + j]; };
+  std::vector<GiNaC::ex> derivatives;
+  for (std::size_t half = 0; half < 2; ++half) {
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = 0; j < n; ++j) derivatives.push_back(dtau(i, half * n + j));
+  }
+  // inverse_dynamics_derivatives
+  {
+    std::vector<GiNaC::ex> outputs = derivatives;
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = i; j < n; ++j) outputs.push_back(s.M[i * n + j]);
+    const Tape tape = flat_tape(s, outputs, definitions);
+    const TapePrinter printer(tape, flat_syntax(n, params, "q_ddot", pow_int));
+    out += "/// ∂τ/∂q, ∂τ/∂q̇ and ∂τ/∂q̈ = M of inverse_dynamics, nv × nv row-major each "
+           "([i*nv + j] = ∂τ_i/∂x_j),\n/// exact (forward-mode differentiation of the same "
+           "equations).\n"
+           "inline void inverse_dynamics_derivatives([[maybe_unused]] const double* q,\n"
+           "                                         [[maybe_unused]] const double* q_dot,\n"
+           "                                         [[maybe_unused]] const double* q_ddot, "
+           "double* dtau_dq,\n"
+           "                                         double* dtau_dq_dot, double* "
+           "dtau_dq_ddot,\n"
+           "                                         [[maybe_unused]] const Parameters& p = {}) "
+           "{\n";
+    out += printer.split_body("  ", none).first;
+    std::size_t k = 0;
+    for (const char* name : {"dtau_dq", "dtau_dq_dot"}) {
+      for (std::size_t i = 0; i < n * n; ++i) out += fmt::format("  {}[{}] = {};\n", name, i, printer.output(k++));
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      for (std::size_t j = i; j < n; ++j) {
+        const std::string v = printer.output(k++);
+        out += fmt::format("  dtau_dq_ddot[{}] = {};\n", i * n + j, v);
+        if (j != i) out += fmt::format("  dtau_dq_ddot[{}] = {};\n", j * n + i, v);
+      }
+    }
+    out += "}\n\n";
+  }
+  // forward_dynamics_derivatives: q̈ first, then ∂τ/∂(q, q̇) at that q̈ (the instructions that
+  // read q̈ after the solve), then ∂q̈/∂x = −M⁻¹ ∂τ/∂x and ∂q̈/∂τ = M⁻¹, column by column
+  {
+    std::vector<GiNaC::ex> outputs = mass_and_forces;
+    outputs.insert(outputs.end(), derivatives.begin(), derivatives.end());
+    const Tape tape = flat_tape(s, outputs, definitions);
+    const TapePrinter printer(tape, flat_syntax(n, params, "qdd", pow_int));
+    std::vector<bool> deferred(none);
+    for (std::size_t i = 0; i < n; ++i) deferred[2 * n + i] = true;
+    const auto [before, after] = printer.split_body("  ", deferred);
+    out += "/// q̈ = forward_dynamics(q, q̇, τ) and its derivatives ∂q̈/∂q, ∂q̈/∂q̇, ∂q̈/∂τ = M⁻¹, "
+           "nv × nv\n/// row-major each ([i*nv + j] = ∂q̈_i/∂x_j): ∂q̈/∂x = −M⁻¹ ∂τ/∂x at the "
+           "q̈ found, τ = M q̈ − f.\n/// Where M is not positive definite every output is NaN.\n"
+           "inline void forward_dynamics_derivatives([[maybe_unused]] const double* q,\n"
+           "                                         [[maybe_unused]] const double* q_dot, "
+           "const double* tau,\n"
+           "                                         double* q_ddot, double* dq_ddot_dq, double* "
+           "dq_ddot_dq_dot,\n"
+           "                                         double* dq_ddot_dtau,\n"
+           "                                         [[maybe_unused]] const Parameters& p = {}) "
+           "{\n";
+    out += before;
+    out += solve_text(printer, fmt::format("    for (int i = 0; i < {}; ++i) q_ddot[i] = std::nan(\"\");\n"
+                                           "    for (int i = 0; i < {}; ++i) {{\n"
+                                           "      dq_ddot_dq[i] = dq_ddot_dq_dot[i] = dq_ddot_dtau[i] = std::nan(\"\");\n"
+                                           "    }}\n", n, n * n));
+    out += fmt::format("  [[maybe_unused]] const double* qdd = x;\n"
+                       "  for (int i = 0; i < {}; ++i) q_ddot[i] = x[i];\n", n);
+    out += after;
+    std::size_t k = pairs.size() + n;
+    out += fmt::format("  double c[{}];\n", n);
+    for (const char* name : {"dq_ddot_dq", "dq_ddot_dq_dot"}) {
+      for (std::size_t j = 0; j < n; ++j) {
+        for (std::size_t i = 0; i < n; ++i) {
+          out += fmt::format("  c[{}] = -{};\n", i, printer.output(k + i * n + j));
+        }
+        out += fmt::format("  {}::solve(H, c);\n", helpers);
+        out += fmt::format("  for (int i = 0; i < {}; ++i) {}[i * {} + {}] = c[i];\n", n, name, n, j);
+      }
+      k += n * n;
+    }
+    out += fmt::format(
+        "  for (int j = 0; j < {0}; ++j) {{\n"
+        "    for (int i = 0; i < {0}; ++i) c[i] = i == j ? 1.0 : 0.0;\n"
+        "    {1}::solve(H, c);\n"
+        "    for (int i = 0; i < {0}; ++i) dq_ddot_dtau[i * {0} + j] = c[i];\n"
+        "  }}\n}}\n",
+        n, helpers);
+  }
+  return out;
+}
+
 }  // namespace
 
 Language parse_language(std::string_view name) {
@@ -751,9 +1098,66 @@ const System::Impl& exportable(const System& system) {
 
 }  // namespace
 
+// The flat layout: no namespace, no t, the dynamics and their derivatives (export.hpp).
+std::string emit_cpp_flat(const System::Impl& s, const ExportOptions& options) {
+  if (s.m > 0) {
+    throw Error(fmt::format("the flat C++ layout exports the dynamics of a system without "
+                            "constraints; this one has {} ({}): export it without --flat",
+                            s.m, fmt::join(s.constraint_names, ", ")));
+  }
+  const auto time_dependent = [&](const std::vector<GiNaC::ex>& es) {
+    return std::any_of(es.begin(), es.end(), [&](const GiNaC::ex& e) { return e.has(s.t); });
+  };
+  if (time_dependent(s.M) || time_dependent(s.f) || time_dependent(s.aux_def)) {
+    throw Error("the flat C++ layout exports functions of (q, q_dot) without the time t, and "
+                "this system's equations depend on t: export it without --flat");
+  }
+  const std::vector<std::string> params =
+      export_identifiers(s.param_names, Language::kCpp, Scope::kMember);
+  const std::string helpers =
+      export_identifiers({options.name + "_detail"}, Language::kCpp, Scope::kNamespace)[0];
+  std::string out = header_comment(
+      s, options, "//", renamed(s.param_names, params),
+      "a name starting with '_' takes a 'p' in front; a C or C++ keyword or a macro of the "
+      "compiler or <cmath> takes '_' at the end until unused");
+  out += "//\n// The dynamics M(q) q̈ = f(q, q̇) + τ at global scope (no namespace, no t): "
+         "nq = nv coordinates,\n// arrays row-major ([i*nv + j]), parameters as defaults "
+         "(forward_dynamics(q, q_dot, tau, q_ddot, {.name = value})).\n"
+         "// forward_dynamics factors M along the tree of the coordinates (no dense "
+         "factorization where\n// the tree makes M sparse); the derivatives are exact.\n";
+  out += "#pragma once\n\n#include <cmath>\n\n";
+  out += fmt::format("inline constexpr int nq = {};  // configuration entries\n", s.n);
+  out += fmt::format("inline constexpr int nv = {};  // velocity entries\n", s.n);
+  std::vector<std::string> names;
+  for (const auto& c : s.coord_names) names.push_back(quoted(c));
+  out += fmt::format("inline constexpr const char* coordinate_names[] = {{{}}};\n",
+                     fmt::join(names, ", "));
+  out += "\n/// The model's parameters (SI), defaults as in the model.\nstruct Parameters {\n";
+  for (std::size_t k = 0; k < params.size(); ++k) {
+    out += fmt::format("  double {} = {};{}\n", params[k], literal(s.param_values[k], false),
+                       params[k] != s.param_names[k] ? fmt::format("  // {}", s.param_names[k]) : "");
+  }
+  out += fmt::format("}};\n\nnamespace {} {{\n", helpers);
+  out += "/// x^k (k ≥ 1) by binary powering, as the engine computes it.\n"
+         "inline double pow_int(double x, int k) {\n"
+         "  double v = 1.0;\n"
+         "  while (k > 0) {\n"
+         "    if (k & 1) v *= x;\n"
+         "    x *= x;\n"
+         "    k >>= 1;\n"
+         "  }\n"
+         "  return v;\n"
+         "}\n\n";
+  out += flat_factor_and_solve(coordinate_tree(s));
+  out += fmt::format("}}  // namespace {}\n\n", helpers);
+  out += flat_functions(s, params, helpers);
+  return out;
+}
+
 std::string emit_cpp(const System& system, const ExportOptions& options) {
   detail::SymbolicLock lock;  // the functions' tapes are compiled from the expressions
   const System::Impl& s = exportable(system);
+  if (options.flat) return emit_cpp_flat(s, options);
   const std::vector<std::string> params =
       export_identifiers(s.param_names, Language::kCpp, Scope::kMember);
   const std::string ns = export_identifiers({options.name}, Language::kCpp, Scope::kNamespace)[0];

@@ -75,7 +75,8 @@ Spatial apply(const Inertia& in, const Spatial& x) {
 // Names the intermediates: each non-trivial expression becomes a symbol defined by it.
 class Namer {
  public:
-  Namer(System::Impl& s, const std::set<std::string>& taken) : s_(s), taken_(taken) {}
+  Namer(std::vector<GiNaC::symbol>& aux, std::vector<ex>& defs, const std::set<std::string>& taken)
+      : aux_(aux), defs_(defs), taken_(taken) {}
 
   // `e` expanded; a number, a symbol or ±sin/cos of a symbol stays as it is, anything else
   // becomes the intermediate `name` (a suffix _ where the name is taken)
@@ -84,9 +85,9 @@ class Namer {
     if (trivial(value)) return value;
     while (taken_.count(name) || used_.count(name)) name += "_";
     used_.insert(name);
-    s_.aux.emplace_back(name, tex(name));
-    s_.aux_def.push_back(value);
-    return s_.aux.back();
+    aux_.emplace_back(name, tex(name));
+    defs_.push_back(value);
+    return aux_.back();
   }
   Vec3 operator()(const std::string& name, const Vec3& v) {
     Vec3 out;
@@ -133,7 +134,8 @@ class Namer {
     return "\\mathrm{" + name.substr(0, u) + "}_{\\mathrm{" + escaped + "}}";
   }
 
-  System::Impl& s_;
+  std::vector<GiNaC::symbol>& aux_;
+  std::vector<ex>& defs_;
   const std::set<std::string>& taken_;
   std::set<std::string> used_;
 };
@@ -214,12 +216,119 @@ Inertia body_inertia(Namer& name, const TreeBody& b, const Kinematics& K) {
   return in;
 }
 
+// ----------------------------------------------------------------------------------------
+// inverse dynamics in body coordinates
+
+// A frame C placed on a frame P: C's axes in P (E = R_PC) and C's origin in P (r).
+struct Step {
+  Mat3 E;
+  Vec3 r;
+};
+
+// A motion in P's coordinates (about P's origin) in C's: w_C = Eᵀ w, v_C = Eᵀ (v + w × r).
+Spatial motion_to_child(const Step& X, const Spatial& m) {
+  return {mat_t_vec(X.E, m.a), mat_t_vec(X.E, plus(m.b, cross(m.a, X.r)))};
+}
+
+// A force in C's coordinates (about C's origin) in P's: f_P = E f, n_P = E n + r × f_P.
+Spatial force_to_parent(const Step& X, const Spatial& F) {
+  const Vec3 f = mat_vec(X.E, F.b);
+  return {plus(mat_vec(X.E, F.a), cross(X.r, f)), f};
+}
+
 }  // namespace
+
+TreeInverseDynamics tree_inverse_dynamics(const System::Impl& s,
+                                          const std::vector<TreeBody>& bodies,
+                                          const Vec3& gravity,
+                                          const std::set<std::string>& taken) {
+  TreeInverseDynamics out;
+  Namer name(out.aux, out.defs, taken);
+  out.tau.assign(static_cast<std::size_t>(s.n), 0);
+  struct Frame {
+    std::vector<Step> steps;     // the fixed placement, then one per joint
+    std::vector<Spatial> S;      // per joint: its motion in the frame after it
+    std::vector<std::size_t> c;  // per joint: its coordinate
+    Spatial V, A, F;             // in the body's frame; F: the subtree's force on the body
+  };
+  std::vector<Frame> B(bodies.size());
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    const TreeBody& body = bodies[b];
+    Frame& f = B[b];
+    // the world "accelerates" by −g, so that the forces include the weights [Featherstone2008 §5.3]
+    Spatial V, A{{0, 0, 0}, {-gravity[0], -gravity[1], -gravity[2]}};
+    if (body.parent >= 0) {
+      V = B[static_cast<std::size_t>(body.parent)].V;
+      A = B[static_cast<std::size_t>(body.parent)].A;
+    }
+    f.steps.push_back({body.orientation, body.position});
+    V = motion_to_child(f.steps.back(), V);
+    A = motion_to_child(f.steps.back(), A);
+    for (const TreeJoint& J : body.joints) {
+      const std::string& coord = s.coord_names[J.coordinate];
+      Step X;
+      Spatial S;
+      const Vec3 a = vec(J.axis);
+      if (J.turn) {
+        // a turn about a through o: C = P turned, its origin at o − E o; S = (a, o × a)
+        X.E = rodrigues(J.axis, s.q[J.coordinate]);
+        const Vec3 o = vec(J.anchor);
+        const Vec3 Eo = mat_vec(X.E, o);
+        X.r = {o[0] - Eo[0], o[1] - Eo[1], o[2] - Eo[2]};
+        S = {a, cross(o, a)};
+      } else {
+        X.E = identity3();
+        X.r = scaled(a, s.q[J.coordinate]);
+        S = {{0, 0, 0}, a};
+      }
+      const ex qd = s.qd[J.coordinate];
+      V = plus(motion_to_child(X, V), scaled(S, qd));
+      A = plus(plus(motion_to_child(X, A), scaled(S, s.qdd[J.coordinate])),
+               scaled(cross_motion(V, S), qd));
+      V = name("idw_" + coord, "idv_" + coord, V);
+      A = name("ida_" + coord, "idal_" + coord, A);
+      f.steps.push_back(X);
+      f.S.push_back(S);
+      f.c.push_back(J.coordinate);
+    }
+    f.V = V;
+    f.A = A;
+    // the body's inertia about its origin: m, first moment h = m c, I_O = I_C + m(|c|² 1 − c cᵀ)
+    Inertia in;
+    in.m = body.mass;
+    in.h = scaled(body.com, body.mass);
+    const ex c2 = dot(body.com, body.com);
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) {
+        in.I[i][j] = body.inertia[i][j] +
+                     body.mass * ((i == j ? c2 : ex(0)) - body.com[i] * body.com[j]);
+      }
+    }
+    const Spatial momentum = name("idpa_" + body.name, "idpl_" + body.name, apply(in, V));
+    f.F = plus(apply(in, A), cross_force(V, momentum));
+  }
+  // backward: each joint's force, and the subtree's force into the parent (children come later)
+  for (std::size_t b = bodies.size(); b-- > 0;) {
+    Frame& f = B[b];
+    Spatial F = name("idn_" + bodies[b].name, "idf_" + bodies[b].name, f.F);
+    for (std::size_t j = f.S.size(); j-- > 0;) {
+      out.tau[f.c[j]] = power(f.S[j], F).expand();
+      F = force_to_parent(f.steps[j + 1], F);
+      if (j > 0) F = name("idn_" + s.coord_names[f.c[j]], "idf_" + s.coord_names[f.c[j]], F);
+    }
+    F = force_to_parent(f.steps[0], F);
+    if (bodies[b].parent >= 0) {
+      Frame& P = B[static_cast<std::size_t>(bodies[b].parent)];
+      P.F = plus(P.F, F);
+    }
+  }
+  return out;
+}
 
 TreeEquations tree_equations(System::Impl& s, const std::vector<TreeBody>& bodies,
                              const Vec3& gravity, const std::set<std::string>& taken) {
   const auto n = static_cast<std::size_t>(s.n);
-  Namer name(s, taken);
+  Namer name(s.aux, s.aux_def, taken);
   std::vector<Kinematics> K(bodies.size());
   TreeEquations out;
   out.T = 0;

@@ -7,8 +7,13 @@
 
 namespace rigid::scene {
 
-std::string emit_code(const Model& model, std::string_view language, const std::string& name) {
+std::string emit_code(const Model& model, std::string_view language, const std::string& name,
+                      bool flat) {
   const lagrange::Language lang = lagrange::parse_language(language);
+  if (flat && lang != lagrange::Language::kCpp) {
+    throw Error("--flat is a layout of the C++ export (global functions without t); the Python "
+                "module has one layout: drop --flat or use --emit c++");
+  }
   const std::string file = model.scene().file.string();
   if (model.kind() != SceneKind::kCoordinates) {
     throw Error(fmt::format("{}: code export needs generalized coordinates ([[coordinates]] with "
@@ -20,6 +25,7 @@ std::string emit_code(const Model& model, std::string_view language, const std::
   options.name = !name.empty() ? name : model.scene().file.stem().string();
   if (options.name.empty()) options.name = "model";
   options.source = file;
+  options.flat = flat;
   return lagrange::emit(model.system(), lang, options);
 }
 

@@ -26,6 +26,8 @@ struct ExportOptions {
   std::string name = "model";
   /// Where the system came from (a scene file), named in the file's first comment; may be empty.
   std::string source{};
+  /// C++ only: the flat layout of robot code, at global scope (see emit_cpp).
+  bool flat = false;
 };
 
 /// One C++ header (only <cmath>, plain arrays, no Eigen) with, in namespace `options.name`:
@@ -54,6 +56,24 @@ struct ExportOptions {
 /// another parameter has takes '_' at its end until it is neither. The file's first comment
 /// lists the renames ("float → float_"); the struct names the model's name beside a renamed
 /// member. So the file builds with -std=c++20 and -std=gnu++20 whatever the model's names.
+///
+/// With options.flat, the dynamics as robot code calls them, at global scope (no namespace,
+/// no t), for a system without constraints whose equations do not depend on t:
+///   inline constexpr int nq, nv;  (n = nq = nv)   coordinate_names[nq]
+///   struct Parameters { ... };                      // the model's values as defaults
+///   void mass_matrix(const double* q, double* M, const Parameters& p = {});
+///   void inverse_dynamics(q, q_dot, q_ddot, double* tau, p = {});        // τ = M q̈ − f
+///   void forward_dynamics(q, q_dot, tau, double* q_ddot, p = {});        // q̈ = M⁻¹ (f + τ)
+///   void inverse_dynamics_derivatives(q, q_dot, q_ddot, dtau_dq, dtau_dq_dot, dtau_dq_ddot, p);
+///   void forward_dynamics_derivatives(q, q_dot, tau, q_ddot, dq_ddot_dq, dq_ddot_dq_dot,
+///                                     dq_ddot_dtau, p);
+/// Matrices nv × nv row-major, [i*nv + j] = ∂(output i)/∂(input j). forward_dynamics factors M
+/// as Lᵀ D L along the tree of the coordinates that M's pattern shows (Featherstone 2008,
+/// §6.5; a dense M: the chain), unrolled; the derivatives are the forward-mode derivatives of
+/// the same equations through their intermediates (exact up to rounding), ∂q̈/∂x = −M⁻¹ ∂τ/∂x.
+/// Where M is not positive definite at q (parameters no body can have) the forward outputs are
+/// NaN. Helpers live in namespace `<name>_detail`.
+/// @throws rigid::Error for a system with constraints or explicit time dependence.
 [[nodiscard]] std::string emit_cpp(const System& system, const ExportOptions& options = {});
 
 /// One Python module (only `math`) with the same functions, returning lists:

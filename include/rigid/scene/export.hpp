@@ -11,10 +11,11 @@ namespace rigid::scene {
 
 /// The equations of motion of a coordinate scene as C++ or Python source
 /// (rigid::lagrange::emit_cpp / emit_python), for the scene's parameters (after overrides)
-/// as the defaults; `name` is the C++ namespace (default: the scene file's stem).
-/// @throws rigid::Error for an unknown language (with a close match) or a scene of free
-///   bodies, which has no generalized coordinates to export.
+/// as the defaults; `name` is the C++ namespace (default: the scene file's stem); `flat`: C++'s
+/// flat layout (lagrange::ExportOptions::flat; `name` then names the helpers' namespace).
+/// @throws rigid::Error for an unknown language (with a close match), a scene of free
+///   bodies, which has no generalized coordinates to export, or `flat` with Python.
 [[nodiscard]] std::string emit_code(const Model& model, std::string_view language,
-                                    const std::string& name = {});
+                                    const std::string& name = {}, bool flat = false);
 
 }  // namespace rigid::scene

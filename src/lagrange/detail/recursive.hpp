@@ -52,6 +52,20 @@ struct TreeEquations {
   std::vector<std::pair<Vec3, Mat3>> poses;  ///< per body: p_WB, R_WB
 };
 
+/// The inverse dynamics of the tree, τ = M q̈ − (Coriolis, centrifugal and gravity forces), by
+/// recursive Newton–Euler in each body's own coordinates (constant inertias, one rotation per
+/// joint: fewer operations than the world coordinates of tree_equations), for the exported
+/// dynamics. Its intermediates are its own (not in s.aux).
+struct TreeInverseDynamics {
+  std::vector<GiNaC::symbol> aux;
+  std::vector<GiNaC::ex> defs;
+  std::vector<GiNaC::ex> tau;  ///< per coordinate, in q, q̇, q̈, the parameters and aux
+};
+[[nodiscard]] TreeInverseDynamics tree_inverse_dynamics(const System::Impl& s,
+                                                        const std::vector<TreeBody>& bodies,
+                                                        const Vec3& gravity,
+                                                        const std::set<std::string>& taken);
+
 /// Derives the tree's M, bias forces and energies; `taken` holds the names the intermediates
 /// must not take (the system's own symbols).
 [[nodiscard]] TreeEquations tree_equations(System::Impl& s, const std::vector<TreeBody>& bodies,

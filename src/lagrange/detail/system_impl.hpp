@@ -34,6 +34,11 @@ struct System::Impl {
   std::vector<GiNaC::symbol> aux;
   std::vector<GiNaC::ex> aux_def;
   std::vector<GiNaC::ex> f_potential;
+  // the same tree's inverse dynamics in body coordinates (recursive.cpp, for the flat export):
+  // τ_tree = id_tau with the intermediates id_aux (defined by id_aux_def after aux), and the
+  // tree's own M and bias forces, so that τ = id_tau + (M − tree_M) q̈ − (f − tree_bias)
+  std::vector<GiNaC::symbol> id_aux;
+  std::vector<GiNaC::ex> id_aux_def, id_tau, tree_M, tree_bias;
   // per coordinate: "m" when it is the amount of a slide joint, "rad" of a turn, else empty
   // (the printed equations' units; set from the joints as written)
   std::vector<std::string> joint_unit;

@@ -1,0 +1,217 @@
+"""The flat C++ layout of the code export (`rigid eom MODEL --emit c++ --flat`): the dynamics
+as robot code calls them. The exported file is compiled with g++ and clang++ (-O2 -Wall
+-Wextra -Werror) and its numbers are compared with rigid.robot.Robot, an independent numeric
+implementation (recursive Newton–Euler and composite rigid bodies in numbers, not symbols),
+and with central differences of the exported functions themselves."""
+import pathlib
+import shutil
+import subprocess
+
+import numpy as np
+import pytest
+
+import rigid
+
+EXAMPLES = pathlib.Path(__file__).resolve().parents[2] / "examples"
+
+# A driver: per line of stdin "q q_dot q_ddot tau" (4 nv numbers), one line of every output.
+DRIVER = r"""
+#include <cstdio>
+#include <initializer_list>
+#include "model.hpp"
+int main() {
+  double q[nq], v[nv], a[nv], tau[nv];
+  for (;;) {
+    for (double* x : {q, v, a, tau}) {
+      for (int i = 0; i < nv; ++i) {
+        if (std::scanf("%lf", &x[i]) != 1) return 0;
+      }
+    }
+    double M[nv * nv], t[nv], b[nv], A[nv * nv], B[nv * nv], C[nv * nv], D[nv * nv],
+        E[nv * nv], F[nv * nv], b2[nv];
+    mass_matrix(q, M);
+    inverse_dynamics(q, v, a, t);
+    forward_dynamics(q, v, tau, b);
+    inverse_dynamics_derivatives(q, v, a, A, B, C);
+    forward_dynamics_derivatives(q, v, tau, b2, D, E, F);
+    for (const double* x : {M, A, B, C, D, E, F}) {
+      for (int i = 0; i < nv * nv; ++i) std::printf("%.17g ", x[i]);
+    }
+    for (const double* x : {t, b, b2}) {
+      for (int i = 0; i < nv; ++i) std::printf("%.17g ", x[i]);
+    }
+    std::printf("\n");
+  }
+}
+"""
+
+
+def build(tmp_path, model, compiler):
+    """Exports `model` flat, compiles the driver with `compiler`; returns the program."""
+    header = tmp_path / "model.hpp"
+    subprocess.run([rigid_exe(), "eom", str(model), "--emit", "c++", "--flat", "-o", str(header)],
+                   check=True)
+    source = tmp_path / "driver.cpp"
+    source.write_text(DRIVER)
+    program = tmp_path / f"driver_{compiler.replace('+', 'p')}"
+    out = subprocess.run([compiler, "-std=c++17", "-O2", "-Wall", "-Wextra", "-Werror",
+                          str(source), "-o", str(program)], capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr[-3000:]
+    return program
+
+
+def rigid_exe():
+    import os
+    return os.environ.get("RIGID_EXE", "rigid")
+
+
+class Flat:
+    """The exported functions of one compiled model, called through the driver."""
+
+    def __init__(self, program, nv):
+        self.program, self.nv = program, nv
+
+    def __call__(self, states):
+        text = "\n".join(" ".join(f"{x:.17g}" for x in np.concatenate(s)) for s in states)
+        out = subprocess.run([str(self.program)], input=text + "\n", capture_output=True,
+                             text=True, check=True)
+        n = self.nv
+        results = []
+        for line in out.stdout.splitlines():
+            x = np.array([float(v) for v in line.split()])
+            mats = [x[k * n * n:(k + 1) * n * n].reshape(n, n) for k in range(7)]
+            vecs = [x[7 * n * n + k * n:7 * n * n + (k + 1) * n] for k in range(3)]
+            names = ["M", "dtau_dq", "dtau_dqd", "dtau_dqdd", "dqdd_dq", "dqdd_dqd", "dqdd_dtau"]
+            r = dict(zip(names, mats))
+            r.update(tau=vecs[0], qdd=vecs[1], qdd2=vecs[2])
+            results.append(r)
+        return results
+
+
+def random_states(robot, count, seed):
+    rng = np.random.default_rng(seed)
+    q0 = robot.reference_configuration
+    n = robot.dof
+    return [(q0 + rng.uniform(-1, 1, n), rng.uniform(-1, 1, n), rng.uniform(-1, 1, n),
+             rng.uniform(-1, 1, n)) for _ in range(count)]
+
+
+def rel(a, b):
+    return np.max(np.abs(a - b)) / max(np.max(np.abs(b)), 1e-300)
+
+
+@pytest.fixture(scope="module")
+def arm7(tmp_path_factory):
+    if shutil.which("clang++") is None:
+        pytest.fail("clang++ is not installed (scripts/install-deps.sh installs clang)")
+    tmp = tmp_path_factory.mktemp("arm7_flat")
+    model = EXAMPLES / "arm7.urdf"
+    programs = {c: build(tmp, model, c) for c in ("g++", "clang++")}
+    robot = rigid.robot.Robot(str(model))
+    return robot, {c: Flat(p, robot.dof) for c, p in programs.items()}, tmp
+
+
+def test_arm7_matches_the_numeric_tree(arm7):
+    """M, τ and q̈ equal rigid.robot.Robot's (an independent implementation in numbers) to
+    1e-12 relative: both are exact, so only rounding separates them (~1e-15 per operation over a
+    few hundred operations)."""
+    robot, flat, _ = arm7
+    states = random_states(robot, 20, 1)
+    for compiler, run in flat.items():
+        for (q, v, a, tau), r in zip(states, run(states)):
+            assert rel(r["M"], robot.mass_matrix(q)) < 1e-12, compiler
+            assert rel(r["tau"], robot.inverse_dynamics(q, v, a)) < 1e-12, compiler
+            assert rel(r["qdd"], robot.forward_dynamics(q, v, tau)) < 1e-10, compiler
+            # the derivatives' q̈ is forward_dynamics', and ∂τ/∂q̈ is M: the same outputs
+            assert np.array_equal(r["qdd2"], r["qdd"])
+            assert np.array_equal(r["dtau_dqdd"], r["M"])
+            # ∂q̈/∂τ = M⁻¹
+            assert np.max(np.abs(r["dqdd_dtau"] @ r["M"] - np.eye(robot.dof))) < 1e-10
+
+
+def central_differences(robot, f, x, h):
+    """∂f/∂x by central differences with step h (columns)."""
+    cols = []
+    for j in range(len(x)):
+        e = np.zeros(len(x))
+        e[j] = h
+        cols.append((f(x + e) - f(x - e)) / (2 * h))
+    return np.array(cols).T
+
+
+def test_arm7_derivatives_match_central_differences(arm7):
+    """∂τ/∂(q, q̇) and ∂q̈/∂(q, q̇, τ) against central differences of the numeric tree with a
+    step-size study: the error of a central difference is ~h² f''' + ε/h, smallest near
+    h ~ 1e-5 (~1e-10 relative); it must reach 1e-6 relative there and shrink as h² from 1e-2 to
+    1e-3 (a wrong derivative stays at its error whatever h)."""
+    robot, flat, _ = arm7
+    states = random_states(robot, 3, 2)
+    results = flat["g++"](states)
+    for (q, v, a, tau), r in zip(states, results):
+        checks = [
+            (r["dtau_dq"], lambda x: robot.inverse_dynamics(x, v, a), q),
+            (r["dtau_dqd"], lambda x: robot.inverse_dynamics(q, x, a), v),
+            (r["dqdd_dq"], lambda x: robot.forward_dynamics(x, v, tau), q),
+            (r["dqdd_dqd"], lambda x: robot.forward_dynamics(q, x, tau), v),
+            (r["dqdd_dtau"], lambda x: robot.forward_dynamics(q, v, x), tau),
+        ]
+        for exact, f, x in checks:
+            errors = {h: rel(central_differences(robot, f, x, h), exact)
+                      for h in (1e-2, 1e-3, 1e-5)}
+            assert errors[1e-5] < 1e-6, errors
+            if errors[1e-2] > 1e-9:  # not linear in x (τ is linear in τ: no truncation error)
+                assert errors[1e-3] < errors[1e-2] / 30, errors
+
+
+def test_flat_export_is_the_same_through_python(arm7):
+    """The CLI and rigid.Scene.emit(flat=True) write the same bytes."""
+    _, _, tmp = arm7
+    scene = rigid.Scene(str(EXAMPLES / "arm7.urdf"))
+    assert scene.emit("c++", "model", flat=True) == (tmp / "model.hpp").read_text()
+
+
+def test_a_scene_with_damping_and_springs(tmp_path):
+    """A coordinate scene (its expanded derivation, a dense M, a given damping force): the flat
+    τ, q̈ equal the engine's M q̈ − f to 1e-12 (rigid.lagrange.System, the same equations
+    evaluated by its tape)."""
+    scene_file = EXAMPLES / "double_pendulum.toml"
+    header = tmp_path / "model.hpp"
+    subprocess.run([rigid_exe(), "eom", str(scene_file), "--emit", "c++", "--flat", "-o",
+                    str(header)], check=True)
+    source = tmp_path / "driver.cpp"
+    source.write_text(DRIVER)
+    program = tmp_path / "driver"
+    subprocess.run(["g++", "-std=c++17", "-O1", "-Wall", "-Wextra", "-Werror", str(source), "-o",
+                    str(program)], check=True)
+    system = rigid.Scene(str(scene_file)).system
+    n = len(system.coordinate_names)
+    rng = np.random.default_rng(3)
+    states = [tuple(rng.uniform(-1, 1, n) for _ in range(4)) for _ in range(10)]
+    for (q, v, a, tau), r in zip(states, Flat(program, n)(states)):
+        M, f = system.mass_matrix_and_forces(0.0, q, v)
+        assert rel(r["M"], M) < 1e-12
+        assert rel(r["tau"], M @ a - f) < 1e-12
+        assert rel(r["qdd"], np.linalg.solve(M, f + tau)) < 1e-10
+
+
+def test_refusals(tmp_path):
+    """--flat needs --emit c++; a system with constraints or explicit time is refused, saying
+    why; the same through Python."""
+    def eom(*args):
+        return subprocess.run([rigid_exe(), "eom", *args], capture_output=True, text=True)
+
+    out = eom(str(EXAMPLES / "arm7.urdf"), "--flat")
+    assert out.returncode != 0 and "--emit" in out.stderr
+    out = eom(str(EXAMPLES / "arm7.urdf"), "--emit", "python", "--flat")
+    assert out.returncode != 0 and "--flat is a layout of the C++ export" in out.stderr
+    out = eom(str(EXAMPLES / "atwood.toml"), "--emit", "c++", "--flat")
+    assert out.returncode != 0 and "without constraints" in out.stderr, out.stderr
+    assert "Traceback" not in out.stderr and "terminate" not in out.stderr
+    with pytest.raises(rigid.Error, match="without constraints"):
+        rigid.Scene(str(EXAMPLES / "atwood.toml")).emit("c++", flat=True)
+    timed = tmp_path / "driven.toml"
+    pendulum = (EXAMPLES / "physical_pendulum.toml").read_text()
+    timed.write_text(pendulum.replace(
+        "[simulation]", '[[forces]]\ncoordinate = "theta"\nexpression = "0.1*sin(t)"\n\n[simulation]'))
+    out = eom(str(timed), "--emit", "c++", "--flat")
+    assert out.returncode != 0 and "depend on t" in out.stderr, out.stderr
