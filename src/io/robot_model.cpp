@@ -82,6 +82,21 @@ void require_valid_inertial(const std::string& file, const XMLElement* at, const
   }
 }
 
+// A ball or free joint is its link's only joint: its velocity's axes are the link's own (the
+// frame after every joint of the link, as MuJoCo takes them), which another joint after it
+// would turn away.
+void require_lone_ball_or_free(const RobotLink& link) {
+  if (link.joints.size() < 2) return;
+  for (const RobotJoint& j : link.joints) {
+    if (j.type != RobotJointType::kBall && j.type != RobotJointType::kFree) continue;
+    rigid::detail::throw_error_at(
+        SourceLocation{link.file, j.line, 0},
+        fmt::format("joint '{}' (type {}) shares body '{}' with {} other joint(s); a ball or "
+                    "free joint must be its body's only joint: put the others on a child body",
+                    j.name, to_string(j.type), link.name, link.joints.size() - 1));
+  }
+}
+
 // ---------------------------------------------------------------------------------------------
 // URDF
 
@@ -119,13 +134,6 @@ int urdf_link_of(const UrdfTree& tree, const std::string& file, const XMLElement
 
 void check_urdf_joint_type(const std::string& file, const UrdfJoint& j) {
   const std::string_view t = j.type;
-  if (t == "floating") {
-    refuse_at(file, j.element,
-              fmt::format("joint '{}' type=\"floating\": floating bases are not "
-                          "yet supported; fix the root link to the world or "
-                          "remove the joint",
-                          j.name));
-  }
   if (t == "planar") {
     refuse_at(file, j.element,
               fmt::format("joint '{}' type=\"planar\": planar joints are not "
@@ -133,10 +141,11 @@ void check_urdf_joint_type(const std::string& file, const UrdfJoint& j) {
                           "a revolute one",
                           j.name));
   }
-  if (t != "revolute" && t != "continuous" && t != "prismatic" && t != "fixed") {
+  if (t != "revolute" && t != "continuous" && t != "prismatic" && t != "fixed" &&
+      t != "floating") {
     refuse_at(file, j.element,
               fmt::format("joint '{}' type=\"{}\": expected revolute, "
-                          "continuous, prismatic or fixed",
+                          "continuous, prismatic, fixed or floating",
                           j.name, t));
   }
   if (j.element->FirstChildElement("mimic") != nullptr) {
@@ -269,7 +278,8 @@ RobotJoint urdf_joint(const UrdfJoint& j, const std::string& file) {
 }
 
 void add_urdf_link(const UrdfTree& tree, int index, int parent, const std::string& file,
-                   const std::map<int, InertialEntry>& inertials, std::vector<RobotLink>& out) {
+                   const std::map<int, InertialEntry>& inertials, const RobotReadOptions& options,
+                   std::vector<RobotLink>& out) {
   const XMLElement* l = tree.links[index];
   RobotLink link;
   link.name = element_name(l);
@@ -282,13 +292,33 @@ void add_urdf_link(const UrdfTree& tree, int index, int parent, const std::strin
       link.position = vector3(file, origin, "xyz", Eigen::Vector3d::Zero());
       link.rotation = rotation_from_rpy(vector3(file, origin, "rpy", Eigen::Vector3d::Zero()));
     }
-    if (joint.type != "fixed") link.joints.push_back(urdf_joint(joint, file));
+    if (joint.type == "floating") {
+      // URDF has no world link: a floating joint from the root link (out[0], at the world's
+      // origin) is the child's free joint in the world, the child a root of its own
+      if (parent != 0) {
+        refuse_at(file, joint.element,
+                  fmt::format("joint '{}' type=\"floating\": a floating joint is read as a free "
+                              "joint only from the root link '{}' (which stands for the world); "
+                              "its parent '{}' is not the root",
+                              joint.name, out.front().name,
+                              out[static_cast<std::size_t>(parent)].name));
+      }
+      if (!options.pin_free_root) {
+        RobotJoint free = urdf_joint(joint, file);
+        free.type = RobotJointType::kFree;
+        free.axis = Eigen::Vector3d::UnitZ();
+        link.joints.push_back(std::move(free));
+        link.parent = -1;
+      }
+    } else if (joint.type != "fixed") {
+      link.joints.push_back(urdf_joint(joint, file));
+    }
   }
   set_urdf_inertial(l, inertials, file, link);
   const int self = static_cast<int>(out.size());
   out.push_back(std::move(link));
   for (const int c : tree.children[index]) {
-    add_urdf_link(tree, tree.joints[c].child, self, file, inertials, out);
+    add_urdf_link(tree, tree.joints[c].child, self, file, inertials, options, out);
   }
 }
 
@@ -300,7 +330,7 @@ RobotModel read_urdf(const XMLElement* robot, const std::string& xml, const std:
   model.name = element_name(robot);
   const UrdfTree tree = urdf_tree(robot, file);
   const int root = urdf_root(tree, robot, file);
-  add_urdf_link(tree, root, -1, file, urdf_inertials(xml, file), model.links);
+  add_urdf_link(tree, root, -1, file, urdf_inertials(xml, file), options, model.links);
   if (model.links.size() != tree.links.size()) {
     std::vector<std::string> cut;
     for (const auto* l : tree.links) {
@@ -384,27 +414,27 @@ std::optional<RobotJoint> mjcf_joint(const Mjcf& m, const XMLElement* j,
   const std::string type = free_element ? "free" : (type_text ? type_text : "hinge");
   const std::string name = element_name(j);
   if (type == "free" && world_child && m.options.pin_free_root) return std::nullopt;
-  if (type == "free" || type == "ball") {
-    m.doc.refuse(
-        j,
-        fmt::format(
-            "joint '{}' (type {}): ball and free joints (floating bases) are not yet supported{}",
-            name, type,
-            type == "free" && world_child
-                ? "; to read the robot pinned where its root stands: --pin-free-root, a "
-                  "scene's [model] pin_free_root = true, or rigid.robot.Robot(file, "
-                  "pin_free_root=True)"
-                : ""));
+  if (type == "free" && !world_child) {
+    m.doc.refuse(j, fmt::format("joint '{}' (type free): a free joint must be on a body of the "
+                                "world (MuJoCo's rule: its state is the body's world pose); "
+                                "this body has a parent body; use a ball joint there",
+                                name));
   }
-  if (type != "hinge" && type != "slide") {
+  if (type != "hinge" && type != "slide" && type != "ball" && type != "free") {
     m.doc.refuse(
         j, fmt::format("joint '{}' type=\"{}\": expected hinge, slide, ball or free", name, type));
   }
   RobotJoint joint;
   joint.name = name;
   joint.line = j->GetLineNum();
-  joint.type = type == "slide" ? RobotJointType::kSlide : RobotJointType::kHinge;
-  joint.anchor = mjcf_vector(m, j, def, "pos", Eigen::Vector3d::Zero());
+  joint.type = type == "slide"  ? RobotJointType::kSlide
+               : type == "ball" ? RobotJointType::kBall
+               : type == "free" ? RobotJointType::kFree
+                                : RobotJointType::kHinge;
+  // a free joint's pos is unused (MuJoCo's: it places the body, about the body's origin)
+  if (joint.type != RobotJointType::kFree) {
+    joint.anchor = mjcf_vector(m, j, def, "pos", Eigen::Vector3d::Zero());
+  }
   joint.axis = mjcf_vector(m, j, def, "axis", Eigen::Vector3d::UnitZ());
   if (!(joint.axis.norm() > 0)) {
     m.doc.refuse(j, fmt::format("joint '{}': axis has no direction; expected a non-zero "
@@ -416,8 +446,12 @@ std::optional<RobotJoint> mjcf_joint(const Mjcf& m, const XMLElement* j,
   // <compiler angle> (degree by default); a slide's are lengths
   const double unit =
       joint.type == RobotJointType::kHinge && m.compiler.degrees ? std::numbers::pi / 180.0 : 1.0;
-  joint.ref = unit * mjcf_scalar(m, j, def, "ref", 0.0);
-  joint.springref = unit * mjcf_scalar(m, j, def, "springref", 0.0);
+  if (joint.type == RobotJointType::kHinge || joint.type == RobotJointType::kSlide) {
+    // a ball's or free joint's ref and springref are not used (MuJoCo's: their reference is
+    // the identity, or the body's placement)
+    joint.ref = unit * mjcf_scalar(m, j, def, "ref", 0.0);
+    joint.springref = unit * mjcf_scalar(m, j, def, "springref", 0.0);
+  }
   joint.damping = mjcf_scalar(m, j, def, "damping", 0.0);
   joint.stiffness = mjcf_scalar(m, j, def, "stiffness", 0.0);
   joint.armature = mjcf_scalar(m, j, def, "armature", 0.0);
@@ -517,6 +551,7 @@ void add_mjcf_body(const Mjcf& m, const XMLElement* b, int parent, const std::st
     if (n != "joint" && n != "freejoint") continue;
     if (auto joint = mjcf_joint(m, c, cls, parent < 0)) link.joints.push_back(std::move(*joint));
   }
+  require_lone_ball_or_free(link);
   set_mjcf_inertial(m, b, link);
   require_valid_inertial(link.file, b, link, "body");
   const int self = static_cast<int>(out.size());
@@ -587,20 +622,79 @@ const char* to_string(RobotJointType type) {
       return "hinge";
     case RobotJointType::kSlide:
       return "slide";
+    case RobotJointType::kBall:
+      return "ball";
+    case RobotJointType::kFree:
+      return "free";
   }
   return "?";
 }
 
-std::size_t RobotModel::dof() const {
+int position_count(RobotJointType type) {
+  return type == RobotJointType::kFree ? 7 : type == RobotJointType::kBall ? 4 : 1;
+}
+
+int velocity_count(RobotJointType type) {
+  return type == RobotJointType::kFree ? 6 : type == RobotJointType::kBall ? 3 : 1;
+}
+
+std::size_t RobotModel::nq() const {
   std::size_t n = 0;
-  for (const auto& l : links) n += l.joints.size();
+  for (const auto& l : links) {
+    for (const auto& j : l.joints) n += static_cast<std::size_t>(position_count(j.type));
+  }
   return n;
+}
+
+std::size_t RobotModel::nv() const {
+  std::size_t n = 0;
+  for (const auto& l : links) {
+    for (const auto& j : l.joints) n += static_cast<std::size_t>(velocity_count(j.type));
+  }
+  return n;
+}
+
+bool RobotModel::has_ball_or_free_joint() const {
+  for (const auto& l : links) {
+    for (const auto& j : l.joints) {
+      if (j.type == RobotJointType::kBall || j.type == RobotJointType::kFree) return true;
+    }
+  }
+  return false;
 }
 
 std::vector<std::string> RobotModel::coordinate_names() const {
   std::vector<std::string> out;
   for (const auto& l : links) {
-    for (const auto& j : l.joints) out.push_back(j.name);
+    for (const auto& j : l.joints) {
+      if (j.type == RobotJointType::kFree) {
+        for (const char* s : {"x", "y", "z"}) out.push_back(fmt::format("{}_{}", j.name, s));
+      }
+      if (j.type == RobotJointType::kFree || j.type == RobotJointType::kBall) {
+        for (const char* s : {"qw", "qx", "qy", "qz"}) {
+          out.push_back(fmt::format("{}_{}", j.name, s));
+        }
+      } else {
+        out.push_back(j.name);
+      }
+    }
+  }
+  return out;
+}
+
+std::vector<std::string> RobotModel::velocity_names() const {
+  std::vector<std::string> out;
+  for (const auto& l : links) {
+    for (const auto& j : l.joints) {
+      if (j.type == RobotJointType::kFree) {
+        for (const char* s : {"vx", "vy", "vz"}) out.push_back(fmt::format("{}_{}", j.name, s));
+      }
+      if (j.type == RobotJointType::kFree || j.type == RobotJointType::kBall) {
+        for (const char* s : {"wx", "wy", "wz"}) out.push_back(fmt::format("{}_{}", j.name, s));
+      } else {
+        out.push_back(j.name);
+      }
+    }
   }
   return out;
 }

@@ -318,8 +318,8 @@ void check_joint_type(const std::string& file, const SdfJoint& j) {
   std::string why;
   if (t == "ball") {
     why =
-        "ball joints (floating bases) are not yet supported; their orientation needs "
-        "quasi-velocities";
+        "ball joints are not yet read from SDFormat (MJCF <joint type=\"ball\"> is); "
+        "model one as three revolute joints with massless links between them";
   } else if (t == "universal" || t == "revolute2") {
     why = fmt::format(
         "{} joints are not supported; model one as two revolute joints with a "
@@ -404,8 +404,8 @@ int root_link(const SdfTree& tree) {
   if (roots.size() > 1) {
     refuse_at(tree.file, tree.model,
               fmt::format("{} root links ({}): expected one link that is no joint's child or "
-                          "is jointed to the world (SDFormat makes each such link a free body; "
-                          "floating bases are not yet supported); connect the others with joints",
+                          "is jointed to the world (SDFormat makes each such link a free body, "
+                          "which is not yet read from SDFormat); connect the others with joints",
                           roots.size(), fmt::join(roots, ", ")));
   }
   return root;

@@ -1,6 +1,7 @@
 #include "rigid/robot/tree_dynamics.hpp"
 
 #include <cmath>
+#include <numbers>
 #include <utility>
 
 #include <Eigen/Cholesky>
@@ -51,6 +52,25 @@ Matrix6d spatial_inertia(double m, const Eigen::Vector3d& c, const Eigen::Matrix
   return I;
 }
 
+// The rotation vector r of a unit quaternion (angle |r| in [0, π] about r/|r|): MuJoCo's
+// mju_quat2Vel with dt = 1, as its ball-joint spring uses it (engine_util_spatial.c).
+Eigen::Vector3d rotation_vector(const Eigen::Quaterniond& q) {
+  Eigen::Vector3d axis = q.vec();
+  const double s = axis.norm();
+  if (!(s > 0)) return Eigen::Vector3d::Zero();
+  double angle = 2 * std::atan2(s, q.w());
+  if (angle > std::numbers::pi) angle -= 2 * std::numbers::pi;
+  return angle / s * axis;
+}
+
+Eigen::Quaterniond quaternion_at(const Eigen::VectorXd& q, Eigen::Index at) {
+  return Eigen::Quaterniond(q(at), q(at + 1), q(at + 2), q(at + 3));
+}
+
+bool is_rotation_joint(io::RobotJointType t) {
+  return t == io::RobotJointType::kBall || t == io::RobotJointType::kFree;
+}
+
 }  // namespace
 
 struct TreeDynamics::Kinematics {
@@ -60,24 +80,80 @@ struct TreeDynamics::Kinematics {
 };
 
 TreeDynamics::TreeDynamics(io::RobotModel model) : model_(std::move(model)) {
+  std::vector<double> armature, damping;
   for (const io::RobotLink& link : model_.links) {
-    first_dof_.push_back(n_);
-    n_ += link.joints.size();
-  }
-  RIGID_REQUIRE_AS("TreeDynamics", n_ > 0,
-                   "{}: the model has no joint, so it has no equations of motion", model_.source);
-  const Eigen::MatrixXd M = mass_matrix(reference_configuration());
-  const double scale = M.diagonal().cwiseAbs().maxCoeff();
-  std::size_t j = 0;
-  for (const io::RobotLink& link : model_.links) {
+    first_q_.push_back(nq_);
+    first_v_.push_back(nv_);
+    std::size_t link_nv = 0;
     for (const io::RobotJoint& joint : link.joints) {
-      const auto k = static_cast<Eigen::Index>(j++);
-      if (!(M(k, k) > 1e-14 * scale)) {
+      const SourceLocation where{link.file.empty() ? model_.source : link.file, joint.line, 0};
+      if (is_rotation_joint(joint.type) && link.joints.size() > 1) {
+        rigid::detail::throw_error_at(
+            where, fmt::format("joint '{}' (type {}) shares link '{}' with other joints; a ball or "
+                               "free joint must be its link's only joint",
+                               joint.name, io::to_string(joint.type), link.name));
+      }
+      if (joint.type == io::RobotJointType::kFree && link.parent >= 0) {
+        rigid::detail::throw_error_at(
+            where, fmt::format("joint '{}' (type free): link '{}' has a parent link; a free "
+                               "joint's link must be a root (its state is its world pose)",
+                               joint.name, link.name));
+      }
+      nq_ += static_cast<std::size_t>(io::position_count(joint.type));
+      const int nv = io::velocity_count(joint.type);
+      link_nv += static_cast<std::size_t>(nv);
+      for (int k = 0; k < nv; ++k) {
+        armature.push_back(joint.armature);
+        damping.push_back(joint.damping);
+      }
+    }
+    link_nv_.push_back(link_nv);
+    nv_ += link_nv;
+  }
+  RIGID_REQUIRE_AS("TreeDynamics", nv_ > 0,
+                   "{}: the model has no joint, so it has no equations of motion", model_.source);
+  armature_ = Eigen::Map<const Eigen::VectorXd>(armature.data(), static_cast<Eigen::Index>(nv_));
+  damping_ = Eigen::Map<const Eigen::VectorXd>(damping.data(), static_cast<Eigen::Index>(nv_));
+  q0_.resize(static_cast<Eigen::Index>(nq_));
+  for (std::size_t i = 0; i < model_.links.size(); ++i) {
+    const io::RobotLink& link = model_.links[i];
+    auto k = static_cast<Eigen::Index>(first_q_[i]);
+    for (const io::RobotJoint& joint : link.joints) {
+      switch (joint.type) {
+        case io::RobotJointType::kHinge:
+        case io::RobotJointType::kSlide:
+          q0_(k++) = joint.ref;
+          break;
+        case io::RobotJointType::kBall:
+          q0_.segment<4>(k) << 1, 0, 0, 0;
+          k += 4;
+          break;
+        case io::RobotJointType::kFree: {
+          Eigen::Quaterniond r(link.rotation);
+          if (r.w() < 0) r.coeffs() = -r.coeffs();
+          q0_.segment<3>(k) = link.position;
+          q0_.segment<4>(k + 3) << r.w(), r.x(), r.y(), r.z();
+          k += 7;
+          break;
+        }
+      }
+    }
+  }
+  const Eigen::MatrixXd M = mass_matrix(q0_);
+  const double scale = M.diagonal().cwiseAbs().maxCoeff();
+  for (std::size_t i = 0; i < model_.links.size(); ++i) {
+    const io::RobotLink& link = model_.links[i];
+    auto c = static_cast<Eigen::Index>(first_v_[i]);
+    for (const io::RobotJoint& joint : link.joints) {
+      for (int e = 0; e < io::velocity_count(joint.type); ++e, ++c) {
+        if (M(c, c) > 1e-14 * scale) continue;
+        const bool turns = joint.type != io::RobotJointType::kSlide &&
+                           !(joint.type == io::RobotJointType::kFree && e < 3);
         rigid::detail::throw_error_at(
             SourceLocation{link.file.empty() ? model_.source : link.file, joint.line, 0},
             fmt::format("joint '{}' moves nothing: the links it carries have no {} about its axis, "
                         "so the mass matrix is singular; give them an inertial or an armature",
-                        joint.name, joint.type == io::RobotJointType::kHinge ? "inertia" : "mass"));
+                        joint.name, turns ? "inertia" : "mass"));
       }
     }
   }
@@ -87,28 +163,20 @@ TreeDynamics::TreeDynamics(io::RobotModel model) : model_(std::move(model)) {
                    model_.source);
 }
 
-Eigen::VectorXd TreeDynamics::reference_configuration() const {
-  Eigen::VectorXd q(static_cast<Eigen::Index>(n_));
-  Eigen::Index k = 0;
-  for (const io::RobotLink& link : model_.links) {
-    for (const io::RobotJoint& joint : link.joints) q(k++) = joint.ref;
-  }
-  return q;
-}
+Eigen::VectorXd TreeDynamics::reference_configuration() const { return q0_; }
 
-void TreeDynamics::check_sizes(const char* what, const Eigen::VectorXd& v) const {
-  RIGID_REQUIRE_AS("TreeDynamics", static_cast<std::size_t>(v.size()) == n_,
-                   "{} has {} entries; the model has {} "
-                   "coordinates",
-                   what, v.size(), n_);
+void TreeDynamics::check_sizes(const char* what, const Eigen::VectorXd& v, std::size_t n) const {
+  RIGID_REQUIRE_AS("TreeDynamics", static_cast<std::size_t>(v.size()) == n,
+                   "{} has {} entries; the model has {} ({})", what, v.size(), n,
+                   n == nq_ && nq_ != nv_ ? "entries of qpos" : "coordinates");
   RIGID_REQUIRE_AS("TreeDynamics", v.allFinite(), "{} is not finite", what);
 }
 
 void TreeDynamics::kinematics(const Eigen::VectorXd& q, Kinematics& k) const {
-  check_sizes("q", q);
+  check_sizes("q", q, nq_);
   const std::size_t links = model_.links.size();
   k.poses.assign(links, LinkPose{});
-  k.S.resize(6, static_cast<Eigen::Index>(n_));
+  k.S.resize(6, static_cast<Eigen::Index>(nv_));
   k.inertia.resize(links);
   for (std::size_t i = 0; i < links; ++i) {
     const io::RobotLink& link = model_.links[i];
@@ -116,22 +184,69 @@ void TreeDynamics::kinematics(const Eigen::VectorXd& q, Kinematics& k) const {
     if (link.parent >= 0) parent = k.poses[static_cast<std::size_t>(link.parent)];
     Eigen::Matrix3d R = parent.rotation * link.rotation;
     Eigen::Vector3d p = parent.position + parent.rotation * link.position;
-    auto column = static_cast<Eigen::Index>(first_dof_[i]);
+    auto column = static_cast<Eigen::Index>(first_v_[i]);
+    auto entry = static_cast<Eigen::Index>(first_q_[i]);
     for (const io::RobotJoint& joint : link.joints) {
-      const double amount = q(column) - joint.ref;
-      const Eigen::Vector3d u = R * joint.axis;
       Vector6d S;
-      if (joint.type == io::RobotJointType::kHinge) {
-        // a turn about the line through the anchor: the anchor stays where it is
-        const Eigen::Vector3d a = p + R * joint.anchor;
-        S << u, a.cross(u);
-        R = R * Eigen::AngleAxisd(amount, joint.axis).toRotationMatrix();
-        p = a - R * joint.anchor;
-      } else {
-        S << Eigen::Vector3d::Zero(), u;
-        p += u * amount;
+      switch (joint.type) {
+        case io::RobotJointType::kHinge: {
+          // a turn about the line through the anchor: the anchor stays where it is
+          const double amount = q(entry++) - joint.ref;
+          const Eigen::Vector3d u = R * joint.axis;
+          const Eigen::Vector3d a = p + R * joint.anchor;
+          S << u, a.cross(u);
+          R = R * Eigen::AngleAxisd(amount, joint.axis).toRotationMatrix();
+          p = a - R * joint.anchor;
+          k.S.col(column++) = S;
+          break;
+        }
+        case io::RobotJointType::kSlide: {
+          const double amount = q(entry++) - joint.ref;
+          const Eigen::Vector3d u = R * joint.axis;
+          S << Eigen::Vector3d::Zero(), u;
+          p += u * amount;
+          k.S.col(column++) = S;
+          break;
+        }
+        case io::RobotJointType::kBall:
+        case io::RobotJointType::kFree: {
+          const bool free = joint.type == io::RobotJointType::kFree;
+          const Eigen::Index at = free ? entry + 3 : entry;
+          const Eigen::Quaterniond Q = quaternion_at(q, at);
+          if (!(std::abs(Q.norm() - 1) <= 1e-6)) {
+            rigid::detail::throw_error(
+                "TreeDynamics",
+                fmt::format("joint '{}' (type {}): its quaternion q[{}..{}] = ({}, {}, {}, {}) has "
+                            "norm {}; expected a unit quaternion (norm 1 within 1e-6): "
+                            "normalise it",
+                            joint.name, io::to_string(joint.type), at, at + 3, Q.w(), Q.x(),
+                            Q.y(), Q.z(), Q.norm()));
+          }
+          // the anchor (a ball's pivot, a free joint's link origin) stays where it is
+          Eigen::Vector3d a;
+          if (free) {
+            a = q.segment<3>(entry);
+            R = Q.toRotationMatrix();
+            p = a;
+            for (int e = 0; e < 3; ++e) {
+              S << Eigen::Vector3d::Zero(), Eigen::Vector3d::Unit(e);
+              k.S.col(column++) = S;
+            }
+          } else {
+            a = p + R * joint.anchor;
+            R = R * Q.toRotationMatrix();
+            p = a - R * joint.anchor;
+          }
+          // rotations about the link's own axes through the anchor
+          for (int e = 0; e < 3; ++e) {
+            const Eigen::Vector3d u = R.col(e);
+            S << u, a.cross(u);
+            k.S.col(column++) = S;
+          }
+          entry += io::position_count(joint.type);
+          break;
+        }
       }
-      k.S.col(column++) = S;
     }
     k.poses[i] = {p, R};
     k.inertia[i] =
@@ -150,21 +265,39 @@ Eigen::VectorXd TreeDynamics::rnea(const Kinematics& k, const Eigen::VectorXd& q
     const io::RobotLink& link = model_.links[i];
     Vector6d v = link.parent >= 0 ? V[static_cast<std::size_t>(link.parent)] : Vector6d::Zero();
     Vector6d a = link.parent >= 0 ? A[static_cast<std::size_t>(link.parent)] : A_world;
-    for (std::size_t j = 0; j < link.joints.size(); ++j) {
-      const auto c = static_cast<Eigen::Index>(first_dof_[i] + j);
-      const Vector6d S = k.S.col(c);
-      a += cross_motion(v, S) * q_dot(c) + S * q_ddot(c);
-      v += S * q_dot(c);
+    auto c = static_cast<Eigen::Index>(first_v_[i]);
+    for (const io::RobotJoint& joint : link.joints) {
+      // the acceleration Ṡ v + S v̇ of each group of axes, Ṡ = V × S with V the velocity that
+      // carries them: the parent's for axes fixed in it (a hinge's, a slide's, a free joint's
+      // world translations); the link's own for axes that turn with the link (a ball's, a free
+      // joint's rotations: V_link × S ω, MuJoCo's cdof_dot), which equals V_parent × S ω
+      // because S ω × S ω = 0
+      const int count = io::velocity_count(joint.type);
+      const int fixed = joint.type == io::RobotJointType::kFree   ? 3
+                        : joint.type == io::RobotJointType::kBall ? 0
+                                                                  : 1;
+      if (fixed > 0) {
+        const Vector6d Sv = k.S.middleCols(c, fixed) * q_dot.segment(c, fixed);
+        a += cross_motion(v, Sv) + k.S.middleCols(c, fixed) * q_ddot.segment(c, fixed);
+        v += Sv;
+      }
+      if (count > fixed) {
+        const Eigen::Index r = c + fixed;
+        const Vector6d Sw = k.S.middleCols(r, 3) * q_dot.segment(r, 3);
+        v += Sw;
+        a += cross_motion(v, Sw) + k.S.middleCols(r, 3) * q_ddot.segment(r, 3);
+      }
+      c += count;
     }
     V[i] = v;
     A[i] = a;
     F[i] = k.inertia[i] * a + cross_force(v, k.inertia[i] * v);
   }
-  Eigen::VectorXd tau(static_cast<Eigen::Index>(n_));
+  Eigen::VectorXd tau(static_cast<Eigen::Index>(nv_));
   for (std::size_t i = links; i-- > 0;) {
     const io::RobotLink& link = model_.links[i];
-    for (std::size_t j = 0; j < link.joints.size(); ++j) {
-      const auto c = static_cast<Eigen::Index>(first_dof_[i] + j);
+    for (std::size_t j = 0; j < link_nv_[i]; ++j) {
+      const auto c = static_cast<Eigen::Index>(first_v_[i] + j);
       tau(c) = k.S.col(c).dot(F[i]);
     }
     if (link.parent >= 0) F[static_cast<std::size_t>(link.parent)] += F[i];
@@ -191,52 +324,63 @@ Eigen::MatrixXd TreeDynamics::crba(const Kinematics& k) const {
   for (std::size_t i = links; i-- > 0;) {
     if (model_.links[i].parent >= 0) Ic[static_cast<std::size_t>(model_.links[i].parent)] += Ic[i];
   }
-  const auto n = static_cast<Eigen::Index>(n_);
+  const auto n = static_cast<Eigen::Index>(nv_);
   Eigen::MatrixXd M = Eigen::MatrixXd::Zero(n, n);
   for (std::size_t i = 0; i < links; ++i) {
-    const std::size_t count = model_.links[i].joints.size();
-    for (std::size_t j = 0; j < count; ++j) {
-      const auto col = static_cast<Eigen::Index>(first_dof_[i] + j);
+    for (std::size_t j = 0; j < link_nv_[i]; ++j) {
+      const auto col = static_cast<Eigen::Index>(first_v_[i] + j);
       const Vector6d F = Ic[i] * k.S.col(col);
-      // the joints of this link and of every ancestor feel it
+      // the axes of this link and of every ancestor feel it
       for (int a = static_cast<int>(i); a >= 0;
            a = model_.links[static_cast<std::size_t>(a)].parent) {
         const auto ua = static_cast<std::size_t>(a);
-        for (std::size_t jj = 0; jj < model_.links[ua].joints.size(); ++jj) {
-          const auto row = static_cast<Eigen::Index>(first_dof_[ua] + jj);
+        for (std::size_t jj = 0; jj < link_nv_[ua]; ++jj) {
+          const auto row = static_cast<Eigen::Index>(first_v_[ua] + jj);
           M(row, col) = M(col, row) = k.S.col(row).dot(F);
         }
       }
     }
   }
-  Eigen::Index c = 0;
-  for (const io::RobotLink& link : model_.links) {
-    for (const io::RobotJoint& joint : link.joints) {
-      M(c, c) += joint.armature;
-      ++c;
-    }
-  }
+  M.diagonal() += armature_;
   return M;
 }
 
 Eigen::VectorXd TreeDynamics::bias_forces(const Eigen::VectorXd& q,
                                           const Eigen::VectorXd& q_dot) const {
-  check_sizes("q_dot", q_dot);
+  check_sizes("q_dot", q_dot, nv_);
   Kinematics k;
   kinematics(q, k);
-  return rnea(k, q_dot, Eigen::VectorXd::Zero(static_cast<Eigen::Index>(n_)));
+  return rnea(k, q_dot, Eigen::VectorXd::Zero(static_cast<Eigen::Index>(nv_)));
 }
 
 Eigen::VectorXd TreeDynamics::passive_forces(const Eigen::VectorXd& q,
                                              const Eigen::VectorXd& q_dot) const {
-  check_sizes("q", q);
-  check_sizes("q_dot", q_dot);
-  Eigen::VectorXd p(static_cast<Eigen::Index>(n_));
-  Eigen::Index c = 0;
-  for (const io::RobotLink& link : model_.links) {
-    for (const io::RobotJoint& joint : link.joints) {
-      p(c) = -joint.damping * q_dot(c) - joint.stiffness * (q(c) - joint.springref);
-      ++c;
+  check_sizes("q", q, nq_);
+  check_sizes("q_dot", q_dot, nv_);
+  Eigen::VectorXd p = -damping_.cwiseProduct(q_dot);
+  for (std::size_t i = 0; i < model_.links.size(); ++i) {
+    auto e = static_cast<Eigen::Index>(first_q_[i]);
+    auto c = static_cast<Eigen::Index>(first_v_[i]);
+    for (const io::RobotJoint& joint : model_.links[i].joints) {
+      const double k = joint.stiffness;
+      switch (joint.type) {
+        case io::RobotJointType::kHinge:
+        case io::RobotJointType::kSlide:
+          p(c) -= k * (q(e) - joint.springref);
+          break;
+        case io::RobotJointType::kFree:
+          // MuJoCo's qfrc_passive: −k (p − p₀) on the position, −k r on the rotation, with r
+          // the rotation vector of q₀⁻¹ ⊗ q (mju_subQuat)
+          p.segment<3>(c) -= k * (q.segment<3>(e) - q0_.segment<3>(e));
+          p.segment<3>(c + 3) -=
+              k * rotation_vector(quaternion_at(q0_, e + 3).conjugate() * quaternion_at(q, e + 3));
+          break;
+        case io::RobotJointType::kBall:
+          p.segment<3>(c) -= k * rotation_vector(quaternion_at(q, e));
+          break;
+      }
+      e += io::position_count(joint.type);
+      c += io::velocity_count(joint.type);
     }
   }
   return p;
@@ -245,26 +389,18 @@ Eigen::VectorXd TreeDynamics::passive_forces(const Eigen::VectorXd& q,
 Eigen::VectorXd TreeDynamics::inverse_dynamics(const Eigen::VectorXd& q,
                                                const Eigen::VectorXd& q_dot,
                                                const Eigen::VectorXd& q_ddot) const {
-  check_sizes("q_dot", q_dot);
-  check_sizes("q_ddot", q_ddot);
+  check_sizes("q_dot", q_dot, nv_);
+  check_sizes("q_ddot", q_ddot, nv_);
   Kinematics k;
   kinematics(q, k);
-  Eigen::VectorXd tau = rnea(k, q_dot, q_ddot) - passive_forces(q, q_dot);
-  Eigen::Index c = 0;
-  for (const io::RobotLink& link : model_.links) {
-    for (const io::RobotJoint& joint : link.joints) {
-      tau(c) += joint.armature * q_ddot(c);
-      ++c;
-    }
-  }
-  return tau;
+  return rnea(k, q_dot, q_ddot) - passive_forces(q, q_dot) + armature_.cwiseProduct(q_ddot);
 }
 
 Eigen::VectorXd TreeDynamics::forward_dynamics(const Eigen::VectorXd& q,
                                                const Eigen::VectorXd& q_dot,
                                                const Eigen::VectorXd& tau) const {
-  check_sizes("q_dot", q_dot);
-  check_sizes("tau", tau);
+  check_sizes("q_dot", q_dot, nv_);
+  check_sizes("tau", tau, nv_);
   // one pass of kinematics for M and b
   Kinematics k;
   kinematics(q, k);
@@ -272,12 +408,13 @@ Eigen::VectorXd TreeDynamics::forward_dynamics(const Eigen::VectorXd& q,
   RIGID_REQUIRE_AS("TreeDynamics", llt.info() == Eigen::Success,
                    "the mass matrix is not positive definite at q = {}",
                    rigid::to_string(q.transpose()));
-  const Eigen::VectorXd b = rnea(k, q_dot, Eigen::VectorXd::Zero(static_cast<Eigen::Index>(n_)));
+  const Eigen::VectorXd b =
+      rnea(k, q_dot, Eigen::VectorXd::Zero(static_cast<Eigen::Index>(nv_)));
   return llt.solve(tau - b + passive_forces(q, q_dot));
 }
 
 double TreeDynamics::kinetic_energy(const Eigen::VectorXd& q, const Eigen::VectorXd& q_dot) const {
-  check_sizes("q_dot", q_dot);
+  check_sizes("q_dot", q_dot, nv_);
   return 0.5 * q_dot.dot(mass_matrix(q) * q_dot);
 }
 
@@ -290,11 +427,28 @@ double TreeDynamics::potential_energy(const Eigen::VectorXd& q) const {
     const Eigen::Vector3d c = k.poses[i].position + k.poses[i].rotation * link.com;
     V -= link.mass * model_.gravity.dot(c);
   }
-  Eigen::Index c = 0;
-  for (const io::RobotLink& link : model_.links) {
-    for (const io::RobotJoint& joint : link.joints) {
-      const double d = q(c++) - joint.springref;
-      V += 0.5 * joint.stiffness * d * d;
+  for (std::size_t i = 0; i < model_.links.size(); ++i) {
+    auto e = static_cast<Eigen::Index>(first_q_[i]);
+    for (const io::RobotJoint& joint : model_.links[i].joints) {
+      const double stiffness = joint.stiffness;
+      switch (joint.type) {
+        case io::RobotJointType::kHinge:
+        case io::RobotJointType::kSlide: {
+          const double d = q(e) - joint.springref;
+          V += 0.5 * stiffness * d * d;
+          break;
+        }
+        case io::RobotJointType::kFree:
+          V += 0.5 * stiffness * (q.segment<3>(e) - q0_.segment<3>(e)).squaredNorm();
+          V += 0.5 * stiffness *
+               rotation_vector(quaternion_at(q0_, e + 3).conjugate() * quaternion_at(q, e + 3))
+                   .squaredNorm();
+          break;
+        case io::RobotJointType::kBall:
+          V += 0.5 * stiffness * rotation_vector(quaternion_at(q, e)).squaredNorm();
+          break;
+      }
+      e += io::position_count(joint.type);
     }
   }
   return V;

@@ -176,11 +176,22 @@ TEST(RobotModelUrdf, RefusesUnsupportedJoints) {
   EXPECT_RIGID_ERROR((void)read_robot_model(mimic, "a.urdf"), at("a.urdf", mimic, "<mimic"));
   EXPECT_RIGID_ERROR((void)read_robot_model(mimic, "a.urdf"),
                      "a mimic joint is a constraint between coordinates, not yet supported");
+  // a floating joint is a free joint only from the root link (the world's stand-in): from
+  // 'base' it is read, its child a root of its own; from 'upper' refused
   const std::string floating = arm_with("type=\"prismatic\"", "type=\"floating\"");
-  EXPECT_RIGID_ERROR((void)read_robot_model(floating, "a.urdf"),
-                     at("a.urdf", floating, "<joint name=\"rail\"") + "joint 'rail'");
-  EXPECT_RIGID_ERROR((void)read_robot_model(floating, "a.urdf"),
-                     "floating bases are not yet supported");
+  const RobotModel free_rail = read_robot_model(floating, "a.urdf");
+  const RobotLink& slider = link_named(free_rail, "slider");
+  EXPECT_EQ(slider.parent, -1);
+  ASSERT_EQ(slider.joints.size(), 1u);
+  EXPECT_EQ(slider.joints[0].type, RobotJointType::kFree);
+  EXPECT_EQ(free_rail.nq(), 9u);
+  const RobotModel pinned = read_robot_model(floating, "a.urdf", {.pin_free_root = true});
+  EXPECT_TRUE(link_named(pinned, "slider").joints.empty());
+  const std::string deep = arm_with("type=\"continuous\"", "type=\"floating\"");
+  EXPECT_RIGID_ERROR((void)read_robot_model(deep, "a.urdf"),
+                     at("a.urdf", deep, "<joint name=\"spin\"") + "joint 'spin'");
+  EXPECT_RIGID_ERROR((void)read_robot_model(deep, "a.urdf"),
+                     "a floating joint is read as a free joint only from the root link 'base'");
   const std::string planar = arm_with("type=\"prismatic\"", "type=\"planar\"");
   EXPECT_RIGID_ERROR((void)read_robot_model(planar, "a.urdf"),
                      at("a.urdf", planar, "<joint name=\"rail\"") +
@@ -188,7 +199,7 @@ TEST(RobotModelUrdf, RefusesUnsupportedJoints) {
                          "planar joints are not supported");
   const std::string odd = arm_with("type=\"prismatic\"", "type=\"screw\"");
   EXPECT_RIGID_ERROR((void)read_robot_model(odd, "a.urdf"),
-                     "expected revolute, continuous, prismatic or fixed");
+                     "expected revolute, continuous, prismatic, fixed or floating");
 }
 
 TEST(RobotModelUrdf, RefusesWhatIsNotOneTree) {
@@ -448,28 +459,42 @@ TEST(RobotModelMjcf, RefusesWhatTheTreeWouldLeaveOut) {
 <fixed name="t"><joint joint="j" coef="1"/></fixed></tendon></mujoco>)", "ok.xml"));
 }
 
-TEST(RobotModelMjcf, RefusesBallAndFreeJointsUnlessPinned) {
+TEST(RobotModelMjcf, ReadsBallAndFreeJointsAndRefusesAFreeJointBelowTheWorld) {
   const std::string xml = R"(<mujoco>
   <worldbody>
     <body name="a" pos="0 0 1">
       <freejoint name="root"/>
-      <body name="b"><joint name="ball" type="ball"/></body>
+      <body name="b"><joint name="ball" type="ball" pos="0 0 0.5" damping="2"/></body>
     </body>
   </worldbody>
 </mujoco>)";
-  EXPECT_RIGID_ERROR((void)read_robot_model(xml, "f.xml"),
-                     "f.xml:4: joint 'root' (type free): ball and free joints (floating bases) are "
-                     "not yet supported; to read the robot pinned where its root stands: "
-                     "--pin-free-root, a scene's [model] pin_free_root = true, or "
-                     "rigid.robot.Robot(file, pin_free_root=True)");
-  EXPECT_RIGID_ERROR((void)read_robot_model(xml, "f.xml", {.pin_free_root = true}),
-                     "f.xml:5: joint 'ball' (type ball): ball and free joints (floating bases) are "
-                     "not yet supported");
+  const RobotModel floating = read_robot_model(xml, "f.xml");
+  ASSERT_EQ(floating.links[0].joints.size(), 1u);
+  EXPECT_EQ(floating.links[0].joints[0].type, RobotJointType::kFree);
+  EXPECT_EQ(floating.links[1].joints[0].type, RobotJointType::kBall);
+  EXPECT_EQ(floating.links[1].joints[0].anchor, Vector3d(0, 0, 0.5));
+  EXPECT_EQ(floating.links[1].joints[0].damping, 2.0);
+  EXPECT_EQ(floating.nq(), 11u);
+  EXPECT_EQ(floating.nv(), 9u);
+  EXPECT_EQ(floating.dof(), 9u);
+  EXPECT_EQ(floating.coordinate_names(),
+            (std::vector<std::string>{"root_x", "root_y", "root_z", "root_qw", "root_qx",
+                                      "root_qy", "root_qz", "ball_qw", "ball_qx", "ball_qy",
+                                      "ball_qz"}));
+  EXPECT_EQ(floating.velocity_names(),
+            (std::vector<std::string>{"root_vx", "root_vy", "root_vz", "root_wx", "root_wy",
+                                      "root_wz", "ball_wx", "ball_wy", "ball_wz"}));
   std::string free_inside = xml;
   free_inside.replace(free_inside.find("type=\"ball\""), 11, "type=\"free\"");
   free_inside.replace(free_inside.find("<freejoint name=\"root\"/>"), 24, "");
   EXPECT_RIGID_ERROR((void)read_robot_model(free_inside, "f.xml", {.pin_free_root = true}),
-                     "joint 'ball' (type free): ball and free joints");
+                     "f.xml:5: joint 'ball' (type free): a free joint must be on a body of the "
+                     "world");
+  std::string shared = xml;
+  shared.replace(shared.find("damping=\"2\"/>"), 13,
+                 "damping=\"2\"/><joint name=\"h\" axis=\"1 0 0\"/>");
+  EXPECT_RIGID_ERROR((void)read_robot_model(shared, "f.xml"),
+                     "f.xml:5: joint 'ball' (type ball) shares body 'b' with 1 other joint(s)");
   std::string pinned = xml;
   pinned.replace(pinned.find("type=\"ball\""), 11, "");
   const RobotModel m = read_robot_model(pinned, "f.xml", {.pin_free_root = true});
@@ -526,10 +551,10 @@ TEST(RobotModelMjcf, IncludesFollowedAndTheirErrorsNamed) {
 
   // an error inside the included file names that file and line
   write(dir / "parts" / "arm.xml",
-        "<mujoco>\n  <body name=\"arm\">\n    <joint name=\"elbow\" type=\"ball\"/>\n  "
+        "<mujoco>\n  <body name=\"arm\">\n    <joint name=\"elbow\" type=\"free\"/>\n  "
         "</body>\n</mujoco>\n");
   EXPECT_RIGID_ERROR((void)read_robot_model_file((dir / "main.xml").string()),
-                     (dir / "parts" / "arm.xml").string() + ":3: joint 'elbow' (type ball)");
+                     (dir / "parts" / "arm.xml").string() + ":3: joint 'elbow' (type free)");
   write(dir / "parts" / "arm.xml",
         "<mujoco>\n  <body name=\"arm\">\n    <joint name=\"elbow\"\n  </body>\n</mujoco>\n");
   EXPECT_RIGID_ERROR((void)read_robot_model_file((dir / "main.xml").string()),
@@ -627,7 +652,12 @@ void expect_same_tree(const mjModel* mj, const RobotModel& m) {
 TEST(RobotModelMujoco, HumanoidPinnedMatchesMujoco) {
   const fs::path path = kModels / "humanoid" / "humanoid.xml";
   ASSERT_TRUE(fs::exists(path)) << "install libmujoco-samples (scripts/install-deps.sh)";
-  EXPECT_RIGID_ERROR((void)read_robot_model_file(path.string()), "joint 'root' (type free)");
+  // unpinned, the torso carries the free joint (tests/robot/floating_base_test.cpp has its
+  // dynamics against MuJoCo's)
+  const RobotModel floating = read_robot_model_file(path.string());
+  ASSERT_EQ(floating.links[0].joints.size(), 1u);
+  EXPECT_EQ(floating.links[0].joints[0].type, RobotJointType::kFree);
+  EXPECT_EQ(floating.links[0].joints[0].name, "root");
   const RobotModel m = read_robot_model_file(path.string(), {.pin_free_root = true});
   // MuJoCo's pinned humanoid: the same file without its free joint
   std::string text = read_text(path);

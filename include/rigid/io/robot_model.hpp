@@ -13,11 +13,27 @@
 ///    (q − ref) along `axis`. A link without joints is welded to its parent.
 ///  - URDF: a joint's origin is the child link's frame; its axis is in that frame and passes
 ///    through its origin (anchor 0, ref 0). revolute and continuous are hinges, prismatic a
-///    slide, fixed welds the child.
-///  - The coordinates are the joints in `links` order (depth first from the root, children in
-///    file order) and, within a link, in file order: MuJoCo's qpos order for hinge/slide trees.
+///    slide, fixed welds the child, floating is a free joint (only from the root link, which
+///    then stands for the world: the child becomes a root of its own, placed by the origin).
+///  - A ball joint turns the link about `anchor` by a unit quaternion (w, x, y, z) from the
+///    frame left by the joints before it; a free joint places the link in the world directly.
+///    A ball or free joint is its link's only joint, and a free joint's link is a root (parent
+///    −1): an MJCF body of the world, or the child of a URDF floating joint from the root link.
+///  - The state is MuJoCo's qpos/qvel: the joints in `links` order (depth first from the root,
+///    children in file order) and, within a link, in file order. A joint has nq position and nv
+///    velocity entries: hinge and slide 1 and 1 (the angle or the length; its rate); ball 4 and
+///    3 (the quaternion parent side ← link; the link's angular velocity in the link frame);
+///    free 7 and 6 (the world position of the link frame's origin and the quaternion
+///    world ← link; the world velocity of that origin and the angular velocity in the link
+///    frame). Names: a hinge or slide 'j' is "j" in both; a ball 'j' is j_qw j_qx j_qy j_qz
+///    and j_wx j_wy j_wz; a free 'j' is j_x j_y j_z j_qw j_qx j_qy j_qz and j_vx j_vy j_vz
+///    j_wx j_wy j_wz. The reference of a ball is the identity, of a free joint the link's
+///    placement.
 ///  - Passive forces on a joint's coordinate: −damping q̇ − stiffness (q − springref); the
-///    armature adds to the joint's diagonal entry of the mass matrix.
+///    armature adds to the joint's diagonal entry of the mass matrix. A ball or free joint has
+///    them on each of its velocity entries (MuJoCo's): damping −d ω, stiffness −k (p − p_ref)
+///    on a free joint's position and −k r on a rotation, with r the rotation vector of
+///    q_ref⁻¹ ⊗ q (ref and springref of a ball or free joint are not used, as in MuJoCo).
 ///  - URDF <dynamics friction> is Coulomb friction (a constraint force, not a passive force of
 ///    the equations): it is not read. A link without <inertial> has mass 0.
 ///  - MJCF: hinge ref and springref are in <compiler angle> units (degree by default, as
@@ -44,17 +60,23 @@
 
 namespace rigid::io {
 
-enum class RobotJointType { kHinge, kSlide };
+enum class RobotJointType { kHinge, kSlide, kBall, kFree };
 
-/// "hinge" or "slide".
+/// "hinge", "slide", "ball" or "free".
 [[nodiscard]] const char* to_string(RobotJointType type);
 
-/// One degree of freedom.
+/// Entries of a joint in qpos: 1 (hinge, slide), 4 (ball), 7 (free).
+[[nodiscard]] int position_count(RobotJointType type);
+/// Entries of a joint in qvel: 1 (hinge, slide), 3 (ball), 6 (free).
+[[nodiscard]] int velocity_count(RobotJointType type);
+
+/// One joint: a degree of freedom (hinge, slide), or three (ball) or six (free). `axis`, `ref`
+/// and `springref` are a hinge's or slide's.
 struct RobotJoint {
   std::string name;
   RobotJointType type = RobotJointType::kHinge;
   Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();    ///< unit, in the link frame
-  Eigen::Vector3d anchor = Eigen::Vector3d::Zero();   ///< a point of a hinge's axis, link frame (m)
+  Eigen::Vector3d anchor = Eigen::Vector3d::Zero();   ///< a hinge's or ball's pivot, link frame (m)
   double ref = 0;        ///< q (rad or m) at which the link sits at its placement
   double damping = 0;    ///< N·m·s/rad or N·s/m
   double stiffness = 0;  ///< N·m/rad or N/m
@@ -89,17 +111,24 @@ struct RobotModel {
   std::vector<RobotLink> links;
   Eigen::Vector3d gravity{0, 0, -9.81};  ///< m/s²: MJCF <option gravity>, else MuJoCo's default
 
-  /// Number of joints (coordinates).
-  [[nodiscard]] std::size_t dof() const;
-  /// The joints' names in coordinate order.
+  /// Degrees of freedom: nv (the joints of a hinge/slide tree).
+  [[nodiscard]] std::size_t dof() const { return nv(); }
+  /// Entries of qpos (the sum of the joints' nq).
+  [[nodiscard]] std::size_t nq() const;
+  /// Entries of qvel (the sum of the joints' nv).
+  [[nodiscard]] std::size_t nv() const;
+  /// True if a joint is a ball or free joint (then nq ≠ nv).
+  [[nodiscard]] bool has_ball_or_free_joint() const;
+  /// The names of qpos's entries (the joints' names for a hinge/slide tree; see above).
   [[nodiscard]] std::vector<std::string> coordinate_names() const;
+  /// The names of qvel's entries.
+  [[nodiscard]] std::vector<std::string> velocity_names() const;
 };
 
 /// How a model is read.
 struct RobotReadOptions {
-  /// A free joint (MJCF <freejoint>, <joint type="free">) on a body of the world is welded
-  /// there at its placement: the robot pinned at its root. Otherwise it is refused (floating
-  /// bases are not yet supported).
+  /// A free joint (MJCF <freejoint>, <joint type="free">, URDF floating) on a root is welded
+  /// there at its placement: the robot pinned at its root. Otherwise it is read as a free joint.
   bool pin_free_root = false;
   /// Every link's inertial from its geometry with the rules of `rigid inertia fix` (MJCF:
   /// MuJoCo's compiler's, as inertiafromgeom="true", a body without geoms massless; URDF:
@@ -112,8 +141,9 @@ struct RobotReadOptions {
 /// read_inertials does); `source` names it in messages and is the base of relative paths
 /// (<include>, meshes).
 /// @throws rigid::Error "file:line: ..." for malformed XML, a missing or unknown parent, a
-///   loop, several roots (URDF, SDF), an unsupported joint (ball, free unless pinned, planar,
-///   floating, mimic; SDF universal, revolute2, screw, gearbox), SDF <include>, nested
+///   loop, several roots (URDF, SDF), an unsupported joint (a free joint below a root, a URDF
+///   floating joint not from the root link, planar, mimic; SDF ball, universal, revolute2,
+///   screw, gearbox), a ball or free joint sharing its link with other joints, SDF <include>, nested
 ///   models, a world of several models, an unusable attribute or an invalid inertial (naming
 ///   the link and MassProperties::check's reason).
 [[nodiscard]] RobotModel read_robot_model(const std::string& xml, const std::string& source,
