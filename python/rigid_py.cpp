@@ -18,6 +18,7 @@ void bind_modes(py::module_& m);
 void bind_spring(py::module_& m);
 void bind_integrate(py::module_& m);
 void bind_robot(py::module_& m);
+void bind_robot_regressor(py::module_& m);
 
 PYBIND11_MODULE(_rigid, m) {
   m.doc() = "rigid: rigid-body mechanics from isometries and inertia tensors to Euler's equations";
@@ -50,5 +51,6 @@ PYBIND11_MODULE(_rigid, m) {
   bind_spring(m);
   bind_integrate(m);
   bind_robot(m);
+  bind_robot_regressor(m);
   m.attr("__name__") = "rigid._rigid";
 }

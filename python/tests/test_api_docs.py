@@ -167,6 +167,8 @@ def samples():
     out.append((rigid.spring.Network([1.0, 1.0], [[0, 0, 0], [1, 0, 0]], np.zeros((2, 3)), [(0, 1, 10.0, 1.0)]),
                 ["Network(", "particles=2", "springs=1", "mass=2 kg"]))
     out.append((rigid.robot.Robot(EXAMPLES / "arm7.urdf"), ["Robot(", "arm7.urdf", "dof=7"]))
+    # arm7: 8 links with an inertial (10 parameters each) and 7 joints (3 each): 101
+    out.append((rigid.robot.Robot(EXAMPLES / "arm7.urdf").base_parameters(), ["BaseParameters(", "standard=101"]))
     return out
 
 

@@ -143,3 +143,43 @@ def test_json_needs_regressor(run):
 def test_missing_file(run, tmp_path):
     proc = run("eom", tmp_path / "none.urdf", "--regressor", check=False)
     assert proc.returncode == 1 and "none.urdf" in proc.stderr
+
+
+def test_python_regressor_and_base_parameters_agree_with_the_dynamics_and_the_cli(run):
+    import numpy as np
+    import rigid
+
+    model = EXAMPLES / "cart_arm.urdf"
+    robot = rigid.robot.Robot(str(model))
+    names, pi = robot.standard_parameters()
+    base = robot.base_parameters()
+    rng = np.random.default_rng(5)
+    for _ in range(5):
+        q, q_dot, q_ddot = rng.uniform(-2, 2, (3, robot.dof))
+        Y = robot.regressor(q, q_dot, q_ddot)
+        assert Y.shape == (robot.dof, len(names))
+        tau = robot.inverse_dynamics(q, q_dot, q_ddot)
+        # round-off of the largest term, as in tests/robot/regressor_test.cpp
+        scale = max(np.abs(tau).max(), (np.abs(Y) @ np.abs(pi)).max())
+        assert np.abs(Y @ pi - tau).max() <= 1e-12 * scale
+        Yb = Y[:, base.independent_columns]
+        assert np.abs(Yb @ base.values - tau).max() <= 1e-12 * scale
+    assert np.allclose(base.combination @ base.standard_values, base.values, rtol=1e-14, atol=0)
+    doc = regressor_json(run, model)
+    assert base.rank == doc["rank"]
+    assert base.expressions == [b["expression"] for b in doc["base_parameters"]]
+    assert list(base.values) == [b["value"] for b in doc["base_parameters"]]
+    assert base.unidentifiable == doc["unidentifiable"]
+
+
+def test_python_refuses_a_ball_joint(tmp_path):
+    import rigid
+
+    model = tmp_path / "ball.xml"
+    model.write_text("""<mujoco><worldbody><body name="upper">
+      <joint name="shoulder" type="ball"/>
+      <inertial pos="0 0 -0.2" mass="1" diaginertia="0.01 0.01 0.002"/>
+    </body></worldbody></mujoco>""")
+    robot = rigid.robot.Robot(str(model))
+    with pytest.raises(rigid.Error, match="joint 'shoulder' of link 'upper' is a ball joint"):
+        robot.base_parameters()
