@@ -84,7 +84,7 @@ void check_vector(const char* what, const Eigen::VectorXd& v, Eigen::Index n) {
 
 // Ψ: the wrench (n; f) of a link about its origin, in its frame, per unit of each of its 10
 // parameters (m, mc, J), from its angular velocity w, angular acceleration al and the
-// acceleration a of its origin less gravity, all in the link frame [Atkeson1986, eq. 8–10]:
+// acceleration a of its origin less gravity, all in the link frame [Atkeson, An & Hollerbach 1986]:
 //   f = m a + al × mc + w × (w × mc),   n = J al + w × (J w) + mc × a,
 // with J w = L(w) (J_xx, J_xy, J_xz, J_yy, J_yz, J_zz).
 Matrix6x10d link_wrench_basis(const Eigen::Vector3d& w, const Eigen::Vector3d& al,

@@ -12,7 +12,7 @@ EXAMPLES = pathlib.Path(__file__).resolve().parents[2] / "examples"
 
 # A planar 2R arm (hinges about parallel z axes, link 2's joint at l1 = 0.7 m along link 1's x,
 # gravity in the plane): Izz_1 + Ia_1 + m_2 l1² is one base parameter (Khalil & Dombre 2002,
-# §12.5); l1² = 0.49.
+# ch. 9); l1² = 0.49.
 PLANAR_2R = """<mujoco model="planar2r">
   <option gravity="0 -9.81 0"/>
   <worldbody>

@@ -209,7 +209,7 @@ TEST(BaseParameters, AreDeterministic) {
 }
 
 // A planar 2R arm: hinges about parallel z axes, link 2's origin at (l1, 0, 0) in link 1's
-// frame, gravity in the plane (−y). Khalil & Dombre 2002 (§12.5, the regrouping rules): with
+// frame, gravity in the plane (−y). Khalil & Dombre 2002 (ch. 9, the regrouping rules): with
 // armature, the inertial base parameters are 7,
 //   ZZR1 = Izz1 + Ia1 + m2 l1²,  MXR1 = mx1 + m2 l1,  MY1,  ZZ2,  MX2,  MY2,  Ia2,
 // (Ia1 has Izz1's column, m2 only moves link 1 as a point mass at link 2's origin; gravity in

@@ -21,8 +21,8 @@
 /// A link without an inertial (a frame only) has no parameters: it is not part of π.
 ///
 /// Form of Y [Atkeson, An & Hollerbach 1986, "Estimation of inertial parameters of manipulator
-/// loads and links", IJRR 5(3), eq. 8–10; Khalil & Dombre 2002, "Modeling, Identification and
-/// Control of Robots", §9.3]: the Newton–Euler wrench of link b about its origin, in its
+/// loads and links", IJRR 5(3); Khalil & Dombre 2002, "Modeling, Identification and
+/// Control of Robots", ch. 9]: the Newton–Euler wrench of link b about its origin, in its
 /// frame, is linear in its 10 parameters π_b,
 ///   f = m a + α × (m c) + ω × (ω × m c),   n = J α + ω × (J ω) + (m c) × a,
 /// with ω, α the link's angular velocity and acceleration and a the acceleration of its origin
@@ -103,7 +103,7 @@ struct BaseParameters {
 };
 
 /// The base parameters of `model` [Gautier 1990, "Numerical calculation of the base inertial
-/// parameters of robots", J. Robotic Systems 7(4); Khalil & Dombre 2002, §12.5]:
+/// parameters of robots", J. Robotic Systems 7(4); Khalil & Dombre 2002, ch. 9]:
 ///  1. W = Y stacked at random states (q uniform in ref ± π rad or ref ± 1 m, q̇ and q̈ uniform
 ///     in ±1 per unit; a fixed seed, so the result is deterministic);
 ///  2. a Householder QR of W whose pivot is the next column, in a preference order, whose
