@@ -554,13 +554,26 @@ std::string render(const FileText& f, const std::map<const tinyxml2::XMLDocument
       edits.push_back({span.begin, span.end - span.begin, std::string(content)});
     }
   }
-  // back to front; they do not overlap (one per link, one per include). At the same byte the
-  // replacement goes first, so that an inertial inserted there comes before what replaced it.
+  // front to back in one pass (replacing in place would move the tail once per edit: quadratic
+  // in the number of links); they do not overlap (one per link, one per include). At the same
+  // byte an insertion goes first, so that an inertial inserted there comes before what replaced
+  // the element that starts there.
   std::sort(edits.begin(), edits.end(), [](const Edit& a, const Edit& b) {
-    return a.at != b.at ? a.at > b.at : a.remove > b.remove;
+    return a.at != b.at ? a.at < b.at : a.remove < b.remove;
   });
-  std::string out = *f.text;
-  for (const auto& e : edits) out.replace(e.at, e.remove, e.insert);
+  const std::string& text = *f.text;
+  std::size_t size = text.size();
+  for (const auto& e : edits) size += e.insert.size();
+  std::string out;
+  out.reserve(size);
+  std::size_t done = 0;  // bytes of `text` copied or removed so far
+  for (const auto& e : edits) {
+    RIGID_ASSERT(e.at >= done);
+    out.append(text, done, e.at - done);
+    out += e.insert;
+    done = e.at + e.remove;
+  }
+  out.append(text, done, std::string::npos);
   return out;
 }
 
