@@ -5,7 +5,10 @@
 // (mj_kinematics + mj_comPos + mj_crb for M; + mj_comVel + mj_rne for the bias). Models: the
 // seven-joint arm of examples/arm7.urdf and MuJoCo's humanoid pinned at the torso (21 hinges).
 // And the symbolic side: the file's scene derived and compiled (the tree's recursions on named
-// intermediates), its printed equations, and its compiled tape's M and f per call.
+// intermediates), its printed equations, and its compiled tape's M and f per call; and its
+// flat C++ export (`rigid eom MODEL --emit c++ --flat`, compiled into this binary): M, inverse
+// and forward dynamics and their derivatives per call, against mj_forward with constraints and
+// contacts disabled and MuJoCo's recursive Newton–Euler with accelerations (inverse dynamics).
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -13,6 +16,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
 #include <benchmark/benchmark.h>
@@ -24,6 +28,7 @@
 #include "rigid/robot/tree_dynamics.hpp"
 #include "rigid/scene/model.hpp"
 #include "rigid/scene/robot_scene.hpp"
+#include "robot_codegen.hpp"
 #include "support/mjcf_text.hpp"
 
 namespace {
@@ -140,6 +145,103 @@ void BM_MuJoCo_biasForces(benchmark::State& state) {
   }
 }
 
+// the exported code of the model: which == 0 arm7, 1 the pinned humanoid
+const rigid_bench::Codegen& codegen(int which) {
+  return which == 0 ? rigid_bench::codegen_arm7() : rigid_bench::codegen_humanoid_pinned();
+}
+
+void BM_Exported_massMatrix(benchmark::State& state) {
+  const int which = static_cast<int>(state.range(0));
+  Pair& p = model(which);
+  state.SetLabel(name_of(which));
+  const rigid_bench::Codegen& c = codegen(which);
+  std::vector<double> M(static_cast<std::size_t>(c.nv * c.nv));
+  for (auto _ : state) {
+    c.mass_matrix(p.q.data(), M.data());
+    benchmark::DoNotOptimize(M.data());
+  }
+}
+
+// τ at the state's q, q̇ with q̈ = the state's τ values (any accelerations do)
+void BM_Exported_inverseDynamics(benchmark::State& state) {
+  const int which = static_cast<int>(state.range(0));
+  Pair& p = model(which);
+  state.SetLabel(name_of(which));
+  const rigid_bench::Codegen& c = codegen(which);
+  std::vector<double> tau(static_cast<std::size_t>(c.nv));
+  for (auto _ : state) {
+    c.inverse_dynamics(p.q.data(), p.v.data(), p.tau.data(), tau.data());
+    benchmark::DoNotOptimize(tau.data());
+  }
+}
+
+void BM_Exported_forwardDynamics(benchmark::State& state) {
+  const int which = static_cast<int>(state.range(0));
+  Pair& p = model(which);
+  state.SetLabel(name_of(which));
+  const rigid_bench::Codegen& c = codegen(which);
+  std::vector<double> a(static_cast<std::size_t>(c.nv));
+  for (auto _ : state) {
+    c.forward_dynamics(p.q.data(), p.v.data(), p.tau.data(), a.data());
+    benchmark::DoNotOptimize(a.data());
+  }
+}
+
+void BM_Exported_inverseDynamicsDerivatives(benchmark::State& state) {
+  Pair& p = model(0);
+  state.SetLabel(name_of(0));
+  const rigid_bench::Codegen& c = codegen(0);
+  const auto nn = static_cast<std::size_t>(c.nv * c.nv);
+  std::vector<double> dq(nn), dv(nn), da(nn);
+  for (auto _ : state) {
+    c.inverse_dynamics_derivatives(p.q.data(), p.v.data(), p.tau.data(), dq.data(), dv.data(),
+                                   da.data());
+    benchmark::DoNotOptimize(dq.data());
+  }
+}
+
+void BM_Exported_forwardDynamicsDerivatives(benchmark::State& state) {
+  Pair& p = model(0);
+  state.SetLabel(name_of(0));
+  const rigid_bench::Codegen& c = codegen(0);
+  const auto nn = static_cast<std::size_t>(c.nv * c.nv);
+  std::vector<double> a(static_cast<std::size_t>(c.nv)), dq(nn), dv(nn), dtau(nn);
+  for (auto _ : state) {
+    c.forward_dynamics_derivatives(p.q.data(), p.v.data(), p.tau.data(), a.data(), dq.data(),
+                                   dv.data(), dtau.data());
+    benchmark::DoNotOptimize(dq.data());
+  }
+}
+
+// mj_forward with constraints and contacts disabled: the same work as forward dynamics
+void BM_MuJoCo_forwardNoConstraints(benchmark::State& state) {
+  Pair& p = model(static_cast<int>(state.range(0)));
+  state.SetLabel(name_of(static_cast<int>(state.range(0))));
+  const int flags = p.m->opt.disableflags;
+  p.m->opt.disableflags |= mjDSBL_CONSTRAINT | mjDSBL_CONTACT;
+  for (auto _ : state) {
+    mj_forward(p.m, p.d);
+    benchmark::DoNotOptimize(p.d->qacc);
+  }
+  p.m->opt.disableflags = flags;
+}
+
+// MuJoCo's inverse dynamics without constraints: positions, COM frames, velocities and
+// recursive Newton–Euler with the accelerations (M q̈ + bias)
+void BM_MuJoCo_inverseDynamics(benchmark::State& state) {
+  Pair& p = model(static_cast<int>(state.range(0)));
+  state.SetLabel(name_of(static_cast<int>(state.range(0))));
+  for (int i = 0; i < p.m->nv; ++i) p.d->qacc[i] = p.tau(i);
+  std::vector<mjtNum> tau(static_cast<std::size_t>(p.m->nv));
+  for (auto _ : state) {
+    mj_kinematics(p.m, p.d);
+    mj_comPos(p.m, p.d);
+    mj_comVel(p.m, p.d);
+    mj_rne(p.m, p.d, 1, tau.data());
+    benchmark::DoNotOptimize(tau.data());
+  }
+}
+
 void BM_MuJoCo_forward(benchmark::State& state) {
   Pair& p = model(static_cast<int>(state.range(0)));
   state.SetLabel(name_of(static_cast<int>(state.range(0))));
@@ -199,5 +301,12 @@ BENCHMARK(BM_Robot_biasForces)->Arg(0)->Arg(1);
 BENCHMARK(BM_MuJoCo_biasForces)->Arg(0)->Arg(1);
 BENCHMARK(BM_Robot_forwardDynamics)->Arg(0)->Arg(1);
 BENCHMARK(BM_MuJoCo_forward)->Arg(0)->Arg(1);
+BENCHMARK(BM_Exported_massMatrix)->Arg(0)->Arg(1);
+BENCHMARK(BM_Exported_inverseDynamics)->Arg(0)->Arg(1);
+BENCHMARK(BM_MuJoCo_inverseDynamics)->Arg(0)->Arg(1);
+BENCHMARK(BM_Exported_forwardDynamics)->Arg(0)->Arg(1);
+BENCHMARK(BM_MuJoCo_forwardNoConstraints)->Arg(0)->Arg(1);
+BENCHMARK(BM_Exported_inverseDynamicsDerivatives);
+BENCHMARK(BM_Exported_forwardDynamicsDerivatives);
 
 }  // namespace

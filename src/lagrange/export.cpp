@@ -883,6 +883,32 @@ std::vector<GiNaC::ex> flat_tau(const System::Impl& s) {
   return tau;
 }
 
+// f = −τ(q̈ = 0) of a tree from its body-coordinate inverse dynamics (fewer operations than
+// the world-coordinate f beside M): the inverse dynamics' intermediates at q̈ = 0, as fresh
+// symbols (a tape may hold both), those that become a number or a symbol substituted into
+// the later ones; `definitions` receives them.
+std::vector<GiNaC::ex> flat_bias(const System::Impl& s,
+                                 std::vector<std::pair<GiNaC::symbol, GiNaC::ex>>& definitions) {
+  if (s.id_tau.empty()) return s.f;
+  GiNaC::exmap at_rest;
+  for (const GiNaC::symbol& a : s.qdd) at_rest[a] = 0;
+  for (std::size_t k = 0; k < s.id_aux.size(); ++k) {
+    const GiNaC::ex value = s.id_aux_def[k].subs(at_rest).expand();
+    if (GiNaC::is_a<GiNaC::numeric>(value) || GiNaC::is_a<GiNaC::symbol>(value)) {
+      at_rest[s.id_aux[k]] = value;
+      continue;
+    }
+    const GiNaC::symbol fresh(s.id_aux[k].get_name() + "_rest");
+    definitions.emplace_back(fresh, value);
+    at_rest[s.id_aux[k]] = fresh;
+  }
+  std::vector<GiNaC::ex> f(s.f.size());
+  for (std::size_t i = 0; i < f.size(); ++i) {
+    f[i] = (-s.id_tau[i].subs(at_rest) + (s.f[i] - s.tree_bias[i])).expand();
+  }
+  return f;
+}
+
 // The definitions the flat tapes add after the system's intermediates: the body-coordinate
 // inverse dynamics', then `more`.
 std::vector<std::pair<GiNaC::symbol, GiNaC::ex>> flat_definitions(
@@ -959,10 +985,12 @@ std::string flat_functions(const System::Impl& s, const std::vector<std::string>
   };
   std::vector<GiNaC::ex> mass_and_forces;
   for (const auto& [r, c] : pairs) mass_and_forces.push_back(s.M[c * n + r]);
-  mass_and_forces.insert(mass_and_forces.end(), s.f.begin(), s.f.end());
+  std::vector<std::pair<GiNaC::symbol, GiNaC::ex>> bias_definitions;
+  const std::vector<GiNaC::ex> bias = flat_bias(s, bias_definitions);
+  mass_and_forces.insert(mass_and_forces.end(), bias.begin(), bias.end());
   // forward_dynamics
   {
-    const Tape tape = flat_tape(s, mass_and_forces, {});
+    const Tape tape = flat_tape(s, mass_and_forces, flat_definitions(s, bias_definitions));
     const TapePrinter printer(tape, flat_syntax(n, params, "q_ddot", pow_int));
     out += "/// q̈ = M(q)⁻¹ (f(q, q̇) + τ) (forward dynamics), M factored along the tree (factor()).\n"
            "/// Where M is not positive definite (a pivot ≤ 0: parameters no body can have) "
@@ -983,6 +1011,8 @@ std::string flat_functions(const System::Impl& s, const std::vector<std::string>
   defs.insert(defs.end(), s.id_aux_def.begin(), s.id_aux_def.end());
   const detail::ForwardDerivatives D = detail::forward_derivatives(aux, defs, tau, vars);
   const auto definitions = flat_definitions(s, D.definitions);
+  auto with_bias = D.definitions;
+  with_bias.insert(with_bias.end(), bias_definitions.begin(), bias_definitions.end());
   auto dtau = [&](std::size_t i, std::size_t j) -> const GiNaC::ex& { return D.d[i * 2 * n + j]; };
   std::vector<GiNaC::ex> derivatives;
   for (std::size_t half = 0; half < 2; ++half) {
@@ -1026,7 +1056,7 @@ std::string flat_functions(const System::Impl& s, const std::vector<std::string>
   {
     std::vector<GiNaC::ex> outputs = mass_and_forces;
     outputs.insert(outputs.end(), derivatives.begin(), derivatives.end());
-    const Tape tape = flat_tape(s, outputs, definitions);
+    const Tape tape = flat_tape(s, outputs, flat_definitions(s, with_bias));
     const TapePrinter printer(tape, flat_syntax(n, params, "qdd", pow_int));
     std::vector<bool> deferred(none);
     for (std::size_t i = 0; i < n; ++i) deferred[2 * n + i] = true;

@@ -1,7 +1,8 @@
-// Build-time generator of the scene tests: the exported C++ of each example scene given,
-// written to DIR/<stem>.hpp (namespace <stem>), through rigid::scene::emit_code as
-// `rigid eom SCENE --emit c++` does.
-//   rigid_export_examples_gen DIR SCENE...
+// Build-time generator of the scene and robot tests: the exported C++ of each example scene
+// given, written to DIR/<stem>.hpp (namespace <stem>), through rigid::scene::emit_code as
+// `rigid eom SCENE --emit c++` does; with --flat, the flat layout to DIR/<stem>_flat.hpp
+// (`rigid eom SCENE --emit c++ --flat`).
+//   rigid_export_examples_gen [--flat] DIR SCENE...
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -12,16 +13,20 @@
 #include "rigid/scene/model.hpp"
 
 int main(int argc, char** argv) {
-  if (argc < 3) {
-    std::fprintf(stderr, "usage: rigid_export_examples_gen DIR SCENE...\n");
+  const bool flat = argc > 1 && std::string(argv[1]) == "--flat";
+  const int first = flat ? 2 : 1;
+  if (argc < first + 2) {
+    std::fprintf(stderr, "usage: rigid_export_examples_gen [--flat] DIR SCENE...\n");
     return 2;
   }
   try {
-    for (int k = 2; k < argc; ++k) {
+    for (int k = first + 1; k < argc; ++k) {
       const std::filesystem::path scene(argv[k]);
       const auto model = rigid::scene::load_model(scene);
-      rigid::io::write_file_atomically(std::filesystem::path(argv[1]) / (scene.stem().string() + ".hpp"),
-                                       rigid::scene::emit_code(model, "c++"));
+      const std::string stem = scene.stem().string();
+      rigid::io::write_file_atomically(
+          std::filesystem::path(argv[first]) / (stem + (flat ? "_flat.hpp" : ".hpp")),
+          rigid::scene::emit_code(model, "c++", flat ? stem : "", flat));
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "rigid_export_examples_gen: %s\n", e.what());
