@@ -1,7 +1,7 @@
 // rigid.robot: a robot model file (URDF, MJCF, SDF) as a kinematic tree with its dynamics in
 // numbers: M(q), the bias and passive forces, inverse and forward dynamics (rigid::robot::
-// TreeDynamics, MuJoCo's conventions, docs/robots.md). Arrays are numpy vectors of length
-// dof, in the coordinates' order.
+// TreeDynamics, MuJoCo's conventions, docs/robots.md). q is a numpy vector of length nq
+// (MuJoCo's qpos), velocities, accelerations and forces of length nv (qvel).
 #include <fmt/format.h>
 #include <pybind11/eigen.h>
 #include <pybind11/numpy.h>
@@ -25,10 +25,18 @@ namespace {
 
 using rigid::robot::TreeDynamics;
 
+// q: nq entries (qpos)
 Eigen::VectorXd coordinates_arg(const TreeDynamics& t, const py::handle& value,
                                 std::string_view function, std::string_view name) {
-  return cv::vector(value, {function, name}, static_cast<Eigen::Index>(t.dof()),
-                    cv::Finite::kRequired, "dof");
+  return cv::vector(value, {function, name}, static_cast<Eigen::Index>(t.nq()),
+                    cv::Finite::kRequired, t.nq() == t.nv() ? "dof" : "nq");
+}
+
+// a velocity, acceleration or force: nv entries (qvel)
+Eigen::VectorXd velocities_arg(const TreeDynamics& t, const py::handle& value,
+                               std::string_view function, std::string_view name) {
+  return cv::vector(value, {function, name}, static_cast<Eigen::Index>(t.nv()),
+                    cv::Finite::kRequired, t.nq() == t.nv() ? "dof" : "nv");
 }
 
 }  // namespace
@@ -41,9 +49,12 @@ void bind_robot(py::module_& m) {
 
   py::class_<TreeDynamics, std::shared_ptr<TreeDynamics>>(
       robot, "Robot",
-      "A kinematic tree read from a URDF, MJCF or SDF file: links, hinge and slide joints (the "
-      "coordinates, depth first from the root, MuJoCo's order), inertials and gravity. Immutable; "
-      "every method may be called from any thread.")
+      "A kinematic tree read from a URDF, MJCF or SDF file: links, joints (hinge, slide, ball, "
+      "free; depth first from the root, MuJoCo's order), inertials and gravity. q is MuJoCo's "
+      "qpos (nq entries: a ball's quaternion w x y z, a free joint's world position and "
+      "quaternion), q_dot its qvel (nv entries: angular velocities in the link frame, a free "
+      "joint's linear velocity in the world); forces have nv entries. Immutable; every method "
+      "may be called from any thread.")
       .def(py::init([](const py::object& file, bool pin_free_root) {
              const std::string path = cv::path(file, {"rigid.robot.Robot", "file"});
              rigid::io::RobotReadOptions options;
@@ -54,12 +65,19 @@ void bind_robot(py::module_& m) {
              });
            }),
            py::arg("file"), py::kw_only(), py::arg("pin_free_root") = false,
-           "Reads the model. pin_free_root: weld a free-floating root (MJCF <freejoint>) where it "
-           "is.")
-      .def_property_readonly("dof", &TreeDynamics::dof, "Number of coordinates.")
+           "Reads the model. pin_free_root: weld a free-floating root (MJCF <freejoint>, URDF "
+           "floating) where it is.")
+      .def_property_readonly("dof", &TreeDynamics::dof, "Degrees of freedom (nv).")
+      .def_property_readonly("nq", &TreeDynamics::nq, "Entries of q (MuJoCo's qpos).")
+      .def_property_readonly("nv", &TreeDynamics::nv, "Entries of q_dot (MuJoCo's qvel).")
       .def_property_readonly(
           "coordinates", [](const TreeDynamics& t) { return t.model().coordinate_names(); },
-          "The joints' names, in coordinate order.")
+          "The names of q's entries (a hinge's or slide's: its joint's; a free joint 'j': j_x j_y "
+          "j_z j_qw j_qx j_qy j_qz; a ball 'j': j_qw j_qx j_qy j_qz).")
+      .def_property_readonly(
+          "velocities", [](const TreeDynamics& t) { return t.model().velocity_names(); },
+          "The names of q_dot's entries (a free joint 'j': j_vx j_vy j_vz j_wx j_wy j_wz; a ball "
+          "'j': j_wx j_wy j_wz).")
       .def_property_readonly(
           "links",
           [](const TreeDynamics& t) {
@@ -72,19 +90,19 @@ void bind_robot(py::module_& m) {
           "gravity", [](const TreeDynamics& t) { return Eigen::Vector3d(t.model().gravity); },
           "m/s², world frame.")
       .def_property_readonly("reference_configuration", &TreeDynamics::reference_configuration,
-                             "q at which every link sits at its placement (each joint's ref).")
+                             "q at which every link sits at its placement (MuJoCo's qpos0).")
       .def(
           "mass_matrix",
           [](const TreeDynamics& t, const py::object& q) {
             return t.mass_matrix(coordinates_arg(t, q, "rigid.robot.Robot.mass_matrix", "q"));
           },
-          py::arg("q"), "M(q), dof × dof, armature on the diagonal.")
+          py::arg("q"), "M(q), nv × nv, armature on the diagonal.")
       .def(
           "bias_forces",
           [](const TreeDynamics& t, const py::object& q, const py::object& q_dot) {
             const char* f = "rigid.robot.Robot.bias_forces";
             return t.bias_forces(coordinates_arg(t, q, f, "q"),
-                                 coordinates_arg(t, q_dot, f, "q_dot"));
+                                 velocities_arg(t, q_dot, f, "q_dot"));
           },
           py::arg("q"), py::arg("q_dot"),
           "b(q, q̇): Coriolis, centrifugal and gravity forces (MuJoCo's qfrc_bias).")
@@ -93,7 +111,7 @@ void bind_robot(py::module_& m) {
           [](const TreeDynamics& t, const py::object& q, const py::object& q_dot) {
             const char* f = "rigid.robot.Robot.passive_forces";
             return t.passive_forces(coordinates_arg(t, q, f, "q"),
-                                    coordinates_arg(t, q_dot, f, "q_dot"));
+                                    velocities_arg(t, q_dot, f, "q_dot"));
           },
           py::arg("q"), py::arg("q_dot"),
           "p(q, q̇) = −damping q̇ − stiffness (q − springref) (MuJoCo's qfrc_passive).")
@@ -103,8 +121,8 @@ void bind_robot(py::module_& m) {
              const py::object& q_ddot) {
             const char* f = "rigid.robot.Robot.inverse_dynamics";
             return t.inverse_dynamics(coordinates_arg(t, q, f, "q"),
-                                      coordinates_arg(t, q_dot, f, "q_dot"),
-                                      coordinates_arg(t, q_ddot, f, "q_ddot"));
+                                      velocities_arg(t, q_dot, f, "q_dot"),
+                                      velocities_arg(t, q_ddot, f, "q_ddot"));
           },
           py::arg("q"), py::arg("q_dot"), py::arg("q_ddot"), "τ = M q̈ + b − p.")
       .def(
@@ -113,8 +131,8 @@ void bind_robot(py::module_& m) {
              const py::object& tau) {
             const char* f = "rigid.robot.Robot.forward_dynamics";
             return t.forward_dynamics(coordinates_arg(t, q, f, "q"),
-                                      coordinates_arg(t, q_dot, f, "q_dot"),
-                                      coordinates_arg(t, tau, f, "tau"));
+                                      velocities_arg(t, q_dot, f, "q_dot"),
+                                      velocities_arg(t, tau, f, "tau"));
           },
           py::arg("q"), py::arg("q_dot"), py::arg("tau"), "q̈ = M⁻¹ (τ − b + p).")
       .def(
@@ -122,7 +140,7 @@ void bind_robot(py::module_& m) {
           [](const TreeDynamics& t, const py::object& q, const py::object& q_dot) {
             const char* f = "rigid.robot.Robot.energy";
             const Eigen::VectorXd qv = coordinates_arg(t, q, f, "q");
-            return py::make_tuple(t.kinetic_energy(qv, coordinates_arg(t, q_dot, f, "q_dot")),
+            return py::make_tuple(t.kinetic_energy(qv, velocities_arg(t, q_dot, f, "q_dot")),
                                   t.potential_energy(qv));
           },
           py::arg("q"), py::arg("q_dot"),
@@ -140,6 +158,10 @@ void bind_robot(py::module_& m) {
           },
           py::arg("q"), "Each link's world pose (position (3,), rotation (3, 3)), in link order.")
       .def("__repr__", [](const TreeDynamics& t) {
+        if (t.nq() != t.nv()) {
+          return fmt::format("rigid.robot.Robot('{}', nq={}, nv={})", t.model().source, t.nq(),
+                             t.nv());
+        }
         return fmt::format("rigid.robot.Robot('{}', dof={})", t.model().source, t.dof());
       });
 }

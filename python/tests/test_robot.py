@@ -168,13 +168,32 @@ def test_refusals(tmp_path):
     with pytest.raises(rigid.Error, match="q_dot"):
         robot.bias_forces(np.zeros(7), [np.nan] * 7)
     bad = tmp_path / "floating.urdf"
-    bad.write_text("""<robot name="f"><link name="a"/><link name="b"/>
-<joint name="free" type="floating"><parent link="a"/><child link="b"/></joint></robot>""")
-    with pytest.raises(rigid.Error, match=r"floating\.urdf:2.*floating"):
+    bad.write_text("""<robot name="f"><link name="a"/><link name="b"/><link name="c"/>
+<joint name="hinge" type="continuous"><parent link="a"/><child link="b"/></joint>
+<joint name="free" type="floating"><parent link="b"/><child link="c"/></joint></robot>""")
+    with pytest.raises(rigid.Error, match=r"floating\.urdf:3.*'free'.*only from the root link 'a'"):
         rigid.robot.Robot(bad)
-    with pytest.raises(rigid.Error, match="free joint"):
-        rigid.robot.Robot("/usr/share/mujoco/model/humanoid/humanoid.xml")
     assert rigid.robot.Robot("/usr/share/mujoco/model/humanoid/humanoid.xml", pin_free_root=True).dof == 21
+
+
+def test_free_root_uses_mujocos_qpos_and_qvel():
+    robot = rigid.robot.Robot("/usr/share/mujoco/model/humanoid/humanoid.xml")
+    assert (robot.nq, robot.nv, robot.dof) == (28, 27, 27)
+    assert robot.coordinates[:8] == ["root_x", "root_y", "root_z", "root_qw", "root_qx", "root_qy",
+                                     "root_qz", "abdomen_z"]
+    assert robot.velocities[:7] == ["root_vx", "root_vy", "root_vz", "root_wx", "root_wy", "root_wz",
+                                    "abdomen_z"]
+    q = robot.reference_configuration
+    np.testing.assert_array_equal(q[:7], [0, 0, 1.5, 1, 0, 0, 0])  # the torso's placement
+    assert robot.mass_matrix(q).shape == (27, 27)
+    # at rest with no force the whole body falls: the root's vertical acceleration is g
+    v_dot = robot.forward_dynamics(q, np.zeros(27), np.zeros(27))
+    assert v_dot[2] == pytest.approx(-9.81, rel=1e-9)  # M is solved: cond(M) ~ 1e4
+    with pytest.raises(rigid.Error, match=r"q_dot.*\(27,\)"):
+        robot.bias_forces(q, np.zeros(28))
+    q[3] = 2.0
+    with pytest.raises(rigid.Error, match="joint 'root' .*unit quaternion"):
+        robot.mass_matrix(q)
 
 
 def test_threads_share_one_robot():

@@ -317,8 +317,35 @@ Scene scene_from_robot_file(const std::string& xml, const std::filesystem::path&
   return scene_from_robot(model, scene_file, options.symbolic_inertia.value_or(false));
 }
 
+// The symbolic equations take hinge and slide joints: a ball or free joint is refused, naming
+// it, with the way to pin a free root.
+void refuse_ball_and_free(const io::RobotModel& model) {
+  for (const io::RobotLink& link : model.links) {
+    for (const io::RobotJoint& j : link.joints) {
+      if (j.type == io::RobotJointType::kFree) {
+        rigid::detail::throw_error_at(
+            where_of(model, link, j.line),
+            fmt::format("joint '{}' is a free (floating base) joint: the symbolic equations take "
+                        "hinge and slide joints; to read the robot pinned where its root stands: "
+                        "--pin-free-root, a scene's [model] pin_free_root = true, or "
+                        "rigid.robot.Robot(file, pin_free_root=True); rigid.robot.Robot(file) has "
+                        "its floating-base dynamics in numbers",
+                        j.name));
+      }
+      if (j.type == io::RobotJointType::kBall) {
+        rigid::detail::throw_error_at(
+            where_of(model, link, j.line),
+            fmt::format("joint '{}' is a ball joint: the symbolic equations take hinge and slide "
+                        "joints; rigid.robot.Robot(file) has its dynamics in numbers",
+                        j.name));
+      }
+    }
+  }
+}
+
 Scene scene_from_robot(const io::RobotModel& file_model, const std::filesystem::path& file,
                        bool symbolic_inertia) {
+  refuse_ball_and_free(file_model);
   const io::RobotModel model = with_coordinate_names(file_model);
   Scene s;
   s.file = file;
