@@ -1,6 +1,7 @@
 #include "rigid/scene/model.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <chrono>
 #include <cstdint>
@@ -962,18 +963,42 @@ void Model::check(const RunOptions& options) const {
   const Method method = m.parse_method(options.integrator);
   (void)m.check_budget(method, options);
   if (m.kind == SceneKind::kCoordinates) {
-    // one output interval runs every check of a full run: initial consistency, the mass
-    // matrix, the step and output spacing
+    // The run's own start, stopped before it steps: simulate() checks the initial conditions
+    // against the constraints, factors the mass matrix and evaluates the right-hand side at
+    // t = 0, the integrator checks its settings and the initial state; the cancel flag, set
+    // already, stops the march at its first poll (fixed-step methods: at t = 0, before any
+    // step; dopri5: after its first step, the first poll it has). Nothing is integrated
+    // further, whatever the output interval or the tolerance.
     lagrange::SimulationOptions so;
     so.method = method.coordinates;
     so.dt = m.dt;
     so.tolerance = m.tolerance;
     so.output_dt = m.output_dt;
-    so.t_end = m.output_dt > 0 ? m.output_dt : std::min(m.t_end, m.dt);
+    so.t_end = m.t_end;
     so.parameters = m.params;
+    const std::atomic<bool> stop{true};
+    so.control.cancel = &stop;
     // a failure here is the model's at its start, with the run's settings
-    (void)at_location(m.scene.simulation.where, "[simulation] the first output interval",
-                      [&] { return m.system->simulate(so, m.q0, m.q_dot0); });
+    at_location(m.scene.simulation.where, "[simulation] at t = 0", [&] {
+      try {
+        (void)m.system->simulate(so, m.q0, m.q_dot0);
+      } catch (const Cancelled&) {
+        // the expected end: the start passed every check
+      }
+      // the accelerations themselves: a non-finite q̈(0) passes the checks above and
+      // would stop the run at its first step
+      lagrange::Workspace w = m.make_workspace();
+      Eigen::VectorXd q_ddot, lambda;
+      m.system->accelerations(w, 0.0, m.q0, m.q_dot0, q_ddot, lambda, so.stabilization);
+      const std::vector<std::string>& names = m.system->coordinate_names();
+      for (Eigen::Index i = 0; i < q_ddot.size(); ++i) {
+        if (!std::isfinite(q_ddot[i])) {
+          throw Error(fmt::format("the acceleration of '{}' is {}; the run would diverge at its "
+                                  "first step: check the model's expressions at the initial state",
+                                  names[static_cast<std::size_t>(i)], q_ddot[i]));
+        }
+      }
+    });
   }
 }
 

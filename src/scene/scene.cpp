@@ -927,6 +927,8 @@ void parse_output_formats(const Parser& p, const toml::node& f, Output& output) 
   const toml::array* a = f.as_array();
   if (a == nullptr) p.fail(f, "formats must be an array of strings such as [\"csv\", \"npy\", \"json\"]");
   output.formats.clear();
+  // an empty list would leave a run nothing to write: refused here, so check and run agree
+  if (a->empty()) p.fail(f, "formats = [] selects no output format; give at least one of csv, npy, json");
   const Keys known = {"csv", "npy", "json"};
   for (const toml::node& e : *a) {
     std::string fmt_name = p.string(e, "output format");

@@ -7,6 +7,8 @@ import resource
 import subprocess
 import time
 
+import pytest
+
 MB = 1024 * 1024
 
 
@@ -53,3 +55,77 @@ def test_inertia_fix_is_linear_in_the_links(rigid_exe, tmp_path):
     assert all(abs(m - 6.0) < 1e-12 for m in masses)
     # nothing else changed: the text without the inertials (and the lines they sit on) is the input
     assert re.sub(r"\n[ \t]*<inertial>.*?</inertial>", "", text, flags=re.S) == model.read_text()
+
+
+OSCILLATOR = """\
+[parameters]
+k = 1
+[[coordinates]]
+name = "x"
+initial = 1.0
+[[bodies]]
+name = "b"
+point_masses = [{{mass = 1, position = [0, 0, 0]}}]
+position = ["x", 0, 0]
+[[potentials]]
+expression = "0.5*k*x^2"
+[simulation]
+t_end = 1e5
+dt = 1e-3
+integrator = "{integrator}"
+tolerance = 1e-14
+output_dt = 1e5
+{output}"""
+
+
+# `rigid check` integrated the whole first output interval: 1.6 s for this oscillator with
+# output_dt = 1e4 s (the time grows with the interval), 133 s for a heavier scene. It now stops
+# the run's own start before the march steps (dopri5: after its first step), so the interval
+# does not matter: 0.02 s measured, bounded here at 1 s and 200 MB.
+@pytest.mark.parametrize("integrator", ["dopri5", "rk4", "implicit_midpoint", "stormer_verlet"])
+def test_check_does_not_integrate(rigid_exe, tmp_path, integrator):
+    path = tmp_path / "slow.toml"
+    path.write_text(OSCILLATOR.format(integrator=integrator, output=""))
+    proc, wall = bounded([rigid_exe, "check", path], seconds=30, megabytes=200)
+    assert proc.returncode == 0, proc.stderr
+    assert wall < 1.0, wall
+    assert f"ok: {path} is a valid scene" in proc.stdout
+
+
+# What check can see, it refuses as run does, with the same message: a metric on a column the
+# run does not have, an [output] quantity that matches no column, an empty list of formats.
+@pytest.mark.parametrize("output, message", [
+    ('[[output.metrics]]\nname = "top"\nkind = "max"\ncolumn = "y"\n',
+     "slow.toml:21:10: [[output.metrics]] 'top': the run has no column 'y'"),
+    ('[output]\nquantities = ["energ"]\n',
+     "slow.toml:19:14: [output] quantities: 'energ' matches no column; did you mean 'energy'?"),
+    ('[output]\nformats = []\n',
+     "slow.toml:19:11: formats = [] selects no output format"),
+])
+def test_check_refuses_what_run_refuses(rigid_exe, tmp_path, output, message):
+    path = tmp_path / "slow.toml"
+    path.write_text(OSCILLATOR.format(integrator="rk4", output=output))
+    check, wall = bounded([rigid_exe, "check", path], seconds=30, megabytes=200)
+    assert wall < 1.0, wall
+    run, _ = bounded([rigid_exe, "run", "-q", "-o", tmp_path / "out", path], seconds=30,
+                     megabytes=200)
+    for proc in (check, run):
+        assert proc.returncode == 1, proc.stderr
+        assert proc.stderr.startswith(f"rigid: error: {path.parent}/{message}"), proc.stderr
+    assert check.stderr == run.stderr
+    assert not (tmp_path / "out").exists()
+
+
+# The right-hand side is evaluated at t = 0: an infinite acceleration (V = sqrt(x) at x = 0) is
+# refused by check before any step, as run refuses it at its first step.
+def test_check_evaluates_the_accelerations(rigid_exe, tmp_path):
+    path = tmp_path / "pole.toml"
+    text = OSCILLATOR.format(integrator="rk4", output="")
+    path.write_text(text.replace('"0.5*k*x^2"', '"sqrt(x)"').replace("initial = 1.0", "initial = 0.0"))
+    check, _ = bounded([rigid_exe, "check", path], seconds=30, megabytes=200)
+    assert check.returncode == 1, check.stdout
+    assert "[simulation] at t = 0: the acceleration of 'x' is -inf" in check.stderr, check.stderr
+    run, _ = bounded([rigid_exe, "run", "-q", "-o", tmp_path / "out", path], seconds=30,
+                     megabytes=200)
+    assert run.returncode == 1
+    assert "x_dot = -inf" in run.stderr, run.stderr
