@@ -9,7 +9,9 @@
 #include <cstdlib>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <limits>
+#include <optional>
 #include <set>
 #include <thread>
 
@@ -104,8 +106,8 @@ class Ranks {
   [[nodiscard]] bool root() const { return rank_ == 0; }
 
   // Rank 0's verdict (empty: go on; else the error every rank throws) and its list of finished
-  // runs, sent to every rank.
-  void broadcast(std::string& error, std::vector<std::uint8_t>& finished) const {
+  // runs (their indices, ascending), sent to every rank.
+  void broadcast(std::string& error, std::vector<std::uint64_t>& finished) const {
 #ifdef RIGID_HAVE_MPI
     if (!mpi_) return;
     auto n = static_cast<unsigned long long>(error.size());
@@ -116,9 +118,10 @@ class Ranks {
     MPI_Bcast(&m, 1, MPI_UNSIGNED_LONG_LONG, 0, MPI_COMM_WORLD);
     finished.resize(m);
     // in pieces: an MPI count is an int
-    constexpr std::size_t kPiece = std::size_t{1} << 30;
+    constexpr std::size_t kPiece = std::size_t{1} << 27;
     for (std::size_t at = 0; at < m; at += kPiece) {
-      MPI_Bcast(finished.data() + at, static_cast<int>(std::min<std::size_t>(kPiece, m - at)), MPI_BYTE, 0, MPI_COMM_WORLD);
+      MPI_Bcast(finished.data() + at, static_cast<int>(std::min<std::size_t>(kPiece, m - at)), MPI_UINT64_T, 0,
+                MPI_COMM_WORLD);
     }
 #else
     (void)error;
@@ -219,20 +222,56 @@ std::string paths_text(const std::vector<fs::path>& paths) {
   return fmt::format("{}", fmt::join(names, ", "));
 }
 
+// The runs of one process, made one at a time as the pool asks (no list of them is held, so the
+// memory before the runs does not depend on the number of runs): the shard's runs i ≡ index
+// (mod count) in ascending order, without those the journal holds (`finished`, ascending), dealt
+// round robin to the ranks.
+class RunsOfThisProcess {
+ public:
+  RunsOfThisProcess(std::size_t runs, scene::Shard shard, const Ranks& ranks, const std::vector<std::uint64_t>& finished)
+      : runs_(runs), shard_(shard), rank_(ranks.rank()), ranks_(ranks.size()), finished_(finished), next_(shard.index) {
+    // the shard's unfinished runs, dealt round robin: this rank gets every ranks-th of them
+    const std::size_t in_shard = runs > shard.index ? (runs - shard.index + shard.count - 1) / shard.count : 0;
+    const auto done = static_cast<std::size_t>(std::count_if(finished.begin(), finished.end(), [&](std::uint64_t i) {
+      return i < runs && i % shard.count == shard.index;
+    }));
+    const std::size_t open = in_shard - std::min(done, in_shard);
+    count_ = open > rank_ ? (open - rank_ + ranks_ - 1) / ranks_ : 0;
+  }
+
+  // the next index of this process, or nothing
+  std::optional<std::size_t> operator()() {
+    while (next_ < runs_) {
+      const std::size_t i = next_;
+      next_ += shard_.count;
+      while (at_ < finished_.size() && finished_[at_] < i) ++at_;
+      if (at_ < finished_.size() && finished_[at_] == i) continue;
+      if (dealt_++ % ranks_ == rank_) return i;
+    }
+    return std::nullopt;
+  }
+
+  [[nodiscard]] std::size_t count() const { return count_; }
+
+ private:
+  std::size_t runs_;
+  scene::Shard shard_;
+  std::size_t rank_, ranks_;
+  const std::vector<std::uint64_t>& finished_;
+  std::size_t next_;
+  std::size_t at_ = 0;     // the first finished index not below next_
+  std::size_t dealt_ = 0;  // unfinished runs of the shard seen so far
+  std::size_t count_ = 0;
+};
+
 // The runs of this process (its shard's unfinished runs, its rank's share), the gather to rank 0
 // and rank 0's outputs.
 void sweep_on_ranks(const SweepOptions& opts, const scene::SweepIdentity& id, scene::Shard shard, const fs::path& dir,
-                    const Ranks& ranks, scene::Journal* journal, const std::vector<std::uint8_t>& finished) {
+                    const Ranks& ranks, scene::Journal* journal, const std::vector<std::uint64_t>& finished) {
   const std::size_t runs = scene::run_count(id.spec);
   const auto names = scene::swept_names(id.spec);
-
-  // this process's runs: the shard's unfinished runs, dealt round robin to the ranks
-  std::vector<std::size_t> mine;
-  std::size_t k = 0;
-  for (std::size_t i = shard.index; i < runs; i += shard.count) {
-    if (finished[i] != 0) continue;
-    if (k++ % ranks.size() == ranks.rank()) mine.push_back(i);
-  }
+  RunsOfThisProcess mine(runs, shard, ranks, finished);
+  const std::size_t planned = mine.count();
 
   scene::SweepRunOptions ro;
   const std::size_t cores = std::max(1u, std::thread::hardware_concurrency());
@@ -240,6 +279,9 @@ void sweep_on_ranks(const SweepOptions& opts, const scene::SweepIdentity& id, sc
                                 : std::max<std::size_t>(1, cores / env_size("OMPI_COMM_WORLD_LOCAL_SIZE", 1));
   ro.wording = Surface::kCli;
   if (opts.keep_trajectories) ro.keep_trajectories = dir / "runs";
+  // rank 0's rows go to the journal as they come and are read back from it at the end; the
+  // other ranks keep theirs for the gather
+  ro.keep_rows = journal == nullptr;
   g_interrupted = false;
   ro.cancel = &g_interrupted;
   std::size_t done = 0;
@@ -247,14 +289,14 @@ void sweep_on_ranks(const SweepOptions& opts, const scene::SweepIdentity& id, sc
   ro.on_row = [&](const scene::SweepRow& row) {
     if (journal) journal->append(row);
     ++done;
-    bar.update(static_cast<double>(done) / static_cast<double>(mine.size()),
-               [&] { return fmt::format("{} / {} runs", done, mine.size()); });
+    bar.update(static_cast<double>(done) / static_cast<double>(planned),
+               [&] { return fmt::format("{} / {} runs", done, planned); });
   };
   const auto start = std::chrono::steady_clock::now();
   const auto previous = std::signal(SIGINT, on_sweep_interrupt);
   std::vector<scene::SweepRow> rows;
   try {
-    rows = scene::run_sweep(id, mine, ro);
+    rows = scene::run_sweep(id, std::ref(mine), planned, ro);
   } catch (const Cancelled& e) {
     bar.clear();
     std::signal(SIGINT, previous);
@@ -274,24 +316,24 @@ void sweep_on_ranks(const SweepOptions& opts, const scene::SweepIdentity& id, sc
   if (!ranks.root()) return;
   for (const auto& r : others) journal->append(r);
 
-  std::vector<scene::SweepRow> all = journal->finished();
-  all.insert(all.end(), rows.begin(), rows.end());
-  all.insert(all.end(), others.begin(), others.end());
-  const std::size_t ran = rows.size() + others.size();
+  const std::size_t before = journal->finished().size();
+  const std::size_t ran = done + others.size();
   if (shard.count > 1) {
     if (!opts.quiet) {
       fmt::print("shard {}/{}: {} runs now ({} before) in {}; join the shards with rigid sweep merge\n", shard.index,
-                 shard.count, ran, journal->finished().size(), (dir / ".journal.jsonl").string());
+                 shard.count, ran, before, (dir / ".journal.jsonl").string());
     }
     return;
   }
+  // every row, from the journal: those it held, this run's and the other ranks'
+  std::vector<scene::SweepRow> all = scene::read_journal(dir).rows;
   const scene::SweepOutputs outputs = scene::make_outputs(names, runs, std::move(all));
   const auto written = scene::write_outputs(dir, outputs);
   if (opts.quiet) return;
   const auto failures = static_cast<std::size_t>(
       std::count_if(outputs.errors.begin(), outputs.errors.end(), [](const std::string& e) { return !e.empty(); }));
   fmt::print("sweep: {} runs ({} now in {:.3g} s on {} thread(s) x {} rank(s), {} from the journal), {} failed\n",
-             runs, ran, seconds, ro.threads, ranks.size(), journal->finished().size(), failures);
+             runs, ran, seconds, ro.threads, ranks.size(), before, failures);
   fmt::print("wrote {}\n", paths_text(written));
 }
 
@@ -322,11 +364,13 @@ void run_sweep(const SweepOptions& opts) {
   // rank 0 owns the directory: it opens the journal and tells the others what is finished
   std::unique_ptr<scene::Journal> journal;
   std::string refused;
-  std::vector<std::uint8_t> finished(runs, 0);
+  std::vector<std::uint64_t> finished;  // the journal's runs, ascending (none allocated per requested run)
   if (ranks.root()) {
     try {
       journal = std::make_unique<scene::Journal>(dir, description, names, runs, shard);
-      for (const auto& r : journal->finished()) finished[r.index] = 1;
+      for (const auto& r : journal->finished()) finished.push_back(r.index);
+      std::sort(finished.begin(), finished.end());
+      finished.erase(std::unique(finished.begin(), finished.end()), finished.end());
     } catch (const Error& e) {
       refused = e.what();
     }

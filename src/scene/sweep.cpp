@@ -495,9 +495,32 @@ void check_overrides(const SweepIdentity& id) {
 
 std::vector<SweepRow> run_sweep(const SweepIdentity& id, std::span<const std::size_t> indices,
                                 const SweepRunOptions& options) {
+  std::size_t at = 0;
+  const RunIndexSource next = [&]() -> std::optional<std::size_t> {
+    if (at == indices.size()) return std::nullopt;
+    return indices[at++];
+  };
+  return run_sweep(id, next, indices.size(), options);
+}
+
+std::vector<SweepRow> run_sweep(const SweepIdentity& id, const RunIndexSource& next_index, std::size_t count,
+                                const SweepRunOptions& options) {
   const auto names = swept_names(id.spec);
-  std::vector<SweepRow> rows(indices.size());
-  std::atomic<std::size_t> next{0};
+  // the rows of the runs made, as they finish (nothing is allocated per requested run: the
+  // indices come from next_index one at a time)
+  std::vector<SweepRow> rows;
+  std::size_t made = 0;
+  std::mutex take;  // next_index, and the first index held back for the prototype
+  std::optional<std::size_t> first_index = next_index();
+  bool first_taken = false;
+  auto take_index = [&]() -> std::optional<std::size_t> {
+    std::lock_guard lock(take);
+    if (!first_taken) {
+      first_taken = true;
+      return first_index;
+    }
+    return first_index ? next_index() : std::nullopt;
+  };
   std::atomic<bool> stopped{false};
   std::mutex report;
   auto overrides_of = [&](const std::vector<double>& values) { return run_overrides(id, names, values); };
@@ -510,18 +533,18 @@ std::vector<SweepRow> run_sweep(const SweepIdentity& id, std::span<const std::si
   // its own error, as without the prototype.
   const Scene base = load_scene(id.scene, id.model);
   std::shared_ptr<const Model> prototype;
-  if (!indices.empty()) {
+  if (first_index) {
     try {
       Scene first = base;
-      apply_overrides(first, overrides_of(run_values(id.spec, indices.front())));
+      apply_overrides(first, overrides_of(run_values(id.spec, *first_index)));
       prototype = std::make_shared<const Model>(first);
     } catch (const Error&) {
       prototype.reset();
     }
   }
-  auto one_run = [&](std::size_t slot) {
-    SweepRow& row = rows[slot];
-    row.index = indices[slot];
+  auto one_run = [&](std::size_t index) {
+    SweepRow row;
+    row.index = index;
     row.values = run_values(id.spec, row.index);
     std::optional<Model> model;
     try {
@@ -559,19 +582,19 @@ std::vector<SweepRow> run_sweep(const SweepIdentity& id, std::span<const std::si
     model.reset();
     std::lock_guard lock(report);
     if (options.on_row) options.on_row(row);
+    if (options.keep_rows) rows.push_back(std::move(row));
+    ++made;
   };
 
   std::exception_ptr failure;
   std::mutex failure_lock;
-  std::vector<std::size_t> done(indices.size(), 0);
   auto worker = [&] {
     while (true) {
       if (stopped || (options.cancel != nullptr && options.cancel->load(std::memory_order_relaxed))) return;
-      const std::size_t slot = next.fetch_add(1);
-      if (slot >= indices.size()) return;
       try {
-        one_run(slot);
-        done[slot] = 1;
+        const std::optional<std::size_t> index = take_index();
+        if (!index) return;
+        one_run(*index);
       } catch (...) {
         // a cancellation, or an error outside a run (the journal cannot be written): stop all
         stopped = true;
@@ -581,15 +604,14 @@ std::vector<SweepRow> run_sweep(const SweepIdentity& id, std::span<const std::si
       }
     }
   };
-  const std::size_t threads = std::clamp<std::size_t>(options.threads, 1, std::max<std::size_t>(indices.size(), 1));
+  const std::size_t threads = std::clamp<std::size_t>(options.threads, 1, std::max<std::size_t>(count, 1));
   {
     std::vector<std::jthread> pool;
     for (std::size_t t = 1; t < threads; ++t) pool.emplace_back(worker);
     worker();
   }  // joined
   if (options.cancel != nullptr && options.cancel->load()) {
-    throw Cancelled(fmt::format("the sweep stopped after {} of {} runs",
-                                std::count(done.begin(), done.end(), std::size_t{1}), indices.size()));
+    throw Cancelled(fmt::format("the sweep stopped after {} of {} runs", made, count));
   }
   if (failure) std::rethrow_exception(failure);
   std::sort(rows.begin(), rows.end(), [](const SweepRow& a, const SweepRow& b) { return a.index < b.index; });

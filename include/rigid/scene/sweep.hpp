@@ -178,6 +178,9 @@ struct SweepRunOptions {
   std::filesystem::path keep_trajectories{};
   /// How error texts are worded in the rows.
   Surface wording = Surface::kLibrary;
+  /// When false, run_sweep returns no rows (on_row saw each, e.g. into the journal), so that
+  /// the memory of a long sweep does not grow with the runs made.
+  bool keep_rows = true;
 };
 
 /// Checks, before running, that every swept and fixed name is one the scene accepts (the
@@ -192,6 +195,16 @@ void check_overrides(const SweepIdentity& identity);
 /// @throws rigid::Cancelled when options.cancel stopped it (rows already passed to on_row stay).
 [[nodiscard]] std::vector<SweepRow> run_sweep(const SweepIdentity& identity, std::span<const std::size_t> indices,
                                               const SweepRunOptions& options);
+
+/// The runs to run, one index at a time, made as they are asked for (a grid's run k from its
+/// mixed-radix digits, a sample's from (seed, k): run_values), so that no list of them is held:
+/// returns the next index, or nothing when there is none left. Called by one thread at a time.
+using RunIndexSource = std::function<std::optional<std::size_t>()>;
+
+/// run_sweep over the indices `next` gives (`count` of them, for messages). The memory before
+/// the runs does not depend on `count`; the rows returned are those of the runs made.
+[[nodiscard]] std::vector<SweepRow> run_sweep(const SweepIdentity& identity, const RunIndexSource& next,
+                                              std::size_t count, const SweepRunOptions& options);
 
 /// The outputs of a whole sweep made from its rows (all indices 0 … runs-1, any order, each once):
 /// runs.csv (run, swept names, result columns, error), runs.npy (the same without error; NaN
