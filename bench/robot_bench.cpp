@@ -3,7 +3,8 @@
 // step: kinematics, M and its factorisation, bias and passive forces, collisions and
 // constraints where the model has them) and the parts that are the same work as ours
 // (mj_kinematics + mj_comPos + mj_crb for M; + mj_comVel + mj_rne for the bias). Models: the
-// seven-joint arm of examples/arm7.urdf and MuJoCo's humanoid pinned at the torso (21 hinges).
+// seven-joint arm of examples/arm7.urdf, MuJoCo's humanoid pinned at the torso (21 hinges) and
+// (TreeDynamics only) the humanoid as shipped, on its free root (nq = 28, nv = 27).
 // And the symbolic side: the file's scene derived and compiled (the tree's recursions on named
 // intermediates), its printed equations, and its compiled tape's M and f per call; and its
 // flat C++ export (`rigid eom MODEL --emit c++ --flat`, compiled into this binary): M, inverse
@@ -67,15 +68,22 @@ struct Pair {
     d = mj_makeData(m);
     std::mt19937 rng(1);
     std::uniform_real_distribution<double> u(-1, 1);
-    const auto n = static_cast<Eigen::Index>(tree.dof());
+    const auto nq = static_cast<Eigen::Index>(tree.nq());
+    const auto n = static_cast<Eigen::Index>(tree.nv());
     q = tree.reference_configuration();
     v.resize(n);
     tau.resize(n);
+    // a free root (nq = nv + 1): its position and a random unit quaternion
+    const Eigen::Index first = nq > n ? 7 : 0;
+    if (nq > n) {
+      Eigen::Vector4d quat(u(rng), u(rng), u(rng), u(rng));
+      q.segment<4>(3) = quat.normalized();
+    }
+    for (Eigen::Index i = first; i < nq; ++i) q(i) += u(rng);
+    for (Eigen::Index i = 0; i < nq; ++i) d->qpos[i] = q(i);
     for (Eigen::Index i = 0; i < n; ++i) {
-      q(i) += u(rng);
       v(i) = u(rng);
       tau(i) = u(rng);
-      d->qpos[i] = q(i);
       d->qvel[i] = v(i);
       d->qfrc_applied[i] = tau(i);
     }
@@ -97,10 +105,16 @@ Pair& model(int which) {
   static Pair arm((kSource / "examples" / "arm7.urdf").string(),
                   (kSource / "examples" / "arm7.urdf").string(), false);
   static Pair humanoid(kHumanoid.string(), pinned_humanoid(), true);
+  if (which == 2) {  // the humanoid as shipped: its free root, nq = 28, nv = 27
+    static Pair free(kHumanoid.string(), kHumanoid.string(), false);
+    return free;
+  }
   return which == 0 ? arm : humanoid;
 }
 
-const char* name_of(int which) { return which == 0 ? "arm7" : "humanoid_pinned"; }
+const char* name_of(int which) {
+  return which == 0 ? "arm7" : which == 1 ? "humanoid_pinned" : "humanoid_free";
+}
 
 void BM_Robot_massMatrix(benchmark::State& state) {
   Pair& p = model(static_cast<int>(state.range(0)));
@@ -295,17 +309,17 @@ void BM_Robot_tapeMf(benchmark::State& state) {
 BENCHMARK(BM_Robot_derive)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Robot_deriveAndPrint)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Robot_tapeMf)->Arg(0)->Arg(1);
-BENCHMARK(BM_Robot_massMatrix)->Arg(0)->Arg(1);
-BENCHMARK(BM_MuJoCo_massMatrix)->Arg(0)->Arg(1);
-BENCHMARK(BM_Robot_biasForces)->Arg(0)->Arg(1);
-BENCHMARK(BM_MuJoCo_biasForces)->Arg(0)->Arg(1);
-BENCHMARK(BM_Robot_forwardDynamics)->Arg(0)->Arg(1);
+BENCHMARK(BM_Robot_massMatrix)->Arg(0)->Arg(1)->Arg(2);
+BENCHMARK(BM_MuJoCo_massMatrix)->Arg(0)->Arg(1)->Arg(2);
+BENCHMARK(BM_Robot_biasForces)->Arg(0)->Arg(1)->Arg(2);
+BENCHMARK(BM_MuJoCo_biasForces)->Arg(0)->Arg(1)->Arg(2);
+BENCHMARK(BM_Robot_forwardDynamics)->Arg(0)->Arg(1)->Arg(2);
 BENCHMARK(BM_MuJoCo_forward)->Arg(0)->Arg(1);
 BENCHMARK(BM_Exported_massMatrix)->Arg(0)->Arg(1);
 BENCHMARK(BM_Exported_inverseDynamics)->Arg(0)->Arg(1);
 BENCHMARK(BM_MuJoCo_inverseDynamics)->Arg(0)->Arg(1);
 BENCHMARK(BM_Exported_forwardDynamics)->Arg(0)->Arg(1);
-BENCHMARK(BM_MuJoCo_forwardNoConstraints)->Arg(0)->Arg(1);
+BENCHMARK(BM_MuJoCo_forwardNoConstraints)->Arg(0)->Arg(1)->Arg(2);
 BENCHMARK(BM_Exported_inverseDynamicsDerivatives);
 BENCHMARK(BM_Exported_forwardDynamicsDerivatives);
 

@@ -273,15 +273,62 @@ class TapePrinter {
  public:
   TapePrinter(const Tape& tape, const Syntax& syntax) : tape_(tape), syntax_(syntax) {}
 
-  // One line per instruction, `indent` before each.
+  // One line per instruction, `indent` before each, in print_order().
   [[nodiscard]] std::string body(std::string_view indent) const {
     std::string out;
     const auto& code = tape_.instructions();
-    for (std::size_t k = 0; k < code.size(); ++k) {
+    for (std::size_t k : print_order()) {
       out += fmt::format("{}{}{} = {}{}\n", indent, syntax_.python ? "" : "const double ",
                          local(k), expression(code[k]), syntax_.python ? "" : ";");
     }
     return out;
+  }
+  // The instructions depth first from each output in turn, each right after its operands.
+  // The tape's own order (by level) suits its interpreter, which runs a level's operations as
+  // one loop, but keeps every value of a level alive at once; compiled, that spills most of
+  // them to the stack and makes a function larger than the instruction cache (36 KB for a
+  // 7-joint arm's forward dynamics). Depth first, a value dies soon after it is made. The
+  // operations and their operands are the same, so are the numbers.
+  [[nodiscard]] std::vector<std::size_t> print_order() const {
+    const auto& code = tape_.instructions();
+    const std::size_t base = tape_.num_inputs() + tape_.constants().size();
+    std::vector<char> done(code.size(), 0);
+    std::vector<std::size_t> order;
+    order.reserve(code.size());
+    // (instruction, operands visited so far)
+    std::vector<std::pair<std::size_t, int>> stack;
+    auto pending = [&](std::int32_t slot) {
+      const auto s = static_cast<std::size_t>(slot);
+      return s >= base && !done[s - base];
+    };
+    for (std::int32_t root : tape_.outputs()) {
+      if (!pending(root)) continue;
+      stack.emplace_back(static_cast<std::size_t>(root) - base, 0);
+      while (!stack.empty()) {
+        const auto [k, visited] = stack.back();
+        const Instruction& in = code[k];
+        if (visited == 2 || done[k]) {
+          if (!done[k]) {
+            done[k] = 1;
+            order.push_back(k);
+          }
+          stack.pop_back();
+          continue;
+        }
+        stack.back().second = visited + 1;
+        const std::int32_t operand = visited == 0 ? in.a : in.b;
+        if ((visited == 0 || binary(in.op)) && pending(operand)) {
+          stack.emplace_back(static_cast<std::size_t>(operand) - base, 0);
+        }
+      }
+    }
+    for (std::size_t k = 0; k < code.size(); ++k) {
+      if (!done[k]) order.push_back(k);  // read by no output (none are built so)
+    }
+    return order;
+  }
+  static bool binary(Op op) {
+    return op == Op::kAdd || op == Op::kSub || op == Op::kMul || op == Op::kDiv || op == Op::kPow;
   }
   // The instructions split in two, each part one line per instruction: those that read no
   // input slot of `deferred` (directly or through another instruction), then those that do;
@@ -299,11 +346,12 @@ class TapePrinter {
     std::pair<std::string, std::string> out;
     for (std::size_t k = 0; k < code.size(); ++k) {
       const Instruction& in = code[k];
-      const bool binary = in.op == Op::kAdd || in.op == Op::kSub || in.op == Op::kMul ||
-                          in.op == Op::kDiv || in.op == Op::kPow;
-      late[k] = reads_late(in.a) || (binary && reads_late(in.b));
+      late[k] = reads_late(in.a) || (binary(in.op) && reads_late(in.b));
+    }
+    // print_order() puts operands first, so each part keeps it
+    for (std::size_t k : print_order()) {
       (late[k] ? out.second : out.first) +=
-          fmt::format("{}const double {} = {};\n", indent, local(k), expression(in));
+          fmt::format("{}const double {} = {};\n", indent, local(k), expression(code[k]));
     }
     return out;
   }
