@@ -412,6 +412,30 @@ class TapePrinter {
 // ----------------------------------------------------------------------------------------
 // the exported functions
 
+// M's upper triangle, row by row.
+std::vector<GiNaC::ex> upper_triangle(const System::Impl& s) {
+  const auto n = static_cast<std::size_t>(s.n);
+  std::vector<GiNaC::ex> out;
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i; j < n; ++j) out.push_back(s.M[i * n + j]);
+  return out;
+}
+
+// "  name[i*n + j] = <output>;" for an upper triangle from output k on (k moves past it), each
+// off-diagonal entry written to its mirror too.
+std::string symmetric_assignments(const TapePrinter& printer, std::size_t& k,
+                                  std::string_view name, std::size_t n) {
+  std::string out;
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = i; j < n; ++j) {
+      const std::string v = printer.output(k++);
+      out += fmt::format("  {}[{}] = {};\n", name, i * n + j, v);
+      if (j != i) out += fmt::format("  {}[{}] = {};\n", name, j * n + i, v);
+    }
+  }
+  return out;
+}
+
 // Which outputs a function computes.
 struct Parts {
   bool M = false, f = false, G = false, gamma = false;
@@ -565,15 +589,7 @@ std::string cpp_function(const System::Impl& s, const FunctionSpec& fn,
                                 fmt::join(args, ", "));
   out += printer.body("  ");
   std::size_t k = 0;
-  if (fn.parts.M) {
-    for (std::size_t i = 0; i < n; ++i) {
-      for (std::size_t j = i; j < n; ++j) {
-        const std::string v = printer.output(k++);
-        out += fmt::format("  M[{}] = {};\n", i * n + j, v);
-        if (j != i) out += fmt::format("  M[{}] = {};\n", j * n + i, v);
-      }
-    }
-  }
+  if (fn.parts.M) out += symmetric_assignments(printer, k, "M", n);
   if (fn.parts.f) {
     for (std::size_t i = 0; i < n; ++i) out += fmt::format("  f[{}] = {};\n", i, printer.output(k++));
   }
@@ -983,24 +999,14 @@ std::string flat_functions(const System::Impl& s, const std::vector<std::string>
 
   // mass_matrix
   {
-    std::vector<GiNaC::ex> outputs;
-    for (std::size_t i = 0; i < n; ++i)
-      for (std::size_t j = i; j < n; ++j) outputs.push_back(s.M[i * n + j]);
-    const Tape tape = flat_tape(s, outputs, {});
-    const Syntax syntax = flat_syntax(n, params, "q_ddot", pow_int);
-    const TapePrinter printer(tape, syntax);
+    const Tape tape = flat_tape(s, upper_triangle(s), {});
+    const TapePrinter printer(tape, flat_syntax(n, params, "q_ddot", pow_int));
     out += "/// M(q), nv × nv, row-major: the mass matrix (kinetic energy ½ q̇ᵀ M q̇).\n"
            "inline void mass_matrix([[maybe_unused]] const double* q, double* M, "
            "[[maybe_unused]] const Parameters& p = {}) {\n";
     out += printer.split_body("  ", none).first;
     std::size_t k = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-      for (std::size_t j = i; j < n; ++j) {
-        const std::string v = printer.output(k++);
-        out += fmt::format("  M[{}] = {};\n", i * n + j, v);
-        if (j != i) out += fmt::format("  M[{}] = {};\n", j * n + i, v);
-      }
-    }
+    out += symmetric_assignments(printer, k, "M", n);
     out += "}\n\n";
   }
   const std::vector<GiNaC::ex> tau = flat_tau(s);
@@ -1070,8 +1076,7 @@ std::string flat_functions(const System::Impl& s, const std::vector<std::string>
   // inverse_dynamics_derivatives
   {
     std::vector<GiNaC::ex> outputs = derivatives;
-    for (std::size_t i = 0; i < n; ++i)
-      for (std::size_t j = i; j < n; ++j) outputs.push_back(s.M[i * n + j]);
+    for (const GiNaC::ex& e : upper_triangle(s)) outputs.push_back(e);
     const Tape tape = flat_tape(s, outputs, definitions);
     const TapePrinter printer(tape, flat_syntax(n, params, "q_ddot", pow_int));
     out += "/// ∂τ/∂q, ∂τ/∂q̇ and ∂τ/∂q̈ = M of inverse_dynamics, nv × nv row-major each "
@@ -1090,13 +1095,7 @@ std::string flat_functions(const System::Impl& s, const std::vector<std::string>
     for (const char* name : {"dtau_dq", "dtau_dq_dot"}) {
       for (std::size_t i = 0; i < n * n; ++i) out += fmt::format("  {}[{}] = {};\n", name, i, printer.output(k++));
     }
-    for (std::size_t i = 0; i < n; ++i) {
-      for (std::size_t j = i; j < n; ++j) {
-        const std::string v = printer.output(k++);
-        out += fmt::format("  dtau_dq_ddot[{}] = {};\n", i * n + j, v);
-        if (j != i) out += fmt::format("  dtau_dq_ddot[{}] = {};\n", j * n + i, v);
-      }
-    }
+    out += symmetric_assignments(printer, k, "dtau_dq_ddot", n);
     out += "}\n\n";
   }
   // forward_dynamics_derivatives: q̈ first, then ∂τ/∂(q, q̇) at that q̈ (the instructions that
