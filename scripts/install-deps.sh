@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages rigid needs, and only those that are missing.
 # Idempotent and quick when everything is present: one `dpkg -s` per package.
-# Usage: scripts/install-deps.sh [build|bench|fuzz]   (default: build)
-# fuzz adds clang (libFuzzer and its sanitizer runtimes), needed by `make fuzz` only.
+# Usage: scripts/install-deps.sh [build|bench|fuzz]   (default: build; fuzz: build's packages
+# without the node check)
+# build includes clang: the tests build the exported C++ with clang++ as well as g++; `make fuzz`
+# uses its libFuzzer and sanitizer runtimes.
 # build also needs Node 20 and npm (the report page is bundled from web/ at build time; the
 # browser tests drive Debian's chromium with playwright-core): they are checked, not installed
 # (Debian 12's nodejs is 18), and a missing or old node stops here with the remedy.
@@ -35,13 +37,12 @@ build_packages=(
   pybind11-dev python3-dev python3-numpy python3-pytest python3-scipy python3-sympy python3-meshio
   python3-pip python3-setuptools python3-wheel python3-venv
   chromium
+  clang
 )
 bench_packages=(libbullet-dev libode-dev)
-fuzz_packages=(clang)
 
 wanted=("${build_packages[@]}")
 if [[ "${1:-build}" == "bench" ]]; then wanted+=("${bench_packages[@]}"); fi
-if [[ "${1:-build}" == "fuzz" ]]; then wanted+=("${fuzz_packages[@]}"); fi
 
 missing=()
 for p in "${wanted[@]}"; do
