@@ -75,7 +75,7 @@ void bind_integrate(py::module_& m) {
       py::arg("names") = std::vector<std::string>{},
       "Integrates dy/dt = rhs(t, y) from y(t0) = y0 (shape (n,)) to t_end (s) with the library's "
       "method: 'rk4' or 'implicit_midpoint' (fixed steps, the fewest equal steps ≤ dt between "
-      "outputs), 'dopri5' (adaptive: rtol ≥ 2.2e-15, atol > 0; dt the first step), "
+      "outputs), 'dopri5' (adaptive: 2.2e-15 ≤ rtol ≤ 0.1, 0 < atol ≤ 0.1; dt the first step), "
       "'stormer_verlet' (y = (q, v) with the first n_position components q, default half; "
       "rhs's v̇ must not depend on v). Outputs at t0 + k·output_dt and t_end (output_dt = 0: "
       "every step). Returns {'t': (m,), 'y': (m, n), 'steps', 'rhs_evaluations'}. Every step is "

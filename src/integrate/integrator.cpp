@@ -344,6 +344,13 @@ Method parse_method(std::string_view name) {
               "stormer_verlet", name);
 }
 
+std::string tolerance_above_bound(std::string_view what, double value) {
+  return fmt::format("{} = {} is above {}, the loosest tolerance an error control honours (10% "
+                     "of the state per step; beyond it the steps are limited by stability "
+                     "alone and the result is not a solution); expected {} ≤ {}",
+                     what, value, kMaxTolerance, what, kMaxTolerance);
+}
+
 Solution integrate(const Problem& problem, const Options& options) {
   RIGID_REQUIRE(static_cast<bool>(problem.rhs), "the problem has no right-hand side");
   RIGID_REQUIRE(problem.y0.size() > 0, "the initial state is empty");
@@ -369,6 +376,10 @@ Solution integrate(const Problem& problem, const Options& options) {
                 "dopri5 relative tolerance rtol = {} is below what double precision can deliver; "
                 "expected rtol ≥ {:.3g} (10 ε)",
                 options.rtol, kMinRelativeTolerance);
+  if (options.method == Method::kDopri5) {
+    if (options.rtol > kMaxTolerance) RIGID_THROW("{}", tolerance_above_bound("rtol", options.rtol));
+    if (options.atol > kMaxTolerance) RIGID_THROW("{}", tolerance_above_bound("atol", options.atol));
+  }
   if (auto bad = find_nonfinite(problem, problem.y0)) {
     RIGID_THROW("the initial state is not finite: {}{} = {}",
                 bad->owner.empty() ? "" : bad->owner + " ", bad->component, bad->value);

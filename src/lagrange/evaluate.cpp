@@ -312,6 +312,10 @@ Trajectory System::simulate(const SimulationOptions& o, const Eigen::VectorXd& q
                 "stabilization rate must be ≥ 0 and finite, got {} 1/s", o.stabilization);
   RIGID_REQUIRE(o.consistency_tolerance > 0, "consistency_tolerance must be positive, got {}",
                 o.consistency_tolerance);
+  // the one tolerance is dopri5's rtol and atol: refused by its own name, not as rtol
+  if (o.method == integrate::Method::kDopri5 && o.tolerance > integrate::kMaxTolerance) {
+    RIGID_THROW("{}", integrate::tolerance_above_bound("tolerance", o.tolerance));
+  }
   if (o.method == integrate::Method::kStormerVerlet) {
     RIGID_REQUIRE(s.verlet_ok, "stormer_verlet needs T = ½ q̇ᵀ M q̇ with a constant M, forces "
                   "that do not depend on q̇ and no constraints; use implicit_midpoint");

@@ -369,6 +369,10 @@ struct Model::Impl {
                                            "can deliver; expected at least {:.3g} (10 ε)",
                                            tolerance, integrate::kMinRelativeTolerance));
       }
+      if (tolerance > integrate::kMaxTolerance) {
+        detail::throw_error_at(s.tolerance->where,
+                               integrate::tolerance_above_bound("[simulation] tolerance", tolerance));
+      }
     }
     if (s.output_dt) output_dt = positive(*s.output_dt, "output_dt", "s");
     if (output_dt > t_end) {

@@ -188,6 +188,20 @@ TEST(Integrator, Dopri5RefusesToleranceBelowDoublePrecision) {
   EXPECT_NO_THROW((void)integrate(oscillator(1.0), Options{.method = Method::kRk4, .rtol = 1e-300}));
 }
 
+// rtol = 1e300 returned 5.8e20 for a unit oscillator (every step the stability allows was
+// accepted): tolerances above kMaxTolerance = 0.1 are refused, rtol and atol each by name.
+TEST(Integrator, Dopri5RefusesToleranceAboveTheBound) {
+  EXPECT_RIGID_ERROR((void)integrate(oscillator(1.0), Options{.rtol = 1e300}),
+                     "rtol = 1e+300 is above 0.1, the loosest tolerance an error control honours");
+  EXPECT_RIGID_ERROR((void)integrate(oscillator(1.0), Options{.atol = 0.2}), "expected atol ≤ 0.1");
+  // the bound itself is accepted; at 0.1 per step the 1 s run is still within 0.1 of the cosine
+  // (10% of the unit amplitude per step, over the few steps of a 1 s run)
+  const Solution s = integrate(oscillator(1.0), Options{.rtol = kMaxTolerance, .atol = kMaxTolerance});
+  EXPECT_NEAR(s.y.back()[0], std::cos(1.0), 0.1);
+  // fixed-step methods do not use them
+  EXPECT_NO_THROW((void)integrate(oscillator(1.0), Options{.method = Method::kRk4, .rtol = 1e300}));
+}
+
 // y' = −sign(y) chatters about y = 0 after t = 1; with a vanishing absolute tolerance no step
 // meets the error test there, and the accepted step falls to the round-off of t. That is an
 // error naming t, not a run that stands still (it used to sample the same t forever).

@@ -49,6 +49,17 @@ struct Problem {
 /// estimate is made of round-off, and no step size satisfies it (the step would shrink to
 /// nothing).
 inline constexpr double kMinRelativeTolerance = 10 * 2.220446049250313e-16;
+/// The largest relative or absolute tolerance dopri5 accepts: 0.1. A step is accepted when its
+/// error estimate is at most atol + rtol·|y|; at 0.1 that is an error of 10% of the state (or of
+/// 0.1 in its units, SI in a scene) in every step, the loosest request that still asks for one
+/// significant digit. Beyond it the error control controls nothing: every step the method's
+/// stability allows is accepted, and the result is not a solution (rtol = 1e300 gave 5.8e20 for
+/// a unit oscillator whose state stays at most 1).
+inline constexpr double kMaxTolerance = 0.1;
+
+/// The message that refuses a tolerance above kMaxTolerance, one wording for every entry point:
+/// `what` names the argument as its caller knows it ("rtol", "[simulation] tolerance").
+[[nodiscard]] std::string tolerance_above_bound(std::string_view what, double value);
 /// A dopri5 step shorter than this many ulps of the time (kStepFloor · ε · max(|t|, t_end − t0))
 /// ends the run with an error: the time no longer advances in double precision.
 inline constexpr double kStepFloor = 16;
@@ -61,8 +72,8 @@ inline constexpr double kStepFloor = 16;
 struct Options {
   Method method = Method::kDopri5;
   double dt = 1e-3;          ///< largest fixed step; initial step of dopri5
-  double rtol = 1e-10;       ///< dopri5 relative tolerance, ≥ kMinRelativeTolerance
-  double atol = 1e-10;       ///< dopri5 absolute tolerance, > 0
+  double rtol = 1e-10;       ///< dopri5 relative tolerance, kMinRelativeTolerance … kMaxTolerance
+  double atol = 1e-10;       ///< dopri5 absolute tolerance, > 0 and ≤ kMaxTolerance
   double output_dt = 0.0;    ///< spacing of output samples; 0: every step (and t_end)
   int max_newton = 30;       ///< implicit midpoint: Newton iterations per try (≥ 1)
   /// implicit midpoint: converged when the Newton correction h |δk|∞ is at most
@@ -84,7 +95,8 @@ struct Solution {
 
 /// Integrates `problem` with `options`. Every step is checked for a non-finite state.
 /// @throws rigid::Error for bad options (non-positive dt, t_end ≤ t0, a dopri5 rtol below
-///         kMinRelativeTolerance, max_newton < 1 or newton_tol ≤ 0 for the implicit midpoint, ...),
+///         kMinRelativeTolerance, a dopri5 rtol or atol above kMaxTolerance, max_newton < 1 or
+///         newton_tol ≤ 0 for the implicit midpoint, ...),
 ///         a dopri5 step that underflows (kStepFloor) or fails to be accepted, more than
 ///         control.max_outputs rows of dopri5 every-step output, a non-finite state (naming the
 ///         step, t and the component), an implicit-midpoint step whose Newton iteration does not

@@ -1,0 +1,63 @@
+"""Names and bounds at the edges: tolerances bounded above in every entry point, every error of
+a sweep a rigid.Error, reserved names and file names of any bytes shown where they come from,
+scene and sweep names that are identifiers."""
+import pathlib
+
+import pytest
+
+import rigid
+
+OSCILLATOR = """\
+[parameters]
+m = 1
+[[coordinates]]
+name = "x"
+initial = 1.0
+[[bodies]]
+name = "b"
+point_masses = [{mass = "m", position = [0, 0, 0]}]
+position = ["x", 0, 0]
+[[potentials]]
+expression = "0.5*x^2"
+[simulation]
+t_end = 1
+integrator = "dopri5"
+tolerance = TOLERANCE
+"""
+
+BOUND = "is above 0.1, the loosest tolerance an error control honours"
+
+
+def scene(tmp_path, text, name="s.toml"):
+    path = tmp_path / name
+    path.write_bytes(text.encode() if isinstance(text, str) else text)
+    return path
+
+
+def assert_refused(proc, *fragments):
+    assert proc.returncode == 1, (proc.returncode, proc.stdout, proc.stderr)
+    for f in fragments:
+        assert f in proc.stderr, proc.stderr
+    assert "(): " not in proc.stderr, proc.stderr  # no C++ function name
+
+
+# A scene's tolerance = 1e300 was accepted (dopri5 then accepts any step the stability allows:
+# 5.8e20 for a unit oscillator). Refused above 0.1 at the key, by check and run, in the file, by
+# --set and by Python, in the same words as rigid.integrate.solve's rtol and atol.
+def test_tolerances_are_bounded_above_everywhere(run, tmp_path):
+    path = scene(tmp_path, OSCILLATOR.replace("TOLERANCE", "1e300"))
+    for args in (["check"], ["run", "-o", tmp_path / "out"]):
+        assert_refused(run(*args, path),
+                       "s.toml:15:13: [simulation] tolerance = 1e+300 " + BOUND,
+                       "expected [simulation] tolerance ≤ 0.1")
+    assert not (tmp_path / "out").exists()
+    ok = scene(tmp_path, OSCILLATOR.replace("TOLERANCE", "0.1"), "ok.toml")
+    assert run("check", ok).returncode == 0  # the bound itself is accepted
+    assert_refused(run("check", ok, "--set", "simulation.tolerance=0.5"),
+                   "override 'simulation.tolerance=0.5'", "[simulation] tolerance = 0.5 " + BOUND)
+    with pytest.raises(rigid.Error, match=r"\[simulation\] tolerance = 0\.2 is above 0\.1"):
+        rigid.Scene(ok, ["simulation.tolerance=0.2"]).check()
+    with pytest.raises(rigid.Error, match="rtol = 1e\\+300 " + BOUND):
+        rigid.integrate.solve(lambda t, y: [y[1], -y[0]], [1.0, 0.0], 10.0, rtol=1e300)
+    with pytest.raises(rigid.Error, match="atol = 0.5 " + BOUND):
+        rigid.integrate.solve(lambda t, y: [y[1], -y[0]], [1.0, 0.0], 10.0, atol=0.5)
