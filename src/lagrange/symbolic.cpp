@@ -1,6 +1,7 @@
 #include "detail/symbolic.hpp"
 #include "detail/symbolic_lock.hpp"
 #include "rigid/lagrange/symbolic_core.hpp"
+#include "rigid/lagrange/names.hpp"
 
 #include "detail/canonical.hpp"
 
@@ -243,6 +244,8 @@ SymbolicLock::~SymbolicLock() {
 }  // namespace rigid::lagrange::detail
 
 namespace rigid::lagrange {
+
+bool is_reserved_name(const std::string& name) { return detail::reserved_names().count(name) > 0; }
 
 SymbolicCoreUsage symbolic_core_usage() {
   return {detail::g_symbolic_entries.load(std::memory_order_relaxed),

@@ -14,6 +14,7 @@
 #include "detail/parser.hpp"
 #include "detail/recursive.hpp"
 #include "detail/symbolic.hpp"
+#include "rigid/common/escape.hpp"
 #include "detail/symbolic_lock.hpp"
 #include "detail/system_impl.hpp"
 #include "detail/tape.hpp"
@@ -99,10 +100,11 @@ void declare_symbols(System::Impl& s, const SystemSpec& spec, Names& names) {
   std::map<std::string, std::string> owner;  // name → what declared it, for duplicates
   names["t"] = s.t;
   auto declare = [&](const std::string& name, const std::string& what, const ex& value) {
-    RIGID_REQUIRE(is_identifier(name), "{} name '{}' is not a valid name; expected letters, "
-                  "digits and '_', not starting with a digit", what, name);
-    RIGID_REQUIRE(!reserved_names().count(name), "{} name '{}' is reserved (t, pi and the "
-                  "function names)", what, name);
+    // named as System's checks (inside a lambda RIGID_REQUIRE would name "operator()")
+    RIGID_REQUIRE_AS("System", is_identifier(name), "{} name '{}' is not a valid name; expected "
+                     "letters, digits and '_', not starting with a digit", what, rigid::escaped(name));
+    RIGID_REQUIRE_AS("System", !reserved_names().count(name), "{} name '{}' is reserved (t, pi "
+                     "and the function names)", what, name);
     auto [it, fresh] = owner.emplace(name, what);
     RIGID_REQUIRE(fresh, "{} name '{}' is already used by a {}", what, name, it->second);
     names[name] = value;

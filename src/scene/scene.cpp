@@ -15,8 +15,10 @@
 #include <toml++/toml.h>
 
 #include "rigid/common/did_you_mean.hpp"
+#include "rigid/common/escape.hpp"
 #include "rigid/common/wording.hpp"
 #include "rigid/io/run_output.hpp"
+#include "rigid/lagrange/names.hpp"
 #include "rigid/lagrange/system.hpp"
 #include "rigid/mass/primitive_table.hpp"
 
@@ -119,7 +121,7 @@ class Parser {
     if (!ok) {
       fail(n, fmt::format("{} '{}' is not a valid name; expected letters, digits and '_', "
                           "starting with a letter",
-                          what, s));
+                          what, escaped(s)));
     }
     return s;
   }
@@ -666,8 +668,19 @@ class NameClaims {
  public:
   explicit NameClaims(const Parser& p) : p_(p) {}
 
-  // claims `name` for the `what` declared at `at`; refuses a name in use, and 't' (time)
+  // claims `name` for the `what` declared at `at`; refuses a name that is not an identifier
+  // (every scene kind: a quoted TOML key may hold ESC or BEL, echoed to the terminal), a name in
+  // use, 't' (time) and the other names expressions reserve (pi, the function names)
   void claim(const std::string& name, const toml::node& at, std::string_view what) {
+    const bool identifier =
+        !name.empty() && (std::isalpha(static_cast<unsigned char>(name[0])) || name[0] == '_') &&
+        std::all_of(name.begin(), name.end(),
+                    [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
+    if (!identifier) {
+      p_.fail(at, fmt::format("{} name '{}' is not a valid name; expected letters, digits and '_', "
+                              "starting with a letter",
+                              what, escaped(name)));
+    }
     const auto it = std::find(names_.begin(), names_.end(), name);
     if (it != names_.end()) {
       const std::string& origin = origins_[static_cast<std::size_t>(it - names_.begin())];
@@ -676,6 +689,12 @@ class NameClaims {
                               what, name, origin.empty() ? "" : " (" + origin + ")"));
     }
     if (name == "t") p_.fail(at, fmt::format("{} may not be called 't' (that is time)", what));
+    if (lagrange::is_reserved_name(name)) {
+      p_.fail(at, fmt::format("{} may not be called '{}': expressions reserve it (pi and the "
+                              "function names sin, cos, tan, asin, acos, atan, exp, log, sqrt, "
+                              "abs, sinh, cosh, tanh); rename the {}",
+                              what, name, what));
+    }
     names_.push_back(name);
     origins_.emplace_back();
   }

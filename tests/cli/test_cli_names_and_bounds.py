@@ -61,3 +61,49 @@ def test_tolerances_are_bounded_above_everywhere(run, tmp_path):
         rigid.integrate.solve(lambda t, y: [y[1], -y[0]], [1.0, 0.0], 10.0, rtol=1e300)
     with pytest.raises(rigid.Error, match="atol = 0.5 " + BOUND):
         rigid.integrate.solve(lambda t, y: [y[1], -y[0]], [1.0, 0.0], 10.0, atol=0.5)
+
+
+PENDULUM = OSCILLATOR.replace("tolerance = TOLERANCE\n", "")
+
+
+# `parameter name 'sin' is reserved` came from inside the equations' builder, named
+# "operator()()" and no place; the scene refuses it at the name's line, saying why.
+@pytest.mark.parametrize("what, old, new, where", [
+    ("parameter", "m = 1", "sin = 1", "s.toml:2:7: "),
+    ("coordinate", 'name = "x"', 'name = "cos"', "s.toml:4:8: "),
+])
+def test_reserved_names_are_refused_where_they_are_declared(run, tmp_path, what, old, new, where):
+    text = PENDULUM.replace(old, new).replace('"m"', '"sin"').replace("0.5*x^2", "0.5*cos^2" if what == "coordinate" else "0.5*x^2")
+    proc = run("check", scene(tmp_path, text))
+    name = new.split()[-1].strip('"') if what == "coordinate" else "sin"
+    assert_refused(proc, f"{where}{what} may not be called '{name}': expressions reserve it")
+    assert "operator()" not in proc.stderr
+
+
+FREE_BODY = """\
+[parameters]
+NAME = 1
+[[bodies]]
+name = "racket"
+free = true
+inertia = {mass = 0.35, ixx = 1, iyy = 2, izz = 3}
+angular_velocity = [0.01, 1, 0.01]
+[simulation]
+t_end = 1.0
+output_dt = 0.05
+"""
+
+
+# A free-body scene took any quoted parameter name: ESC and BEL were echoed to the terminal
+# by `rigid check`, a newline split runs.csv's header. Every scene kind's names are identifiers,
+# and a refused name is shown escaped (no control byte reaches the terminal).
+@pytest.mark.parametrize("key, shown", [('"a\\u001b[31mb"', "a\\x1b[31mb"), ('"r\\u0007"', "r\\x07"),
+                                        ('"p\\nq"', "p\\x0aq"), ('"2x"', "2x")])
+def test_free_body_scene_names_are_identifiers(run, tmp_path, key, shown):
+    proc = run("check", scene(tmp_path, FREE_BODY.replace("NAME", key)))
+    assert_refused(proc, f"s.toml:2:{len(key) + 4}: parameter name '{shown}' is not a valid name")
+    assert not any(ord(c) < 0x20 and c != "\n" for c in proc.stderr), repr(proc.stderr)
+    body = FREE_BODY.replace("NAME", "w").replace('name = "racket"', f"name = {key}")
+    proc = run("check", scene(tmp_path, body, "b.toml"))
+    assert_refused(proc, f"b.toml:4:8: body name '{shown}' is not a valid name")
+    assert not any(ord(c) < 0x20 and c != "\n" for c in proc.stderr), repr(proc.stderr)
