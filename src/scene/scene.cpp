@@ -1387,7 +1387,29 @@ void apply_overrides(Scene& scene, const std::vector<std::string>& assignments) 
     if (name.empty() || value.empty()) {
       throw Error(fmt::format("override '{}' is not of the form name=value (e.g. theta.initial=0.2, "
                               "simulation.t_end=20)",
-                              a));
+                              escaped(a)));
+    }
+    // names are identifiers, dotted (a control character in a --set or sweep axis name was
+    // echoed to the terminal, a newline split runs.csv's header): refused before any lookup
+    const bool dotted_identifier = [&] {
+      std::size_t start = 0;
+      while (true) {
+        const std::size_t dot = std::min(name.find('.', start), name.size());
+        const std::string_view part = std::string_view(name).substr(start, dot - start);
+        if (part.empty() || !(std::isalpha(static_cast<unsigned char>(part[0])) || part[0] == '_') ||
+            !std::all_of(part.begin(), part.end(),
+                         [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; })) {
+          return false;
+        }
+        if (dot == name.size()) return true;
+        start = dot + 1;
+      }
+    }();
+    if (!dotted_identifier) {
+      throw Error(fmt::format("override '{}': '{}' is not a valid name; expected a parameter, "
+                              "simulation.<key> or <coordinate or body>.<key>, of letters, digits, '_' "
+                              "and '.'",
+                              escaped(a), escaped(name)));
     }
     // a parameter by its plain name
     auto param = std::find_if(scene.parameters.begin(), scene.parameters.end(),

@@ -20,6 +20,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "rigid/common/escape.hpp"
 #include "rigid/common/did_you_mean.hpp"
 #include "rigid/common/error.hpp"
 #include "rigid/io/atomic_file.hpp"
@@ -55,7 +56,7 @@ std::pair<std::string, std::string_view> split_assignment(std::string_view text,
   const auto eq = text.find('=');
   const std::string_view name = eq == std::string_view::npos ? std::string_view{} : trim(text.substr(0, eq));
   if (eq == std::string_view::npos || name.empty() || name.find_first_of(" \t,") != std::string_view::npos) {
-    throw Error(fmt::format("'{}' is not an assignment; expected {}", text, expected));
+    throw Error(fmt::format("'{}' is not an assignment; expected {}", escaped(text), expected));
   }
   return {std::string(name), text.substr(eq + 1)};
 }

@@ -107,3 +107,21 @@ def test_free_body_scene_names_are_identifiers(run, tmp_path, key, shown):
     proc = run("check", scene(tmp_path, body, "b.toml"))
     assert_refused(proc, f"b.toml:4:8: body name '{shown}' is not a valid name")
     assert not any(ord(c) < 0x20 and c != "\n" for c in proc.stderr), repr(proc.stderr)
+
+
+# A sweep axis or --set name with a newline or ESC was echoed raw (and a newline in a swept
+# name split runs.csv's header): such names are refused before anything runs, shown escaped,
+# on the command line and in rigid.sweep alike.
+@pytest.mark.parametrize("args, shown", [
+    (["sweep", "--grid", "m\n=1:2:2"], "'m\\x0a' is not a valid name"),
+    (["sweep", "--grid", "m=1:2:2", "--set", "x.initial\x1b=0.5"], "'x.initial\\x1b' is not a valid name"),
+    (["run", "--set", "x.ini\x07tial=0.5"], "'x.ini\\x07tial' is not a valid name"),
+])
+def test_sweep_and_set_names_are_identifiers(run, tmp_path, args, shown):
+    path = scene(tmp_path, PENDULUM)
+    proc = run(*args[:1], path, *args[1:], "-o", tmp_path / "out")
+    assert_refused(proc, shown)
+    assert not any(ord(c) < 0x20 and c != "\n" for c in proc.stderr), repr(proc.stderr)
+    assert not (tmp_path / "out").exists()
+    with pytest.raises(rigid.Error, match="is not a valid name"):
+        rigid.sweep(path, grid=["m\n=1:2:2"])
