@@ -15,6 +15,7 @@
 
 #include "report/detail/assets.hpp"
 #include "rigid/common/error.hpp"
+#include "rigid/common/escape.hpp"
 #include "rigid/io/run_schema.hpp"
 #include "rigid/io/table.hpp"
 #include "rigid/mass/primitive_table.hpp"
@@ -255,8 +256,9 @@ std::string report_json(const scene::Model& model, const io::RunResult& result, 
 
   json j;
   j["rigid_report"] = 1;
-  const std::string name = sc.file.stem().string();
-  j["scene"] = {{"name", name}, {"file", s.scene.empty() ? sc.file.string() : s.scene},
+  // names of any bytes (0xff) escaped: the JSON writer needs UTF-8
+  const std::string name = escaped(sc.file.stem().string());
+  j["scene"] = {{"name", name}, {"file", s.scene.empty() ? escaped(sc.file.string()) : s.scene},
                 {"description", description_of(sc.file)}};
   j["kind"] = io::to_string(model.kind());
   json params = json::array();

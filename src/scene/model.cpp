@@ -20,6 +20,7 @@
 #include "rigid/body/free_body_integrators.hpp"
 #include "rigid/body/heavy_top.hpp"
 #include "rigid/body/rigid_body.hpp"
+#include "rigid/common/escape.hpp"
 #include "rigid/common/error.hpp"
 #include "rigid/common/wording.hpp"
 #include "rigid/integrate/integrator.hpp"
@@ -1014,7 +1015,9 @@ RunResult Model::run(const RunOptions& options) const {
   RunResult r = impl_->kind == SceneKind::kCoordinates ? impl_->run_coordinates(method, o)
                                                        : impl_->run_free(method, o);
   r.summary.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  r.summary.scene = impl_->scene.file.string();
+  // shown, never opened: a file name of any bytes (0xff) escaped, so that the JSON writer
+  // gets UTF-8 (it threw after the whole run, and nothing was written)
+  r.summary.scene = escaped(impl_->scene.file.string());
   r.summary.integrator = method.name;
   r.summary.t_end = impl_->t_end;
   r.summary.samples = r.trajectory.rows();

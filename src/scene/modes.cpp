@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "rigid/common/escape.hpp"
 #include "rigid/common/error.hpp"
 
 namespace rigid::scene {
@@ -57,7 +58,7 @@ lagrange::NormalModes normal_modes(const Model& model, const std::vector<std::st
 
 std::string modes_json(const lagrange::NormalModes& r, const std::string& scene_file) {
   Json j;
-  j["scene"] = scene_file;
+  j["scene"] = escaped(scene_file);  // any bytes (0xff) as \xNN: the JSON writer needs UTF-8
   j["coordinates"] = r.coordinate_names;
   j["ignorable"] = r.ignorable_names;
   Json q = Json::object(), qd = Json::object();

@@ -125,3 +125,24 @@ def test_sweep_and_set_names_are_identifiers(run, tmp_path, args, shown):
     assert not (tmp_path / "out").exists()
     with pytest.raises(rigid.Error, match="is not a valid name"):
         rigid.sweep(path, grid=["m\n=1:2:2"])
+
+
+# A scene file named with the byte 0xff ran to the end and then failed in the JSON writer
+# ("[json.exception.type_error.316] invalid UTF-8 byte"), writing nothing. The name is shown
+# escaped (\xff) in summary.json, and the run writes its files.
+def test_a_file_name_of_any_bytes_is_escaped_in_json(rigid_exe, tmp_path):
+    import json
+    import os
+    import subprocess
+    text = OSCILLATOR.replace("TOLERANCE", "1e-8")
+    raw = os.path.join(os.fsencode(tmp_path), b"\xff\x1b.toml")
+    with open(raw, "wb") as f:
+        f.write(text.encode())
+    out = tmp_path / "out"
+    proc = subprocess.run([os.fsencode(rigid_exe), b"run", raw, b"-o", os.fsencode(out)],
+                          capture_output=True, timeout=60)
+    assert proc.returncode == 0, proc.stderr
+    assert b"json.exception" not in proc.stderr
+    summary = json.loads((out / "summary.json").read_text(encoding="utf-8"))
+    assert summary["scene"].endswith("\\xff\\x1b.toml"), summary["scene"]
+    assert (out / "trajectory.csv").exists()
