@@ -29,7 +29,9 @@ bool proper(const rigid::io::RobotModel& m) {
     }
     if (l.mass != 0 && rigid::MassProperties::check(l.mass, l.com, l.inertia_com)) return false;
   }
-  return m.coordinate_names().size() == m.dof();
+  // qpos and qvel: a free joint has 7 and 6 entries, a ball 4 and 3, hinge and slide 1 and 1
+  return m.coordinate_names().size() == m.nq() && m.velocity_names().size() == m.nv() &&
+         m.nv() <= m.nq() && m.dof() == m.nv();
 }
 
 }  // namespace
