@@ -557,6 +557,30 @@ std::string header_comment(const System::Impl& s, const ExportOptions& options,
 // ----------------------------------------------------------------------------------------
 // C++
 
+// The file's binary powering: x^k (k ≥ 1) as the engine's tape computes it.
+constexpr const char* kCppPowInt =
+    "/// x^k (k ≥ 1) by binary powering, as the engine computes it.\n"
+    "inline double pow_int(double x, int k) {\n"
+    "  double v = 1.0;\n"
+    "  while (k > 0) {\n"
+    "    if (k & 1) v *= x;\n"
+    "    x *= x;\n"
+    "    k >>= 1;\n"
+    "  }\n"
+    "  return v;\n"
+    "}\n";
+
+// `struct Parameters { double <name> = <value>; ... };` with the model's names beside renamed
+// members.
+std::string cpp_parameters(const System::Impl& s, const std::vector<std::string>& params) {
+  std::string out = "struct Parameters {\n";
+  for (std::size_t k = 0; k < params.size(); ++k) {
+    out += fmt::format("  double {} = {};{}\n", params[k], literal(s.param_values[k], false),
+                       params[k] != s.param_names[k] ? fmt::format("  // {}", s.param_names[k]) : "");
+  }
+  return out + "};\n";
+}
+
 std::string cpp_function(const System::Impl& s, const FunctionSpec& fn,
                          const std::vector<std::string>& params) {
   const auto n = static_cast<std::size_t>(s.n);
@@ -939,10 +963,12 @@ std::vector<GiNaC::ex> flat_tau(const System::Impl& s) {
   for (std::size_t i = 0; i < n; ++i) {
     GiNaC::ex e = tree ? s.id_tau[i] - (s.f[i] - s.tree_bias[i]).expand() : -s.f[i];
     for (std::size_t j = 0; j < n; ++j) {
-      const GiNaC::ex Mij = tree ? (s.M[i * n + j] - s.tree_M[i * n + j]).expand() : s.M[i * n + j];
-      e += Mij * s.qdd[j];
+      const GiNaC::ex& Mij = s.M[i * n + j];
+      e += (tree ? (Mij - s.tree_M[i * n + j]).expand() : Mij) * s.qdd[j];
     }
-    tau[i] = e;
+    // expanded where there is no tree: a sum of products of sums compiled as it stands came out
+    // in an order that changed from run to run
+    tau[i] = tree ? e : e.expand();
   }
   return tau;
 }
@@ -1209,22 +1235,11 @@ std::string emit_cpp_flat(const System::Impl& s, const ExportOptions& options) {
   for (const auto& c : s.coord_names) names.push_back(quoted(c));
   out += fmt::format("inline constexpr const char* coordinate_names[] = {{{}}};\n",
                      fmt::join(names, ", "));
-  out += "\n/// The model's parameters (SI), defaults as in the model.\nstruct Parameters {\n";
-  for (std::size_t k = 0; k < params.size(); ++k) {
-    out += fmt::format("  double {} = {};{}\n", params[k], literal(s.param_values[k], false),
-                       params[k] != s.param_names[k] ? fmt::format("  // {}", s.param_names[k]) : "");
-  }
-  out += fmt::format("}};\n\nnamespace {} {{\n", helpers);
-  out += "/// x^k (k ≥ 1) by binary powering, as the engine computes it.\n"
-         "inline double pow_int(double x, int k) {\n"
-         "  double v = 1.0;\n"
-         "  while (k > 0) {\n"
-         "    if (k & 1) v *= x;\n"
-         "    x *= x;\n"
-         "    k >>= 1;\n"
-         "  }\n"
-         "  return v;\n"
-         "}\n\n";
+  out += "\n/// The model's parameters (SI), defaults as in the model.\n";
+  out += cpp_parameters(s, params);
+  out += fmt::format("\nnamespace {} {{\n", helpers);
+  out += kCppPowInt;
+  out += "\n";
   out += flat_factor_and_solve(coordinate_tree(s));
   out += fmt::format("}}  // namespace {}\n\n", helpers);
   out += flat_functions(s, params, helpers);
@@ -1262,23 +1277,10 @@ std::string emit_cpp(const System& system, const ExportOptions& options) {
   out += "\n/// The model's parameters (SI), defaults as in the model";
   out += params != s.param_names ? "; the renamed ones (see above) name the model's in a comment.\n"
                                  : ".\n";
-  out += "struct Parameters {\n";
-  for (std::size_t k = 0; k < params.size(); ++k) {
-    out += fmt::format("  double {} = {};{}\n", params[k], literal(s.param_values[k], false),
-                       params[k] != s.param_names[k] ? fmt::format("  // {}", s.param_names[k]) : "");
-  }
-  out += "};\n\nnamespace detail {\n"
-         "/// x^k (k ≥ 1) by binary powering, as the engine computes it.\n"
-         "inline double pow_int(double x, int k) {\n"
-         "  double v = 1.0;\n"
-         "  while (k > 0) {\n"
-         "    if (k & 1) v *= x;\n"
-         "    x *= x;\n"
-         "    k >>= 1;\n"
-         "  }\n"
-         "  return v;\n"
-         "}\n"
-         "}  // namespace detail\n";
+  out += cpp_parameters(s, params);
+  out += "\nnamespace detail {\n";
+  out += kCppPowInt;
+  out += "}  // namespace detail\n";
   for (const FunctionSpec& fn : kFunctions) {
     out += "\n";
     out += cpp_function(s, fn, params);
