@@ -106,6 +106,8 @@ void bind_robot_regressor(py::module_& m) {
           [](const TreeDynamics& t, const py::object& q, const py::object& q_dot,
              const py::object& q_ddot) {
             const char* f = "rigid.robot.Robot.regressor";
+            // the joints first: a ball or free joint is refused as such, not by q's size
+            (void)rigid::robot::standard_parameters(t.model());
             const auto n = static_cast<Eigen::Index>(t.dof());
             return rigid::robot::regressor(
                 t.model(), cv::vector(q, {f, "q"}, n, cv::Finite::kRequired, "dof"),

@@ -183,3 +183,8 @@ def test_python_refuses_a_ball_joint(tmp_path):
     robot = rigid.robot.Robot(str(model))
     with pytest.raises(rigid.Error, match="joint 'shoulder' of link 'upper' is a ball joint"):
         robot.base_parameters()
+    # regressor() names the joint too, before it reads q (4 entries here, 3 velocities)
+    with pytest.raises(rigid.Error, match="joint 'shoulder' of link 'upper' is a ball joint"):
+        robot.regressor([1, 0, 0, 0], [0, 0, 0], [0, 0, 0])
+    with pytest.raises(rigid.Error, match="joint 'shoulder' of link 'upper' is a ball joint"):
+        robot.standard_parameters()
