@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "rigid/common/error.hpp"
+#include "rigid/common/escape.hpp"
 #include "rigid/io/robot_model.hpp"
 #include "rigid/robot/regressor.hpp"
 #include "rigid/scene/robot_scene.hpp"
@@ -87,7 +88,7 @@ std::string json_document(const std::string& file, const io::RobotModel& model,
                           const robot::BaseParameters& b, const robot::BaseParameterOptions& o) {
   const robot::StandardParameters& s = b.standard;
   nlohmann::ordered_json doc;
-  doc["model"] = file;
+  doc["model"] = rigid::escaped(file);  // a file name of any bytes (\xff) as valid UTF-8
   doc["coordinates"] = model.coordinate_names();
   doc["standard_parameters"] = nlohmann::ordered_json::array();
   for (std::size_t i = 0; i < s.names.size(); ++i) {
@@ -122,7 +123,8 @@ std::string json_document(const std::string& file, const io::RobotModel& model,
   for (std::size_t d : b.dependent) doc["dependent"].push_back(s.names[d]);
   doc["unidentifiable"] = nlohmann::ordered_json::array();
   for (std::size_t u : b.unidentifiable) doc["unidentifiable"].push_back(s.names[u]);
-  return doc.dump(2) + "\n";
+  // names read from the file are not checked for UTF-8: an invalid byte is replaced (U+FFFD)
+  return doc.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n";
 }
 
 }  // namespace

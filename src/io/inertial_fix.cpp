@@ -23,6 +23,7 @@
 #include "detail/xml_numbers.hpp"
 #include "detail/xml_parse.hpp"
 #include "rigid/common/error.hpp"
+#include "rigid/common/escape.hpp"
 #include "rigid/common/wording.hpp"
 #include "rigid/mass/primitive_table.hpp"
 #include "rigid/mesh/mass_from_file.hpp"
@@ -837,14 +838,14 @@ std::string fix_table_text(const InertialFixResult& r) {
 
 std::string fix_table_json(const InertialFixResult& r) {
   nlohmann::json j;
-  j["file"] = r.source;
+  j["file"] = rigid::escaped(r.source);  // a file name of any bytes (\xff) as valid UTF-8
   j["format"] = to_string(r.format);
   j["ok"] = r.ok();
   j["links"] = nlohmann::json::array();
   for (const auto& l : r.links) {
     nlohmann::json e;
     e["name"] = l.name;
-    e["file"] = l.file;
+    e["file"] = rigid::escaped(l.file);
     e["line"] = l.line;
     e["reason"] = l.reason;
     e["detail"] = l.detail;
@@ -859,7 +860,8 @@ std::string fix_table_json(const InertialFixResult& r) {
   }
   j["warnings"] = r.warnings;
   j["errors"] = r.errors();
-  return j.dump(2) + "\n";
+  // names and text read from the file are not checked for UTF-8: an invalid byte is replaced
+  return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
 }  // namespace rigid::io

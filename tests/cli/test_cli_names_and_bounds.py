@@ -146,3 +146,26 @@ def test_a_file_name_of_any_bytes_is_escaped_in_json(rigid_exe, tmp_path):
     summary = json.loads((out / "summary.json").read_text(encoding="utf-8"))
     assert summary["scene"].endswith("\\xff\\x1b.toml"), summary["scene"]
     assert (out / "trajectory.csv").exists()
+
+
+# The same for the robot-model commands that write JSON: `eom --regressor --json` and
+# `inertia fix --format json` name the model file, escaped; a link name with an invalid UTF-8
+# byte (XML text is not checked) is replaced, never a json.exception.
+def test_robot_model_json_names_a_file_of_any_bytes(rigid_exe, tmp_path):
+    import json
+    import os
+    import subprocess
+    examples = pathlib.Path(__file__).resolve().parents[2] / "examples"
+    source = (examples / "cart_arm.urdf").read_bytes()
+    raw = os.path.join(os.fsencode(tmp_path), b"\xff\x1barm.urdf")
+    with open(raw, "wb") as f:
+        f.write(source.replace(b'"cart"', b'"cart\xfe"'))
+    exe = os.fsencode(rigid_exe)
+    for args in ([b"eom", raw, b"--regressor", b"--json"],
+                 [b"inertia", b"fix", raw, b"--format", b"json", b"-o",
+                  os.fsencode(tmp_path / "fixed.urdf")]):
+        proc = subprocess.run([exe, *args], capture_output=True, timeout=60)
+        assert proc.returncode == 0, proc.stderr
+        assert b"json.exception" not in proc.stderr
+        doc = json.loads(proc.stdout.decode("utf-8"))
+        assert doc.get("model", doc.get("file")).endswith("\\xff\\x1barm.urdf"), doc
