@@ -19,6 +19,8 @@
 #include "rigid/common/did_you_mean.hpp"
 #include "rigid/common/error.hpp"
 #include "detail/derivatives.hpp"
+#include "detail/recursive.hpp"
+#include "detail/symbolic.hpp"
 #include "detail/symbolic_lock.hpp"
 #include "detail/system_impl.hpp"
 #include "detail/tape.hpp"
@@ -956,12 +958,12 @@ Syntax flat_syntax(std::size_t n, const std::vector<std::string>& params,
 
 // τ = M q̈ − f in the symbols q̈: for a tree, its inverse dynamics in body coordinates plus
 // what the rest of the system (a given Lagrangian, potentials, generalized forces) adds.
-std::vector<GiNaC::ex> flat_tau(const System::Impl& s) {
+std::vector<GiNaC::ex> flat_tau(const System::Impl& s, const detail::TreeInverseDynamics& id) {
   const auto n = static_cast<std::size_t>(s.n);
-  const bool tree = !s.id_tau.empty();
+  const bool tree = !id.tau.empty();
   std::vector<GiNaC::ex> tau(n);
   for (std::size_t i = 0; i < n; ++i) {
-    GiNaC::ex e = tree ? s.id_tau[i] - (s.f[i] - s.tree_bias[i]).expand() : -s.f[i];
+    GiNaC::ex e = tree ? id.tau[i] - (s.f[i] - s.tree_bias[i]).expand() : -s.f[i];
     for (std::size_t j = 0; j < n; ++j) {
       const GiNaC::ex& Mij = s.M[i * n + j];
       e += (tree ? (Mij - s.tree_M[i * n + j]).expand() : Mij) * s.qdd[j];
@@ -977,24 +979,24 @@ std::vector<GiNaC::ex> flat_tau(const System::Impl& s) {
 // the world-coordinate f beside M): the inverse dynamics' intermediates at q̈ = 0, as fresh
 // symbols (a tape may hold both), those that become a number or a symbol substituted into
 // the later ones; `definitions` receives them.
-std::vector<GiNaC::ex> flat_bias(const System::Impl& s,
+std::vector<GiNaC::ex> flat_bias(const System::Impl& s, const detail::TreeInverseDynamics& id,
                                  std::vector<std::pair<GiNaC::symbol, GiNaC::ex>>& definitions) {
-  if (s.id_tau.empty()) return s.f;
+  if (id.tau.empty()) return s.f;
   GiNaC::exmap at_rest;
   for (const GiNaC::symbol& a : s.qdd) at_rest[a] = 0;
-  for (std::size_t k = 0; k < s.id_aux.size(); ++k) {
-    const GiNaC::ex value = s.id_aux_def[k].subs(at_rest).expand();
+  for (std::size_t k = 0; k < id.aux.size(); ++k) {
+    const GiNaC::ex value = id.defs[k].subs(at_rest).expand();
     if (GiNaC::is_a<GiNaC::numeric>(value) || GiNaC::is_a<GiNaC::symbol>(value)) {
-      at_rest[s.id_aux[k]] = value;
+      at_rest[id.aux[k]] = value;
       continue;
     }
-    const GiNaC::symbol fresh(s.id_aux[k].get_name() + "_rest");
+    const GiNaC::symbol fresh(id.aux[k].get_name() + "_rest");
     definitions.emplace_back(fresh, value);
-    at_rest[s.id_aux[k]] = fresh;
+    at_rest[id.aux[k]] = fresh;
   }
   std::vector<GiNaC::ex> f(s.f.size());
   for (std::size_t i = 0; i < f.size(); ++i) {
-    f[i] = (-s.id_tau[i].subs(at_rest) + (s.f[i] - s.tree_bias[i])).expand();
+    f[i] = (-id.tau[i].subs(at_rest) + (s.f[i] - s.tree_bias[i])).expand();
   }
   return f;
 }
@@ -1002,16 +1004,31 @@ std::vector<GiNaC::ex> flat_bias(const System::Impl& s,
 // The definitions the flat tapes add after the system's intermediates: the body-coordinate
 // inverse dynamics', then `more`.
 std::vector<std::pair<GiNaC::symbol, GiNaC::ex>> flat_definitions(
-    const System::Impl& s, const std::vector<std::pair<GiNaC::symbol, GiNaC::ex>>& more) {
+    const detail::TreeInverseDynamics& id,
+    const std::vector<std::pair<GiNaC::symbol, GiNaC::ex>>& more) {
   std::vector<std::pair<GiNaC::symbol, GiNaC::ex>> out;
-  for (std::size_t k = 0; k < s.id_aux.size(); ++k) out.emplace_back(s.id_aux[k], s.id_aux_def[k]);
+  for (std::size_t k = 0; k < id.aux.size(); ++k) out.emplace_back(id.aux[k], id.defs[k]);
   out.insert(out.end(), more.begin(), more.end());
   return out;
+}
+
+// A tree's inverse dynamics in body coordinates (recursive.cpp), derived here, when the flat
+// layout is asked for, rather than with every System; empty for an expanded derivation.
+detail::TreeInverseDynamics body_coordinate_inverse_dynamics(const System::Impl& s) {
+  if (s.tree_bodies.empty()) return {};
+  // names the intermediates do not take (they are compiled, never printed: for legibility)
+  std::set<std::string> taken(detail::reserved_names());
+  for (const std::vector<std::string>* names : {&s.coord_names, &s.param_names}) {
+    taken.insert(names->begin(), names->end());
+  }
+  for (const GiNaC::symbol& a : s.aux) taken.insert(a.get_name());
+  return detail::tree_inverse_dynamics(s, s.tree_bodies, s.tree_gravity, taken);
 }
 
 std::string flat_functions(const System::Impl& s, const std::vector<std::string>& params,
                            const std::string& helpers) {
   const auto n = static_cast<std::size_t>(s.n);
+  const detail::TreeInverseDynamics id = body_coordinate_inverse_dynamics(s);
   const std::vector<int> lambda = coordinate_tree(s);
   const std::string pow_int = helpers + "::pow_int";
   const std::vector<bool> none(3 * n + 1 + params.size(), false);
@@ -1035,10 +1052,10 @@ std::string flat_functions(const System::Impl& s, const std::vector<std::string>
     out += symmetric_assignments(printer, k, "M", n);
     out += "}\n\n";
   }
-  const std::vector<GiNaC::ex> tau = flat_tau(s);
+  const std::vector<GiNaC::ex> tau = flat_tau(s, id);
   // inverse_dynamics
   {
-    const Tape tape = flat_tape(s, tau, flat_definitions(s, {}));
+    const Tape tape = flat_tape(s, tau, flat_definitions(id, {}));
     const TapePrinter printer(tape, flat_syntax(n, params, "q_ddot", pow_int));
     out += "/// τ = M(q) q̈ − f(q, q̇) (inverse dynamics): the joint forces that give the "
            "accelerations q̈.\n"
@@ -1066,11 +1083,11 @@ std::string flat_functions(const System::Impl& s, const std::vector<std::string>
   std::vector<GiNaC::ex> mass_and_forces;
   for (const auto& [r, c] : pairs) mass_and_forces.push_back(s.M[c * n + r]);
   std::vector<std::pair<GiNaC::symbol, GiNaC::ex>> bias_definitions;
-  const std::vector<GiNaC::ex> bias = flat_bias(s, bias_definitions);
+  const std::vector<GiNaC::ex> bias = flat_bias(s, id, bias_definitions);
   mass_and_forces.insert(mass_and_forces.end(), bias.begin(), bias.end());
   // forward_dynamics
   {
-    const Tape tape = flat_tape(s, mass_and_forces, flat_definitions(s, bias_definitions));
+    const Tape tape = flat_tape(s, mass_and_forces, flat_definitions(id, bias_definitions));
     const TapePrinter printer(tape, flat_syntax(n, params, "q_ddot", pow_int));
     out += "/// q̈ = M(q)⁻¹ (f(q, q̇) + τ) (forward dynamics), M factored along the tree (factor()).\n"
            "/// Where M is not positive definite (a pivot ≤ 0: parameters no body can have) "
@@ -1086,11 +1103,11 @@ std::string flat_functions(const System::Impl& s, const std::vector<std::string>
   std::vector<GiNaC::symbol> vars(s.q.begin(), s.q.end());
   vars.insert(vars.end(), s.qd.begin(), s.qd.end());
   std::vector<GiNaC::symbol> aux = s.aux;
-  aux.insert(aux.end(), s.id_aux.begin(), s.id_aux.end());
+  aux.insert(aux.end(), id.aux.begin(), id.aux.end());
   std::vector<GiNaC::ex> defs = s.aux_def;
-  defs.insert(defs.end(), s.id_aux_def.begin(), s.id_aux_def.end());
+  defs.insert(defs.end(), id.defs.begin(), id.defs.end());
   const detail::ForwardDerivatives D = detail::forward_derivatives(aux, defs, tau, vars);
-  const auto definitions = flat_definitions(s, D.definitions);
+  const auto definitions = flat_definitions(id, D.definitions);
   auto with_bias = D.definitions;
   with_bias.insert(with_bias.end(), bias_definitions.begin(), bias_definitions.end());
   auto dtau = [&](std::size_t i, std::size_t j) -> const GiNaC::ex& { return D.d[i * 2 * n + j]; };
@@ -1129,7 +1146,7 @@ std::string flat_functions(const System::Impl& s, const std::vector<std::string>
   {
     std::vector<GiNaC::ex> outputs = mass_and_forces;
     outputs.insert(outputs.end(), derivatives.begin(), derivatives.end());
-    const Tape tape = flat_tape(s, outputs, flat_definitions(s, with_bias));
+    const Tape tape = flat_tape(s, outputs, flat_definitions(id, with_bias));
     const TapePrinter printer(tape, flat_syntax(n, params, "qdd", pow_int));
     std::vector<bool> deferred(none);
     for (std::size_t i = 0; i < n; ++i) deferred[2 * n + i] = true;

@@ -594,11 +594,8 @@ BodyTerms derive_recursive(System::Impl& s, const SystemSpec& spec, const Expres
   std::set<std::string> taken(reserved_names());
   for (const auto& [name, _] : names) taken.insert(name);
   const detail::TreeEquations tree = detail::tree_equations(s, bodies, gravity, taken);
-  for (const auto& a : s.aux) taken.insert(a.get_name());
-  detail::TreeInverseDynamics id = detail::tree_inverse_dynamics(s, bodies, gravity, taken);
-  s.id_aux = std::move(id.aux);
-  s.id_aux_def = std::move(id.defs);
-  s.id_tau = std::move(id.tau);
+  s.tree_bodies = bodies;
+  s.tree_gravity = gravity;
   s.tree_M = tree.M;
   s.tree_bias.resize(n);
   for (std::size_t i = 0; i < n; ++i) s.tree_bias[i] = (tree.inertial[i] + tree.gravity[i]).expand();

@@ -18,30 +18,9 @@
 
 #include "symbolic.hpp"
 #include "system_impl.hpp"
+#include "tree_body.hpp"
 
 namespace rigid::lagrange::detail {
-
-/// A joint of a tree body: a turn about, or a slide along, the unit `axis` (in the frame the
-/// joint starts from) through `anchor`, by the coordinate number `coordinate`.
-struct TreeJoint {
-  bool turn = true;
-  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
-  Eigen::Vector3d anchor = Eigen::Vector3d::Zero();
-  std::size_t coordinate = 0;
-};
-
-/// A body of the tree: X_PB = Trans(position) · orientation · J₁ ⋯ J_m (as lagrange::Body),
-/// its parent an earlier body (or −1, the world); mass, COM and inertia about the COM in B.
-struct TreeBody {
-  std::string name;
-  int parent = -1;
-  Vec3 position;
-  Mat3 orientation;
-  std::vector<TreeJoint> joints;
-  GiNaC::ex mass;
-  Vec3 com;
-  Mat3 inertia;
-};
 
 /// What the recursions give, in terms of the intermediates they appended to s.aux/aux_def.
 struct TreeEquations {

@@ -12,6 +12,7 @@
 #include <ginac/ginac.h>
 
 #include "tape.hpp"
+#include "tree_body.hpp"
 #include "rigid/lagrange/system.hpp"
 
 namespace rigid::lagrange {
@@ -34,11 +35,12 @@ struct System::Impl {
   std::vector<GiNaC::symbol> aux;
   std::vector<GiNaC::ex> aux_def;
   std::vector<GiNaC::ex> f_potential;
-  // the same tree's inverse dynamics in body coordinates (recursive.cpp, for the flat export):
-  // τ_tree = id_tau with the intermediates id_aux (defined by id_aux_def after aux), and the
-  // tree's own M and bias forces, so that τ = id_tau + (M − tree_M) q̈ − (f − tree_bias)
-  std::vector<GiNaC::symbol> id_aux;
-  std::vector<GiNaC::ex> id_aux_def, id_tau, tree_M, tree_bias;
+  // the tree itself (empty for an expanded derivation), its gravity, and its own M and bias
+  // forces: the flat export derives the tree's inverse dynamics in body coordinates from them
+  // when asked (recursive.cpp), τ = τ_tree + (M − tree_M) q̈ − (f − tree_bias)
+  std::vector<detail::TreeBody> tree_bodies;
+  detail::Vec3 tree_gravity{0, 0, 0};
+  std::vector<GiNaC::ex> tree_M, tree_bias;
   // per coordinate: "m" when it is the amount of a slide joint, "rad" of a turn, else empty
   // (the printed equations' units; set from the joints as written)
   std::vector<std::string> joint_unit;
