@@ -17,6 +17,8 @@ configure: deps
 build: configure
 	cmake --build --preset $(PRESET)
 
+# The C++ suite is built and run once, under ASan + UBSan (test-asan); the optimised `ci` build
+# is what pytest (Python and the CLI), the browser tests and ctest's install test run.
 test: build test-asan test-tsan test-browser
 	ctest --preset $(PRESET)
 	RIGID_PYTHON_DIR=$(CURDIR)/$(BUILD)/python RIGID_EXE=$(CURDIR)/$(BUILD)/bin/rigid \
