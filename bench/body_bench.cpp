@@ -22,6 +22,7 @@
 #include <mujoco/mujoco.h>
 #include <ode/ode.h>
 
+#include "body/detail/free_body_batch_paths.hpp"
 #include "rigid/body.hpp"
 
 namespace {
@@ -418,6 +419,23 @@ void BM_BatchRigidKernel(benchmark::State& st, FreeBodyMethod m) {
   st.SetItemsProcessed(st.iterations() * st.range(0));
 }
 
+// the batch kernel on one named code path (body/detail/free_body_batch_paths.hpp): body by
+// body, four bodies in SSE2 vectors, four bodies in AVX2 vectors; the same bits on each
+void BM_BatchRigidPath(benchmark::State& st, FreeBodyMethod m, rigid::body::detail::BatchPath path) {
+  if (!rigid::body::detail::batch_path_available(path)) {
+    st.SkipWithError("this CPU lacks AVX2");
+    return;
+  }
+  const Batch batch(st.range(0));
+  std::vector<FreeBodyState> s(batch.I.size());
+  for (std::size_t i = 0; i < s.size(); ++i) s[i].w_B = batch.w0[i];
+  for (auto _ : st) {
+    rigid::body::detail::step_free_bodies_on(path, m, batch.I, s, 0.01);
+    benchmark::ClobberMemory();
+  }
+  st.SetItemsProcessed(st.iterations() * st.range(0));
+}
+
 void BM_BatchMuJoCo(benchmark::State& st, int integrator) {
   const Batch batch(st.range(0));
   try {
@@ -462,5 +480,10 @@ BENCHMARK_CAPTURE(BM_BatchRigid, midpoint, FreeBodyMethod::kLiePoissonMidpoint)-
 BENCHMARK_CAPTURE(BM_BatchRigidKernel, splitting2, FreeBodyMethod::kSplitting2)->Arg(100'000)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_BatchRigidKernel, splitting4, FreeBodyMethod::kSplitting4)->Arg(100'000)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_BatchRigidKernel, splitting6, FreeBodyMethod::kSplitting6)->Arg(100'000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_BatchRigidPath, splitting2_scalar, FreeBodyMethod::kSplitting2, rigid::body::detail::BatchPath::kScalar)->Arg(100'000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_BatchRigidPath, splitting2_sse2, FreeBodyMethod::kSplitting2, rigid::body::detail::BatchPath::kLanes)->Arg(100'000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_BatchRigidPath, splitting2_avx2, FreeBodyMethod::kSplitting2, rigid::body::detail::BatchPath::kLanesAvx2)->Arg(100'000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_BatchRigidPath, splitting4_scalar, FreeBodyMethod::kSplitting4, rigid::body::detail::BatchPath::kScalar)->Arg(100'000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_BatchRigidPath, splitting4_avx2, FreeBodyMethod::kSplitting4, rigid::body::detail::BatchPath::kLanesAvx2)->Arg(100'000)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_BatchMuJoCo, euler, static_cast<int>(mjINT_EULER))->Arg(1000)->Arg(10'000)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_BatchMuJoCo, rk4, static_cast<int>(mjINT_RK4))->Arg(1000)->Arg(10'000)->Unit(benchmark::kMillisecond);

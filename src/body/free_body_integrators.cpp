@@ -1,18 +1,25 @@
 #include "rigid/body/free_body_integrators.hpp"
 
 #include <array>
+#include <string>
+#include <vector>
 #include <cmath>
 #include <limits>
 #include <utility>
 
 #include "rigid/body/euler.hpp"
+#include "rigid/common/did_you_mean.hpp"
 #include "rigid/common/error.hpp"
 #include "rigid/common/format.hpp"
 #include "rigid/mass/mass_properties.hpp"
 
+#include "detail/splitting.hpp"
+
 namespace rigid::body {
 
 namespace {
+
+using detail::AxisFlow;
 
 constexpr std::array<std::pair<std::string_view, FreeBodyMethod>, 7> kMethods{{
     {"rk4", FreeBodyMethod::kRk4},
@@ -56,45 +63,16 @@ SO3d step_rotation(const Eigen::Vector3d& theta) {
   return SO3d::exp(theta);
 }
 
-// sin x and cos x − 1 for |x| ≤ 0.5 by their Maclaurin series [DLMF, eqs. 4.19.1, 4.19.2]:
-//   sin x     = x − x³/3! + … + x¹³/13!   (first dropped term x¹⁵/15! ≤ 2.3e-17 < ε/4 · sin x)
-//   cos x − 1 = −x²/2! + … − x¹⁴/14!      (first dropped term x¹⁶/16! ≤ 7e-19)
-// Horner in x² rounds to about one ulp. cos x − 1 is returned rather than cos x: a cosine
-// rounded next to 1 carries an absolute error up to ε/2 that is the same in every step of
-// a steady motion (the same angle each step), so rotations built from it would change |L|
-// systematically, step after step; the small difference keeps its relative precision.
-// Larger |x| (a sub-flow turning by more than one radian) falls back to std::sin/std::cos.
-// ≈ 16 flops.
+// sin x and cos x − 1 (detail::small_sincos_series for |x| ≤ 0.5). Larger |x| (a sub-flow
+// turning by more than one radian) falls back to std::sin/std::cos.
 inline void small_sincos(double x, double& s, double& cm1) {
-  if (std::abs(x) > 0.5) {
+  if (std::abs(x) > detail::kSeriesBound) {
     s = std::sin(x);
     cm1 = std::cos(x) - 1.0;  // ≤ −0.12 here: no precision lost
     return;
   }
-  const double x2 = x * x;
-  double ps = 1.0 / 6227020800.0;  // 1/13!
-  ps = ps * x2 - 1.0 / 39916800.0;
-  ps = ps * x2 + 1.0 / 362880.0;
-  ps = ps * x2 - 1.0 / 5040.0;
-  ps = ps * x2 + 1.0 / 120.0;
-  ps = ps * x2 - 1.0 / 6.0;
-  s = x + x * (x2 * ps);
-  double pc = -1.0 / 87178291200.0;  // −1/14!
-  pc = pc * x2 + 1.0 / 479001600.0;
-  pc = pc * x2 - 1.0 / 3628800.0;
-  pc = pc * x2 + 1.0 / 40320.0;
-  pc = pc * x2 - 1.0 / 720.0;
-  pc = pc * x2 + 1.0 / 24.0;
-  pc = pc * x2 - 0.5;
-  cm1 = x2 * pc;
+  detail::small_sincos_series(x, s, cm1);
 }
-
-// One sub-flow of the body-axis splitting: rotation about body axis `axis` for the fraction
-// `c` of the step.
-struct AxisFlow {
-  int axis;
-  double c;
-};
 
 // The Strang step R1(h/2) R2(h/2) R3(h) R2(h/2) R1(h/2) [McLachlan1993] composed by Yoshida's
 // triple jump γ1 = 1/(2 − 2^{1/(p+1)}), γ0 = 1 − 2γ1 [Yoshida1990] `levels` times, as a list
@@ -121,12 +99,6 @@ std::vector<AxisFlow> composition(int levels) {
   return merged;
 }
 
-const std::vector<AxisFlow>& flows_of(FreeBodyMethod method) {
-  static const std::vector<AxisFlow> k2 = composition(0), k4 = composition(1), k6 = composition(2);
-  if (method == FreeBodyMethod::kSplitting4) return k4;
-  if (method == FreeBodyMethod::kSplitting6) return k6;
-  return k2;
-}
 
 // Exact flow of H_i = L_i²/(2 I_i) through the half angle θ/2 = `half`: ω_i = L_i/I_i is
 // constant, L_B turns by −θ about e_i and the body by +θ. One sin/cos pair of θ/2 gives
@@ -310,12 +282,25 @@ FreeBodyState step_moser_veselov(const Eigen::Vector3d& I_B, const FreeBodyState
 
 }  // namespace
 
+namespace detail {
+
+const std::vector<AxisFlow>& splitting_flows(FreeBodyMethod method) {
+  static const std::vector<AxisFlow> k2 = composition(0), k4 = composition(1), k6 = composition(2);
+  if (method == FreeBodyMethod::kSplitting4) return k4;
+  if (method == FreeBodyMethod::kSplitting6) return k6;
+  return k2;
+}
+
+}  // namespace detail
+
 FreeBodyMethod free_body_method_from_name(std::string_view name) {
   for (const auto& [n, m] : kMethods)
     if (n == name) return m;
+  std::vector<std::string> names;
+  for (const auto& [n, m] : kMethods) names.emplace_back(n);
   RIGID_THROW("unknown free-body method '{}'; expected one of rk4, splitting2, splitting4, "
-              "splitting6, midpoint, rkmk4, moser_veselov",
-              name);
+              "splitting6, midpoint, rkmk4, moser_veselov{}",
+              name, did_you_mean_hint(name, names));
 }
 
 std::string_view name_of(FreeBodyMethod method) {
@@ -355,7 +340,7 @@ FreeBodyState step_free_body(FreeBodyMethod method, const Eigen::Vector3d& I_B,
     default:
       break;
   }
-  return step_splitting(flows_of(method), I_B, state, h);
+  return step_splitting(detail::splitting_flows(method), I_B, state, h);
 }
 
 std::optional<integrate::NonFinite> find_nonfinite(const FreeBodyState& s, std::string_view owner) {

@@ -1,10 +1,12 @@
 #pragma once
 
 /// Many free rigid bodies stepped together by the methods of `free_body_integrators.hpp`.
-/// The splittings run the same kernel as `step_free_body` (merged same-axis sub-flows, one
-/// half-angle sin/cos pair per sub-flow, see there), so the results are bitwise equal to
-/// calling `step_free_body` for each body; this entry point only saves the caller the loop
-/// and checks the spans once.
+/// The splittings run four bodies at a time: each block of four is held in vectors of four
+/// doubles (one AVX2 register on CPUs that have it, chosen at run time; two SSE2 registers
+/// otherwise) and taken through the kernel of `step_free_body` (merged same-axis sub-flows, one
+/// half-angle sin/cos pair per sub-flow) with the same operations in the same order, so the
+/// results are bitwise equal to calling `step_free_body` for each body, on either kind of CPU.
+/// The other methods step body by body.
 
 #include <span>
 
