@@ -203,6 +203,17 @@ def test_toml_block_is_a_scene(scratch, block):
     RAN["toml"] += 1
 
 
+@pytest.mark.parametrize("block", [b for b in BLOCKS if b.language == "toml"],
+                         ids=ids([b for b in BLOCKS if b.language == "toml"]))
+def test_every_toml_block_parses(block):
+    """Fragments too: an excerpt of a scene is still TOML."""
+    import tomllib
+    try:
+        tomllib.loads(block.text)
+    except tomllib.TOMLDecodeError as e:
+        pytest.fail(f"{block.where}: not TOML: {e}")
+
+
 def test_cpp_blocks_are_built_or_marked():
     """The cpp blocks that build and run are test_docs_robots.py's (docs/robots.md); every other
     cpp block is a marked fragment (a declaration list or statements without main())."""
