@@ -83,10 +83,13 @@ constexpr int kLanes = 4;
 // sin and cos − 1 of each lane of x, as small_sincos in free_body_integrators.cpp.
 [[gnu::always_inline]] inline void lanes_sincos(const Lanes& x, Lanes& s, Lanes& cm1) {
   detail::small_sincos_series(x, s, cm1);
-  for (int l = 0; l < kLanes; ++l) {
-    if (std::abs(x[l]) > detail::kSeriesBound) [[unlikely]] {
-      s[l] = std::sin(x[l]);
-      cm1[l] = std::cos(x[l]) - 1.0;
+  const auto beyond = (x > detail::kSeriesBound) | (x < -detail::kSeriesBound);  // |x| > bound
+  if ((beyond[0] | beyond[1] | beyond[2] | beyond[3]) != 0) [[unlikely]] {
+    for (int l = 0; l < kLanes; ++l) {
+      if (beyond[l] != 0) {
+        s[l] = std::sin(x[l]);
+        cm1[l] = std::cos(x[l]) - 1.0;
+      }
     }
   }
 }
@@ -111,6 +114,11 @@ template <int i>
   q[1 + k] = qk + (cm * qk - sh * qj);
 }
 
+// GCC 12 warns that the vectors I[m] built from four scalars below "may be used uninitialized"
+// when this is inlined into the AVX2 function (a false positive of its vector lowering: every
+// vector is assigned whole before use).
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 // Steps the `count` ≤ kLanes bodies from `states` (their input checked) and writes each one's
 // result. A body whose result is not finite (a diverged step) is stepped again by
 // step_free_body, so that it holds that path's bits for the caller's refusal.
@@ -118,15 +126,21 @@ template <int i>
                                               const std::vector<detail::AxisFlow>& flows,
                                               const Eigen::Vector3d* I_B, FreeBodyState* states,
                                               int count, double h) {
-  Lanes I[3] = {}, q[4] = {}, w[3] = {};
+  // the lanes past the last body hold a body at rest; each vector is built from four scalars
+  // (writing lanes one by one into a vector in memory and reading it whole stalls the load)
+  Eigen::Vector4d qs[kLanes];
+  Eigen::Vector3d Is[kLanes], ws[kLanes];
   for (int l = 0; l < kLanes; ++l) {
-    const bool body = l < count;  // the lanes past the last body hold a body at rest
-    const Eigen::Vector4d ql = body ? states[l].R_WB.quaternion() : Eigen::Vector4d(1, 0, 0, 0);
-    for (int m = 0; m < 4; ++m) q[m][l] = ql(m);
-    for (int m = 0; m < 3; ++m) {
-      I[m][l] = body ? I_B[l](m) : 1.0;
-      w[m][l] = body ? states[l].w_B(m) : 0.0;
-    }
+    const bool body = l < count;
+    qs[l] = body ? states[l].R_WB.quaternion() : Eigen::Vector4d(1, 0, 0, 0);
+    Is[l] = body ? I_B[l] : Eigen::Vector3d(1, 1, 1);
+    ws[l] = body ? states[l].w_B : Eigen::Vector3d::Zero();
+  }
+  Lanes I[3], q[4], w[3];
+  for (int m = 0; m < 4; ++m) q[m] = Lanes{qs[0](m), qs[1](m), qs[2](m), qs[3](m)};
+  for (int m = 0; m < 3; ++m) {
+    I[m] = Lanes{Is[0](m), Is[1](m), Is[2](m), Is[3](m)};
+    w[m] = Lanes{ws[0](m), ws[1](m), ws[2](m), ws[3](m)};
   }
   // as step_splitting: θ/2 = c_half · a_i · L_i with a_i = h / I_i, L = I ω
   Lanes a[3], L[3];
@@ -159,6 +173,8 @@ template <int i>
     }
   }
 }
+
+#pragma GCC diagnostic pop
 
 // The four-body path over the whole batch: blocks of kLanes bodies whose input passes the
 // checks go through step_block; a block holding a body the checks refuse goes body by body
