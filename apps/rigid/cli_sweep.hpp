@@ -42,7 +42,9 @@ inline void add_sweep_command(CLI::App& app) {
                   "run only the runs i = I (mod N) into the directory, for a job array; join the shards with "
                   "rigid sweep merge")
       ->type_name("I/N");
-  cmd->add_flag("-q,--quiet", opts->quiet, "print nothing on success (no summary, no progress bar)");
+  cmd->add_flag("-q,--quiet", opts->quiet,
+                "print nothing on success (no summary, no progress bar); a sweep whose every run failed "
+                "is still an error (stderr, exit status 1)");
   add_model_options(cmd, opts->model);
 
   auto merge = std::make_shared<rigid::cli::SweepMergeOptions>();

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <set>
 #include <thread>
@@ -25,6 +26,7 @@
 #include "scene_output.hpp"
 #include "rigid/common/error.hpp"
 #include "rigid/common/wording.hpp"
+#include "rigid/scene/model.hpp"
 #include "rigid/scene/scene.hpp"
 #include "rigid/scene/sweep.hpp"
 
@@ -222,6 +224,43 @@ std::string paths_text(const std::vector<fs::path>& paths) {
   return fmt::format("{}", fmt::join(names, ", "));
 }
 
+// The failed runs by message, one line per message (the most frequent first), as the summary
+// prints them: "  N run(s): MESSAGE (runs i, j, …)".
+constexpr std::size_t kFailureGroupsPrinted = 5;
+std::string failures_text(const std::vector<scene::FailureGroup>& groups) {
+  std::string text;
+  std::size_t left_runs = 0;
+  for (std::size_t k = 0; k < groups.size(); ++k) {
+    const scene::FailureGroup& g = groups[k];
+    if (k >= kFailureGroupsPrinted) {
+      left_runs += g.count;
+      continue;
+    }
+    text += fmt::format("  {} run{}: {} (run{} {}{})\n", g.count, g.count == 1 ? "" : "s", g.message,
+                        g.runs.size() == 1 ? "" : "s", fmt::join(g.runs, ", "), g.count > g.runs.size() ? ", …" : "");
+  }
+  if (groups.size() > kFailureGroupsPrinted) {
+    text += fmt::format("  and {} other message{} in {} run{} (summary.json: failure_groups)\n",
+                        groups.size() - kFailureGroupsPrinted, groups.size() - kFailureGroupsPrinted == 1 ? "" : "s",
+                        left_runs, left_runs == 1 ? "" : "s");
+  }
+  return text;
+}
+
+std::size_t failure_count(const scene::SweepOutputs& outputs) {
+  std::size_t n = 0;
+  for (const auto& g : outputs.failures) n += g.count;
+  return n;
+}
+
+// A sweep whose every run failed is an error (exit 1, said on stderr even with -q): its outputs
+// are written, and the message says why the runs failed. Empty when some run succeeded.
+std::string all_failed(const scene::SweepOutputs& outputs, std::size_t runs, const fs::path& dir) {
+  if (runs == 0 || failure_count(outputs) != runs) return {};
+  return fmt::format("every one of the sweep's {} runs failed:\n{}the errors are in {}", runs,
+                     failures_text(outputs.failures), (dir / "runs.csv").string());
+}
+
 // The runs of one process, made one at a time as the pool asks (no list of them is held, so the
 // memory before the runs does not depend on the number of runs): the shard's runs i ≡ index
 // (mod count) in ascending order, without those the journal holds (`finished`, ascending), dealt
@@ -265,9 +304,11 @@ class RunsOfThisProcess {
 };
 
 // The runs of this process (its shard's unfinished runs, its rank's share), the gather to rank 0
-// and rank 0's outputs.
-void sweep_on_ranks(const SweepOptions& opts, const scene::SweepIdentity& id, scene::Shard shard, const fs::path& dir,
-                    const Ranks& ranks, scene::Journal* journal, const std::vector<std::uint64_t>& finished) {
+// and rank 0's outputs. Returns all_failed's text (rank 0 of an unsharded sweep).
+std::string sweep_on_ranks(const SweepOptions& opts, const scene::SweepIdentity& id, scene::Shard shard,
+                           const fs::path& dir, const Ranks& ranks, scene::Journal* journal,
+                           const std::vector<std::uint64_t>& finished,
+                           const std::shared_ptr<const scene::Model>& first_run) {
   const std::size_t runs = scene::run_count(id.spec);
   const auto names = scene::swept_names(id.spec);
   RunsOfThisProcess mine(runs, shard, ranks, finished);
@@ -278,6 +319,7 @@ void sweep_on_ranks(const SweepOptions& opts, const scene::SweepIdentity& id, sc
   ro.threads = opts.threads > 0 ? opts.threads
                                 : std::max<std::size_t>(1, cores / env_size("OMPI_COMM_WORLD_LOCAL_SIZE", 1));
   ro.wording = Surface::kCli;
+  ro.first_run = first_run;
   if (opts.keep_trajectories) ro.keep_trajectories = dir / "runs";
   // rank 0's rows go to the journal as they come and are read back from it at the end; the
   // other ranks keep theirs for the gather
@@ -313,7 +355,7 @@ void sweep_on_ranks(const SweepOptions& opts, const scene::SweepIdentity& id, sc
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   std::vector<scene::SweepRow> others = ranks.gather(rows);
-  if (!ranks.root()) return;
+  if (!ranks.root()) return {};
   for (const auto& r : others) journal->append(r);
 
   const std::size_t before = journal->finished().size();
@@ -323,18 +365,21 @@ void sweep_on_ranks(const SweepOptions& opts, const scene::SweepIdentity& id, sc
       fmt::print("shard {}/{}: {} runs now ({} before) in {}; join the shards with rigid sweep merge\n", shard.index,
                  shard.count, ran, before, (dir / ".journal.jsonl").string());
     }
-    return;
+    return {};
   }
   // every row, from the journal: those it held, this run's and the other ranks'
   std::vector<scene::SweepRow> all = scene::read_journal(dir).rows;
   const scene::SweepOutputs outputs = scene::make_outputs(names, runs, std::move(all));
   const auto written = scene::write_outputs(dir, outputs);
-  if (opts.quiet) return;
-  const auto failures = static_cast<std::size_t>(
-      std::count_if(outputs.errors.begin(), outputs.errors.end(), [](const std::string& e) { return !e.empty(); }));
-  fmt::print("sweep: {} runs ({} now in {:.3g} s on {} thread(s) x {} rank(s), {} from the journal), {} failed\n",
-             runs, ran, seconds, ro.threads, ranks.size(), before, failures);
-  fmt::print("wrote {}\n", paths_text(written));
+  if (!opts.quiet) {
+    const std::size_t failures = failure_count(outputs);
+    fmt::print("sweep: {} runs ({} now in {:.3g} s on {} thread(s) x {} rank(s), {} from the journal), {} failed{}\n",
+               runs, ran, seconds, ro.threads, ranks.size(), before, failures, failures > 0 ? ":" : "");
+    fmt::print("{}", failures_text(outputs.failures));
+    fmt::print("wrote {}\n", paths_text(written));
+    std::fflush(stdout);
+  }
+  return all_failed(outputs, runs, dir);
 }
 
 }  // namespace
@@ -354,6 +399,9 @@ void run_sweep(const SweepOptions& opts) {
     }
   }();
   check_names(id);
+  // run 0 built and checked as its run would be (integrator, metrics' columns, values), before
+  // the directory is made: a sweep every run of which would be refused is refused once
+  const std::shared_ptr<const scene::Model> first_run = scene::check_first_run(id);
   const std::size_t runs = scene::run_count(id.spec);
   const auto names = scene::swept_names(id.spec);
   const std::string description = scene::describe(id);
@@ -377,8 +425,9 @@ void run_sweep(const SweepOptions& opts) {
   }
   ranks.broadcast(refused, finished);
   if (!refused.empty()) throw Error(refused);
+  std::string failed;
   try {
-    sweep_on_ranks(opts, id, shard, dir, ranks, journal.get(), finished);
+    failed = sweep_on_ranks(opts, id, shard, dir, ranks, journal.get(), finished, first_run);
   } catch (const Cancelled& e) {
     ranks.stop_all(e, 130);
     throw;
@@ -386,6 +435,8 @@ void run_sweep(const SweepOptions& opts) {
     ranks.stop_all(e, 1);
     throw;
   }
+  // every rank is done: an error now stops none of them
+  if (!failed.empty()) throw Error(failed);
 }
 
 void run_sweep_merge(const SweepMergeOptions& opts) {
@@ -424,8 +475,12 @@ void run_sweep_merge(const SweepMergeOptions& opts) {
   }
   const auto written = scene::write_outputs(out, outputs);
   if (!opts.quiet) {
-    fmt::print("merged {} runs from shards {}\nwrote {}\n", first.runs, fmt::join(shards, ", "), paths_text(written));
+    const std::size_t failures = failure_count(outputs);
+    fmt::print("merged {} runs from shards {}, {} failed{}\n{}wrote {}\n", first.runs, fmt::join(shards, ", "),
+               failures, failures > 0 ? ":" : "", failures_text(outputs.failures), paths_text(written));
+    std::fflush(stdout);
   }
+  if (const std::string failed = all_failed(outputs, first.runs, out); !failed.empty()) throw Error(failed);
 }
 
 }  // namespace rigid::cli

@@ -34,7 +34,10 @@ struct SweepMergeOptions {
 
 /// `rigid sweep SCENE --grid … | --sample … -n N`: runs the sweep (on threads; on MPI ranks when
 /// launched by mpirun), resuming from DIR's journal, and writes runs.csv, runs.npy and
-/// summary.json (a shard writes its journal only).
+/// summary.json (a shard writes its journal only). Before DIR is made, run 0 is built and
+/// checked (scene::check_first_run); the summary lists the failed runs by message.
+/// @throws rigid::Error when run 0 is refused (nothing written), and after the outputs are
+///   written when every run failed (even with quiet).
 void run_sweep(const SweepOptions& opts);
 
 /// `rigid sweep merge DIR... -o OUT`: joins the journals of the shards of one sweep and writes

@@ -10,6 +10,7 @@
 #include <cstring>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <new>
@@ -494,6 +495,37 @@ void check_overrides(const SweepIdentity& id) {
   apply_overrides(s, run_overrides(id, swept_names(id.spec), run_values(id.spec, 0)));
 }
 
+namespace {
+
+// Run 0 built and checked from the scene as read (`base`).
+std::shared_ptr<const Model> first_run_model(const SweepIdentity& id, const Scene& base) {
+  const auto names = swept_names(id.spec);
+  const auto values = run_values(id.spec, 0);
+  const std::vector<std::string> overrides = run_overrides(id, names, values);
+  try {
+    Scene first = base;
+    apply_overrides(first, overrides);
+    auto model = std::make_shared<const Model>(first);
+    RunOptions ro;
+    ro.integrator = id.integrator;
+    model->check(ro);
+    return model;
+  } catch (const Error& e) {
+    std::vector<std::string> what = overrides;
+    if (!id.integrator.empty()) what.insert(what.begin(), fmt::format("integrator {}", id.integrator));
+    throw Error(fmt::format("run 0 of the sweep ({}) is refused, so no run was started: {}",
+                            what.empty() ? std::string("no overrides") : fmt::format("{}", fmt::join(what, ", ")),
+                            e.what()));
+  }
+}
+
+}  // namespace
+
+std::shared_ptr<const Model> check_first_run(const SweepIdentity& id) {
+  check_spec(id.spec);
+  return first_run_model(id, load_scene(id.scene, id.model));
+}
+
 std::vector<SweepRow> run_sweep(const SweepIdentity& id, std::span<const std::size_t> indices,
                                 const SweepRunOptions& options) {
   std::size_t at = 0;
@@ -528,21 +560,14 @@ std::vector<SweepRow> run_sweep(const SweepIdentity& id, const RunIndexSource& n
 
   // The scene is read once; a run is that scene with its overrides. The overrides change values
   // only (apply_overrides), so a coordinate scene's equations are derived once, before the runs,
-  // for the slice's first run, and every run's model shares them (Model(scene, like)), as it
-  // shares every mesh file as read: no run pays for the derivation or reads a mesh. When that
-  // first model cannot be built (its values are refused), each run builds its own and records
-  // its own error, as without the prototype.
+  // for run 0 (whatever the slice: a shard or a resumed sweep shares the same prototype), and
+  // every run's model shares them (Model(scene, like)), as it shares every mesh file as read: no
+  // run pays for the derivation or reads a mesh. Run 0 is checked as its run would be; a
+  // refusal there (an unknown integrator, a metric's missing column, a refused --set) is
+  // every run's, so the sweep stops before any run.
   const Scene base = load_scene(id.scene, id.model);
   std::shared_ptr<const Model> prototype;
-  if (first_index) {
-    try {
-      Scene first = base;
-      apply_overrides(first, overrides_of(run_values(id.spec, *first_index)));
-      prototype = std::make_shared<const Model>(first);
-    } catch (const Error&) {
-      prototype.reset();
-    }
-  }
+  if (first_index) prototype = options.first_run ? options.first_run : first_run_model(id, base);
   auto one_run = [&](std::size_t index) {
     SweepRow row;
     row.index = index;
@@ -552,11 +577,7 @@ std::vector<SweepRow> run_sweep(const SweepIdentity& id, const RunIndexSource& n
       {
         Scene scene = base;
         apply_overrides(scene, overrides_of(row.values));
-        if (prototype) {
-          model.emplace(scene, *prototype);
-        } else {
-          model.emplace(scene);
-        }
+        model.emplace(scene, *prototype);
       }
       RunOptions ro;
       ro.integrator = id.integrator;
@@ -632,6 +653,23 @@ double quantile_sorted(const std::vector<double>& x, double q) {
 
 }  // namespace
 
+std::vector<FailureGroup> group_failures(const std::vector<std::string>& errors) {
+  std::vector<FailureGroup> groups;
+  std::map<std::string_view, std::size_t> at;  // message → its group
+  for (std::size_t i = 0; i < errors.size(); ++i) {
+    if (errors[i].empty()) continue;
+    const auto [it, added] = at.try_emplace(errors[i], groups.size());
+    if (added) groups.push_back({.message = errors[i], .count = 0, .runs = {}});
+    FailureGroup& g = groups[it->second];
+    ++g.count;
+    if (g.runs.size() < kFailureGroupRuns) g.runs.push_back(i);
+  }
+  // most frequent first; groups were made in order of their first run, which breaks the ties
+  std::stable_sort(groups.begin(), groups.end(),
+                   [](const FailureGroup& a, const FailureGroup& b) { return a.count > b.count; });
+  return groups;
+}
+
 SweepOutputs make_outputs(const std::vector<std::string>& names, std::size_t runs, std::vector<SweepRow> rows) {
   std::sort(rows.begin(), rows.end(), [](const SweepRow& a, const SweepRow& b) { return a.index < b.index; });
   // each index once (a row run twice, e.g. by two shards that overlap, must agree)
@@ -676,7 +714,7 @@ SweepOutputs make_outputs(const std::vector<std::string>& names, std::size_t run
     columns.push_back(result_columns.back());
   }
 
-  SweepOutputs out{.numbers = io::Table(columns), .errors = {}, .summary_json = {}};
+  SweepOutputs out{.numbers = io::Table(columns), .errors = {}, .summary_json = {}, .failures = {}};
   std::vector<double> line(columns.size());
   std::vector<std::vector<double>> per_column(result_names.size());
   std::size_t failures = 0;
@@ -698,9 +736,21 @@ SweepOutputs make_outputs(const std::vector<std::string>& names, std::size_t run
     if (!r.error.empty()) ++failures;
   }
 
+  out.failures = group_failures(out.errors);
+
   Json j;
   j["count"] = runs;
   j["failures"] = failures;
+  j["failure_groups"] = Json::array();
+  for (std::size_t k = 0; k < std::min(out.failures.size(), kFailureGroupsListed); ++k) {
+    const FailureGroup& g = out.failures[k];
+    j["failure_groups"].push_back(Json{{"message", g.message}, {"count", g.count}, {"runs", g.runs}});
+  }
+  if (out.failures.size() > kFailureGroupsListed) {
+    std::size_t left_runs = 0;
+    for (std::size_t k = kFailureGroupsListed; k < out.failures.size(); ++k) left_runs += out.failures[k].count;
+    j["failure_groups_left_out"] = Json{{"groups", out.failures.size() - kFailureGroupsListed}, {"runs", left_runs}};
+  }
   j["columns"] = columns;
   j["swept"] = names;
   j["results"] = Json::object();

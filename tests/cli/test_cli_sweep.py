@@ -172,15 +172,103 @@ def test_an_interrupted_sweep_resumes_to_the_same_bytes(rigid_exe, run, tmp_path
 
 
 def test_a_failing_run_is_a_row_and_the_others_go_on(run, tmp_path):
+    # m runs down from 1 to -1: run 0 is valid (a refused run 0 stops the sweep, below)
     out = tmp_path / "s"
-    p = run("sweep", PENDULUM, "--grid", "m=-1:1:3", "-o", out, check=True)
-    assert "2 failed" in p.stdout
+    p = run("sweep", PENDULUM, "--grid", "m=1:-1:3", "-o", out, check=True)
+    assert "2 failed:" in p.stdout
     header, rows = read_runs(out)
-    assert "mass must be positive and finite, got -1 kg" in rows[0][-1]
-    assert rows[2][-1] == "" and float(rows[2][header.index("energy_initial")]) < 0
+    assert "mass must be positive and finite, got -1 kg" in rows[2][-1]
+    assert "mass must be positive and finite, got 0 kg" in rows[1][-1]
+    assert rows[0][-1] == "" and float(rows[0][header.index("energy_initial")]) < 0
     npy = np.load(out / "runs.npy")
-    assert np.isnan(npy[0, 2:]).all() and np.isfinite(npy[2]).all()
-    assert json.loads((out / "summary.json").read_text())["failures"] == 2
+    assert np.isnan(npy[2, 2:]).all() and np.isfinite(npy[0]).all()
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["failures"] == 2
+    # one group per message (each names its value), in order of their first run
+    assert [(g["count"], g["runs"]) for g in summary["failure_groups"]] == [(1, [1]), (1, [2])]
+    assert summary["failure_groups"][1]["message"] == rows[2][-1]
+    assert f"  1 run: {rows[1][-1]} (run 1)" in p.stdout
+    # some runs succeeded: -q prints nothing and the exit status is 0
+    p = run("sweep", PENDULUM, "--grid", "m=1:-1:3", "-o", tmp_path / "q", "-q", check=True)
+    assert p.stdout == "" and p.stderr == ""
+
+
+# What every run would refuse is refused once, before any run and before the output directory is
+# made: run 0 (the --set values and each axis's first value) is built and checked as its run
+# would be, with the sweep's integrator and the scene's metrics.
+@pytest.mark.parametrize("extra, scene_edit, message", [
+    (("--grid", "L=0.5:2:3", "--integrator", "rk5"), None, "unknown integrator 'rk5'"),
+    (("--grid", "L=0.5:2:3"), ('column = "theta"', 'column = "thetaa"'), "the run has no column 'thetaa'"),
+    (("--grid", "L=0.5:2:3", "--set", "m=-1"), None, "mass must be positive and finite, got -1 kg"),
+    (("--grid", "m=-1:1:3"), None, "mass must be positive and finite, got -1 kg"),
+    (("--sample", "L=uniform(-2,-1)", "-n", "4"), None, "length must be positive"),
+])
+def test_what_every_run_would_refuse_stops_the_sweep_before_any_run(run, tmp_path, extra, scene_edit, message):
+    scene = PENDULUM
+    if scene_edit:
+        scene = tmp_path / "edited.toml"
+        scene.write_text(PENDULUM.read_text().replace(*scene_edit))
+    out = tmp_path / "s"
+    for quiet in ((), ("-q",)):
+        p = run("sweep", scene, *extra, "-o", out, *quiet, check=False)
+        assert p.returncode == 1, p.stderr
+        assert p.stderr.startswith("rigid: error: run 0 of the sweep (") and message in p.stderr, p.stderr
+        assert "no run was started" in p.stderr and p.stdout == ""
+        assert not out.exists()  # no journal, no runs.csv
+
+
+# x'' = c x'^2 with x(0) = 0, x'(0) = 1: x'(t) = 1/(1 - c t), infinite at t = 1/c. Run 0's check
+# passes (its state at t = 0 is finite); with t_end = 1.5 s a run with c >= 1 diverges while it
+# runs. The axis d changes nothing in the motion, so the runs of one c fail with one message.
+BLOW_UP = """
+lagrangian = "x_dot^2/2"
+[parameters]
+c = 1.0
+d = 0.0
+[[coordinates]]
+name = "x"
+initial = 0
+velocity = 1
+[[forces]]
+coordinate = "x"
+expression = "c*x_dot^2 + 0*d"
+[simulation]
+t_end = 1.5
+integrator = "rk4"
+dt = 1e-3
+output_dt = 0.1
+"""
+
+
+def test_a_sweep_whose_every_run_failed_exits_1_and_groups_the_errors(run, tmp_path):
+    scene = tmp_path / "blowup.toml"
+    scene.write_text(BLOW_UP)
+    args = ("sweep", scene, "--grid", "c=1:2:2", "--grid", "d=0:1:3")
+    out = tmp_path / "all"
+    p = run(*args, "-o", out, check=False)
+    assert p.returncode == 1, p.stderr
+    header, rows = read_runs(out)  # the outputs are written all the same
+    assert len(rows) == 6 and all("diverged" in r[-1] for r in rows)
+    # c = 1 are runs 0-2 (the first axis varies slowest), c = 2 runs 3-5: two messages
+    assert rows[0][-1] == rows[2][-1] != rows[3][-1] == rows[5][-1]
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["failures"] == 6
+    assert summary["failure_groups"] == [{"message": rows[0][-1], "count": 3, "runs": [0, 1, 2]},
+                                         {"message": rows[3][-1], "count": 3, "runs": [3, 4, 5]}]
+    assert "6 failed:" in p.stdout and f"  3 runs: {rows[3][-1]} (runs 3, 4, 5)" in p.stdout
+    assert p.stderr.startswith("rigid: error: every one of the sweep's 6 runs failed:")
+    assert f"  3 runs: {rows[0][-1]} (runs 0, 1, 2)" in p.stderr and str(out / "runs.csv") in p.stderr
+    # said even with -q, on stderr; and by the merge of shards that all failed
+    p = run(*args, "-o", tmp_path / "q", "-q", check=False)
+    assert p.returncode == 1 and p.stdout == "" and "every one of the sweep's 6 runs failed" in p.stderr
+    for i in range(2):
+        run(*args, "--shard", f"{i}/2", "-o", tmp_path / f"s{i}", "-q", check=True)
+    p = run("sweep", "merge", tmp_path / "s0", tmp_path / "s1", "-o", tmp_path / "m", "-q", check=False)
+    assert p.returncode == 1 and "every one of the sweep's 6 runs failed" in p.stderr
+    same_outputs(out, tmp_path / "m")
+    # c = 0 runs to the end (x = t): one run of three succeeded, the exit status is 0
+    p = run("sweep", scene, "--grid", "c=0:2:3", "-o", tmp_path / "some", check=True)
+    assert "2 failed:" in p.stdout
 
 
 def test_bad_commands_are_refused_with_a_reason(run, tmp_path):

@@ -254,13 +254,13 @@ TEST(SweepRun, RowsAreBitwiseTheSameOnOneOrThreeThreadsAndFailuresAreRows) {
 // A coordinate scene's runs share one derivation of its equations (and run it from several
 // threads at once: also under ThreadSanitizer, `make test-tsan`). Each run uses its own values:
 // its initial energy is the closed form E(0) = −m g (L/2) cos θ0 of its m and L (to 1e-12
-// relative: one evaluation of the energy at t = 0). A refused value is that run's error row,
-// also when it is the first run's (the runs then derive their own equations).
+// relative: one evaluation of the energy at t = 0). A refused value of a later run is that
+// run's error row (the axis m runs down from 2 to −1: run 0 is valid).
 TEST(SweepRun, ACoordinateScenesRunsShareItsEquationsAndUseTheirOwnValues) {
   const fs::path dir = temp_dir("rod");
   const fs::path scene = dir / "rod.toml";
   std::ofstream(scene) << test::kRodPendulum;
-  for (const char* m_axis : {"m=0.5:2:3", "m=-1:2:4"}) {
+  for (const char* m_axis : {"m=0.5:2:3", "m=2:-1:4"}) {
     const SweepIdentity id{.scene = scene, .set = {"theta.initial=0.8", "simulation.t_end=0.5"}, .integrator = "",
                            .spec = {.grid = {parse_grid_axis("L=0.5:2:3"), parse_grid_axis(m_axis)}}};
     std::vector<std::size_t> all(run_count(id.spec));
@@ -353,11 +353,129 @@ TEST(SweepRun, ACompoundExpressionIsEvaluatedAgainOnlyForASweptValue) {
   fs::remove_all(dir);
 }
 
+// What every run would refuse is refused once, before any run: run 0 is built and checked as
+// its run would be (an unknown integrator, a metric on a column the run does not have, a
+// physically impossible fixed override or first axis value). No row is made.
+TEST(SweepRun, WhatRunZeroRefusesStopsTheSweepBeforeAnyRun) {
+  const fs::path dir = temp_dir("refused");
+  const fs::path rod = dir / "rod.toml";
+  std::ofstream(rod) << test::kRodPendulum;
+  const fs::path bad_metric = dir / "bad_metric.toml";
+  std::ofstream(bad_metric) << test::kRodPendulum
+                            << "[[output.metrics]]\nname = \"peak\"\nkind = \"max\"\ncolumn = \"thetaa\"\n";
+  struct Case {
+    fs::path scene;
+    std::vector<std::string> set;
+    std::string integrator;
+    const char* axis;
+    const char* message;
+  };
+  const std::vector<Case> cases{
+      {rod, {}, "rk5", "L=0.5:2:3", "unknown integrator 'rk5'"},
+      {bad_metric, {}, "", "L=0.5:2:3", "the run has no column 'thetaa'"},
+      {rod, {"m=-1"}, "", "L=0.5:2:3", "mass must be positive and finite, got -1 kg"},
+      {rod, {}, "", "m=-1:1:3", "mass must be positive and finite, got -1 kg"},
+  };
+  for (const Case& c : cases) {
+    const SweepIdentity id{
+        .scene = c.scene, .set = c.set, .integrator = c.integrator, .spec = {.grid = {parse_grid_axis(c.axis)}}};
+    EXPECT_RIGID_ERROR((void)check_first_run(id), "run 0 of the sweep (");
+    EXPECT_RIGID_ERROR((void)check_first_run(id), c.message);
+    std::size_t rows = 0;
+    const std::vector<std::size_t> all{0, 1, 2};
+    SweepRunOptions options{.threads = 2};
+    options.on_row = [&rows](const SweepRow&) { ++rows; };
+    EXPECT_RIGID_ERROR((void)run_sweep(id, all, options), c.message);
+    EXPECT_EQ(rows, 0u) << c.message;
+  }
+  fs::remove_all(dir);
+}
+
+// x'' = c x'² with x(0) = 0, x'(0) = 1 (a force c·ẋ² on a unit mass): x'(t) = 1/(1 − c t),
+// which is infinite at t = 1/c. Run 0 passes its check (the state at t = 0 is finite); with
+// t_end = 1.5 s every run with c = 1 or 2 diverges during its run. The axis d names nothing the
+// motion depends on, so the three runs of each c fail with one message: two groups of three.
+constexpr const char* kBlowUp = R"toml(
+lagrangian = "x_dot^2/2"
+[parameters]
+c = 1.0
+d = 0.0
+[[coordinates]]
+name = "x"
+initial = 0
+velocity = 1
+[[forces]]
+coordinate = "x"
+expression = "c*x_dot^2 + 0*d"
+[simulation]
+t_end = 1.5
+integrator = "rk4"
+dt = 1e-3
+output_dt = 0.1
+)toml";
+
+TEST(SweepRun, RunsThatFailAfterTheFirstRunsCheckAreRowsGroupedByMessage) {
+  const fs::path dir = temp_dir("blowup");
+  const fs::path scene = dir / "blowup.toml";
+  std::ofstream(scene) << kBlowUp;
+  const SweepIdentity id{.scene = scene, .set = {}, .integrator = "",
+                         .spec = {.grid = {parse_grid_axis("c=1:2:2"), parse_grid_axis("d=0:1:3")}}};
+  EXPECT_NO_THROW((void)check_first_run(id));
+  std::vector<std::size_t> all(run_count(id.spec));
+  std::iota(all.begin(), all.end(), 0);
+  const SweepOutputs out = make_outputs(swept_names(id.spec), all.size(), run_sweep(id, all, {.threads = 2}));
+  ASSERT_EQ(out.failures.size(), 2u);
+  for (std::size_t g = 0; g < 2; ++g) {
+    EXPECT_EQ(out.failures[g].count, 3u);
+    EXPECT_THAT(out.failures[g].message, ::testing::HasSubstr("diverged"));
+    // c = 1 are runs 0, 1, 2 (the first axis varies slowest); c = 2 are runs 3, 4, 5
+    EXPECT_EQ(out.failures[g].runs, (std::vector<std::size_t>{3 * g, 3 * g + 1, 3 * g + 2}));
+  }
+  const auto j = nlohmann::json::parse(out.summary_json);
+  EXPECT_EQ(j["failures"], 6);
+  ASSERT_EQ(j["failure_groups"].size(), 2u);
+  EXPECT_EQ(j["failure_groups"][1]["message"], out.failures[1].message);
+  EXPECT_EQ(j["failure_groups"][1]["count"], 3);
+  EXPECT_EQ(j["failure_groups"][1]["runs"], nlohmann::json::array({3, 4, 5}));
+  EXPECT_FALSE(j.contains("failure_groups_left_out"));
+  fs::remove_all(dir);
+}
+
+TEST(SweepOutputs, FailuresAreGroupedByMessageMostFrequentFirst) {
+  // messages by run: b at 1, 4; a at 2, 3, 5, 6, 7, 8, 9 (7 runs: 5 listed); c at 10
+  std::vector<std::string> errors(11);
+  for (std::size_t i : {2u, 3u, 5u, 6u, 7u, 8u, 9u}) errors[i] = "a";
+  errors[1] = errors[4] = "b";
+  errors[10] = "c";
+  const auto groups = group_failures(errors);
+  ASSERT_EQ(groups.size(), 3u);
+  EXPECT_EQ(groups[0].message, "a");
+  EXPECT_EQ(groups[0].count, 7u);
+  EXPECT_EQ(groups[0].runs, (std::vector<std::size_t>{2, 3, 5, 6, 7}));
+  EXPECT_EQ(groups[1].message, "b");
+  EXPECT_EQ(groups[1].runs, (std::vector<std::size_t>{1, 4}));
+  EXPECT_EQ(groups[2].message, "c");
+  EXPECT_EQ(groups[2].count, 1u);
+  EXPECT_TRUE(group_failures(std::vector<std::string>(3)).empty());
+
+  // more messages than summary.json lists: the rest counted, groups and runs
+  std::vector<SweepRow> rows;
+  const std::size_t n = kFailureGroupsListed + 3;
+  for (std::size_t i = 0; i < n; ++i) rows.push_back({.index = i, .values = {}, .results = {}, .error = fmt::format("e{}", i)});
+  rows.push_back({.index = n, .values = {}, .results = {}, .error = "e0"});
+  const auto j = nlohmann::json::parse(make_outputs({}, n + 1, rows).summary_json);
+  ASSERT_EQ(j["failure_groups"].size(), kFailureGroupsListed);
+  EXPECT_EQ(j["failure_groups"][0]["message"], "e0");
+  EXPECT_EQ(j["failure_groups"][0]["runs"], nlohmann::json::array({0, n}));
+  EXPECT_EQ(j["failure_groups_left_out"]["groups"], 3);
+  EXPECT_EQ(j["failure_groups_left_out"]["runs"], 3);
+}
+
 TEST(SweepRun, ACancelledSweepStopsWithCancelled) {
   const fs::path dir = temp_dir("cancel");
   const fs::path scene = dir / "racket.toml";
   std::ofstream(scene) << kRacket;
-  const SweepIdentity id{.scene = scene, .set = {}, .integrator = "", .spec = {.grid = {parse_grid_axis("I2=1.5:2.5:5")}}};
+  const SweepIdentity id{.scene = scene, .set = {}, .integrator = "", .spec = {.grid = {parse_grid_axis("I2=2:2.5:5")}}};
   std::vector<std::size_t> all{0, 1, 2, 3, 4};
   std::atomic<bool> cancel{true};
   EXPECT_THROW((void)run_sweep(id, all, {.threads = 2, .cancel = &cancel}), Cancelled);

@@ -20,6 +20,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -32,6 +33,8 @@
 #include "rigid/scene/scene.hpp"
 
 namespace rigid::scene {
+
+class Model;
 
 /// One axis of a grid: `count` equally spaced values from `start` to `stop`, both included
 /// (count 1: start alone).
@@ -181,18 +184,32 @@ struct SweepRunOptions {
   /// When false, run_sweep returns no rows (on_row saw each, e.g. into the journal), so that
   /// the memory of a long sweep does not grow with the runs made.
   bool keep_rows = true;
+  /// Run 0's model as check_first_run returned it, when the caller checked it already; empty:
+  /// run_sweep builds and checks it.
+  std::shared_ptr<const Model> first_run{};
 };
 
 /// Checks, before running, that every swept and fixed name is one the scene accepts (the
 /// overrides of run 0 applied to the parsed scene). @throws rigid::Error from the overrides.
 void check_overrides(const SweepIdentity& identity);
 
+/// Builds the model of run 0 (the scene with `set` and the first value of every axis, or the
+/// first draw of a sample) and checks it as its run would before stepping (Model::check with the
+/// sweep's integrator): what every run of the sweep shares — the integrator's name, the metrics'
+/// columns, the fixed overrides — is refused here once instead of by each run. Returns the
+/// model, which the runs share as their prototype (Model(scene, like)).
+/// @throws rigid::Error "run 0 of the sweep (NAME=VALUE, …) is refused, so no run was started:
+///   <the model's message>".
+[[nodiscard]] std::shared_ptr<const Model> check_first_run(const SweepIdentity& identity);
+
 /// Runs the runs `indices` on a pool of options.threads threads (each takes the next index from
 /// an atomic counter) and returns their rows sorted by index. A run that throws rigid::Error is
 /// a row with its error. Models are built and destroyed one at a time (the symbolic side is
-/// single-threaded); runs go in parallel. A coordinate scene is derived once, before the runs,
-/// from the overrides of indices.front(); when that model is refused, every run derives its own.
-/// @throws rigid::Cancelled when options.cancel stopped it (rows already passed to on_row stay).
+/// single-threaded); runs go in parallel. Before any run, run 0 is built and checked
+/// (check_first_run, unless options.first_run holds it): a coordinate scene is derived once,
+/// there, and every run's model shares its equations.
+/// @throws rigid::Error from check_first_run when there is a run to make; rigid::Cancelled when
+///   options.cancel stopped it (rows already passed to on_row stay).
 [[nodiscard]] std::vector<SweepRow> run_sweep(const SweepIdentity& identity, std::span<const std::size_t> indices,
                                               const SweepRunOptions& options);
 
@@ -206,9 +223,27 @@ using RunIndexSource = std::function<std::optional<std::size_t>()>;
 [[nodiscard]] std::vector<SweepRow> run_sweep(const SweepIdentity& identity, const RunIndexSource& next,
                                               std::size_t count, const SweepRunOptions& options);
 
+/// The failed runs of one error message: how many, and the first of them.
+struct FailureGroup {
+  std::string message{};
+  std::size_t count = 0;
+  std::vector<std::size_t> runs{};  ///< the first kFailureGroupRuns run indices, ascending
+};
+/// Run indices a FailureGroup lists.
+inline constexpr std::size_t kFailureGroupRuns = 5;
+/// Failure groups summary.json lists (the most frequent).
+inline constexpr std::size_t kFailureGroupsListed = 20;
+
+/// The failed runs grouped by their message (exactly equal texts): `errors` holds each run's
+/// error ("" when it succeeded) in run order, as SweepOutputs::errors. The groups come most
+/// frequent first, ties by their first run.
+[[nodiscard]] std::vector<FailureGroup> group_failures(const std::vector<std::string>& errors);
+
 /// The outputs of a whole sweep made from its rows (all indices 0 … runs-1, any order, each once):
 /// runs.csv (run, swept names, result columns, error), runs.npy (the same without error; NaN
-/// for a failed run's results) and summary.json (count, failures, npy columns, per result
+/// for a failed run's results) and summary.json (count, failures, failure_groups: the first
+/// kFailureGroupsListed of group_failures as {"message", "count", "runs"}, with
+/// failure_groups_left_out {"groups", "runs"} when there are more; npy columns; per result
 /// column: mean, std (n−1), min, max, quantiles 0.05 0.25 0.5 0.75 0.95 by linear
 /// interpolation, over the runs where it is finite). Result columns are the union of the rows'
 /// result names in index order; a name equal to an earlier column is prefixed "result.".
@@ -216,6 +251,7 @@ struct SweepOutputs {
   io::Table numbers{{"run"}};
   std::vector<std::string> errors{};
   std::string summary_json{};
+  std::vector<FailureGroup> failures{};  ///< group_failures(errors), every group
 };
 /// @throws rigid::Error if an index is missing, repeated (with different rows) or out of range.
 /// `names` are the swept names, `runs` the sweep's run count.

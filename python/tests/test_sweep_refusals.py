@@ -1,0 +1,41 @@
+"""rigid.sweep refuses, before any run, what every run of the sweep would refuse: run 0 (the
+`set` values and each axis's first value) is built and checked as its run would be, with the
+sweep's integrator and the scene's metrics; and its summary groups the failed runs by message."""
+import pathlib
+
+import pytest
+
+import rigid
+
+PENDULUM = pathlib.Path(__file__).resolve().parents[2] / "examples" / "physical_pendulum.toml"
+
+
+@pytest.mark.parametrize("kwargs, scene_edit, message", [
+    (dict(grid=["L=0.5:2:3"], integrator="rk5"), None, "unknown integrator 'rk5'"),
+    (dict(grid=["L=0.5:2:3"]), ('column = "theta"', 'column = "thetaa"'), "the run has no column 'thetaa'"),
+    (dict(grid=["L=0.5:2:3"], set=["m=-1"]), None, "mass must be positive and finite, got -1 kg"),
+    (dict(grid=["m=-1:1:3"]), None, "mass must be positive and finite, got -1 kg"),
+    (dict(sample=["L=uniform(-2,-1)"], samples=4), None, "length must be positive"),
+])
+def test_what_every_run_would_refuse_raises_before_any_run(tmp_path, kwargs, scene_edit, message):
+    scene = PENDULUM
+    if scene_edit:
+        scene = tmp_path / "edited.toml"
+        scene.write_text(PENDULUM.read_text().replace(*scene_edit))
+    out = tmp_path / "out"
+    with pytest.raises(rigid.Error, match="run 0 of the sweep .* is refused, so no run was started") as e:
+        rigid.sweep(str(scene), output=str(out), **kwargs)
+    assert message in str(e.value)
+    assert not (out / "runs.csv").exists()
+
+
+def test_failed_runs_are_grouped_by_message_in_the_summary():
+    # m runs down from 1 to -1: run 0 is valid, the runs with m = 0 and m = -1 are refused by
+    # their models, each with its own value in its message
+    out = rigid.sweep(str(PENDULUM), grid=["m=1:-1:3"], set=["simulation.t_end=0.5"])
+    errors = out["errors"]
+    assert errors[0] == "" and "got 0 kg" in errors[1] and "got -1 kg" in errors[2]
+    summary = out["summary"]
+    assert summary["failures"] == 2
+    assert summary["failure_groups"] == [{"message": errors[1], "count": 1, "runs": [1]},
+                                         {"message": errors[2], "count": 1, "runs": [2]}]
