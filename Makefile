@@ -26,6 +26,7 @@ test: build test-asan test-tsan test-browser
 
 demo: build
 	$(BUILD)/bin/rigid demo
+	@echo "rigid is $(CURDIR)/$(BUILD)/bin/rigid; to run it as plain 'rigid', put it on PATH: export PATH=\"$(CURDIR)/$(BUILD)/bin:\$$PATH\""
 
 bench:
 	@scripts/install-deps.sh bench

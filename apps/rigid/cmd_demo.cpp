@@ -25,6 +25,33 @@
 namespace rigid::cli {
 namespace {
 
+namespace fs = std::filesystem;
+
+// Where the example scenes are: next to an installed rigid (<prefix>/bin/rigid →
+// <prefix>/share/rigid/examples, as `cmake --install` lays them out), else, for the rigid of a
+// build directory, the source tree it was built from. An installed rigid never reads the source
+// tree (which may have moved on, or be gone).
+fs::path examples_directory() {
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  const fs::path bin = ec ? fs::path() : exe.parent_path();
+  const fs::path installed = bin.empty() ? fs::path("<prefix>/bin") / RIGID_EXAMPLES_FROM_BIN
+                                         : (bin / RIGID_EXAMPLES_FROM_BIN).lexically_normal();
+  if (!bin.empty() && fs::is_directory(installed, ec)) return installed;
+  const fs::path build_bin = RIGID_BUILD_BIN_DIR;
+  const bool from_build = !bin.empty() && fs::equivalent(bin, build_bin, ec);
+  const fs::path source = RIGID_SOURCE_EXAMPLES;
+  if (from_build && fs::is_directory(source, ec)) return source;
+  throw Error(fmt::format(
+      "no example scenes for rigid demo: not in '{}' (where `cmake --install` puts them for {}/rigid), nor in "
+      "'{}' ({}); install rigid with `cmake --install BUILD_DIR --prefix PREFIX` and run PREFIX/bin/rigid, or "
+      "run the rigid of the build directory",
+      installed.string(), bin.empty() ? std::string("<prefix>/bin") : bin.string(), source.string(),
+      from_build ? std::string("the source tree this rigid was built from")
+                 : fmt::format("the source tree's, used only by the rigid of its build directory {}",
+                               build_bin.string())));
+}
+
 // Times in `t` where `f` changes sign, refined by linear interpolation between samples.
 std::vector<double> sign_changes(const std::vector<double>& t, const std::vector<double>& f) {
   std::vector<double> out;
@@ -134,6 +161,8 @@ void tennis_racket_scene(bool report) {
 
 void run_demo(bool report) {
   using std::numbers::pi;
+  // before anything is written: the commands the tour ends with run these files
+  const fs::path examples = examples_directory();
   fmt::print("rigid {}: a short tour (every number below is computed now).\n\n",
              RIGID_VERSION_STRING);
   tennis_racket_scene(report);
@@ -161,9 +190,11 @@ void run_demo(bool report) {
   const SO3d mid = Rz.interpolate(Rx, 0.5);
   fmt::print("Geodesic midpoint of Rz and Rx: angle from each = {} deg and {} deg\n",
              (Rz.inverse() * mid).angle() * 180 / pi, (Rx.inverse() * mid).angle() * 180 / pi);
-  fmt::print("\nTry: rigid run examples/atwood.toml -o out/atwood && rigid eom examples/heavy_top.toml\n"
+  fmt::print("\nExample scenes: {}\n", examples.string());
+  fmt::print("Try: rigid run {} -o out/atwood && rigid eom {}\n"
              "     rigid rotation --euler 30,20,10 --convention ZYX --unit deg\n"
-             "     rigid inertia cone --radius 0.3 --height 1.2 --mass 2.5 --format urdf\n");
+             "     rigid inertia cone --radius 0.3 --height 1.2 --mass 2.5 --format urdf\n",
+             (examples / "atwood.toml").string(), (examples / "heavy_top.toml").string());
 }
 
 }  // namespace rigid::cli

@@ -2,6 +2,7 @@
 import csv
 import json
 import math
+import pathlib
 import re
 
 import numpy as np
@@ -53,3 +54,14 @@ def test_demo_writes_its_scene_and_outputs(run, tmp_path):
     run("run", out / "tennis_racket.toml", "-o", tmp_path / "again", "-q", check=True, cwd=tmp_path)
     again = np.loadtxt(tmp_path / "again" / "trajectory.csv", delimiter=",", skiprows=1)
     assert np.array_equal(again, data)
+
+
+def test_demo_from_the_build_directory_uses_the_source_trees_examples(run, tmp_path):
+    # the rigid of a build directory has no <prefix>/share next to it: the source tree's
+    # examples, and the command the tour suggests runs as printed
+    examples = pathlib.Path(__file__).resolve().parents[2] / "examples"
+    p = run("demo", "--no-report", check=True, cwd=tmp_path)
+    assert f"Example scenes: {examples}\n" in p.stdout
+    scene = re.search(r"Try: rigid run (\S+) -o out/atwood", p.stdout).group(1)
+    assert pathlib.Path(scene) == examples / "atwood.toml"
+    run("check", scene, check=True)
