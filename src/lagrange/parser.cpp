@@ -1,6 +1,7 @@
 #include "detail/parser.hpp"
 #include "detail/symbolic.hpp"
 #include "detail/symbolic_lock.hpp"
+#include "rigid/common/number_literal.hpp"
 #include "rigid/lagrange/expression_names.hpp"
 
 #include <algorithm>
@@ -274,6 +275,11 @@ class Parser {
       scale += negative ? -exponent : exponent;
       pos_ = p;
     }
+    // a literal is exact here, but every value leaves as a double: one that no double holds
+    // (1e-400 would become 0, 1e-310 a subnormal, 1e400 infinity) is refused as written
+    if (auto problem = literal_range_problem(std::string_view(s_).substr(start, pos_ - start))) {
+      fail(start, *problem);
+    }
     if (std::abs(scale) > 400) fail(start, "number out of range");
     const GiNaC::numeric mantissa(digits.c_str());
     return mantissa * GiNaC::numeric(10).power(GiNaC::numeric(scale));
@@ -452,6 +458,17 @@ double evaluate_constant(const Expression& expression, const std::vector<Paramet
     const auto& n = GiNaC::ex_to<GiNaC::numeric>(value);
     if (n.is_real()) {
       const double v = n.to_double();
+      // a non-zero value closer to 0 than the smallest normal double (1e-300/1e10, exp(-1000))
+      // would be used as 0 or a subnormal: refused, as its literal would be
+      if (!n.is_zero() && !(std::abs(v) >= kSmallestLiteral) && std::isfinite(v)) {
+        std::ostringstream exact;
+        exact << value;
+        detail::throw_at(expression, 0, context,
+                         fmt::format("'{}' evaluates to {}, which underflows: a double would hold "
+                                     "{:.17g}; expected 0 or a magnitude from {:.17g} to {:.17g}",
+                                     expression.text, exact.str(), v, kSmallestLiteral,
+                                     kLargestLiteral));
+      }
       if (std::isfinite(v)) return v;
     }
   }

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -16,6 +17,7 @@
 
 #include "rigid/common/did_you_mean.hpp"
 #include "rigid/common/escape.hpp"
+#include "rigid/common/number_literal.hpp"
 #include "rigid/common/wording.hpp"
 #include "rigid/io/run_output.hpp"
 #include "rigid/lagrange/names.hpp"
@@ -145,8 +147,25 @@ class Parser {
       return static_cast<double>(v);
     }
     const double v = n.as_floating_point()->get();
+    // toml++ rounds 1e-400 to 0 and keeps 2.2e-309 as a subnormal: the literal as written says
+    // whether the double holds its value
+    if (auto problem = literal_range_problem(literal_at(n.source()))) {
+      fail(n, fmt::format("{}: {}", what, *problem));
+    }
     if (!std::isfinite(v)) fail(n, fmt::format("{} is {}; expected a finite number", what, v));
     return v;
+  }
+
+  // The number literal that starts at `r` in the file's text (empty when the text is unknown).
+  [[nodiscard]] std::string_view literal_at(const toml::source_region& r) const {
+    std::size_t offset = 0;
+    for (std::size_t line = 1; line < r.begin.line && offset != std::string_view::npos; ++line) {
+      offset = text_.find('\n', offset);
+      if (offset != std::string_view::npos) ++offset;
+    }
+    if (offset == std::string_view::npos || r.begin.column < 1) return {};
+    offset += r.begin.column - 1;
+    return offset < text_.size() ? leading_literal(text_.substr(offset)) : std::string_view{};
   }
 
   [[nodiscard]] bool boolean(const toml::node& n, std::string_view what) const {
@@ -1252,6 +1271,39 @@ bool Scene::is_free_body_scene() const {
   return !bodies.empty() && bodies.front().free;
 }
 
+namespace {
+
+// The column (from 1) where `literal` starts on the line of `r`, at or before r's column; 0 when
+// it is not found there.
+int literal_start(std::string_view text, const toml::source_region& r, std::string_view literal) {
+  std::size_t offset = 0;
+  for (std::size_t line = 1; line < r.begin.line && offset != std::string_view::npos; ++line) {
+    offset = text.find('\n', offset);
+    if (offset != std::string_view::npos) ++offset;
+  }
+  if (offset == std::string_view::npos || literal.empty()) return 0;
+  const std::string_view line = text.substr(offset, text.find('\n', offset) - offset);
+  const std::size_t at = line.rfind(literal, r.begin.column > 0 ? r.begin.column - 1 : 0);
+  return at == std::string_view::npos ? 0 : static_cast<int>(at) + 1;
+}
+
+// The first number literal in `text` (a --set value) that no double holds, as
+// literal_range_problem says it.
+std::optional<std::string> first_literal_problem(std::string_view text) {
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const bool starts = std::isdigit(static_cast<unsigned char>(text[i])) != 0 &&
+                        (i == 0 || !(std::isalnum(static_cast<unsigned char>(text[i - 1])) != 0 ||
+                                     text[i - 1] == '_' || text[i - 1] == '.'));
+    if (!starts) continue;
+    const std::string_view literal = leading_literal(text.substr(i));
+    if (auto problem = literal_range_problem(literal)) return problem;
+    i += literal.empty() ? 0 : literal.size() - 1;
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
 Scene parse_scene(std::string_view toml_text, const std::filesystem::path& file,
                   const ModelOptions& model) {
   Parser p(file, toml_text);
@@ -1269,6 +1321,17 @@ Scene parse_scene(std::string_view toml_text, const std::filesystem::path& file,
       if (colon != std::string_view::npos) {
         context = fmt::format(" in a {}", text.substr(kLead.size(), colon - kLead.size()));
         text.remove_prefix(colon + 2);
+      }
+    }
+    // toml++ refuses a float that overflows ("'1e400' could not be interpreted as a value") at
+    // its end: said as the literal's range, at the literal's start
+    if (context == " in a floating-point" && text.starts_with("'")) {
+      const std::string_view literal = text.substr(1, text.find('\'', 1) - 1);
+      if (auto problem = literal_range_problem(literal)) {
+        SourceLocation at = p.where(e.source());
+        const auto start = literal_start(toml_text, e.source(), literal);
+        if (start > 0) at.column = start;
+        detail::throw_error_at(at, *problem);
       }
     }
     detail::throw_error_at(p.where(e.source()), fmt::format("TOML syntax error{}: {}", context, text));
@@ -1305,6 +1368,9 @@ std::string trimmed(std::string_view s) {
 // A scalar value as the file would hold it: a number, or an expression of the parameters.
 Expression override_expression(const std::string& value, const std::string& assignment) {
   Expression e{value, {fmt::format("override '{}'", assignment), 0, 0}, std::nullopt, false};
+  if (auto problem = literal_range_problem(value)) {
+    throw Error(fmt::format("override '{}': {}", assignment, *problem));
+  }
   double v = 0;
   const auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), v);
   if (ec == std::errc() && end == value.data() + value.size() && std::isfinite(v)) e.number = v;
@@ -1323,6 +1389,8 @@ std::array<double, N> override_vector(const std::string& value, const std::strin
   try {
     t = toml::parse("v = " + value);
   } catch (const toml::parse_error&) {
+    // toml++ refuses 1e400 outright: said as the literal's range
+    if (auto problem = first_literal_problem(value)) return refuse(*problem);
     return refuse(fmt::format("'{}' is not an array", value));
   }
   const toml::array* a = t.get("v") != nullptr ? t.get("v")->as_array() : nullptr;
@@ -1331,6 +1399,14 @@ std::array<double, N> override_vector(const std::string& value, const std::strin
   std::array<double, N> out{};
   for (std::size_t i = 0; i < N; ++i) {
     const toml::node* e = a->get(i);
+    // the element as written ("v = " is 4 columns before the value): 1e-400 would be read as 0
+    if (e != nullptr && e->source().begin.line == 1 && e->source().begin.column > 4) {
+      const std::string_view written =
+          leading_literal(std::string_view(value).substr(e->source().begin.column - 5));
+      if (auto problem = literal_range_problem(written)) {
+        return refuse(fmt::format("element {} {}", i + 1, *problem));
+      }
+    }
     // an integer or a float (toml++ converts an integer that a double holds exactly)
     const std::optional<double> v = e != nullptr && e->is_number() ? e->value<double>() : std::nullopt;
     if (!v || !std::isfinite(*v)) return refuse(fmt::format("element {} is not a finite number", i + 1));
