@@ -47,7 +47,8 @@ TimeGrid TimeGrid::from_times(double t0, std::vector<double> outputs) {
   return TimeGrid(t0, std::move(outputs));
 }
 
-std::size_t TimeGrid::steps_in(std::size_t k, double h_max, std::size_t max_steps) const {
+std::size_t TimeGrid::steps_in(std::size_t k, double h_max, std::size_t max_steps,
+                               std::size_t steps_before) const {
   RIGID_REQUIRE(std::isfinite(h_max) && h_max > 0, "the step h_max must be positive and finite, got {} s",
                 h_max);
   const double span = outputs_[k] - before(k);
@@ -55,10 +56,22 @@ std::size_t TimeGrid::steps_in(std::size_t k, double h_max, std::size_t max_step
   // the kRoundOff keeps a span that is a multiple of h_max up to round-off from taking one
   // extra step
   const double n = std::max(1.0, std::ceil(span / h_max * (1.0 - kRoundOff)));
-  RIGID_REQUIRE(n <= static_cast<double>(max_steps),
-                "{} s in steps of at most {} s is {:.4g} steps, more than the {} allowed; use a "
-                "larger step",
-                span, h_max, n, max_steps);
+  const std::size_t left = max_steps - std::min(steps_before, max_steps);
+  if (steps_before == 0) {
+    RIGID_REQUIRE(n <= static_cast<double>(max_steps),
+                  "{} s in steps of at most {} s is {:.4g} steps, more than the {} allowed; use a "
+                  "larger step",
+                  span, h_max, n, max_steps);
+  } else {
+    // the limit is the run's: the message counts the whole run, not what is left of it
+    const double whole = std::ceil((end() - start_) / h_max * (1.0 - kRoundOff));
+    RIGID_REQUIRE(n <= static_cast<double>(left),
+                  "{} s in steps of at most {} s is about {:.4g} steps, more than the {} a run may "
+                  "take ({} steps reach t = {} s, and the next output at {} s needs {:.4g} more); use "
+                  "a larger step",
+                  end() - start_, h_max, std::max(whole, static_cast<double>(steps_before) + n),
+                  max_steps, steps_before, before(k), outputs_[k], n);
+  }
   return static_cast<std::size_t>(n);
 }
 

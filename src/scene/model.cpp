@@ -526,7 +526,7 @@ struct Model::Impl {
       const SourceLocation& at = s.dt ? s.dt->where : s.where;
       at_location(at, "[simulation] dt", [&] {
         std::size_t total = 0;
-        for (std::size_t k = 0; k < grid.size(); ++k) total += grid.steps_in(k, dt, max_steps - total);
+        for (std::size_t k = 0; k < grid.size(); ++k) total += grid.steps_in(k, dt, max_steps, total);
         return total;
       });
     }

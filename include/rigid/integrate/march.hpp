@@ -63,9 +63,12 @@ class TimeGrid {
 
   /// The one step rule: the fewest equal steps no longer than h_max between before(k) and
   /// output k, n = ⌈span/h_max · (1 − kRoundOff)⌉ (0 for an empty interval).
-  /// @throws rigid::Error if h_max is not positive and finite, or n would exceed max_steps
-  /// (the count is compared as a double first: never an out-of-range conversion).
-  [[nodiscard]] std::size_t steps_in(std::size_t k, double h_max, std::size_t max_steps) const;
+  /// `max_steps` is the limit of the whole run and `steps_before` the steps the intervals before
+  /// k took, so that a refusal states the run's count and its limit.
+  /// @throws rigid::Error if h_max is not positive and finite, or steps_before + n would exceed
+  /// max_steps (the count is compared as a double first: never an out-of-range conversion).
+  [[nodiscard]] std::size_t steps_in(std::size_t k, double h_max, std::size_t max_steps,
+                                     std::size_t steps_before = 0) const;
 
  private:
   TimeGrid(double start, std::vector<double> outputs) : start_(start), outputs_(std::move(outputs)) {}
@@ -163,7 +166,7 @@ MarchStats march(const TimeGrid& grid, double h_max, Step&& step, FindNonFinite&
   std::size_t since_poll = 0;
   for (std::size_t k = 0; k < grid.size(); ++k) {
     const double t0 = grid.before(k), t1 = grid[k];
-    const std::size_t n = grid.steps_in(k, h_max, control.max_steps - stats.steps);
+    const std::size_t n = grid.steps_in(k, h_max, control.max_steps, stats.steps);
     const double h = n > 0 ? (t1 - t0) / static_cast<double>(n) : 0.0;
     for (std::size_t j = 0; j < n; ++j) {
       const double t = t0 + static_cast<double>(j) * h;
