@@ -122,7 +122,12 @@ inline void add_inertia_command(CLI::App& app) {
       "--mass", [source](double v) { source->mass = v; }, "mesh files: total mass (kg)");
   inertia->add_option_function<double>(
       "--density", [source](double v) { source->density = v; },
-      "mesh files: density (kg/m³; kg/m² with --shell, kg/m³ with --shell --thickness)");
+      "mesh files: density (kg/m³; of the material with --shell, which then needs --thickness)");
+  inertia->add_option_function<double>(
+      "--areal-density", [source](double v) { source->areal_density = v; },
+      "mesh files: a thin shell's mass per unit area (kg/m²; implies --shell, instead of "
+      "--thickness and --density)")
+      ->type_name("KG_PER_M2");
   inertia->add_option("--units", source->units, "mesh files: length unit m, cm, mm or in")
       ->default_str("m");
   inertia->add_flag("--shell", source->shell, "mesh files: a thin shell, not a solid");
@@ -133,8 +138,10 @@ inline void add_inertia_command(CLI::App& app) {
                     "mesh files: close holes whose border is a simple loop before computing "
                     "(a planar hole is closed exactly)");
   inertia->add_option("--tolerance", source->tolerance,
-                      "mesh files: 1σ of each vertex coordinate and of the amount, propagated to "
-                      "first order: vertices=±0.05mm,density=±2% (text and json only)");
+                      "1σ of the inputs, propagated to first order (text and json only); mesh "
+                      "files: of each vertex coordinate and of the amount, vertices=±0.05mm,"
+                      "density=±2%; primitives take it after their name, e.g. `rigid inertia box "
+                      "... --tolerance dims=±0.1mm` (see `rigid inertia box --help`)");
   // unknown words after an unknown SOURCE reach the callback, which names the real problem
   inertia->allow_extras();
   inertia->callback([inertia, source] {

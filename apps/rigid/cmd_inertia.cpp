@@ -14,6 +14,7 @@
 #include "cli_error.hpp"
 #include "rigid/common/did_you_mean.hpp"
 #include "rigid/common/error.hpp"
+#include "rigid/common/wording.hpp"
 #include "rigid/io/atomic_file.hpp"
 #include "rigid/io/inertial_xml.hpp"
 #include "rigid/lie/so3.hpp"
@@ -38,7 +39,7 @@ Eigen::Vector3d parse_xyz(const std::string& text, const std::string& what,
     const char* last = text.data() + (ok_sep ? end : text.size());
     const auto [ptr, ec] = std::from_chars(first, last, value);
     if (!ok_sep || ec != std::errc() || ptr != last || !std::isfinite(value)) {
-      CLI_THROW("{} must be {}, got '{}'", what, expected, text);
+      CLI_USAGE_THROW("{} must be {}, got '{}'", what, expected, text);
     }
     p(i) = value;
     start = end + 1;
@@ -50,7 +51,8 @@ Eigen::Vector3d parse_about(const std::string& about, const MassProperties& mp) 
   if (about == "com") return mp.com();
   if (about == "origin") return Eigen::Vector3d::Zero();
   if (about.find(',') == std::string::npos) {
-    CLI_THROW("--about must be 'com', 'origin' or a point 'x,y,z' in metres, got '{}'", about);
+    CLI_USAGE_THROW("--about must be 'com', 'origin' or a point 'x,y,z' in metres, got '{}'{}", about,
+                    did_you_mean_hint(about, {"com", "origin"}));
   }
   return parse_xyz(about, "--about");
 }
@@ -76,7 +78,7 @@ std::string text_mat(const Eigen::Matrix3d& m, const char* indent) {
 // these state the COM (h = m c), so --about com or origin keeps the link origin and
 // --about x,y,z moves it to that point.
 std::string format_identification(const MassProperties& mp, const InertiaOutputOptions& out) {
-  CLI_REQUIRE(out.frame == "body",
+  CLI_USAGE_REQUIRE(out.frame == "body",
               "--frame {} cannot be used with --format {}: it states the body in the link frame "
               "about the link origin (or the --about point); leave --frame at body",
               out.frame, out.format);
@@ -109,8 +111,9 @@ std::string cli_name(const std::string& catalogue_name) {
 }
 
 std::string format_inertia(const MassProperties& mp, const InertiaOutputOptions& out) {
-  CLI_REQUIRE(out.frame == "body" || out.frame == "principal",
-                "--frame must be 'body' or 'principal', got '{}'", out.frame);
+  CLI_USAGE_REQUIRE(out.frame == "body" || out.frame == "principal",
+                    "--frame must be 'body' or 'principal', got '{}'{}", out.frame,
+                    did_you_mean_hint(out.frame, {"body", "principal"}));
   const bool principal = out.frame == "principal";
   if (out.format == "pseudo" || out.format == "log-cholesky") return format_identification(mp, out);
   for (const auto format : {io::InertialFormat::urdf, io::InertialFormat::mjcf, io::InertialFormat::sdf}) {
@@ -120,7 +123,7 @@ std::string format_inertia(const MassProperties& mp, const InertiaOutputOptions&
       MassProperties stated = mp;
       if (out.about != "com" && out.about != "origin") {
         const Eigen::Vector3d p = parse_about(out.about, mp);
-        CLI_REQUIRE(!principal,
+        CLI_USAGE_REQUIRE(!principal,
                     "--frame principal with --about {} cannot be written as {}: {} gives the "
                     "principal axes of the inertia about the center of mass, and those of the "
                     "tensor about {} differ; use --frame body (the file then states the inertia "
@@ -132,8 +135,10 @@ std::string format_inertia(const MassProperties& mp, const InertiaOutputOptions&
           stated, format, {.name = out.name, .principal = principal}, out.inertial_frame);
     }
   }
-  CLI_REQUIRE(out.format == "text" || out.format == "json",
-                "--format must be one of text, json, urdf, mjcf, sdf, pseudo, log-cholesky; got '{}'", out.format);
+  CLI_USAGE_REQUIRE(out.format == "text" || out.format == "json",
+                    "--format must be one of text, json, urdf, mjcf, sdf, pseudo, log-cholesky; got '{}'{}",
+                    out.format,
+                    did_you_mean_hint(out.format, {"text", "json", "urdf", "mjcf", "sdf", "pseudo", "log-cholesky"}));
   const Eigen::Vector3d about = parse_about(out.about, mp);
   const Eigen::Matrix3d I = mp.inertia_about(about);
   // principal axes of the tensor about the chosen point (a physical tensor, so it can be
@@ -180,18 +185,18 @@ void emit_inertia(const MassProperties& mp, const InertiaOutputOptions& out) {
 void run_inertia_primitive(const InertiaPrimitiveOptions& opts) {
   const mass::PrimitiveEntry& e = mass::find_primitive(opts.primitive);
   const std::string name = cli_name(e.name);
-  CLI_REQUIRE(opts.mass.has_value() != opts.density.has_value(),
+  CLI_USAGE_REQUIRE(opts.mass.has_value() != opts.density.has_value(),
                 "give exactly one of --mass (kg) and --density ({}), got {}", e.density_unit,
                 opts.mass ? "both" : "neither");
   mass::PrimitiveArguments args;
   for (const auto& sz : e.sizes) {
     const auto it = opts.sizes.find(sz.name);
-    CLI_REQUIRE(it != opts.sizes.end(), "{} needs --{} ({}, {})", name, cli_name(sz.name), sz.help, sz.unit);
+    CLI_USAGE_REQUIRE(it != opts.sizes.end(), "{} needs --{} ({}, {})", name, cli_name(sz.name), sz.help, sz.unit);
     args.sizes.emplace_back(sz.name, it->second);
   }
   for (const auto& pt : e.points) {
     const auto it = opts.points.find(pt.name);
-    CLI_REQUIRE(it != opts.points.end(), "{} needs --{} ({} as x,y,z in m)", name, pt.name, pt.help);
+    CLI_USAGE_REQUIRE(it != opts.points.end(), "{} needs --{} ({} as x,y,z in m)", name, pt.name, pt.help);
     args.points.emplace_back(pt.name, parse_xyz(it->second, "--" + pt.name));
   }
   if (!opts.tolerance.empty()) {
@@ -221,7 +226,7 @@ mass::Placement parse_placement(const InertiaPrimitiveOptions& opts) {
       placement.axis = named->second;
     } else {
       placement.axis = parse_xyz(opts.axis, "--axis", "x, y, z, -x, -y, -z or a direction 'vx,vy,vz'");
-      CLI_REQUIRE(placement.axis.norm() > 1e-12, "--axis must be a non-zero direction, got '{}'", opts.axis);
+      CLI_USAGE_REQUIRE(placement.axis.norm() > 1e-12, "--axis must be a non-zero direction, got '{}'", opts.axis);
     }
   }
   if (!opts.origin.empty()) placement.origin = parse_xyz(opts.origin, "--origin");
@@ -245,16 +250,24 @@ void emit_uncertain_primitive(const mass::PrimitiveEntry& e, const mass::Primiti
   const std::optional<Eigen::Vector3d> about = uncertainty_about(out);
   const auto u = mass::primitive_uncertainty(e.name, opts.mass ? mass::Amount::kMass : mass::Amount::kDensity,
                                              opts.mass ? *opts.mass : *opts.density, args,
-                                             parse_placement(opts), mass::parse_tolerances(opts.tolerance), about);
+                                             parse_placement(opts), parse_tolerance_option(opts.tolerance), about);
   emit_uncertain(u.value, u.sigma, u.inputs, about ? *about : u.nominal.com(), out);
 }
 
+std::vector<mass::Tolerance> parse_tolerance_option(const std::string& text) {
+  try {
+    return mass::parse_tolerances(text);
+  } catch (const Error& e) {
+    throw UsageError(fmt::format("--tolerance: {}", e.what()));
+  }
+}
+
 void require_uncertainty_output(const InertiaOutputOptions& out) {
-  CLI_REQUIRE(out.format == "text" || out.format == "json",
+  CLI_USAGE_REQUIRE(out.format == "text" || out.format == "json",
               "--tolerance is printed with --format text or json (each value ± its 1σ); {} has no "
               "place for a standard deviation; got --format {}",
               out.format, out.format);
-  CLI_REQUIRE(out.frame == "body",
+  CLI_USAGE_REQUIRE(out.frame == "body",
               "--tolerance gives the 1σ of the tensor's elements in the body frame; use --frame "
               "body, got --frame {}", out.frame);
 }
@@ -262,8 +275,9 @@ void require_uncertainty_output(const InertiaOutputOptions& out) {
 std::optional<Eigen::Vector3d> uncertainty_about(const InertiaOutputOptions& out) {
   if (out.about == "com") return std::nullopt;
   if (out.about == "origin") return Eigen::Vector3d::Zero();
-  CLI_REQUIRE(out.about.find(',') != std::string::npos,
-              "--about must be 'com', 'origin' or a point 'x,y,z' in metres, got '{}'", out.about);
+  CLI_USAGE_REQUIRE(out.about.find(',') != std::string::npos,
+                    "--about must be 'com', 'origin' or a point 'x,y,z' in metres, got '{}'{}", out.about,
+                    did_you_mean_hint(out.about, {"com", "origin"}));
   return parse_xyz(out.about, "--about");
 }
 
@@ -309,7 +323,7 @@ void emit_uncertain(const Eigen::Matrix<double, 10, 1>& value, const Eigen::Matr
 void run_inertia_source(const InertiaSourceOptions& opts) {
   std::vector<std::string> names;
   for (const auto& e : mass::primitive_table()) names.push_back(cli_name(e.name));
-  CLI_REQUIRE(!opts.source.empty(), "give a primitive ({}), a mesh file or `check FILE`", fmt::join(names, ", "));
+  CLI_USAGE_REQUIRE(!opts.source.empty(), "give a primitive ({}), a mesh file or `check FILE`", fmt::join(names, ", "));
   // a path (an existing file, or a name with an extension or a folder; primitive names have
   // neither): the mesh library reads it or says it is not a supported mesh format
   std::error_code ec;
@@ -318,7 +332,8 @@ void run_inertia_source(const InertiaSourceOptions& opts) {
   if (path_like) {
     run_inertia_mesh(
         opts.source,
-        {opts.mass, opts.density, opts.units, opts.shell, opts.thickness, opts.fill_holes, opts.tolerance},
+        {opts.mass, opts.density, opts.areal_density, opts.units, opts.shell, opts.thickness,
+         opts.fill_holes, opts.tolerance},
         opts.output);
     return;
   }
@@ -327,7 +342,7 @@ void run_inertia_source(const InertiaSourceOptions& opts) {
   for (const auto& e : mass::primitive_table()) {
     for (const auto& n : e.names()) all.push_back(cli_name(n));
   }
-  CLI_THROW("unknown primitive '{}'{}; expected one of {} (each with the short names of `rigid "
+  CLI_USAGE_THROW("unknown primitive '{}'{}; expected one of {} (each with the short names of `rigid "
             "inertia --help`), a mesh file (.stl, .obj, .ply, .off) or `check FILE`",
             opts.source, did_you_mean_hint(cli_name(opts.source), all), fmt::join(names, ", "));
 }
@@ -353,8 +368,8 @@ void run_inertia_check(const InertiaCheckOptions& opts) {
                  .c_str(),
              stdout);
   std::fflush(stdout);
-  CLI_REQUIRE(invalid == 0, "{} of {} inertials in {} are invalid (listed above)", invalid,
-                entries.size(), opts.file);
+  CLI_REQUIRE(invalid == 0, "{} of {} in {} {} invalid (listed above)", invalid,
+              counted(entries.size(), "inertial"), opts.file, invalid == 1 ? "is" : "are");
 }
 
 }  // namespace rigid::cli

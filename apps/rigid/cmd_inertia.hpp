@@ -10,6 +10,7 @@
 #include "rigid/mass/mass_properties.hpp"
 #include "rigid/mass/placement.hpp"
 #include "rigid/mass/primitive_table.hpp"
+#include "rigid/mass/uncertainty.hpp"
 
 namespace rigid::cli {
 
@@ -82,6 +83,9 @@ void emit_uncertain_primitive(const mass::PrimitiveEntry& e, const mass::Primiti
 /// Refuses --tolerance with an output that has no place for σ (urdf, ..., --frame principal).
 void require_uncertainty_output(const InertiaOutputOptions& out);
 
+/// mass::parse_tolerances of --tolerance; its refusal as a usage error (exit status 2).
+[[nodiscard]] std::vector<mass::Tolerance> parse_tolerance_option(const std::string& text);
+
 /// The --about point of a propagated tensor: nullopt for the COM.
 [[nodiscard]] std::optional<Eigen::Vector3d> uncertainty_about(const InertiaOutputOptions& out);
 
@@ -98,7 +102,8 @@ struct InertiaSourceOptions {
   std::string source;
   InertiaOutputOptions output;
   std::optional<double> mass;       ///< kg (mesh files)
-  std::optional<double> density;    ///< kg/m³ solid, kg/m² shell (kg/m³ with thickness)
+  std::optional<double> density;    ///< kg/m³: a solid's, or a shell's material (with thickness)
+  std::optional<double> areal_density;  ///< kg/m²: a shell's mass per unit area (implies shell)
   std::string units = "m";          ///< mesh file unit: m, cm, mm or in
   bool shell = false;               ///< mesh as a thin shell
   std::optional<double> thickness;  ///< m, with shell

@@ -4,6 +4,8 @@
 
 #include <fmt/format.h>
 
+#include "cli_error.hpp"
+#include "rigid/common/did_you_mean.hpp"
 #include "rigid/common/error.hpp"
 #include "rigid/common/wording.hpp"
 #include "rigid/io/atomic_file.hpp"
@@ -15,13 +17,21 @@ void run_inertia_fix(const InertiaFixOptions& opts) {
   io::InertialFixOptions options;
   options.density = opts.density;
   options.keep_mass = opts.keep_mass;
-  RIGID_REQUIRE(opts.from == "collision" || opts.from == "visual",
-                "--from must be collision or visual, got '{}'", opts.from);
+  CLI_USAGE_REQUIRE(opts.from == "collision" || opts.from == "visual",
+                    "--from must be collision or visual, got '{}'{}", opts.from,
+                    did_you_mean_hint(opts.from, {"collision", "visual"}));
   options.from = opts.from == "visual" ? io::GeometrySource::kVisual : io::GeometrySource::kCollision;
   options.only = opts.only;
-  for (const auto& p : opts.package_paths) options.package_paths.push_back(io::parse_package_path(p));
-  RIGID_REQUIRE(opts.format == "text" || opts.format == "json",
-                "--format must be text or json, got '{}'", opts.format);
+  CLI_USAGE_REQUIRE(opts.format == "text" || opts.format == "json",
+                    "--format must be text or json, got '{}'{}", opts.format,
+                    did_you_mean_hint(opts.format, {"text", "json"}));
+  for (const auto& p : opts.package_paths) {
+    try {
+      options.package_paths.push_back(io::parse_package_path(p));
+    } catch (const Error& e) {
+      throw UsageError(fmt::format("--package-path: {}", e.what()));
+    }
+  }
 
   const io::InertialFixResult result = io::fix_inertials_file(opts.file, options);
   const std::string table =

@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "cli_error.hpp"
+#include "rigid/common/did_you_mean.hpp"
 #include "rigid/common/error.hpp"
 #include "rigid/common/wording.hpp"
 #include "rigid/mass/uncertainty.hpp"
@@ -29,6 +30,15 @@ std::string box_size(const std::array<Eigen::Vector3d, 2>& box, const std::strin
   return fmt::format("{:.6g} × {:.6g} × {:.6g} m (file read in {})", d.x(), d.y(), d.z(), units);
 }
 
+// The scale of --units (m, cm, mm, in): a unit outside them is a usage error, with a guess.
+double units_scale(const std::string& units) {
+  try {
+    return mesh::unit_scale(units);
+  } catch (const Error& e) {
+    throw UsageError(fmt::format("--units: {}{}", e.what(), did_you_mean_hint(units, {"m", "cm", "mm", "in"})));
+  }
+}
+
 }  // namespace
 
 bool is_mesh_file(const std::string& path) {
@@ -41,7 +51,7 @@ bool is_mesh_file(const std::string& path) {
 }
 
 void run_mesh_check(const MeshCheckOptions& opts) {
-  mesh::TriangleMesh m = mesh::read_mesh(opts.file, mesh::unit_scale(opts.units));
+  mesh::TriangleMesh m = mesh::read_mesh(opts.file, units_scale(opts.units));
   mesh::RepairOptions ro;
   ro.weld_tolerance = opts.weld_tolerance;
   const mesh::RepairReport first = mesh::repair_mesh(m, ro);
@@ -64,10 +74,12 @@ void run_mesh_check(const MeshCheckOptions& opts) {
   for (const auto& w : units) out += fmt::format("warning: {}\n", word_for(Surface::kCli, w));
   std::string problem;
   if (!rep.closed()) {
-    problem = fmt::format("the mesh is not closed ({} boundary edges, {} non-manifold edges): "
-                          "its volume is undefined; use `rigid inertia {} --shell` for a thin "
-                          "shell, or --fill-holes to close simple holes",
-                          rep.boundary_edges, rep.non_manifold_edges, opts.file);
+    problem = fmt::format("the mesh is not closed ({}, {}): "
+                          "its volume is undefined; use `rigid inertia {} --shell --thickness M "
+                          "--density KG_PER_M3` (or --areal-density KG_PER_M2) for a thin shell, or "
+                          "--fill-holes to close simple holes",
+                          counted(rep.boundary_edges, "boundary edge"),
+                          counted(rep.non_manifold_edges, "non-manifold edge"), opts.file);
   } else {
     const double v = mesh::volume_moments(m).measure;
     out += fmt::format("volume: {:.9g} m³, area: {:.9g} m²\n", v,
@@ -90,16 +102,16 @@ void run_mesh_check(const MeshCheckOptions& opts) {
 static void run_inertia_mesh_uncertainty(const std::string& file, const MeshInertiaOptions& opts,
                                   const mesh::MassSpec& spec, const InertiaOutputOptions& out) {
   require_uncertainty_output(out);
-  CLI_REQUIRE(!opts.fill_holes, "--tolerance cannot be used with --fill-holes: the noise of the "
+  CLI_USAGE_REQUIRE(!opts.fill_holes, "--tolerance cannot be used with --fill-holes: the noise of the "
                                 "filled patches' vertices is not modelled; close the mesh first");
   const std::string amount = opts.mass ? "mass" : "density";
-  const double amount_value = opts.mass ? *opts.mass : opts.density.value_or(0.0);
+  const double amount_value = opts.mass ? *opts.mass : spec.density.value_or(0.0);
   double vertex_sigma = 0.0, amount_relative = 0.0;
   std::vector<std::string> inputs;
-  for (const mass::Tolerance& t : mass::parse_tolerances(opts.tolerance)) {
+  for (const mass::Tolerance& t : parse_tolerance_option(opts.tolerance)) {
     if (t.name == "vertices") {
       static const std::string kLengths[] = {"", "m", "cm", "mm", "um", "µm", "in"};
-      CLI_REQUIRE(!t.relative && std::find(std::begin(kLengths), std::end(kLengths), t.unit) != std::end(kLengths),
+      CLI_USAGE_REQUIRE(!t.relative && std::find(std::begin(kLengths), std::end(kLengths), t.unit) != std::end(kLengths),
                   "tolerance vertices must be a length (e.g. ±0.05mm), got '{}{}'", t.sigma, t.unit);
       vertex_sigma = t.sigma;
       inputs.push_back("vertices");
@@ -107,12 +119,12 @@ static void run_inertia_mesh_uncertainty(const std::string& file, const MeshIner
       amount_relative = t.relative ? t.sigma : t.sigma / amount_value;
       inputs.push_back(amount);
     } else {
-      CLI_THROW("unknown tolerance '{}' for a mesh; it takes vertices=±LENGTH and {}=±… (the amount "
+      CLI_USAGE_THROW("unknown tolerance '{}' for a mesh; it takes vertices=±LENGTH and {}=±… (the amount "
                 "given), e.g. --tolerance vertices=±0.05mm,{}=±2%",
                 t.name, amount, amount);
     }
   }
-  mesh::TriangleMesh m = mesh::read_mesh(file, mesh::unit_scale(opts.units));
+  mesh::TriangleMesh m = mesh::read_mesh(file, units_scale(opts.units));
   (void)mesh::repair_mesh(m);
   const std::optional<Eigen::Vector3d> about = uncertainty_about(out);
   const mesh::MeshUncertainty u = mesh::vertex_noise_uncertainty(m, spec, vertex_sigma, about);
@@ -123,15 +135,44 @@ static void run_inertia_mesh_uncertainty(const std::string& file, const MeshIner
   emit_uncertain(u.value, sigma, inputs, about ? *about : u.nominal.properties.com(), out);
 }
 
+// The amount of a mesh body from the command line: exactly one of --mass, --density (a shell's
+// with --thickness) and --areal-density (a shell's, per unit area). A shell's --density alone
+// was once taken as kg/m², so 7850 (steel, kg/m³) made a sheet-metal cover weigh 97 kg: it is
+// refused with both remedies.
+mesh::MassSpec mesh_mass_spec(const MeshInertiaOptions& opts) {
+  const int amounts = int{opts.mass.has_value()} + int{opts.density.has_value()} +
+                      int{opts.areal_density.has_value()};
+  CLI_USAGE_REQUIRE(amounts == 1,
+                    "give exactly one of --mass (kg), --density (kg/m³) and --areal-density (kg/m², "
+                    "a thin shell), got {}",
+                    amounts == 0 ? "none" : "more than one");
+  if (opts.areal_density) {
+    CLI_USAGE_REQUIRE(!opts.thickness,
+                      "--areal-density {} kg/m² is already per unit area: --thickness {} m would "
+                      "count the wall twice; give --density (kg/m³) with --thickness, or "
+                      "--areal-density alone",
+                      *opts.areal_density, *opts.thickness);
+    return {std::nullopt, opts.areal_density, true, std::nullopt};
+  }
+  if (opts.shell && opts.density) {
+    CLI_USAGE_REQUIRE(opts.thickness.has_value(),
+                      "--shell with --density {} needs --thickness: --density is the material's "
+                      "density (kg/m³) and the wall thickness (m) makes it a mass per area; for a "
+                      "mass per unit area give --areal-density {} (kg/m²) instead of --density",
+                      *opts.density, *opts.density);
+  }
+  return {opts.mass, opts.density, opts.shell, opts.thickness};
+}
+
 void run_inertia_mesh(const std::string& file, const MeshInertiaOptions& opts,
                       const InertiaOutputOptions& out) {
-  const mesh::MassSpec spec{opts.mass, opts.density, opts.shell, opts.thickness};
+  const mesh::MassSpec spec = mesh_mass_spec(opts);
   if (!opts.tolerance.empty()) {
     run_inertia_mesh_uncertainty(file, opts, spec, out);
     return;
   }
   const mesh::MeshFileMass r =
-      mesh::mesh_mass_from_file(file, mesh::unit_scale(opts.units), spec, {}, opts.fill_holes);
+      mesh::mesh_mass_from_file(file, units_scale(opts.units), spec, {}, opts.fill_holes);
   std::fputs(fmt::format("rigid: {}: size {}\n", file,
                          box_size(r.mass.bounding_box, opts.units)).c_str(),
              stderr);

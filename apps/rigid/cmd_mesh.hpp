@@ -22,7 +22,8 @@ void run_mesh_check(const MeshCheckOptions& opts);
 /// Mesh options of `rigid inertia FILE`.
 struct MeshInertiaOptions {
   std::optional<double> mass;       ///< kg
-  std::optional<double> density;    ///< kg/m³ (solid, or shell with thickness), kg/m² (shell)
+  std::optional<double> density;    ///< kg/m³: a solid's, or a shell's material (with thickness)
+  std::optional<double> areal_density;  ///< kg/m²: a shell's mass per unit area (implies shell)
   std::string units = "m";          ///< m, cm, mm or in
   bool shell = false;               ///< thin shell instead of a solid
   std::optional<double> thickness;  ///< m, shell only

@@ -10,6 +10,7 @@
 #include <fmt/core.h>
 
 #include "cli_error.hpp"
+#include "rigid/common/did_you_mean.hpp"
 #include "rigid/common/error.hpp"
 #include "rigid/lie.hpp"
 
@@ -27,15 +28,15 @@ std::vector<double> parse_numbers(std::string_view text, std::size_t count, std:
     while (!item.empty() && item.back() == ' ') item.remove_suffix(1);
     double v = 0;
     const auto [ptr, ec] = std::from_chars(item.data(), item.data() + item.size(), v);
-    CLI_REQUIRE(ec == std::errc() && ptr == item.data() + item.size() && !item.empty(),
-                  "{}: '{}' is not a number", option, item);
-    CLI_REQUIRE(std::isfinite(v), "{}: value {} is not finite", option, item);
+    CLI_USAGE_REQUIRE(ec == std::errc() && ptr == item.data() + item.size() && !item.empty(),
+                      "{}: '{}' is not a number", option, item);
+    CLI_USAGE_REQUIRE(std::isfinite(v), "{}: value {} is not finite", option, item);
     out.push_back(v);
     if (end == text.size()) break;
     start = end + 1;
   }
-  CLI_REQUIRE(out.size() == count, "{} takes {} comma-separated numbers, got {} in '{}'", option, count,
-                out.size(), text);
+  CLI_USAGE_REQUIRE(out.size() == count, "{} takes {} comma-separated numbers, got {} in '{}'", option,
+                    count, out.size(), text);
   return out;
 }
 
@@ -57,15 +58,29 @@ std::string list(const Eigen::VectorXd& v) {
   return s + "]";
 }
 
+// An Euler sequence named by an option: the library's refusal (with its list and its guess),
+// as a usage error.
+EulerConvention parse_convention(const std::string& sequence, bool intrinsic) {
+  try {
+    return EulerConvention::parse(sequence, intrinsic);
+  } catch (const UsageError&) {
+    throw;
+  } catch (const Error& e) {
+    throw UsageError(e.what());
+  }
+}
+
 }  // namespace
 
 void run_rotation(const RotationOptions& o) {
-  CLI_REQUIRE(o.unit == "deg" || o.unit == "rad", "--unit is '{}', expected deg or rad", o.unit);
-  CLI_REQUIRE(o.order == "wxyz" || o.order == "xyzw", "--order is '{}', expected wxyz or xyzw", o.order);
+  CLI_USAGE_REQUIRE(o.unit == "deg" || o.unit == "rad", "--unit is '{}', expected deg or rad{}", o.unit,
+                    did_you_mean_hint(o.unit, {"deg", "rad"}));
+  CLI_USAGE_REQUIRE(o.order == "wxyz" || o.order == "xyzw", "--order is '{}', expected wxyz or xyzw{}",
+                    o.order, did_you_mean_hint(o.order, {"wxyz", "xyzw"}));
   const double to_rad = o.unit == "deg" ? std::numbers::pi / 180.0 : 1.0;
-  const EulerConvention conv = EulerConvention::parse(o.convention, !o.extrinsic);
+  const EulerConvention conv = parse_convention(o.convention, !o.extrinsic);
   const EulerConvention out_conv =
-      o.out_convention.empty() ? conv : EulerConvention::parse(o.out_convention, !o.extrinsic);
+      o.out_convention.empty() ? conv : parse_convention(o.out_convention, !o.extrinsic);
 
   SO3d R = SO3d::identity();
   if (!o.axis_angle.empty()) {

@@ -12,6 +12,8 @@
 
 #include <fmt/format.h>
 
+#include "cli_error.hpp"
+#include "rigid/common/did_you_mean.hpp"
 #include "rigid/common/error.hpp"
 #include "rigid/common/wording.hpp"
 #include "rigid/io/run_output.hpp"
@@ -32,15 +34,38 @@ std::atomic<bool> g_interrupted{false};
 extern "C" void on_interrupt(int /*signal*/) { g_interrupted = true; }
 
 
+// Every integrator a scene may name: those of the coordinate scenes (integrate::parse_method)
+// and of the free-body scenes (body::free_body_method_from_name, and the closed form "exact").
+// A name outside both is a usage error with a guess; one of them that the scene's kind does not
+// take is refused by the scene (status 1), with the kind's own list.
+const std::vector<std::string> kIntegratorNames = {
+    "rk4",        "dopri5",     "implicit_midpoint", "stormer_verlet", "exact",        "splitting2",
+    "splitting4", "splitting6", "midpoint",          "rkmk4",          "moser_veselov"};
+
+}  // namespace
+
+void require_known_integrator(const std::string& name) {
+  if (name.empty() || std::find(kIntegratorNames.begin(), kIntegratorNames.end(), name) != kIntegratorNames.end()) {
+    return;
+  }
+  CLI_USAGE_THROW("--integrator: unknown integrator '{}'{}; expected one of {} (coordinates: rk4, dopri5, "
+                  "implicit_midpoint, stormer_verlet; free bodies: exact, rk4, splitting2, splitting4, "
+                  "splitting6, midpoint, rkmk4, moser_veselov)",
+                  name, did_you_mean_hint(name, kIntegratorNames), fmt::join(kIntegratorNames, ", "));
+}
+
+namespace {
+
 // The run options of a scene command: the integrator and --max-memory.
 scene::RunOptions run_options(const SceneOptions& opts) {
   scene::RunOptions ro;
+  require_known_integrator(opts.integrator);
   ro.integrator = opts.integrator;
   if (!opts.max_memory.empty()) {
     try {
       ro.max_memory = io::parse_memory_size(opts.max_memory);
     } catch (const Error& e) {
-      throw Error(fmt::format("--max-memory: {}", e.what()));
+      throw UsageError(fmt::format("--max-memory: {}", e.what()));
     }
   }
   return ro;
@@ -72,7 +97,7 @@ report::ReportOptions report_options(const std::string& frames_text) {
   if (!frames_text.empty()) {
     const std::uint64_t frames = unsigned_option(frames_text, "--report-frames", "the number of frames");
     if (frames < report::kMinMaxFrames || frames > report::kMaxMaxFrames) {
-      throw Error(fmt::format("--report-frames {}: expected a number of frames from {} to {}", frames,
+      throw UsageError(fmt::format("--report-frames {}: expected a number of frames from {} to {}", frames,
                               report::kMinMaxFrames, report::kMaxMaxFrames));
     }
     o.max_frames = static_cast<std::size_t>(frames);
@@ -83,6 +108,18 @@ report::ReportOptions report_options(const std::string& frames_text) {
 }  // namespace
 
 void run_run(const RunOptions& opts) {
+  // the options' own forms first: a misspelt one is refused before the scene is derived
+  for (const std::string& f : opts.formats) {
+    try {
+      (void)io::parse_output_format(f);
+    } catch (const Error& e) {
+      throw UsageError(fmt::format("--format: {}", e.what()));
+    }
+  }
+  if (!opts.report && !opts.report_frames.empty()) {
+    throw UsageError("--report-frames sets the frames of the report: give --report with it");
+  }
+  (void)run_options(opts.scene);
   const scene::Model model = load_scene(opts.scene.scene, opts.scene.set, opts.scene.model);
   const std::vector<io::OutputFormat> formats = [&] {
     try {
@@ -99,8 +136,6 @@ void run_run(const RunOptions& opts) {
   std::optional<report::ReportOptions> report_opts;
   if (opts.report) {
     report_opts = report_options(opts.report_frames);
-  } else if (!opts.report_frames.empty()) {
-    throw Error("--report-frames sets the frames of the report: give --report with it");
   }
 
   g_interrupted = false;
@@ -150,6 +185,7 @@ void run_report(const ReportOptions& opts) {
 }
 
 void run_check(const SceneOptions& opts) {
+  (void)run_options(opts);
   const scene::Model model = load_scene(opts.scene, opts.set, opts.model);
   model.check(run_options(opts));
   fmt::print("{}", describe_model(opts.scene, model, opts.integrator));
@@ -157,16 +193,18 @@ void run_check(const SceneOptions& opts) {
 }
 
 void run_eom(const SceneOptions& opts, bool latex, const std::string& format) {
+  require_known_integrator(opts.integrator);
   // the format first: a bad --format is refused before the scene is derived
   lagrange::EquationFormat f = latex ? lagrange::EquationFormat::kLatex : lagrange::EquationFormat::kText;
   if (!format.empty()) {
     try {
       f = lagrange::parse_equation_format(format);
     } catch (const Error& e) {
-      throw Error(fmt::format("--format: {}", e.what()));
+      throw UsageError(fmt::format("--format: {}{}", e.what(),
+                                   did_you_mean_hint(format, {"text", "latex", "json"})));
     }
     if (latex && f != lagrange::EquationFormat::kLatex) {
-      throw Error(fmt::format("--latex and --format {} ask for two formats; give one", format));
+      throw UsageError(fmt::format("--latex and --format {} ask for two formats; give one", format));
     }
   }
   const scene::Model model = load_scene(opts.scene, opts.set, opts.model);

@@ -34,6 +34,10 @@ struct ReportOptions {
   std::string report_frames;          ///< most frames, as given; empty: the default (2000)
 };
 
+/// Refuses (rigid::cli::UsageError, exit status 2) an --integrator that no scene kind takes,
+/// with the closest name; an empty name (none given) passes.
+void require_known_integrator(const std::string& name);
+
 /// `rigid report DIR`: the report page of an earlier run, from its trajectory.csv, its
 /// summary.json and the scene file summary.json names.
 void run_report(const ReportOptions& opts);

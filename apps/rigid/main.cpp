@@ -5,6 +5,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "cli_error.hpp"
 #include "rigid/common/error.hpp"
 #include "rigid/common/wording.hpp"
 #include "rigid/version.hpp"
@@ -16,6 +17,7 @@
 #include "cli_mesh.hpp"
 #include "cli_modes.hpp"
 #include "cli_run.hpp"
+#include "cli_suggest.hpp"
 #include "cli_sweep.hpp"
 
 namespace {
@@ -58,6 +60,7 @@ int main(int argc, char** argv) {
     }
   }
   try {
+    rigid::cli::refuse_misspelt_names(app, argc, argv);
     app.parse(argc, argv);
     if (app.get_subcommands().empty()) {
       std::fputs(app.help().c_str(), stderr);
@@ -74,6 +77,11 @@ int main(int argc, char** argv) {
     // CLI11's message for a bad command line (and its own exit code, e.g. 106, replaced by the
     // one usage code)
     (void)app.exit(e);
+    return kExitUsage;
+  } catch (const rigid::cli::UsageError& e) {
+    // a bad option value found by a command (not by CLI11): the same status as CLI11's
+    std::fprintf(stderr, "rigid: error: %s\n", rigid::word_for(rigid::Surface::kCli, e.what()).c_str());
+    std::fputs("Run with --help for more information.\n", stderr);
     return kExitUsage;
   } catch (const rigid::Cancelled& e) {
     std::fprintf(stderr, "rigid: interrupted: %s\n", e.what());

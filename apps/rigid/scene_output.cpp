@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "cli_error.hpp"
 #include "rigid/common/error.hpp"
 #include "rigid/common/wording.hpp"
 #include "rigid/io/table.hpp"
@@ -39,12 +40,12 @@ std::string bodies_lines(const scene::Model& model) {
 std::string describe_run(const std::string& scene_file, const scene::Model& model,
                          const scene::RunResult& result) {
   const scene::RunSummary& s = result.summary;
-  std::string out = fmt::format("{}: {} scene, {} bodies\n", scene_file,
+  std::string out = fmt::format("{}: {} scene, {}\n", scene_file,
                                 s.kind == rigid::io::RunKind::kCoordinates ? "generalized-coordinate" : "free-body",
-                                model.bodies().size());
-  out += fmt::format("{} to t = {:.6g} s: {} steps", s.integrator, s.t_end, s.steps);
-  if (s.rhs_evaluations > 0) out += fmt::format(", {} right-hand sides", s.rhs_evaluations);
-  out += fmt::format(", {} samples, {:.3g} s wall time\n", s.samples, s.wall_seconds);
+                                counted(model.bodies().size(), "body", "bodies"));
+  out += fmt::format("{} to t = {:.6g} s: {}", s.integrator, s.t_end, counted(s.steps, "step"));
+  if (s.rhs_evaluations > 0) out += fmt::format(", {}", counted(s.rhs_evaluations, "right-hand side"));
+  out += fmt::format(", {}, {:.3g} s wall time\n", counted(s.samples, "sample"), s.wall_seconds);
   out += diagnostics_lines(s);
   if (!s.metrics.empty()) out += "metrics:\n";
   for (const io::Metric& m : s.metrics) {
@@ -118,8 +119,8 @@ std::uint64_t unsigned_option(const std::string& text, const char* option, const
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
   if (text.find_first_not_of("0123456789") != std::string::npos || ec != std::errc() ||
       end != text.data() + text.size()) {
-    throw Error(fmt::format("{} {}: {} must be a whole number from 0 to 18446744073709551615 "
-                            "(2^64 - 1){}",
+    throw UsageError(fmt::format("{} {}: {} must be a whole number from 0 to 18446744073709551615 "
+                                 "(2^64 - 1){}",
                             option, text, what,
                             ec == std::errc::result_out_of_range ? ", and this is larger" : ""));
   }

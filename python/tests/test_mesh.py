@@ -111,7 +111,7 @@ def test_repair_true_measures_a_repaired_copy_and_says_so():
     np.testing.assert_allclose(mp.com, [a / 2, b / 2, c / 2], rtol=1e-12)
     np.testing.assert_allclose(mp.inertia_com, m / 12 * np.diag([b * b + c * c, a * a + c * c, a * a + b * b]),
                                rtol=0, atol=1e-12 * m)
-    assert warnings == ["flipped 1 triangles whose winding disagreed with their neighbours"]
+    assert warnings == ["flipped 1 triangle whose winding disagreed with their neighbours"]
     np.testing.assert_array_equal(mesh.triangles, f)  # the caller's mesh is unchanged
     # an open mesh stays refused with repair=True: repair cannot invent the missing face
     with pytest.raises(rigid.Error, match=r"shell=True.*fill_holes=True"):

@@ -12,6 +12,12 @@ std::string setting(std::string_view key, std::string_view value) {
   return fmt::format("`{} = \"{}\"`", key, value);
 }
 
+std::string counted(std::size_t n, std::string_view singular, std::string_view plural) {
+  if (n == 1) return fmt::format("1 {}", singular);
+  if (plural.empty()) return fmt::format("{} {}s", n, singular);
+  return fmt::format("{} {}", n, plural);
+}
+
 namespace {
 
 bool is_key_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_'; }

@@ -14,6 +14,7 @@
 #include <boost/numeric/odeint/stepper/runge_kutta_dopri5.hpp>
 #include <fmt/format.h>
 
+#include "rigid/common/did_you_mean.hpp"
 #include "rigid/common/error.hpp"
 
 namespace rigid::integrate {
@@ -341,7 +342,8 @@ Method parse_method(std::string_view name) {
     if (name == to_string(m)) return m;
   }
   RIGID_THROW("unknown integrator '{}'; expected one of rk4, dopri5, implicit_midpoint, "
-              "stormer_verlet", name);
+              "stormer_verlet{}",
+              name, did_you_mean_hint(name, {"rk4", "dopri5", "implicit_midpoint", "stormer_verlet"}));
 }
 
 std::string tolerance_above_bound(std::string_view what, double value) {

@@ -2,9 +2,12 @@
 
 #include <cctype>
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include <fmt/ranges.h>
 
+#include "rigid/common/did_you_mean.hpp"
 #include "rigid/common/error.hpp"
 #include "rigid/common/format.hpp"
 
@@ -67,7 +70,8 @@ EulerConvention EulerConvention::parse(std::string_view sequence, bool intrinsic
       return c;
     }
   }
-  RIGID_THROW("unknown Euler sequence '{}', expected one of {}", sequence, fmt::join(euler_sequences(), ", "));
+  RIGID_THROW("unknown Euler sequence '{}', expected one of {}{}", sequence, fmt::join(euler_sequences(), ", "),
+              did_you_mean_hint(up, std::vector<std::string>(euler_sequences().begin(), euler_sequences().end())));
 }
 
 std::string EulerConvention::name() const {

@@ -6,6 +6,7 @@
 
 #include "detail/read_mesh.hpp"
 #include "detail/repair.hpp"
+#include "rigid/common/wording.hpp"
 
 namespace rigid::mesh {
 
@@ -23,7 +24,7 @@ PreparedMesh prepare_mesh_file(const std::string& path, double scale, const Repa
 
 MeshFileMass measure_prepared_mesh(const PreparedMesh& prepared, const MassSpec& spec) {
   MeshMassResult mass = mesh_mass_properties(prepared.mesh, spec, prepared.repair);
-  return {prepared.repair, prepared.filled, prepared.before_fill, std::move(mass)};
+  return {prepared.repair, prepared.filled, prepared.before_fill, std::move(mass), spec.shell};
 }
 
 MeshFileMass mesh_mass_from_file(const std::string& path, double scale, const MassSpec& spec,
@@ -37,22 +38,27 @@ MeshFileMass mesh_mass_from_file(const std::string& path, double scale, const Ma
 }
 
 std::vector<std::string> MeshFileMass::warnings() const {
+  // "the mesh is open … (use `shell = true` …)" speaks of a solid: a shell may be open, and the
+  // remedy it names is the setting that was given
+  auto speaks_of_a_solid = [](const std::string& w) { return w.starts_with("the mesh is open"); };
   std::vector<std::string> out;
   if (filled) {
     for (const auto& w : before_fill->warnings) {  // what the filled mesh no longer shows
-      if (w.find("the mesh is open") == std::string::npos) out.push_back(w);
+      if (!speaks_of_a_solid(w)) out.push_back(w);
     }
     out.push_back(describe(*filled));
   }
-  out.insert(out.end(), repair.warnings.begin(), repair.warnings.end());
+  for (const auto& w : repair.warnings) {
+    if (!(shell && speaks_of_a_solid(w))) out.push_back(w);
+  }
   out.insert(out.end(), mass.warnings.begin(), mass.warnings.end());
   return out;
 }
 
 std::string describe(const HoleFillReport& f) {
-  std::string s = fmt::format("filled {} hole{} ({} triangles added, patch area {:.9g} m²):",
-                              f.holes.size(), f.holes.size() == 1 ? "" : "s", f.triangles_added, f.area);
-  for (const auto& h : f.holes) s += fmt::format(" {} edges/{:.6g} m²;", h.boundary_edges, h.area);
+  std::string s = fmt::format("filled {} ({} added, patch area {:.9g} m²):", counted(f.holes.size(), "hole"),
+                              counted(f.triangles_added, "triangle"), f.area);
+  for (const auto& h : f.holes) s += fmt::format(" {}/{:.6g} m²;", counted(h.boundary_edges, "edge"), h.area);
   s.pop_back();
   return s;
 }

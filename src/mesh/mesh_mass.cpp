@@ -180,6 +180,11 @@ namespace {
 // given density, 10⁹ times too heavy.
 constexpr double kMaxDensity = 3e4;
 constexpr double kMinDensity = 0.5;
+// A sheet's mass per unit area ρ·t: 10 µm of aluminium foil is 2700 × 1e-5 = 0.027 kg/m², 13 cm
+// of steel plate 7850 × 0.13 ≈ 1000 kg/m². Outside, the number is most likely a volume density
+// (kg/m³) given without the thickness, or a length unit that is off by 10³.
+constexpr double kMinArealDensity = 0.01;
+constexpr double kMaxArealDensity = 1000.0;
 constexpr double kMaxMass = 1e6;  // kg: a solid of more than 1000 t is not a part
 
 }  // namespace
@@ -237,9 +242,10 @@ MeshMassResult mesh_mass_properties(const TriangleMesh& mesh, const MassSpec& sp
                     : " (if the mesh has not been through repair_mesh(mesh), run it first: it "
                       "welds duplicate vertices and orients the triangles)";
     RIGID_REQUIRE(e.boundary == 0 && e.non_manifold == 0,
-                  "the mesh is not closed ({} boundary edges, {} non-manifold edges), so it "
+                  "the mesh is not closed ({}, {}), so it "
                   "bounds no solid: use {} for a thin shell, or {} to close simple holes{}",
-                  e.boundary, e.non_manifold, setting("shell"), setting("fill_holes"),
+                  counted(e.boundary, "boundary edge"), counted(e.non_manifold, "non-manifold edge"),
+                  setting("shell"), setting("fill_holes"),
                   unrepaired);
     RIGID_REQUIRE(e.misoriented == 0,
                   "the mesh's triangles are not consistently oriented ({} edges are traversed "
@@ -254,7 +260,8 @@ MeshMassResult mesh_mass_properties(const TriangleMesh& mesh, const MassSpec& sp
   const char* what = spec.shell ? "area" : "volume";
   RIGID_REQUIRE(mom.measure > 0 && std::isfinite(mom.measure),
                 "mesh {} is {}: expected positive{}", what, mom.measure,
-                spec.shell ? "" : " (a closed, outward-oriented surface; see repair_mesh)");
+                spec.shell ? "" : " (a closed surface whose triangles face outward encloses a positive "
+                                  "volume; a flat or inside-out mesh does not)");
   double rho = 0;  // per unit of measure
   if (spec.mass) {
     rho = *spec.mass / mom.measure;
@@ -276,6 +283,18 @@ MeshMassResult mesh_mass_properties(const TriangleMesh& mesh, const MassSpec& sp
         "the implied mass {:.4g} t is more than {:.4g} t: if the file's numbers are millimetres, "
         "use {}",
         m / 1000, kMaxMass / 1000, setting("units", "mm")));
+  }
+  if (spec.shell && !spec.thickness &&
+      (rho > kMaxArealDensity || rho < kMinArealDensity)) {
+    out.warnings.push_back(fmt::format(
+        "{} areal density {:.4g} kg/m² is outside real sheets and plates ({} to {} kg/m², from 10 "
+        "µm of aluminium foil to 13 cm of steel): {}",
+        spec.density ? "the" : "the implied", rho, kMinArealDensity, kMaxArealDensity,
+        spec.density && rho > kMaxArealDensity
+            ? fmt::format("if {:.4g} is the material's density in kg/m³, give the wall thickness "
+                          "(m) with it",
+                          rho)
+            : "check the mass and the length unit of the file"));
   }
   if (!spec.shell || spec.thickness) {
     const double density = spec.shell ? rho / *spec.thickness : rho;

@@ -320,33 +320,46 @@ RepairReport detail::repair_mesh(TriangleMesh& mesh, const RepairOptions& option
 
   if (report.degenerate_triangles > 0) {
     report.warnings.push_back(
-        fmt::format("removed {} degenerate triangles (repeated vertex or zero area)",
-                    report.degenerate_triangles));
+        fmt::format("removed {} (repeated vertex or zero area)",
+                    counted(report.degenerate_triangles, "degenerate triangle")));
   }
   if (report.reoriented_triangles > 0) {
     report.warnings.push_back(fmt::format(
-        "flipped {} triangles whose winding disagreed with their neighbours",
-        report.reoriented_triangles));
+        "flipped {} whose winding disagreed with their neighbours",
+        counted(report.reoriented_triangles, "triangle")));
   }
   if (report.inverted_components > 0) {
     report.warnings.push_back(fmt::format(
-        "{} closed component(s) had inward normals (negative volume): flipped",
-        report.inverted_components));
+        "{} inward normals (negative volume): flipped",
+        report.inverted_components == 1 ? "1 closed component had"
+                                        : fmt::format("{} closed components had", report.inverted_components)));
   }
   if (report.boundary_edges > 0) {
     report.warnings.push_back(fmt::format(
-        "the mesh is open: {} boundary edges; as a solid its volume is undefined (use {}, or {} "
+        "the mesh is open: {}; as a solid its volume is undefined (use {}, or {} "
         "to close simple holes)",
-        report.boundary_edges, setting("shell"), setting("fill_holes")));
+        counted(report.boundary_edges, "boundary edge"), setting("shell"), setting("fill_holes")));
   }
   if (report.non_manifold_edges > 0) {
     report.warnings.push_back(fmt::format(
-        "{} non-manifold edges (shared by three or more triangles)", report.non_manifold_edges));
+        "{} (shared by three or more triangles)", counted(report.non_manifold_edges, "non-manifold edge")));
   }
   if (report.components.size() > 1) {
-    report.warnings.push_back(
-        fmt::format("{} separate components (listed above); their volumes add",
-                    report.components.size()));
+    // the components themselves, in the warning (not every front end prints describe()'s list);
+    // the first kListed of them, the rest counted
+    constexpr std::size_t kListed = 8;
+    std::string list;
+    for (std::size_t i = 0; i < std::min(report.components.size(), kListed); ++i) {
+      const auto& c = report.components[i];
+      list += fmt::format("{}{}: {}, ", i == 0 ? "" : "; ", i + 1, counted(c.triangles, "triangle"));
+      list += c.boundary_edges == 0 ? fmt::format("volume {:.6g} m³", c.signed_volume)
+                                    : fmt::format("open, area {:.6g} m²", c.area);
+    }
+    if (report.components.size() > kListed) {
+      list += fmt::format("; and {} more", report.components.size() - kListed);
+    }
+    report.warnings.push_back(fmt::format("{} separate components ({}); their volumes add",
+                                          report.components.size(), list));
   }
   return report;
 }
@@ -361,9 +374,10 @@ std::string describe(const RepairReport& r) {
       r.inverted_components, r.components.size());
   for (std::size_t i = 0; i < r.components.size(); ++i) {
     const auto& c = r.components[i];
-    s += fmt::format("  component {}: {} triangles, area {:.9g} m², ", i + 1, c.triangles, c.area);
+    s += fmt::format("  component {}: {}, area {:.9g} m², ", i + 1, counted(c.triangles, "triangle"),
+                     c.area);
     s += c.boundary_edges == 0 ? fmt::format("volume {:.9g} m³\n", c.signed_volume)
-                               : fmt::format("open ({} boundary edges)\n", c.boundary_edges);
+                               : fmt::format("open ({})\n", counted(c.boundary_edges, "boundary edge"));
   }
   return s;
 }

@@ -21,6 +21,7 @@
 #include "rigid/body/heavy_top.hpp"
 #include "rigid/body/rigid_body.hpp"
 #include "rigid/common/escape.hpp"
+#include "rigid/common/did_you_mean.hpp"
 #include "rigid/common/error.hpp"
 #include "rigid/common/wording.hpp"
 #include "rigid/integrate/integrator.hpp"
@@ -880,7 +881,17 @@ Method Model::Impl::parse_method(const std::string& requested) const {
       method.exact = true;
       return method;
     }
-    method.free = body::free_body_method_from_name(method.name);
+    try {
+      method.free = body::free_body_method_from_name(method.name);
+    } catch (const Error&) {
+      // the scene's list: the closed form "exact" too (not a stepping method of the body module)
+      const std::vector<std::string> names = {"exact",      "rk4",      "splitting2", "splitting4",
+                                              "splitting6", "midpoint", "rkmk4",      "moser_veselov"};
+      throw Error(fmt::format("unknown integrator '{}' for free bodies{}; expected one of exact "
+                              "(closed form, no pivot), rk4, splitting2, splitting4, splitting6, "
+                              "midpoint, rkmk4, moser_veselov",
+                              method.name, did_you_mean_hint(method.name, names)));
+    }
     if (any_top) {
       const body::FreeBodyMethod m = method.free;
       if (m != body::FreeBodyMethod::kSplitting2 && m != body::FreeBodyMethod::kSplitting4 &&

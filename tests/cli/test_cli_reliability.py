@@ -270,5 +270,5 @@ def test_seeds_and_counts_are_whole_numbers_in_range(rigid_exe, tmp_path, option
     if ok:
         assert proc.returncode == 0, proc.stderr
     else:
-        assert proc.returncode == 1 and f"{option} {value}: " in proc.stderr, proc.stderr
+        assert proc.returncode == 2 and f"{option} {value}: " in proc.stderr, proc.stderr
         assert "whole number from 0 to 18446744073709551615" in proc.stderr

@@ -82,22 +82,25 @@ def test_matrix_input_round_trips(run):
     assert np.abs(r["matrix"] - M).max() < TOL
 
 
-@pytest.mark.parametrize("args, message", [
-    (["--axis-angle", "0,0,0,10"], "axis [0, 0, 0] has norm 0, expected a nonzero axis"),
+# exit status: 1 for a well-formed value the library refuses, 2 (usage) for a value that is none
+# of the option's forms (not a number, a wrong count, an unknown name)
+@pytest.mark.parametrize("args, message, status", [
+    (["--axis-angle", "0,0,0,10"], "axis [0, 0, 0] has norm 0, expected a nonzero axis", 1),
     (["--matrix", "1,0.001,0,0,1,0,0,0,1"],
-     "is not a rotation: orthonormality defect max|RᵀR − I| = 0.001 (tolerance 1e-09)"),
-    (["--matrix", "1,0,0,0,1,0,0,0,-1"], "determinant -1 (expected +1)"),
-    (["--euler", "1,2,nan"], "--euler: value nan is not finite"),
-    (["--euler", "1,2"], "--euler takes 3 comma-separated numbers, got 2"),
+     "is not a rotation: orthonormality defect max|RᵀR − I| = 0.001 (tolerance 1e-09)", 1),
+    (["--matrix", "1,0,0,0,1,0,0,0,-1"], "determinant -1 (expected +1)", 1),
+    (["--euler", "1,2,nan"], "--euler: value nan is not finite", 2),
+    (["--euler", "1,2"], "--euler takes 3 comma-separated numbers, got 2", 2),
     (["--euler", "1,2,3", "--convention", "XXY"],
-     "unknown Euler sequence 'XXY', expected one of XYZ, XZY, YXZ, YZX, ZXY, ZYX, XYX, XZX, YXY, YZY, ZXZ, ZYZ"),
-    (["--quaternion", "0,0,0,0"], "has norm 0, expected a nonzero quaternion"),
-    (["--euler", "1,2,3", "--unit", "grad"], "--unit is 'grad', expected deg or rad"),
-    (["--quaternion", "1,0,0,0", "--order", "wzyx"], "--order is 'wzyx', expected wxyz or xyzw"),
+     "unknown Euler sequence 'XXY', expected one of XYZ, XZY, YXZ, YZX, ZXY, ZYX, XYX, XZX, YXY, YZY, ZXZ, ZYZ", 2),
+    (["--quaternion", "0,0,0,0"], "has norm 0, expected a nonzero quaternion", 1),
+    (["--euler", "1,2,3", "--unit", "grad"], "--unit is 'grad', expected deg or rad", 2),
+    (["--euler", "1,2,3", "--unit", "degs"], "--unit is 'degs', expected deg or rad; did you mean 'deg'?", 2),
+    (["--quaternion", "1,0,0,0", "--order", "wzyx"], "--order is 'wzyx', expected wxyz or xyzw", 2),
 ])
-def test_bad_input(run, args, message):
+def test_bad_input(run, args, message, status):
     proc = run("rotation", *args, check=False)
-    assert proc.returncode == 1
+    assert proc.returncode == status
     assert proc.stderr.startswith("rigid: error: ")
     assert message in proc.stderr
 

@@ -132,7 +132,7 @@ def test_a_mesh_measured_by_the_cli_and_by_python_with_repair(run, tmp_path):
     np.testing.assert_array_equal(np.array(cli["inertia"]), mp.inertia_com)
     np.testing.assert_array_equal(np.array(cli["com"]), mp.com)
     assert cli["mass"] == mp.mass
-    assert warnings == ["flipped 1 triangles whose winding disagreed with their neighbours"]
+    assert warnings == ["flipped 1 triangle whose winding disagreed with their neighbours"]
     assert f"{off}: {warnings[0]}" in proc.stderr
 
 

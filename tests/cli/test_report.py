@@ -113,15 +113,15 @@ def test_report_refuses_what_it_cannot_read(run, tmp_path):
 
 def test_report_frames_are_checked_and_obeyed(run, tmp_path):
     p = run("run", RACKET, "--report", "--report-frames", "1", "-o", tmp_path / "a", check=False)
-    assert p.returncode == 1 and "--report-frames 1: expected a number of frames from 2 to 1000000" in p.stderr
+    assert p.returncode == 2 and "--report-frames 1: expected a number of frames from 2 to 1000000" in p.stderr
     # 0 is no default in disguise, and −1 no longer wraps to 2^64 − 1
     p = run("run", RACKET, "--report", "--report-frames", "0", "-o", tmp_path / "a", check=False)
-    assert p.returncode == 1 and "--report-frames 0: expected a number of frames from 2" in p.stderr
+    assert p.returncode == 2 and "--report-frames 0: expected a number of frames from 2" in p.stderr
     for bad in ["-1", "abc", "2.5"]:
         p = run("run", RACKET, "--report", "--report-frames", bad, "-o", tmp_path / "a", check=False)
-        assert p.returncode == 1 and f"--report-frames {bad}: the number of frames must be a whole number" in p.stderr
+        assert p.returncode == 2 and f"--report-frames {bad}: the number of frames must be a whole number" in p.stderr
     p = run("run", RACKET, "--report-frames", "10", "-o", tmp_path / "b", check=False)
-    assert p.returncode == 1 and "give --report with it" in p.stderr
+    assert p.returncode == 2 and "give --report with it" in p.stderr
     assert not (tmp_path / "a").exists() and not (tmp_path / "b").exists()
     run("run", RACKET, "--report", "--report-frames", "100", "-o", tmp_path / "c", "-q", check=True)
     d = page_data(tmp_path / "c" / "report.html")

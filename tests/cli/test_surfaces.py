@@ -100,7 +100,7 @@ def test_remedies_are_worded_per_surface(run, tmp_path):
     with pytest.raises(rigid.Error, match=r"'shell = true'.*'fill_holes = true'"):
         rigid.Scene(scene)
     # and each surface's remedy works: the same shell through all three
-    shell_cli = json.loads(run("inertia", off, "--density", 1000, "--shell", "--format", "json",
+    shell_cli = json.loads(run("inertia", off, "--areal-density", 1000, "--format", "json",
                                check=True).stdout)
     shell_py, _ = rigid.mesh.mass_from_file(off, density=1000, shell=True)
     scene.write_text(scene.read_text().replace("density = 1000", "density = 1000\nshell = true"))

@@ -9,6 +9,7 @@
 /// reference of a message for one surface. The library and C++ users read the message
 /// unchanged.
 
+#include <cstddef>
 #include <string>
 #include <string_view>
 
@@ -18,6 +19,10 @@ namespace rigid {
 [[nodiscard]] std::string setting(std::string_view key);
 /// `` `key = "value"` ``: a setting with a text value.
 [[nodiscard]] std::string setting(std::string_view key, std::string_view value);
+
+/// "1 boundary edge", "2 boundary edges": a count with its noun in the singular or the plural
+/// (`plural` defaults to the singular + "s"; give it for "vertex"/"vertices").
+[[nodiscard]] std::string counted(std::size_t n, std::string_view singular, std::string_view plural = {});
 
 /// The front ends that word a remedy.
 enum class Surface { kLibrary, kCli, kScene, kPython };

@@ -18,9 +18,10 @@ struct MeshFileMass {
   std::optional<HoleFillReport> filled;
   std::optional<RepairReport> before_fill;
   MeshMassResult mass;
+  bool shell = false;  ///< measured as a thin shell (MassSpec::shell)
   /// Every warning for the user, in order: the repair of the mesh as read (without "the mesh
-  /// is open" when filling closed it), what filling did, the repair after filling, the
-  /// plausibility of the result.
+  /// is open" when filling closed it, or for a shell, which may be open), what filling did, the
+  /// repair after filling, the plausibility of the result.
   [[nodiscard]] std::vector<std::string> warnings() const;
 };
 

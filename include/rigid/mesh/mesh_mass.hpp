@@ -70,7 +70,9 @@ inline constexpr double kMinPartSize = 1e-3;
 /// front end), so a mesh that skipped repair never gives a wrong volume silently.
 /// Warns when the implied size, mass or density is implausible (size_warnings; a mass over
 /// 1000 t; a density outside 0.5–30 000 kg/m³: e.g. a part in millimetres read as metres,
-/// 10⁹ times the mass), naming the `units` setting.
+/// 10⁹ times the mass), naming the `units` setting; for a shell without a thickness, when the
+/// areal density (given or implied) is outside 0.01–1000 kg/m², e.g. a volume density in kg/m³
+/// given without the thickness.
 /// @throws rigid::Error for a bad MassSpec, an open or misoriented solid or a zero
 /// volume/area.
 [[nodiscard]] MeshMassResult mesh_mass_properties(const TriangleMesh& mesh, const MassSpec& spec);
