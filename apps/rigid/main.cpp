@@ -38,7 +38,9 @@ int main(int argc, char** argv) {
   app.footer(
       "Exit status (every subcommand): 0 success; 1 refused input (a file, a scene, a value: the "
       "message says what, where and what was expected); 2 usage (an unknown subcommand or option, a "
-      "missing or malformed argument); 130 interrupted (Ctrl-C; nothing is written).");
+      "missing or conflicting option, an option value that is none of its forms: an unknown name, a "
+      "malformed number or list, a number no double holds); 130 interrupted (Ctrl-C; nothing is "
+      "written).");
 
   add_demo_command(app);
   add_inertia_command(app);

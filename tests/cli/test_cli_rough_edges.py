@@ -119,6 +119,11 @@ def test_bad_option_values_are_usage_errors_with_a_guess(run, args, message):
     assert proc.stdout == ""
 
 
+def test_help_states_the_usage_status_of_a_bad_option_value(run):
+    out = run("--help", check=True).stdout
+    assert "2 usage (an unknown subcommand or option, a missing or conflicting option, an option value" in out
+
+
 def test_a_refused_input_is_status_1_and_names_exact_for_free_bodies(run):
     # a name of the other scene kind is a value the scene refuses (1), with its kind's list
     proc = run("check", RACKET, "--set", "simulation.integrator=dopri5", check=False)
