@@ -506,7 +506,18 @@ void require_equilibrium(const Impl& s, Linearization& lin, const std::vector<do
   out.residual = acc.lpNorm<Eigen::Infinity>();
   const double k = lin.K.cwiseAbs().rowwise().sum().maxCoeff() +
                    lin.C.cwiseAbs().rowwise().sum().maxCoeff() * std::max(1.0, qd.lpNorm<Eigen::Infinity>());
-  const double tol = 1e-9 * std::max(k * length_scale, s.m ? force_scale : 0.0);
+  // What 0 is measured against. A coordinate's value is resolved to 1e-9 (rad or m), or to
+  // 64 ulps of |q| where that is coarser, and the forces an error of that size leaves,
+  // k · resolution, are round-off. (A tolerance growing with |q| itself, 1e-9 k |q|, took a
+  // pendulum held at 1e9π + 0.5 rad, half a radian from hanging, for an equilibrium.) Where
+  // the search found the point, its own acceptance (forces at most 1e-9 of those at the
+  // start) holds too: at a degenerate minimum (V = x⁴) the stiffness vanishes with the
+  // forces, and the search ends where they are round-off of the start's but k · resolution is
+  // smaller still.
+  const double resolution =
+      std::max(1e-9, 64 * std::numeric_limits<double>::epsilon() * q.lpNorm<Eigen::Infinity>());
+  const double tol = std::max({k * resolution, s.m ? 1e-9 * force_scale : 0.0,
+                               out.searched ? 1e-9 * force_scale : 0.0});
   Eigen::Index worst = 0;
   const double fmax = f_total.cwiseAbs().maxCoeff(&worst);
   if (!(fmax <= tol)) {
