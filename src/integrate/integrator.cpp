@@ -21,6 +21,10 @@ namespace rigid::integrate {
 namespace {
 
 namespace odeint = boost::numeric::odeint;
+
+// The most memory the implicit midpoint's Jacobian and LU may take (2 GiB: a state of 11,585):
+// a larger state is refused before the run rather than failing to allocate.
+constexpr double kMaxJacobianBytes = 2.0 * 1024 * 1024 * 1024;
 using StdState = std::vector<double>;
 
 std::string component_name(const Problem& p, Eigen::Index i) {
@@ -187,7 +191,18 @@ Solution run_fixed(const Problem& p, const Options& o) {
   StdState x(static_cast<std::size_t>(n));
   Eigen::VectorXd ybuf(n), dbuf(n);
   OdeintSystem sys{&p, &ybuf, &dbuf, &sol.rhs_evaluations};
-  ImplicitMidpoint midpoint(p, o, &sol.rhs_evaluations);
+  // only the implicit midpoint keeps a Jacobian (dense, n × n, and its LU): the other methods
+  // need memory linear in the state's size
+  std::optional<ImplicitMidpoint> midpoint;
+  if (o.method == Method::kImplicitMidpoint) {
+    const double bytes = 2.0 * sizeof(double) * static_cast<double>(n) * static_cast<double>(n);
+    RIGID_REQUIRE_AS("integrate", bytes <= kMaxJacobianBytes,
+                     "implicit midpoint keeps a dense n × n Jacobian and its LU: a state of size {} "
+                     "needs {:.3g} GB for them, more than the {:.3g} GB allowed; use rk4, "
+                     "stormer_verlet or dopri5, whose memory is linear in the state's size",
+                     n, bytes / 1e9, kMaxJacobianBytes / 1e9);
+    midpoint.emplace(p, o, &sol.rhs_evaluations);
+  }
 
   bool have_accel = false;  // Störmer–Verlet reuses a(t1, q1) as the next step's a(t0, q0)
   auto step = [&](double t, double h) {
@@ -198,7 +213,7 @@ Solution run_fixed(const Problem& p, const Options& o) {
         y = Eigen::Map<const Eigen::VectorXd>(x.data(), n);
         break;
       case Method::kImplicitMidpoint:
-        midpoint.step(t, h, y);
+        midpoint->step(t, h, y);
         break;
       case Method::kStormerVerlet:
         // v_{1/2} = v0 + h/2 a(t0, q0); q1 = q0 + h v_{1/2}; v1 = v_{1/2} + h/2 a(t1, q1)

@@ -96,7 +96,9 @@ struct Solution {
 /// Integrates `problem` with `options`. Every step is checked for a non-finite state.
 /// @throws rigid::Error for bad options (non-positive dt, t_end ≤ t0, a dopri5 rtol below
 ///         kMinRelativeTolerance, a dopri5 rtol or atol above kMaxTolerance, max_newton < 1 or
-///         newton_tol ≤ 0 for the implicit midpoint, ...),
+///         newton_tol ≤ 0 for the implicit midpoint, an implicit midpoint whose dense n × n
+///         Jacobian and LU would take more than 2 GiB: a state above 11,585; the other methods
+///         need memory linear in the state's size, ...),
 ///         a dopri5 step that underflows (kStepFloor) or fails to be accepted, more than
 ///         control.max_outputs rows of dopri5 every-step output, a non-finite state (naming the
 ///         step, t and the component), an implicit-midpoint step whose Newton iteration does not
