@@ -1,11 +1,17 @@
 #include "rigid/common/error.hpp"
 
+#include "rigid/common/escape.hpp"
+
 namespace rigid {
 
+// The file name escaped (rigid::escaped): a name holding a control character or a byte that
+// is not UTF-8 (a file named \xff on a Linux file system) would otherwise reach a terminal, or a
+// JSON writer, as the raw bytes.
 std::string to_string(const SourceLocation& where) {
-  if (where.line <= 0) return where.file;
-  if (where.column <= 0) return fmt::format("{}:{}", where.file, where.line);
-  return fmt::format("{}:{}:{}", where.file, where.line, where.column);
+  const std::string file = escaped(where.file);
+  if (where.line <= 0) return file;
+  if (where.column <= 0) return fmt::format("{}:{}", file, where.line);
+  return fmt::format("{}:{}:{}", file, where.line, where.column);
 }
 
 namespace detail {

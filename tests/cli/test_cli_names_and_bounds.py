@@ -169,3 +169,18 @@ def test_robot_model_json_names_a_file_of_any_bytes(rigid_exe, tmp_path):
         assert b"json.exception" not in proc.stderr
         doc = json.loads(proc.stdout.decode("utf-8"))
         assert doc.get("model", doc.get("file")).endswith("\\xff\\x1barm.urdf"), doc
+
+
+# An error located in such a file (file:line:col) names it escaped too: no raw 0xff or ESC byte
+# reaches the terminal.
+def test_a_located_error_escapes_the_file_name(rigid_exe, tmp_path):
+    import os
+    import subprocess
+    text = OSCILLATOR.replace("TOLERANCE", "1e-8").replace('name = "x"', 'name = "x"\nbogus = 1')
+    raw = os.path.join(os.fsencode(tmp_path), b"\xff\x1bbad.toml")
+    with open(raw, "wb") as f:
+        f.write(text.encode())
+    proc = subprocess.run([os.fsencode(rigid_exe), b"check", raw], capture_output=True, timeout=60)
+    assert proc.returncode == 1, proc.stderr
+    assert b"\\xff\\x1bbad.toml:" in proc.stderr, proc.stderr
+    assert b"\xff" not in proc.stderr and b"\x1b" not in proc.stderr, proc.stderr
