@@ -195,6 +195,22 @@ def robot_link(_):
     return {"mass": tube + box, "com x": (tube * 0.2 + box * 0.43) / (tube + box)}
 
 
+def son(_):
+    # the script's constants: J = diag(1, 2, 3, 4) kg m², the upper entries of M(0) in so(4);
+    # E = ½ Σ_{i<j} M_ij²/(J_i + J_j), tr(M²) = −2 Σ_{i<j} M_ij², tr(M⁴) of the matrix;
+    # dim SO(n) = n(n − 1)/2; the round trip and the n = 3 identity are exact (0)
+    J = [1.0, 2.0, 3.0, 4.0]
+    upper = {(0, 1): 0.3, (0, 2): -0.5, (0, 3): 0.2, (1, 2): 0.7, (1, 3): -0.4, (2, 3): 0.6}
+    M = np.zeros((4, 4))
+    for (i, j), v in upper.items():
+        M[i, j], M[j, i] = v, -v
+    return {"dim SO(4)": 4 * 3 / 2,
+            "E": 0.5 * sum(v * v / (J[i] + J[j]) for (i, j), v in upper.items()),
+            "tr(M^2)": -2 * sum(v * v for v in upper.values()),
+            "tr(M^4)": float(np.trace(np.linalg.matrix_power(M, 4))),
+            "exp-log round trip": 0.0, "Euler-Arnold minus Euler in R^3": 0.0}
+
+
 CLOSED_FORMS = {
     "atwood": atwood,
     "cone_pendulum": cone_pendulum,
@@ -211,6 +227,7 @@ CLOSED_FORMS = {
     "chaplygin_sleigh": chaplygin_sleigh,
     "lagrange_atwood": lagrange_atwood,
     "inertia_of_a_robot_link": robot_link,
+    "son": son,
 }
 
 
@@ -309,6 +326,15 @@ def script_values(stem, out):
         m = re.search(r"mass: " + number + r" kg, com: \[?\s*" + number, out)
         assert m, out
         return {"mass": float(m[1]), "com x": float(m[2])}
+    if stem == "son":
+        # the values after the 10 s run (the second number of each line), the printed identities
+        late = lambda name: float(re.search(re.escape(name) + r" = " + number + r".*, "  # noqa: E731
+                                            + re.escape(name) + r" = " + number, out)[2])
+        return {"dim SO(4)": float(re.search(r"dim SO\(4\) = " + number, out)[1]),
+                "E": late("E"), "tr(M^2)": late("tr(M^2)"), "tr(M^4)": late("tr(M^4)"),
+                "exp-log round trip": float(re.search(r"exp-log round trip = " + number, out)[1]),
+                "Euler-Arnold minus Euler in R^3":
+                    float(re.search(r"Euler-Arnold minus Euler in R\^3 = " + number, out)[1])}
     raise AssertionError(f"{stem}: no output measurement")
 
 
