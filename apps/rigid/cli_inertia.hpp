@@ -98,6 +98,12 @@ inline void add_inertia_command(CLI::App& app) {
         "--mass", [opts](double v) { opts->mass = v; }, "mass (kg)");
     cmd->add_option_function<double>(
         "--density", [opts](double v) { opts->density = v; }, "density (" + entry.density_unit + ")");
+    if (rigid::cli::takes_density_field(entry.name)) {
+      cmd->add_option("--density-field", opts->density_field,
+                      "density varying in space: an expression of x, y, z (m, the shape's own "
+                      "frame) in kg/m³, integrated by adaptive cubature (its error estimate is "
+                      "printed); instead of --mass/--density");
+    }
     add_inertia_output_options(cmd, opts->output);
     add_placement_options(cmd, *opts);
     cmd->add_option("--tolerance", opts->tolerance,

@@ -52,6 +52,9 @@ struct InertiaPrimitiveOptions {
   std::map<std::string, std::string> points;  ///< point name → "x,y,z" (m)
   std::optional<double> mass;           ///< kg
   std::optional<double> density;        ///< kg/m³ (kg/m² shells and plates, kg/m rods)
+  /// ρ(x, y, z) in kg/m³ with x, y, z in m in the shape's own frame (solid box, cylinder,
+  /// sphere); empty: a constant density or a mass
+  std::string density_field;
   InertiaOutputOptions output;
   // placement in the link frame (rigid::mass::Placement); empty: not given
   std::string axis;    ///< x, y, z, -x, -y, -z or "vx,vy,vz"
@@ -63,6 +66,10 @@ struct InertiaPrimitiveOptions {
 
 /// `rigid inertia <primitive> ...`.
 void run_inertia_primitive(const InertiaPrimitiveOptions& opts);
+
+/// True for the catalogue shapes a density field ρ(x, y, z) is integrated over (solid box,
+/// cylinder and sphere: rigid::mass::integrate_density_over_*).
+[[nodiscard]] bool takes_density_field(const std::string& primitive);
 
 /// A primitive in the link frame, and the rotation R_LS of its own frame when it was placed.
 struct PlacedPrimitive {
