@@ -43,8 +43,9 @@ bool is_identifier(std::string_view name) {
 
 double CompiledFunction::operator()(std::span<const double> x) const {
   RIGID_REQUIRE_AS("CompiledFunction", x.size() == impl_->variables.size(),
-                   "'{}' takes {} values ({}), got {}", impl_->text, impl_->variables.size(),
-                   fmt::join(impl_->variables, ", "), x.size());
+                   "'{}' takes {} value{} ({}), got {}", impl_->text, impl_->variables.size(),
+                   impl_->variables.size() == 1 ? "" : "s", fmt::join(impl_->variables, ", "),
+                   x.size());
   // the scratch holds the tape's constants in place, so it is remade when this thread turns to
   // another function (told apart by an id, not an address a later function may reuse)
   thread_local std::uint64_t scratch_of = 0;
