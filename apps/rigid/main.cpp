@@ -16,6 +16,7 @@
 #include "cli_rotation.hpp"
 #include "cli_mesh.hpp"
 #include "cli_modes.hpp"
+#include "cli_plot.hpp"
 #include "cli_run.hpp"
 #include "cli_suggest.hpp"
 #include "cli_sweep.hpp"
@@ -49,6 +50,7 @@ int main(int argc, char** argv) {
   add_run_command(app);
   add_modes_command(app);
   add_sweep_command(app);
+  add_plot_command(app);
 
   // One rule for empty arguments, before CLI11 sees them (an empty positional followed by an
   // option sent its parser into an endless loop): no argument of rigid may be empty.
