@@ -10,6 +10,7 @@
 #include "cmd_inertia.hpp"
 #include "cmd_inertia_fix.hpp"
 #include "rigid/mass/primitive_table.hpp"
+#include "rigid/scene/density_field.hpp"
 
 /// --about, --frame, --format, --name, --output (shared by every inertia source).
 inline void add_inertia_output_options(CLI::App* cmd, rigid::cli::InertiaOutputOptions& out) {
@@ -98,7 +99,7 @@ inline void add_inertia_command(CLI::App& app) {
         "--mass", [opts](double v) { opts->mass = v; }, "mass (kg)");
     cmd->add_option_function<double>(
         "--density", [opts](double v) { opts->density = v; }, "density (" + entry.density_unit + ")");
-    if (rigid::cli::takes_density_field(entry.name)) {
+    if (rigid::scene::takes_density_field(entry.name)) {
       cmd->add_option("--density-field", opts->density_field,
                       "density varying in space: an expression of x, y, z (m, the shape's own "
                       "frame) in kg/m³, integrated by adaptive cubature (its error estimate is "

@@ -18,13 +18,12 @@
 #include "rigid/common/wording.hpp"
 #include "rigid/io/atomic_file.hpp"
 #include "rigid/io/inertial_xml.hpp"
-#include "rigid/lagrange/function.hpp"
 #include "rigid/lie/so3.hpp"
-#include "rigid/mass/density.hpp"
 #include "rigid/mass/placement.hpp"
 #include "rigid/mass/primitive_table.hpp"
 #include "rigid/mass/pseudo_inertia.hpp"
 #include "rigid/mass/uncertainty.hpp"
+#include "rigid/scene/density_field.hpp"
 
 namespace rigid::cli {
 namespace {
@@ -185,68 +184,16 @@ void emit_inertia(const MassProperties& mp, const InertiaOutputOptions& out) {
   }
 }
 
-bool takes_density_field(const std::string& primitive) {
-  return primitive == "solid_box" || primitive == "solid_cylinder" || primitive == "solid_sphere";
-}
-
 namespace {
 
-// The largest estimated error of a density field's cubature that is printed as a result:
-// relative to the mass, to the shape's size for the COM and to the trace of the inertia for
-// its elements. The cubature's own target is 1e-10; a field it cannot resolve this well (a
-// jump inside a cell, a singularity) is refused rather than printed with digits it lacks.
-constexpr double kDensityFieldRelativeError = 1e-8;
-
-// `rigid inertia box|cylinder|sphere ... --density-field EXPR`: ρ(x, y, z) integrated by
-// mass::integrate_density_over_* over the shape in its own frame.
+// `rigid inertia box|cylinder|sphere ... --density-field EXPR`: ρ(x, y, z) over the shape in
+// its own frame (scene::integrate_density_field), the cubature's estimated errors on stderr.
 MassProperties density_field_mass(const mass::PrimitiveEntry& e, const mass::PrimitiveArguments& args,
                                   const InertiaPrimitiveOptions& opts) {
-  const auto rho = lagrange::compile_function(
-      lagrange::Expression(opts.density_field),
-      {"x", "y", "z"}, {}, "--density-field");
-  const mass::DensityFunction f = [&rho](const Eigen::Vector3d& p) {
-    return rho(std::span<const double>(p.data(), 3));
-  };
-  const auto size = [&](const char* key) {
-    for (const auto& [k, v] : args.sizes) {
-      if (k == key) return v;
-    }
-    return 0.0;
-  };
-  const bool box = e.name == "solid_box", cylinder = e.name == "solid_cylinder";
-  const mass::DensityIntegration r = [&] {
-    try {
-      return box        ? mass::integrate_density_over_box(f, size("lx"), size("ly"), size("lz"))
-             : cylinder ? mass::integrate_density_over_cylinder(f, size("radius"), size("height"))
-                        : mass::integrate_density_over_sphere(f, size("radius"));
-    } catch (const Error& err) {  // a negative or non-finite density at a point, no mass
-      throw Error(fmt::format("--density-field '{}': {}", opts.density_field, err.what()));
-    }
-  }();
-  // the shape's size, for the COM's error
-  const double length = box        ? std::max({size("lx"), size("ly"), size("lz")})
-                        : cylinder ? std::max(2 * size("radius"), size("height"))
-                                   : 2 * size("radius");
-  const MassProperties& mp = r.mass_properties;
-  const double mass_rel = r.mass_error / mp.mass();
-  const double com_rel = r.com_error / length;
-  const double inertia_rel = r.inertia_error / mp.inertia_com().trace();
-  fmt::print(stderr,
-             "density field: {} cell{} of 15³ points; estimated errors: mass {:.2g} kg ({:.2g} of "
-             "it), COM {:.2g} m, inertia {:.2g} kg·m²\n",
-             r.cells, r.cells == 1 ? "" : "s", r.mass_error, mass_rel, r.com_error, r.inertia_error);
-  RIGID_REQUIRE_AS("rigid inertia",
-                   r.converged && mass_rel <= kDensityFieldRelativeError &&
-                       com_rel <= kDensityFieldRelativeError &&
-                       inertia_rel <= kDensityFieldRelativeError,
-                   "--density-field '{}': the cubature {} (estimated relative errors: mass {:.2g}, "
-                   "COM {:.2g}, inertia {:.2g}; at most {:.0e} is printed as a result); a field "
-                   "with a jump or a singularity inside the shape needs the shape split where it "
-                   "jumps",
-                   opts.density_field,
-                   r.converged ? "did not reach the bound" : fmt::format("did not converge in {} cells", r.cells),
-                   mass_rel, com_rel, inertia_rel, kDensityFieldRelativeError);
-  return mp;
+  const auto rho = scene::compile_density_field(lagrange::Expression(opts.density_field), {}, "--density-field");
+  const mass::DensityIntegration r = scene::integrate_density_field(e.name, args.sizes, rho, "--density-field");
+  fmt::print(stderr, "density field: {}\n", scene::describe(r));
+  return r.mass_properties;
 }
 
 }  // namespace

@@ -67,10 +67,6 @@ struct InertiaPrimitiveOptions {
 /// `rigid inertia <primitive> ...`.
 void run_inertia_primitive(const InertiaPrimitiveOptions& opts);
 
-/// True for the catalogue shapes a density field ρ(x, y, z) is integrated over (solid box,
-/// cylinder and sphere: rigid::mass::integrate_density_over_*).
-[[nodiscard]] bool takes_density_field(const std::string& primitive);
-
 /// A primitive in the link frame, and the rotation R_LS of its own frame when it was placed.
 struct PlacedPrimitive {
   MassProperties mp;

@@ -1,4 +1,5 @@
 #include "rigid/scene/model.hpp"
+#include "rigid/scene/density_field.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -195,6 +196,17 @@ BodyMass mass_of(const Body& b, const Evaluator& eval, std::vector<lagrange::Par
       }
       for (const auto& [key, e] : m.vertices) {
         args.points.emplace_back(key, eval.vector(e, ctx + " " + key));
+      }
+      if (m.density_field) {
+        // ρ(x, y, z) with the run's parameters: integrated, named as constants (no closed form)
+        MassProperties numeric = at_location(m.where, ctx, [&] {
+          const auto rho = compile_density_field(
+              lagrange::Expression(m.density_field->text, m.density_field->where), params,
+              ctx + " density_field");
+          return integrate_density_field(m.primitive, args.sizes, rho, ctx + " density_field")
+              .mass_properties;
+        });
+        return {numeric, named_constants(b.name, numeric, params, derived, derived_units), {}};
       }
       const bool by_mass = m.mass.has_value();
       const Expression& amount = by_mass ? *m.mass : *m.density;

@@ -1,4 +1,5 @@
 #include "rigid/scene/scene.hpp"
+#include "rigid/scene/density_field.hpp"
 #include "rigid/scene/robot_scene.hpp"
 
 #include <algorithm>
@@ -296,7 +297,7 @@ const Keys kDimensionKeys = [] {
 const Keys kMeshKeys = {"units", "shell", "thickness", "fill_holes"};
 const Keys kBodyKeys = [] {
   Keys k = {"name", "primitive", "mesh", "inertia", "point_masses", "mass", "density",
-            "position", "rotation", "parent", "joints", "free", "initial_position",
+            "density_field", "position", "rotation", "parent", "joints", "free", "initial_position",
             "initial_quaternion", "initial_rotation", "initial_velocity", "angular_velocity",
             "pivot"};
   k.insert(k.end(), kMeshKeys.begin(), kMeshKeys.end());
@@ -371,7 +372,35 @@ void parse_mass(const Parser& p, const toml::table& t, const std::string& contex
       p.fail(*n, fmt::format("'{}' in {} goes with 'mesh', but the body has no 'mesh'", key, context));
     }
   }
-  const bool needs_amount = t.contains("primitive") || t.contains("mesh");
+  if (auto n = t.get("density_field")) {
+    // ρ(x, y, z): a string (an expression of x, y, z), with a primitive that has a cubature
+    if (!n->is_string()) {
+      p.fail(*n, fmt::format("{} density_field must be an expression string of x, y, z (kg/m³), "
+                             "got {}", context, Parser::type_name(*n)));
+    }
+    m.density_field = p.expression(*n, context + " density_field");
+    if (t.contains("mass") || t.contains("density")) {
+      p.fail(*n, fmt::format("{}: density_field gives the mass; it takes no 'mass' or 'density'", context));
+    }
+    const std::string primitive = t.contains("primitive") ? p.string(*t.get("primitive"), context + " primitive") : "";
+    const mass::PrimitiveEntry* entry = nullptr;
+    if (!primitive.empty()) {
+      try {
+        entry = &mass::find_primitive(primitive);
+      } catch (const Error&) {
+        entry = nullptr;  // refused with its own message by parse_primitive
+      }
+    }
+    if (entry != nullptr && !takes_density_field(entry->name)) {
+      p.fail(*n, fmt::format("{}: density_field is integrated over a box, a cylinder or a sphere, "
+                             "not a {}; give it a constant 'density'", context, entry->name));
+    }
+    if (!t.contains("primitive")) {
+      p.fail(*n, fmt::format("{}: density_field goes with 'primitive' (box, cylinder or sphere); "
+                             "a mesh takes a constant 'density'", context));
+    }
+  }
+  const bool needs_amount = (t.contains("primitive") && !m.density_field) || t.contains("mesh");
   if (needs_amount && m.mass.has_value() == m.density.has_value()) {
     p.fail(t.source(), fmt::format("{} needs exactly one of 'mass' (kg) and 'density' (kg/m³){}",
                                    context, m.mass ? ", not both" : ""));

@@ -58,3 +58,64 @@ def test_fields_that_cannot_be_integrated_are_refused(run, args, status, message
 def test_only_the_shapes_with_a_cubature_take_a_field(run):
     proc = run("inertia", "cone", "--radius", 1, "--height", 1, "--density-field", "3")
     assert proc.returncode == 2, proc.stderr
+
+
+# ---- scenes: `density_field = "…"` on a box, cylinder or sphere --------------------------
+
+EXAMPLE = __import__("pathlib").Path(__file__).resolve().parents[2] / "examples" / "graded_rod_pendulum.toml"
+
+
+def test_a_sweep_of_the_density_scale_leaves_the_period(run, tmp_path):
+    # ρ0 scales m and I_p alike, so the period of examples/graded_rod_pendulum.toml is the same
+    # for every ρ0 (the closed form 1.80796 s is checked by test_example_comments.py); a run's
+    # density field is integrated with that run's parameters
+    run("sweep", EXAMPLE, "--grid", "rho0=1000:3000:3", "--set", "simulation.t_end=4", "-o",
+        tmp_path / "sweep", "-q", check=True)
+    rows = (tmp_path / "sweep" / "runs.csv").read_text().splitlines()[1:]
+    periods = [float(r.split(",")[2]) for r in rows]
+    assert len(periods) == 3
+    assert max(periods) - min(periods) <= 1e-9 * periods[0], periods
+    # and h, which the field names, changes it as the closed form says (T ∝ sqrt(h) for r ≪ h)
+    run("sweep", EXAMPLE, "--grid", "h=2:2:1", "--set", "simulation.t_end=5", "-o",
+        tmp_path / "long", "-q", check=True)
+    long = float((tmp_path / "long" / "runs.csv").read_text().splitlines()[1].split(",")[2])
+    h, r, g = 2.0, 0.01, 9.81
+    tau = math.sqrt((5 * h * h / 12 + r * r / 4) / (g * 7 * h / 12))
+    from scipy.special import ellipk
+    assert long == pytest.approx(4 * ellipk(math.sin(0.5) ** 2) * tau, rel=1e-9)
+
+
+SCENE = """\
+[parameters]
+rho0 = 1000
+[[bodies]]
+name = "brick"
+free = true
+angular_velocity = [0.01, 1, 0.01]
+{body}
+[simulation]
+t_end = 0.1
+"""
+
+
+@pytest.mark.parametrize("body, message", [
+    ('primitive = "cone"\nradius = 1\nheight = 1\ndensity_field = "rho0"',
+     "density_field is integrated over a box, a cylinder or a sphere, not a solid_cone"),
+    ('primitive = "box"\nlx = 1\nly = 1\nlz = 1\ndensity_field = "rho0"\nmass = 2',
+     "density_field gives the mass; it takes no 'mass' or 'density'"),
+    ('mesh = "part.stl"\ndensity_field = "rho0"',
+     "density_field goes with 'primitive' (box, cylinder or sphere)"),
+    ('primitive = "box"\nlx = 1\nly = 1\nlz = 1\ndensity_field = "rho0*q"',
+     "undefined symbol 'q'"),
+    ('primitive = "box"\nlx = 1\nly = 1\nlz = 1\ndensity_field = 1000',
+     "density_field must be an expression string of x, y, z"),
+    ('primitive = "box"\nlx = 1\nly = 1\nlz = 1\ndensity_field = "rho0*x"',
+     "density must be non-negative and finite"),
+])
+def test_a_scene_field_is_refused_where_it_is_written(run, tmp_path, body, message):
+    path = tmp_path / "brick.toml"
+    path.write_text(SCENE.format(body=body))
+    proc = run("check", path)
+    assert proc.returncode == 1, proc.stderr
+    assert message in proc.stderr, proc.stderr
+    assert "brick.toml:" in proc.stderr, proc.stderr  # located in the file

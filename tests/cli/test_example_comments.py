@@ -117,6 +117,17 @@ def physical_pendulum(doc):
     return {"T0": 2 * math.pi * tau, "T": 4 * ellipk(math.sin(theta0 / 2) ** 2) * tau}
 
 
+def graded_rod_pendulum(doc):
+    # a rod (radius r, length h) hanging from its top end with ρ = ρ0 (1/2 + u/h), u the distance
+    # from the pivot: m = ρ0 π r² h, COM at d = 7h/12, I_p = m (5h²/12 + r²/4);
+    # T = 4 K(sin²(θ0/2)) sqrt(I_p / (m g d))
+    p = parameters(doc)
+    h, r, g = p["h"], p["r"], p["g"]
+    tau = math.sqrt((5 * h * h / 12 + r * r / 4) / (g * 7 * h / 12))
+    theta0 = coordinate(doc, "theta")
+    return {"T0": 2 * math.pi * tau, "T": 4 * ellipk(math.sin(theta0 / 2) ** 2) * tau}
+
+
 def sleeping_top(doc):
     # disk (m, r, h) with its COM at d above the pivot: I3 = m r²/2, I1 = m (3r² + h²)/12 + m d²;
     # u = a + i b ∝ e^{iωt} with I1 ω² − I3 w3 ω + m g d = 0: real roots iff w3² > 4 m g d I1 / I3²
@@ -217,6 +228,7 @@ CLOSED_FORMS = {
     "double_pendulum": double_pendulum,
     "heavy_top": heavy_top,
     "physical_pendulum": physical_pendulum,
+    "graded_rod_pendulum": graded_rod_pendulum,
     "rolling_cylinder": lambda d: rolling(d, lambda p: 0.5),
     "rolling_sphere": lambda d: rolling(d, lambda p: 0.4),
     "rolling_tube": lambda d: rolling(d, lambda p: (p["r1"] ** 2 + p["r2"] ** 2) / (2 * p["r2"] ** 2)),
@@ -267,7 +279,7 @@ def run_scene(stem, name, stated, c):
                 "T2": -c["lambda_rope2"][-1]}[name]
     if stem in ("rolling_cylinder", "rolling_sphere", "rolling_tube"):
         return {"a": 2 * c["s"][-1] / t[-1] ** 2, "s(2 s)": c["s"][-1]}[name]
-    if stem in ("cone_pendulum", "physical_pendulum"):
+    if stem in ("cone_pendulum", "physical_pendulum", "graded_rod_pendulum"):
         return period(t, c["theta"])
     if stem == "sleeping_top":
         # the tilt a = eps cos(w_slow t) of the slow circular mode

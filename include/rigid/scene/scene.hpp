@@ -81,6 +81,9 @@ struct MassSpec {
   /// kPrimitive, kMesh: exactly one of total mass (kg) and density (kg/m³).
   std::optional<Expression> mass;
   std::optional<Expression> density;
+  /// kPrimitive (box, cylinder, sphere), instead of mass and density: ρ(x, y, z) in kg/m³, an
+  /// expression of x, y, z (m, the shape's own frame) and the parameters (density_field.hpp).
+  std::optional<Expression> density_field;
   /// kMesh: the file (resolved against the scene file's directory), its length unit, a thin
   /// shell instead of a solid (with an optional wall thickness, m), and hole filling.
   std::filesystem::path mesh_file;

@@ -1,0 +1,77 @@
+#include "rigid/scene/density_field.hpp"
+
+#include <algorithm>
+#include <span>
+
+#include <fmt/format.h>
+
+#include "rigid/common/error.hpp"
+
+namespace rigid::scene {
+
+bool takes_density_field(std::string_view primitive) {
+  return primitive == "solid_box" || primitive == "solid_cylinder" || primitive == "solid_sphere";
+}
+
+lagrange::CompiledFunction compile_density_field(const lagrange::Expression& rho,
+                                                 const std::vector<lagrange::Parameter>& parameters,
+                                                 std::string_view what) {
+  return lagrange::compile_function(rho, {"x", "y", "z"}, parameters, what);
+}
+
+mass::DensityIntegration integrate_density_field(
+    std::string_view primitive, const std::vector<std::pair<std::string, double>>& sizes,
+    const lagrange::CompiledFunction& rho, std::string_view what) {
+  RIGID_REQUIRE_AS("density field", takes_density_field(primitive),
+                   "{}: a density field is integrated over a box, a cylinder or a sphere, not a "
+                   "{}; give it a constant density",
+                   what, primitive);
+  const mass::DensityFunction f = [&rho](const Eigen::Vector3d& p) {
+    return rho(std::span<const double>(p.data(), 3));
+  };
+  const auto size = [&](std::string_view key) {
+    for (const auto& [k, v] : sizes) {
+      if (k == key) return v;
+    }
+    return 0.0;
+  };
+  const bool box = primitive == "solid_box", cylinder = primitive == "solid_cylinder";
+  const mass::DensityIntegration r = [&] {
+    try {
+      return box        ? mass::integrate_density_over_box(f, size("lx"), size("ly"), size("lz"))
+             : cylinder ? mass::integrate_density_over_cylinder(f, size("radius"), size("height"))
+                        : mass::integrate_density_over_sphere(f, size("radius"));
+    } catch (const Error& e) {  // a negative or non-finite density at a point, no mass
+      throw Error(fmt::format("{} '{}': {}", what, rho.text(), e.what()));
+    }
+  }();
+  // the shape's size, for the COM's error
+  const double length = box        ? std::max({size("lx"), size("ly"), size("lz")})
+                        : cylinder ? std::max(2 * size("radius"), size("height"))
+                                   : 2 * size("radius");
+  const MassProperties& mp = r.mass_properties;
+  const double mass_rel = r.mass_error / mp.mass();
+  const double com_rel = r.com_error / length;
+  const double inertia_rel = r.inertia_error / mp.inertia_com().trace();
+  if (!(r.converged && mass_rel <= kDensityFieldRelativeError &&
+        com_rel <= kDensityFieldRelativeError && inertia_rel <= kDensityFieldRelativeError)) {
+    throw Error(fmt::format(
+        "{} '{}': the cubature {} (estimated relative errors: mass {:.2g}, COM {:.2g}, inertia "
+        "{:.2g}; at most {:.0e} is taken as a result); a field with a jump or a singularity "
+        "inside the shape needs the shape split where it jumps",
+        what, rho.text(),
+        r.converged ? "did not reach the bound" : fmt::format("did not converge in {} cells", r.cells),
+        mass_rel, com_rel, inertia_rel, kDensityFieldRelativeError));
+  }
+  return r;
+}
+
+std::string describe(const mass::DensityIntegration& r) {
+  return fmt::format(
+      "{} cell{} of 15³ points; estimated errors: mass {:.2g} kg ({:.2g} of it), COM {:.2g} m, "
+      "inertia {:.2g} kg·m²",
+      r.cells, r.cells == 1 ? "" : "s", r.mass_error, r.mass_error / r.mass_properties.mass(),
+      r.com_error, r.inertia_error);
+}
+
+}  // namespace rigid::scene
