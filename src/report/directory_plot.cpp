@@ -89,15 +89,16 @@ std::vector<std::string> close_names(std::string_view word, const std::vector<st
 [[noreturn]] void refuse_column(const std::string& option, const std::string& name,
                                 const std::string& what, const std::vector<std::string>& names) {
   const std::vector<std::string> close = close_names(name, names);
-  std::string hint;
-  if (!close.empty()) hint = fmt::format("; did you mean '{}'?", fmt::join(close, "', '"));
+  // "…; did you mean 'a', 'b'? Its columns are …" or "…; its columns are …"
+  std::string hint = "; its";
+  if (!close.empty()) hint = fmt::format("; did you mean '{}'? Its", fmt::join(close, "', '"));
   std::vector<std::string> listed(
       names.begin(),
       names.begin() + static_cast<std::ptrdiff_t>(std::min(names.size(), kListedColumns)));
   const std::string more = names.size() > kListedColumns
                                ? fmt::format(" and {} more", names.size() - kListedColumns)
                                : "";
-  throw Error(fmt::format("{} '{}': {} has no such column{}; its columns are {}{}", option,
+  throw Error(fmt::format("{} '{}': {} has no such column{} columns are {}{}", option,
                           escaped(name), what, hint, fmt::join(listed, ", "), more));
 }
 
