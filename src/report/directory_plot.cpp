@@ -227,7 +227,8 @@ RunsCsv read_runs_csv(const fs::path& file) {
                     escaped(file.string())));
   }
   RunsCsv out;
-  out.names.assign(rows[0].begin(), rows[0].end() - 1);
+  out.names = rows[0];
+  out.names.pop_back();  // `error`
   out.columns.resize(out.names.size());
   for (std::size_t r = 1; r < rows.size(); ++r) {
     if (rows[r].size() == 1 && rows[r][0].empty()) continue;  // a blank line
