@@ -1,4 +1,5 @@
 #include "rigid/common/did_you_mean.hpp"
+#include "rigid/common/edit_distance.hpp"
 
 #include <algorithm>
 #include <vector>
@@ -6,11 +7,8 @@
 #include <fmt/format.h>
 
 namespace rigid {
-namespace {
 
-// Optimal-string-alignment distance: Levenshtein plus the transposition of two neighbouring
-// characters as one edit ("t_ned" is one slip away from "t_end").
-std::size_t distance(std::string_view a, std::string_view b) {
+std::size_t edit_distance(std::string_view a, std::string_view b) {
   std::vector<std::vector<std::size_t>> d(a.size() + 1, std::vector<std::size_t>(b.size() + 1));
   for (std::size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
   for (std::size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
@@ -26,14 +24,12 @@ std::size_t distance(std::string_view a, std::string_view b) {
   return d[a.size()][b.size()];
 }
 
-}  // namespace
-
 std::optional<std::string> did_you_mean(std::string_view word,
                                         const std::vector<std::string>& candidates) {
   std::optional<std::string> best;
   std::size_t best_d = std::max<std::size_t>(1, word.size() / 3) + 1;
   for (const auto& c : candidates) {
-    const std::size_t d = distance(word, c);
+    const std::size_t d = edit_distance(word, c);
     if (d < best_d) {
       best_d = d;
       best = c;

@@ -13,6 +13,7 @@
 #include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
+#include "rigid/common/edit_distance.hpp"
 #include "rigid/common/error.hpp"
 #include "rigid/common/escape.hpp"
 #include "rigid/io/run_output.hpp"
@@ -51,29 +52,12 @@ std::string read_text(const fs::path& file, std::string_view what) {
   return text.str();
 }
 
-// optimal string alignment distance (Levenshtein plus a swap of neighbours as one edit)
-std::size_t distance(std::string_view a, std::string_view b) {
-  std::vector<std::vector<std::size_t>> d(a.size() + 1, std::vector<std::size_t>(b.size() + 1));
-  for (std::size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
-  for (std::size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t cost = a[i - 1] == b[j - 1] ? 0 : 1;
-      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
-      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) {
-        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
-      }
-    }
-  }
-  return d[a.size()][b.size()];
-}
-
 // the names close to `word` (a few edits away, or containing it), closest first
 std::vector<std::string> close_names(std::string_view word, const std::vector<std::string>& names) {
   std::vector<std::pair<std::size_t, std::string>> scored;
   const std::size_t limit = std::max<std::size_t>(2, word.size() / 3);
   for (const std::string& n : names) {
-    const std::size_t d = distance(word, n);
+    const std::size_t d = edit_distance(word, n);
     const bool contains = word.size() >= 2 && n.find(word) != std::string::npos;
     if (d <= limit || contains) scored.emplace_back(contains ? std::min(d, limit) : d, n);
   }
