@@ -1,4 +1,5 @@
 // The outputs of an earlier run read back, for `rigid report DIR`.
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -95,6 +96,19 @@ io::RunResult read_run(const fs::path& directory) {
     }
   }
   s.warnings = field<std::vector<std::string>>(j, "warnings", summary, {}, false);
+  // metrics: {name: {value (null: the event did not happen), unit, note}}
+  if (const auto it = j.find("metrics"); it != j.end() && it->is_object()) {
+    for (const auto& [k, v] : it->items()) {
+      if (!v.is_object()) continue;
+      io::Metric m;
+      m.name = k;
+      const auto value = v.find("value");
+      m.value = value != v.end() && value->is_number() ? value->get<double>() : std::nan("");
+      if (const auto u = v.find("unit"); u != v.end() && u->is_string()) m.unit = u->get<std::string>();
+      if (const auto note = v.find("note"); note != v.end() && note->is_string()) m.note = note->get<std::string>();
+      s.metrics.push_back(std::move(m));
+    }
+  }
   // a run written before runs carried their schema has none: the report takes the model's
   if (const auto it = j.find("schema"); it != j.end()) {
     r.schema = io::parse_schema_json(it->dump(), summary.string());

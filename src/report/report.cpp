@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "report/detail/assets.hpp"
+#include "report/detail/connections.hpp"
 #include "rigid/common/error.hpp"
 #include "rigid/common/escape.hpp"
 #include "rigid/io/run_schema.hpp"
@@ -316,6 +317,7 @@ std::string report_json(const scene::Model& model, const io::RunResult& result, 
   frames["rule"] = dec.rule;
   frames["t"] = f32(column("t"));
   json frame_bodies = json::array();
+  std::vector<detail::BodyPoses> poses;
   for (const scene::ModelBody& mb : model.bodies()) {
     const std::string& n = mb.name;
     static constexpr const char* kXyz[3] = {"x", "y", "z"};
@@ -338,10 +340,14 @@ std::string report_json(const scene::Model& model, const io::RunResult& result, 
       }
     }
     std::vector<double> position, quaternion, omega, momentum;
+    detail::BodyPoses& X_WB = poses.emplace_back();
     for (std::size_t f = 0; f < dec.rows.size(); ++f) {
       const Eigen::Quaterniond q(pose[3][f], pose[4][f], pose[5][f], pose[6][f]);
       const Eigen::Matrix3d R_WB = q.normalized().toRotationMatrix();
-      const Eigen::Vector3d p_WC = Eigen::Vector3d(pose[0][f], pose[1][f], pose[2][f]) + R_WB * mb.mass.com();
+      const Eigen::Vector3d p_WB(pose[0][f], pose[1][f], pose[2][f]);
+      X_WB.p_WB.push_back(p_WB);
+      X_WB.R_WB.push_back(q.normalized());
+      const Eigen::Vector3d p_WC = p_WB + R_WB * mb.mass.com();
       position.insert(position.end(), {p_WC.x(), p_WC.y(), p_WC.z()});
       quaternion.insert(quaternion.end(), {pose[3][f], pose[4][f], pose[5][f], pose[6][f]});
       if (twist) {
@@ -358,6 +364,34 @@ std::string report_json(const scene::Model& model, const io::RunResult& result, 
   frames["bodies"] = frame_bodies;
   j["frames"] = frames;
 
+  // what connects the bodies: rods to the bodies they hang from, and pivots in the world
+  json links = json::array();
+  for (const detail::Link& l : detail::find_links(model, poses)) {
+    links.push_back({{"body", l.body},
+                     {"point", vec3(l.point_B)},
+                     {"to", l.to ? json(*l.to) : json(nullptr)},
+                     {"to_point", vec3(l.point_to)},
+                     {"rule", l.rule}});
+  }
+  j["links"] = links;
+
+  // the scene's metrics; an instant (a crossing, the time of an extremum) is marked on the plots
+  json metrics = json::array();
+  for (const io::Metric& m : s.metrics) {
+    bool instant = false;
+    for (const scene::MetricSpec& spec : sc.output.metrics) {
+      if (spec.name != m.name) continue;
+      using K = scene::MetricSpec::Kind;
+      instant = m.unit == "s" && (spec.kind == K::kCrossing || (spec.kind == K::kExtremum && !spec.report_value));
+    }
+    metrics.push_back({{"name", m.name},
+                       {"value", std::isfinite(m.value) ? json(m.value) : json(nullptr)},
+                       {"unit", m.unit},
+                       {"note", m.note},
+                       {"instant", instant}});
+  }
+  j["metrics"] = metrics;
+
   // series: every trajectory column but t and the poses, on the frames' times; then the
   // relative changes of the energy and of each free body's |L|
   json series = json::array();
@@ -370,6 +404,7 @@ std::string report_json(const scene::Model& model, const io::RunResult& result, 
     }
     series.push_back({{"group", group_of(col)},
                       {"name", c},
+                      {"quantity", io::to_string(col.quantity)},
                       {"unit", col.unit},
                       {"column", c},
                       {"values", f32(column(c))}});
@@ -379,6 +414,7 @@ std::string report_json(const scene::Model& model, const io::RunResult& result, 
     const std::vector<double> e = relative_change(column(energy->name), absolute);
     series.push_back({{"group", "energy_error"},
                       {"name", absolute ? "|E − E(0)|" : "|E − E(0)| / |E(0)|"},
+                      {"quantity", absolute ? "energy_change" : "relative_change"},
                       {"unit", absolute ? energy->unit : ""},
                       {"column", energy->name},
                       {"values", f32(e)}});
@@ -400,6 +436,7 @@ std::string report_json(const scene::Model& model, const io::RunResult& result, 
     const std::vector<double> e = relative_change(norm, absolute);
     series.push_back({{"group", "L_error"},
                       {"name", n + (absolute ? " |L − L(0)|" : " ||L| − |L(0)|| / |L(0)|")},
+                      {"quantity", absolute ? "angular_momentum_change" : "relative_change"},
                       {"unit", absolute ? Lc->unit : ""},
                       {"column", n + ".L"},
                       {"values", f32(e)}});

@@ -35,3 +35,11 @@ export function table(head, rows, cls = '') {
     el('thead', {}, el('tr', {}, ...head.map((h) => el('th', { text: h })))),
     el('tbody', {}, ...rows.map((r) => el('tr', {}, ...r.map((c) => el('td', {}, c))))));
 }
+
+/** Saves a data: URL (or a blob: URL) as a file named `name`, through a link's download. */
+export function saveDataUrl(url, name) {
+  const a = el('a', { href: url, download: name });
+  document.body.append(a);
+  a.click();
+  a.remove();
+}

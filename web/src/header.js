@@ -32,6 +32,18 @@ export function buildHeader(report, root) {
   const h = el('header', { class: 'report-header' });
   const s = report.scene ?? {};
   h.append(el('h1', {}, `rigid — ${s.name ?? 'run'}`), el('p', { class: 'file', text: s.file ?? '' }));
+  // the scene's metrics, first thing under the title: name = value unit (or why there is none)
+  const metrics = report.metrics ?? [];
+  if (metrics.length) {
+    h.append(el('p', { class: 'metrics' }, ...metrics.map((m) => el('span', {
+      class: 'metric',
+      'data-name': m.name,
+      title: m.note || (m.instant ? 'marked on the plots' : ''),
+      text: m.value === null || m.value === undefined
+        ? `${m.name}: none${m.note ? ` (${m.note})` : ''}`
+        : `${m.name} = ${num(m.value, 6)}${m.unit ? ` ${m.unit}` : ''}`,
+    }))));
+  }
   if (s.description) h.append(el('pre', { class: 'description', text: s.description }));
 
   const cards = el('div', { class: 'cards' });
@@ -81,7 +93,10 @@ export function buildHeader(report, root) {
       table(['body', 'shape', 'mass (kg)', 'COM (m)', 'I_com (kg·m²)', 'principal moments (kg·m²)', 'principal axes (columns)'],
         bodies.map((b) => [
           b.name + (b.free ? ' (free)' : ''),
-          b.shape?.kind ?? '—',
+          // what the 3D view draws for a body of no known shape (view3d.js)
+          b.shape?.kind === 'inertia_only' || !b.shape
+            ? (b.free ? 'box of equal inertia' : 'ellipsoid of equal inertia')
+            : b.shape.kind,
           num(b.mass),
           vec(b.com),
           inertiaMatrix(b.inertia_com),

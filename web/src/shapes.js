@@ -27,6 +27,15 @@ export function equivalentEllipsoid(body) {
   return [k * (i2 + i3 - i1), k * (i1 + i3 - i2), k * (i1 + i2 - i3)].map((x) => Math.sqrt(Math.max(0, x)));
 }
 
+/** Sides of the uniform solid box with the body's principal moments and mass:
+ *  I1 = m (b² + c²) / 12 and cyclically, so a² = 6 (I2 + I3 − I1) / m. */
+export function equivalentBox(body) {
+  const [i1, i2, i3] = body.principal_moments;
+  const m = body.mass > 0 ? body.mass : 1;
+  const k = 6 / m;
+  return [k * (i2 + i3 - i1), k * (i1 + i3 - i2), k * (i1 + i2 - i3)].map((x) => Math.sqrt(Math.max(0, x)));
+}
+
 /** Rotation (three.js) whose columns are the body's principal axes. */
 export function principalRotation(body) {
   const [a0, a1, a2] = body.principal_axes;

@@ -4,8 +4,9 @@
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { decodeArray } from './data.js';
-import { el } from './format.js';
-import { bodyRadius, equivalentEllipsoid, principalRotation, shapeGeometry } from './shapes.js';
+import { el, saveDataUrl } from './format.js';
+import { bodyRadius, equivalentBox, equivalentEllipsoid, principalRotation, shapeGeometry } from './shapes.js';
+import { buildLinks } from './links.js';
 import { buildPoinsot } from './poinsot.js';
 
 const kBodyColours = [0x4e79a7, 0xf28e2b, 0x59a14f, 0xe15759, 0x76b7b2, 0xedc948, 0xb07aa1, 0xff9da7, 0x9c755f, 0xbab0ac];
@@ -94,6 +95,19 @@ export function buildView(report, player, root) {
     const equivalent = equivalentEllipsoid(b.info);
     if (b.geometry) {
       inBody.add(new THREE.Mesh(b.geometry, material));
+    } else if (b.info.free && Math.max(...equivalent) > 0) {
+      // a free body of no known shape: the uniform box of the same mass and principal moments
+      // (its long side along the axis of least inertia), so that a turn of any axis shows;
+      // flat ones given a thickness to be seen, one side darker so that a flip shows too
+      const sides = equivalentBox(b.info);
+      const thin = Math.max(...sides) / 40;
+      const faces = [0, 1, 2, 3, 4, 5].map((f) => (f === 1 || f === 3 || f === 5
+        ? new THREE.MeshStandardMaterial({ color: new THREE.Color(b.colour).multiplyScalar(0.55), roughness: 0.6, metalness: 0.05 })
+        : material));
+      const e = new THREE.Mesh(new THREE.BoxGeometry(...sides.map((x) => Math.max(x, thin))), faces);
+      e.quaternion.copy(principalRotation(b.info));
+      group.add(e);
+      b.radius = 0.5 * Math.hypot(...sides);
     } else if (Math.max(...equivalent) > 0) {
       // no shape of its own: the uniform ellipsoid of the same inertia, flat ones given a thickness to be seen
       const thin = Math.max(...equivalent) / 40;
@@ -149,6 +163,11 @@ export function buildView(report, player, root) {
       layers.L.push(b.LArrow);
     }
   }
+
+  // rods and pivots (the report's links)
+  const links = buildLinks(report.links, bodies, extent);
+  scene.add(links.group);
+  for (const p of links.pivots) box.expandByPoint(new THREE.Vector3(...p));
 
   const grid = new THREE.GridHelper(2 * extent, 20, 0xbbbbbb, 0xdddddd);
   grid.rotateX(Math.PI / 2);
@@ -227,6 +246,7 @@ export function buildView(report, player, root) {
         }
       }
     }
+    links.setFrame(k);
     if (poinsot) poinsot.setFrame(k, bodies[0].group.position, q.copy(bodies[0].group.quaternion));
     requestRender();
   };
@@ -258,7 +278,9 @@ export function buildView(report, player, root) {
     apply();
     toggles.append(el('label', { title: note ?? '' }, box, ` ${label}`));
   };
-  toggle('body frames', layers.frames, false, 'x red, y green, z blue, at each body frame origin');
+  // a free body's turning is read from its frame: on by default where there is one
+  toggle('body frames', layers.frames, bodies.some((b) => b.info.free), 'x red, y green, z blue, at each body frame origin');
+  toggle('rods and pivots', links.count ? [links.group] : [], true, 'what each body hangs from: a rod to it, a sphere at a pivot fixed in the world');
   toggle('ω', layers.omega, true, 'angular velocity in the world (red)');
   toggle('L', layers.L, true, 'angular momentum about the COM, in the world (green): constant for a free body');
   toggle('inertia ellipsoids', layers.ellipsoids, false, 'the uniform solid ellipsoid with the body’s mass and principal moments');
@@ -266,9 +288,31 @@ export function buildView(report, player, root) {
   toggle('paths', layers.paths, true, 'the path of each body’s COM up to the current time');
   toggle('grid', [grid], true);
 
+  const download = el('button', { type: 'button', class: 'download', title: 'the 3D view as it is now, as a PNG image', text: 'PNG' });
+  download.addEventListener('click', () => {
+    render();
+    saveDataUrl(renderer.domElement.toDataURL('image/png'), `${report.scene?.name ?? 'rigid'}-view.png`);
+  });
+  toggles.append(download);
+
   resize();
   player.onChange(setFrame);
   setFrame(player.index);
   render();
-  return { renderer, render, canvas: renderer.domElement };
+  const project = (p) => {
+    const v3 = new THREE.Vector3(...p).project(camera);
+    const r = renderer.domElement.getBoundingClientRect();
+    return [(v3.x + 1) / 2 * r.width, (1 - v3.y) / 2 * r.height];
+  };
+  return {
+    renderer,
+    render,
+    canvas: renderer.domElement,
+    // for tests and scripts: the rods' world ends at the current frame, the pivots, a world
+    // point's position in the canvas (CSS pixels), a body's drawn orientation (w, x, y, z)
+    links: () => links.ends(player.index),
+    pivots: links.pivots,
+    project,
+    bodyQuaternion: (i) => { const g = bodies[i].group.quaternion; return [g.w, g.x, g.y, g.z]; },
+  };
 }
