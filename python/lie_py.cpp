@@ -15,6 +15,7 @@
 #include <string_view>
 
 #include "convert.hpp"
+#include "pickle.hpp"
 #include "rigid/common/format.hpp"
 #include "rigid/common/wording.hpp"
 #include "rigid/lie.hpp"
@@ -24,6 +25,26 @@ namespace py = pybind11;
 namespace cv = rigid::python::convert;
 
 void bind_so3_batch(py::module_& m);  // so3_batch_py.cpp: rigid.so3
+
+// The private state of SO2 (c, s) and SOn (R), written back exactly when unpickled
+// (python/pickle.hpp says why).
+namespace rigid::python::pickle {
+struct SO2Real {
+  using type = double rigid::SO2d::*;
+};
+struct SO2Imag {
+  using type = double rigid::SO2d::*;
+};
+struct SOnMatrix {
+  using type = Eigen::MatrixXd rigid::SOn::*;
+};
+SO2Real::type member(SO2Real);
+SO2Imag::type member(SO2Imag);
+SOnMatrix::type member(SOnMatrix);
+template struct Grant<SO2Real, &rigid::SO2d::c_>;
+template struct Grant<SO2Imag, &rigid::SO2d::s_>;
+template struct Grant<SOnMatrix, &rigid::SOn::R_>;
+}  // namespace rigid::python::pickle
 
 namespace {
 
@@ -309,6 +330,138 @@ void bind_motion_parts(py::class_<G>& cls, const GroupDocs& d) {
       .def("translation", &G::translation, d.translation.c_str());
 }
 
+// Pickling: each group's state is its stored numbers (SO2: c, s; SO3: the quaternion; SOn: the
+// matrix; a motion: its rotation's state and t), restored bit for bit after the checks a
+// factory makes (a damaged state is refused with rigid.Error). `type` names the function in
+// messages: "rigid.SO3.__setstate__".
+namespace pk = rigid::python::pickle;
+
+rigid::SO2d so2_of_state(double c, double s, std::string_view type) {
+  const double norm2 = c * c + s * s;
+  if (!(std::abs(norm2 - 1.0) <= 1e-12)) {
+    throw rigid::Error(fmt::format("{}(): (c, s) = ({}, {}) is not a unit complex "
+                                   "number (c² + s² = {}; expected 1 within 1e-12)",
+                                   type, c, s, norm2));
+  }
+  rigid::SO2d R = rigid::SO2d::from_complex(c, s);  // checks finiteness
+  R.*member(pk::SO2Real{}) = c;
+  R.*member(pk::SO2Imag{}) = s;
+  return R;
+}
+
+rigid::SO3d so3_of_state(const py::handle& q_state, std::string_view type) {
+  const Eigen::Vector4d q = cv::vector4(q_state, {type, "state[0] (quaternion wxyz)"});
+  const double norm2 = q(0) * q(0) + q(1) * q(1) + q(2) * q(2) + q(3) * q(3);
+  if (!(std::abs(norm2 - 1.0) <= 1e-12)) {
+    throw rigid::Error(fmt::format("{}(): quaternion {} is not a unit quaternion "
+                                   "(norm² = {}; expected 1 within 1e-12)",
+                                   type, rigid::to_string(q.transpose()), norm2));
+  }
+  return rigid::SO3d::from_unit_quaternion(q(0), q(1), q(2), q(3));  // exactly these numbers
+}
+
+rigid::SOn son_of_state(const py::handle& R_state, std::string_view type) {
+  const Eigen::MatrixXd R = cv::square_matrix(R_state, {type, "state[0] (matrix)"});
+  rigid::SOn out = rigid::SOn::from_matrix(R, 1e-9);  // a rotation within 1e-9 (may project)
+  out.*member(pk::SOnMatrix{}) = R;                    // the pickled bits
+  return out;
+}
+
+template <class F>
+auto setting_state(std::string_view type, F f) -> decltype(f()) {
+  try {
+    return f();
+  } catch (const rigid::Error& e) {
+    const std::string what = e.what();
+    if (what.rfind(type, 0) == 0) throw;  // already names rigid.X.__setstate__
+    throw rigid::Error(fmt::format("{}(): {}", type, rigid::strip_function_names(what)));
+  }
+}
+
+void def_pickle_so2(py::class_<rigid::SO2d>& cls) {
+  cls.def(py::pickle(
+      [](const rigid::SO2d& R) { return py::make_tuple(R.real(), R.imag()); },
+      [](const py::tuple& state) {
+        constexpr std::string_view type = "rigid.SO2.__setstate__";
+        return setting_state(type, [&] {
+          const py::tuple t = pk::state_tuple(state, type, 2);
+          return so2_of_state(pk::state_float(t, 0, type), pk::state_float(t, 1, type), type);
+        });
+      }));
+}
+
+void def_pickle_se2(py::class_<rigid::SE2d>& cls) {
+  cls.def(py::pickle(
+      [](const rigid::SE2d& X) {
+        return py::make_tuple(X.rotation().real(), X.rotation().imag(),
+                              Eigen::Vector2d(X.translation()));
+      },
+      [](const py::tuple& state) {
+        constexpr std::string_view type = "rigid.SE2.__setstate__";
+        return setting_state(type, [&] {
+          const py::tuple t = pk::state_tuple(state, type, 3);
+          const rigid::SO2d R =
+              so2_of_state(pk::state_float(t, 0, type), pk::state_float(t, 1, type), type);
+          return rigid::SE2d(R, cv::fixed_vector<2>(t[2], {type, "state[2] (translation)"}));
+        });
+      }));
+}
+
+void def_pickle_so3(py::class_<rigid::SO3d>& cls) {
+  cls.def(py::pickle(
+      [](const rigid::SO3d& R) { return py::make_tuple(Eigen::Vector4d(R.quaternion())); },
+      [](const py::tuple& state) {
+        constexpr std::string_view type = "rigid.SO3.__setstate__";
+        return setting_state(type, [&] {
+          const py::tuple t = pk::state_tuple(state, type, 1);
+          return so3_of_state(t[0], type);
+        });
+      }));
+}
+
+void def_pickle_se3(py::class_<rigid::SE3d>& cls) {
+  cls.def(py::pickle(
+      [](const rigid::SE3d& X) {
+        return py::make_tuple(Eigen::Vector4d(X.rotation().quaternion()),
+                              Eigen::Vector3d(X.translation()));
+      },
+      [](const py::tuple& state) {
+        constexpr std::string_view type = "rigid.SE3.__setstate__";
+        return setting_state(type, [&] {
+          const py::tuple t = pk::state_tuple(state, type, 2);
+          return rigid::SE3d(so3_of_state(t[0], type),
+                             cv::vector3(t[1], {type, "state[1] (translation)"}));
+        });
+      }));
+}
+
+void def_pickle_son(py::class_<rigid::SOn>& cls) {
+  cls.def(py::pickle([](const rigid::SOn& R) { return py::make_tuple(Eigen::MatrixXd(R.matrix())); },
+                     [](const py::tuple& state) {
+                       constexpr std::string_view type = "rigid.SOn.__setstate__";
+                       return setting_state(type, [&] {
+                         const py::tuple t = pk::state_tuple(state, type, 1);
+                         return son_of_state(t[0], type);
+                       });
+                     }));
+}
+
+void def_pickle_sen(py::class_<rigid::SEn>& cls) {
+  cls.def(py::pickle(
+      [](const rigid::SEn& X) {
+        return py::make_tuple(Eigen::MatrixXd(X.rotation().matrix()),
+                              Eigen::VectorXd(X.translation()));
+      },
+      [](const py::tuple& state) {
+        constexpr std::string_view type = "rigid.SEn.__setstate__";
+        return setting_state(type, [&] {
+          const py::tuple t = pk::state_tuple(state, type, 2);
+          const rigid::SOn R = son_of_state(t[0], type);
+          return rigid::SEn(R, cv::vector(t[1], {type, "state[1] (translation)"}, R.n()));
+        });
+      }));
+}
+
 void bind_so2(py::module_& m) {
   using rigid::SO2d;
   using T1 = SO2d::Tangent;
@@ -364,6 +517,7 @@ void bind_so2(py::module_& m) {
   def_mul_fixed<SO2d, 2>(cls, "SO2.__mul__",
                          "Composition self * other (other: an SO2), or the rotated vector R v "
                          "(other: shape (2,)).");
+  def_pickle_so2(cls);
   cls.def("__repr__", [](const SO2d& R) { return fmt::format("SO2(angle={})", R.angle()); });
 }
 
@@ -404,6 +558,7 @@ void bind_se2(py::module_& m) {
   def_mul_fixed<SE2d, 2>(cls, "SE2.__mul__",
                          "Composition self * other (other: an SE2), or the moved point R p + t "
                          "(other: shape (2,)).");
+  def_pickle_se2(cls);
   cls.def("__repr__", [](const SE2d& X) {
     return fmt::format("SE2(angle={}, translation={})", X.rotation().angle(),
                        rigid::to_string(X.translation().transpose()));
@@ -438,6 +593,7 @@ void bind_son(py::module_& m) {
       .def("is_approx", &SOn::is_approx, py::arg("other"), py::arg("tol") = 1e-12,
            d.is_approx.c_str());
   bind_element_methods(cls, "rigid.SOn", d);
+  def_pickle_son(cls);
   cls.def(
          "__mul__",
          [](const SOn& a, const py::object& other) {
@@ -487,6 +643,7 @@ void bind_sen(py::module_& m) {
           py::arg("v"), d.act_vector.c_str());
   bind_motion_parts(cls, d);
   bind_element_methods(cls, "rigid.SEn", d);
+  def_pickle_sen(cls);
   cls.def(
          "__mul__",
          [](const SEn& a, const py::object& other) {
@@ -586,6 +743,7 @@ void bind_so3(py::module_& m) {
   def_mul_fixed<SO3d, 3>(cls, "SO3.__mul__",
                          "Composition self * other (R_AC = R_AB * R_BC; other: an SO3), or the "
                          "rotated vector R v (v_A = R_AB v_B; other: shape (3,)).");
+  def_pickle_so3(cls);
   cls.def("__repr__", [](const SO3d& R) {
     return "SO3(quaternion wxyz=" + rigid::to_string(R.quaternion().transpose()) + ")";
   });
@@ -613,6 +771,7 @@ void bind_se3(py::module_& m) {
   def_mul_fixed<SE3d, 3>(cls, "SE3.__mul__",
                          "Composition self * other (X_AC = X_AB * X_BC; other: an SE3), or the "
                          "moved point R p + t (other: shape (3,)).");
+  def_pickle_se3(cls);
   cls.def("__repr__", [](const SE3d& X) {
     return "SE3(quaternion wxyz=" + rigid::to_string(X.rotation().quaternion().transpose()) +
            ", translation=" + rigid::to_string(X.translation().transpose()) + ")";

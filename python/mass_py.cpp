@@ -11,6 +11,7 @@
 #include <pybind11/stl.h>
 
 #include "convert.hpp"
+#include "pickle.hpp"
 #include "rigid/common/error.hpp"
 #include "rigid/common/format.hpp"
 #include "rigid/common/wording.hpp"
@@ -143,6 +144,20 @@ void bind_mass_properties(py::module_& m) {
           py::arg("mass"), py::arg("p_OC_B"), py::arg("I_C_B"),
           "Why (mass kg, COM p_OC_B m, inertia about the COM I_C_B kg·m²) is not a "
           "physical body, or None when it is.")
+      .def(py::pickle(
+          // (mass, p_OC_B, I_C_B): the constructor keeps them as they are (I_C_B is stored
+          // symmetric, and the symmetric part of a symmetric matrix is itself, bit for bit)
+          [](const MassProperties& mp) {
+            return py::make_tuple(mp.mass(), Eigen::Vector3d(mp.com()),
+                                  Eigen::Matrix3d(mp.inertia_com()));
+          },
+          [](const py::tuple& state) {
+            constexpr std::string_view type = "rigid.MassProperties.__setstate__";
+            const py::tuple t = rigid::python::pickle::state_tuple(state, type, 3);
+            return MassProperties(rigid::python::pickle::state_float(t, 0, type),
+                                  cv::vector3(t[1], {type, "state[1] (p_OC_B)"}),
+                                  cv::matrix3(t[2], {type, "state[2] (I_C_B)"}));
+          }))
       .def("__repr__", [](const MassProperties& mp) { return fmt::format("{}", mp); });
 }
 
@@ -191,6 +206,17 @@ void bind_mass_properties2(py::module_& m) {
           py::arg("a"), py::arg("b"),
           "The union of two laminae in one frame: masses add, moments are shifted to the common "
           "COM and added.")
+      .def(py::pickle(
+          [](const MassProperties2& mp) {
+            return py::make_tuple(mp.mass(), Eigen::Vector2d(mp.com()), mp.moment_com());
+          },
+          [](const py::tuple& state) {
+            constexpr std::string_view type = "rigid.MassProperties2.__setstate__";
+            const py::tuple t = rigid::python::pickle::state_tuple(state, type, 3);
+            return MassProperties2(rigid::python::pickle::state_float(t, 0, type),
+                                   cv::vector(t[1], {type, "state[1] (p_OC_B)"}, 2),
+                                   rigid::python::pickle::state_float(t, 2, type));
+          }))
       .def("__repr__", [](const MassProperties2& mp) { return fmt::format("{}", mp); });
 }
 
@@ -232,6 +258,18 @@ void bind_second_moments(py::module_& m) {
            "The 3D MassProperties (I = tr(J) 1 − J); raises rigid.Error unless n = 3.")
       .def_static("from_mass_properties", &SecondMoments::from_mass_properties, py::arg("mp"),
                   "The second moments of 3D mass properties: J = ½ tr(I) 1 − I.")
+      .def(py::pickle(
+          // (mass, com, J_com): J_com is stored symmetric, which the constructor keeps exactly
+          [](const SecondMoments& J) {
+            return py::make_tuple(J.mass(), Eigen::VectorXd(J.com()), Eigen::MatrixXd(J.J_com()));
+          },
+          [](const py::tuple& state) {
+            constexpr std::string_view type = "rigid.SecondMoments.__setstate__";
+            const py::tuple t = rigid::python::pickle::state_tuple(state, type, 3);
+            const Eigen::VectorXd c = cv::vector(t[1], {type, "state[1] (com)"});
+            return SecondMoments(rigid::python::pickle::state_float(t, 0, type), c,
+                                 cv::matrix(t[2], {type, "state[2] (J_com)"}, c.size(), c.size()));
+          }))
       .def("__repr__", [](const SecondMoments& s) {
         return fmt::format("SecondMoments(n={}, mass={} kg, com={} m, J_com={} kg·m²)",
                            s.dimension(), s.mass(), rigid::to_string(s.com().transpose()),

@@ -126,6 +126,17 @@ void bind_triangle_mesh(py::module_& mesh) {
       .def_property_readonly("vertices", &vertices_array, "Vertex positions, an (n, 3) array (m).")
       .def_property_readonly("triangles", &triangles_array,
                              "Vertex indices of each triangle, an (m, 3) integer array.")
+      .def(py::pickle(
+          [](const TriangleMesh& t) { return py::make_tuple(vertices_array(t), triangles_array(t)); },
+          [](const py::tuple& state) {
+            if (state.size() != 2) {
+              throw rigid::Error(fmt::format(
+                  "rigid.mesh.TriangleMesh.__setstate__(): the state must be the tuple "
+                  "(vertices, triangles) that __getstate__ returns; got {} values",
+                  state.size()));
+            }
+            return from_arrays(state[0], state[1]);
+          }))
       .def("__len__", &TriangleMesh::size)
       .def("__repr__",
            [](const TriangleMesh& t) {
