@@ -103,7 +103,7 @@ py::dict free_trajectory(const rigid::body::FreeBodyTrajectory& traj) {
     ortho(i) = d.orthonormality_error;
   }
   py::dict out;
-  out["t"] = traj.t;
+  out["t"] = cv::array(traj.t);
   out["q_wxyz"] = q;
   out["omega_body"] = w;
   out["L_world"] = L;
@@ -271,7 +271,7 @@ void bind_rigid_body(py::module_& body) {
               E(i) = d.energy;
             }
             py::dict out;
-            out["t"] = tr.t;
+            out["t"] = cv::array(tr.t);
             out["q_wxyz"] = q;
             out["omega_body"] = w;
             out["p_world"] = pw;

@@ -23,6 +23,7 @@
 #include <pybind11/pybind11.h>
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <filesystem>
@@ -258,6 +259,14 @@ inline double number(const py::handle& value, const Arg& arg) {
   }
   throw py::type_error(fmt::format("{}(): argument '{}' must be a number; got {}", arg.function,
                                    arg.name, py::repr(value).cast<std::string>()));
+}
+
+/// A list of numbers the library returns (sample times, energies) as a float64 numpy array of
+/// shape (n,): every numeric result reaches Python as an array, never as a list of floats.
+inline py::array_t<double> array(const std::vector<double>& v) {
+  py::array_t<double> out(static_cast<py::ssize_t>(v.size()));
+  std::copy(v.begin(), v.end(), out.mutable_data());
+  return out;
 }
 
 /// A path argument: a str or an os.PathLike (pathlib.Path), as text. Refuses other types with

@@ -63,7 +63,7 @@ void bind_integrate(py::module_& m) {
         for (std::size_t k = 0; k < sol.y.size(); ++k)
           y.row(static_cast<Eigen::Index>(k)) = sol.y[k].transpose();
         py::dict d;
-        d["t"] = sol.t;
+        d["t"] = cv::array(sol.t);
         d["y"] = y;
         d["steps"] = sol.steps;
         d["rhs_evaluations"] = sol.rhs_evaluations;

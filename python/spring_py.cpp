@@ -162,10 +162,10 @@ void bind_spring(py::module_& m) {
               }
             }
             py::dict out;
-            out["t"] = tr.t;
+            out["t"] = cv::array(tr.t);
             out["position"] = p;
             out["velocity"] = v;
-            out["energy"] = tr.energy;
+            out["energy"] = cv::array(tr.energy);
             return out;
           },
           py::arg("h_max"), py::arg("times"), py::arg("max_iterations") = 50,
