@@ -2,6 +2,8 @@
 // re-exports it): numpy arrays in and out, rigid::Error raised as rigid.Error (a ValueError).
 #include <pybind11/pybind11.h>
 
+#include <string>
+
 #include "rigid/common/error.hpp"
 #include "rigid/common/wording.hpp"
 #include "rigid/version.hpp"
@@ -19,6 +21,7 @@ void bind_spring(py::module_& m);
 void bind_integrate(py::module_& m);
 void bind_robot(py::module_& m);
 void bind_robot_regressor(py::module_& m);
+void plain_argument_errors(py::module_& m, const std::string& prefix);  // argument_errors.cpp
 
 PYBIND11_MODULE(_rigid, m) {
   m.doc() = "rigid: rigid-body mechanics from isometries and inertia tensors to Euler's equations";
@@ -52,5 +55,7 @@ PYBIND11_MODULE(_rigid, m) {
   bind_integrate(m);
   bind_robot(m);
   bind_robot_regressor(m);
+  // arguments that match no signature: rigid's TypeError, not pybind11's list of overloads
+  plain_argument_errors(m, "rigid");
   m.attr("__name__") = "rigid._rigid";
 }

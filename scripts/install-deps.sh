@@ -8,6 +8,7 @@
 # build also needs Node 20 and npm (the report page is bundled from web/ at build time; the
 # browser tests drive Debian's chromium with playwright-core): they are checked, not installed
 # (Debian 12's nodejs is 18), and a missing or old node stops here with the remedy.
+# python3-mypy: python/tests/test_stubs.py checks the type stubs with mypy.stubtest.
 set -euo pipefail
 
 check_node() {
@@ -35,6 +36,7 @@ build_packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libmujoco-dev libmujoco-samples
   pybind11-dev python3-dev python3-numpy python3-pytest python3-scipy python3-sympy python3-meshio
+  python3-mypy
   python3-pip python3-setuptools python3-wheel python3-venv
   chromium
   clang
