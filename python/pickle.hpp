@@ -8,7 +8,7 @@
 // and SOn::from_matrix projects a matrix that is orthonormal only to a tolerance; either may
 // move the last bit. For those the state is validated by the public factory and then written
 // back exactly into the private members, reached through an explicit template instantiation
-// (which C++ exempts from access checking, [temp.spec.general]/6): no header changes, and the
+// (which C++ exempts from access checking: C++20 [temp.spec]/6): no header changes, and the
 // invariant is still checked by the factory.
 #include <fmt/format.h>
 #include <pybind11/pybind11.h>
