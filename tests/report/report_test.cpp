@@ -262,6 +262,103 @@ output_dt = 0.01
   fs::remove_all(dir);
 }
 
+// What connects the bodies: a double pendulum posed by expressions alone (no `parent`) hangs
+// bob1 from a pivot at the world origin and bob2 from bob1 (their distances are the rods'
+// lengths at every frame); a weight that slides along a line hangs from nothing.
+TEST(ReportJson, LinksOfADoublePendulumAreAPivotAndTwoRods) {
+  const fs::path dir = scratch("double");
+  const rigid::scene::Model model(rigid::scene::parse_scene(R"toml(gravity = [0, 0, -9.81]
+[[coordinates]]
+name = "a"
+initial = 1.0
+[[coordinates]]
+name = "b"
+initial = 0.5
+[[coordinates]]
+name = "y"
+velocity = 1.0
+[[bodies]]
+name = "bob1"
+point_masses = [{mass = 1.0, position = [0, 0, 0]}]
+position = ["0.7*sin(a)", 0, "-0.7*cos(a)"]
+[[bodies]]
+name = "bob2"
+point_masses = [{mass = 1.0, position = [0, 0, 0]}]
+position = ["0.7*sin(a) + 0.4*sin(b)", 0, "-0.7*cos(a) - 0.4*cos(b)"]
+[[bodies]]
+name = "weight"
+point_masses = [{mass = 1.0, position = [0, 0, 0]}]
+position = [3, 0, "y"]
+[simulation]
+t_end = 0.5
+integrator = "rk4"
+dt = 0.001
+output_dt = 0.01
+
+[[output.metrics]]
+name = "a_zero"
+kind = "crossing"
+column = "a"
+)toml", dir / "double.toml"));
+  const rigid::io::RunResult run = model.run();
+  const json j = json::parse(report_json(model, run));
+  ASSERT_EQ(j["links"].size(), 2u) << j["links"].dump();
+  EXPECT_EQ(j["links"][0]["body"], 0);
+  EXPECT_TRUE(j["links"][0]["to"].is_null());
+  EXPECT_EQ(j["links"][0]["to_point"], json::array({0.0, 0.0, 0.0}));
+  EXPECT_EQ(j["links"][1]["body"], 1);
+  EXPECT_EQ(j["links"][1]["to"], 0);
+  EXPECT_EQ(j["links"][1]["rule"], "constant distance");
+  // the metric is an instant (a crossing, in s), so the plots mark it
+  ASSERT_EQ(j["metrics"].size(), 1u);
+  EXPECT_EQ(j["metrics"][0]["name"], "a_zero");
+  EXPECT_EQ(j["metrics"][0]["unit"], "s");
+  EXPECT_TRUE(j["metrics"][0]["instant"]);
+  ASSERT_EQ(run.summary.metrics.size(), 1u);
+  EXPECT_EQ(j["metrics"][0]["value"], run.summary.metrics[0].value);
+  // and a page made again from the run's files (rigid report DIR) has the same metric
+  const std::vector<rigid::io::OutputFormat> formats = {rigid::io::OutputFormat::kCsv,
+                                                        rigid::io::OutputFormat::kJson};
+  (void)rigid::io::write_run(dir / "out", run, formats);
+  const json again = json::parse(report_json(model, rigid::report::read_run(dir / "out")));
+  EXPECT_EQ(again["metrics"], j["metrics"]);
+  EXPECT_EQ(again["links"].size(), 2u);
+  fs::remove_all(dir);
+}
+
+// A top: one rod from its COM to its pivot, fixed in the world where the initial pose puts it
+// (p_W = p_WB(0) + R_WB(0) pivot_B: here the rotation is a half turn about x, so (0, 0, 0.2)
+// goes to (0, 0, −0.2) from the initial position (1, 2, 3)).
+TEST(ReportJson, ATopHangsFromItsPivot) {
+  const fs::path dir = scratch("top");
+  const rigid::scene::Model model(rigid::scene::parse_scene(R"toml(gravity = [0, 0, -9.81]
+[[bodies]]
+name = "top"
+free = true
+primitive = "solid_cone"
+radius = 0.05
+height = 0.2
+mass = 1.0
+initial_position = [1, 2, 3]
+initial_rotation = {axis = [1, 0, 0], angle = 3.141592653589793}
+pivot = [0, 0, 0.2]
+angular_velocity = [0, 0, 50]
+[simulation]
+t_end = 0.01
+dt = 0.001
+)toml", dir / "top.toml"));
+  const rigid::io::RunResult run = model.run();
+  const json j = json::parse(report_json(model, run));
+  ASSERT_EQ(j["links"].size(), 1u) << j["links"].dump();
+  EXPECT_EQ(j["links"][0]["rule"], "pivot");
+  const std::vector<double> pivot = j["links"][0]["to_point"];
+  // the initial pose is read back from the trajectory's first row: round-off only (1e-12 m)
+  EXPECT_NEAR(pivot[0], 1.0, 1e-12);
+  EXPECT_NEAR(pivot[1], 2.0, 1e-12);
+  EXPECT_NEAR(pivot[2], 2.8, 1e-12);
+  fs::remove_all(dir);
+}
+
 // Two bodies of one mesh file store it once; its positions are the file's vertices (float32)
 // and its indices its triangles.
 TEST(ReportJson, MeshesAreStoredOnce) {
