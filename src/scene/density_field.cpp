@@ -1,6 +1,7 @@
 #include "rigid/scene/density_field.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <span>
 
 #include <fmt/format.h>
@@ -63,7 +64,20 @@ mass::DensityIntegration integrate_density_field(
         r.converged ? "did not reach the bound" : fmt::format("did not converge in {} cells", r.cells),
         mass_rel, com_rel, inertia_rel, kDensityFieldRelativeError));
   }
-  return r;
+  // A moment within its own estimated error of zero is not told apart from zero, and is zero:
+  // a field symmetric about an axis gives its COM off that axis and its products of inertia as
+  // ±1e-19 of round-off otherwise, with a sign that changes with the sizes.
+  Eigen::Vector3d com = mp.com();
+  Eigen::Matrix3d inertia = mp.inertia_com();
+  for (int i = 0; i < 3; ++i) {
+    if (std::abs(com(i)) <= r.com_error) com(i) = 0.0;
+    for (int j = 0; j < 3; ++j) {
+      if (i != j && std::abs(inertia(i, j)) <= r.inertia_error) inertia(i, j) = 0.0;
+    }
+  }
+  mass::DensityIntegration out = r;
+  out.mass_properties = MassProperties(mp.mass(), com, inertia);
+  return out;
 }
 
 std::string describe(const mass::DensityIntegration& r) {

@@ -940,7 +940,7 @@ std::string Model::equations(lagrange::EquationFormat format) const {
     for (std::size_t k = m.scene_params; k < m.params.size(); ++k) {
       note += fmt::format("{}{} = {:.8g}", k > m.scene_params ? ", " : "", m.params[k].name, m.params[k].value);
     }
-    note += " (SI units; computed from the bodies' files and vertices)";
+    note += " (SI units; computed from the bodies' files, vertices and density fields)";
   }
   if (m.kind == SceneKind::kCoordinates) {
     lagrange::Equations eq = m.system->equations();

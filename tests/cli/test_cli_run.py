@@ -201,7 +201,22 @@ def test_stiff_dumbbell_approaches_the_rigid_body(run, tmp_path, k):
     assert abs(np.mean(radius) - r0) < 1.01 * (rk - r0)
 
 
+def test_graded_rod_pendulum_period(run, tmp_path):
+    # a rod (r = 0.01, h = 1) with ρ = ρ0 (1/2 + u/h), u from the pivot at its top: m = ρ0 π r² h,
+    # COM at 7h/12, I_pivot = m (5h²/12 + r²/4); its mass properties come from the density field
+    c, summary = simulate(run, tmp_path, "graded_rod_pendulum")
+    rho0, r, h = 2700.0, 0.01, 1.0
+    m = rho0 * math.pi * r * r * h
+    expected = pendulum_period(m * (5 * h * h / 12 + r * r / 4), m, 7 * h / 12, 1.0)  # 1.80796 s
+    period, spread = measured_period(c, "theta")
+    # as the physical pendulum above: dopri5 at 1e-12 and interpolation at the zeros
+    assert abs(period - expected) < 1e-5
+    assert spread < 1e-5
+    assert summary["metrics"]["period"]["value"] == pytest.approx(expected, rel=1e-9)
+
+
 CHECKED = {"rolling_cylinder", "rolling_sphere", "rolling_tube", "atwood", "physical_pendulum",
+           "graded_rod_pendulum",
            "cone_pendulum", "double_pendulum", "heavy_top", "tennis_racket", "stiff_dumbbell",
            "sleeping_top",  # tests/cli/test_cli_modes.py and test_example_comments.py
            "rolling_disk", "chaplygin_sleigh"}  # these two: tests/cli/test_nonholonomic.py

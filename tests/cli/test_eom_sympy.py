@@ -42,6 +42,20 @@ def physical_pendulum(q, qd, p):
     return T - V, []
 
 
+def graded_rod_pendulum(q, qd, p):
+    # a body measured from its density field: its mass, COM c and inertia are the named
+    # constants rod_*; the body frame's origin at −(h/2)(sin θ, 0, cos θ), turned by θ about y
+    (th,) = q
+    m, h, g = p["rod_mass"], p["h"], p["g"]
+    # (a COM component within the cubature's error of zero is 0 and named by no constant)
+    c = sympy.Matrix([p.get("rod_com_x", 0), p.get("rod_com_y", 0), p.get("rod_com_z", 0)])
+    R = sympy.Matrix([[sympy.cos(th), 0, sympy.sin(th)], [0, 1, 0], [-sympy.sin(th), 0, sympy.cos(th)]])
+    r = sympy.Matrix([-(h / 2) * sympy.sin(th), 0, -(h / 2) * sympy.cos(th)]) + R * c
+    v = r.diff(t)
+    T = m / 2 * (v.T * v)[0, 0] + p["rod_iyy"] / 2 * qd[0] ** 2  # ω = θ̇ e_y in the body frame too
+    return T - m * g * r[2], []
+
+
 def cone_pendulum(q, qd, p):
     # solid cone from its apex: COM at 3h/4 from the apex, I_perp(COM) = m (3/20 r² + 3/80 h²)
     (th,) = q
@@ -128,6 +142,7 @@ CASES = {
     "double_pendulum": double_pendulum,
     "atwood": atwood,
     "physical_pendulum": physical_pendulum,
+    "graded_rod_pendulum": graded_rod_pendulum,
     "cone_pendulum": cone_pendulum,
     "rolling_cylinder": rolling(lambda p: (p["r"] ** 2 / 2, p["r"])),
     "rolling_sphere": rolling(lambda p: (sympy.Rational(2, 5) * p["r"] ** 2, p["r"])),

@@ -197,6 +197,12 @@ def same_equations(a, b):
     return True
 
 
+def without_measured_values(text):
+    """The printout less its line of measured constants' values ("where rod_mass = …")."""
+    return "\n".join(line for line in text.splitlines()
+                     if not (line.startswith("where ") and "computed from the bodies'" in line))
+
+
 @pytest.mark.parametrize("scene", sorted(EXAMPLES.glob("*.toml")), ids=lambda p: p.stem)
 def test_eom_prints_short_numbers_and_the_scene_parameter_names(run, scene):
     text = run("eom", scene, check=True).stdout
@@ -215,7 +221,10 @@ def test_eom_prints_short_numbers_and_the_scene_parameter_names(run, scene):
         if not isinstance(params[p], (int, float)):
             continue
         changed = run("eom", scene, "--set", f"{p}={params[p] * 1.1!r}", check=True).stdout
-        assert same_equations(changed, text), f"'{p}' entered as a number:\n{text}\nwith {p} changed:\n{changed}"
+        # the values of the constants measured from a body (a density field's mass and inertia)
+        # change with the parameters they are measured at; the equations, in their names, do not
+        assert same_equations(without_measured_values(changed), without_measured_values(text)), (
+            f"'{p}' entered as a number:\n{text}\nwith {p} changed:\n{changed}")
     appearing = [p for p in used if re.search(rf"(?<![A-Za-z_\d]){re.escape(p)}(?![A-Za-z_\d])", text)]
     assert len(appearing) >= len(used) - 1, (used, text)  # at most one cancels (a rolling radius)
 

@@ -32,7 +32,8 @@ inline constexpr double kDensityFieldRelativeError = 1e-8;
     std::string_view what);
 
 /// ρ over `primitive` (a canonical name that takes_density_field) with its `sizes` (canonical
-/// size name → m). `what` names the field in messages ("body 'rod' density_field").
+/// size name → m). `what` names the field in messages ("body 'rod' density_field"). A COM
+/// component or a product of inertia within its estimated error of zero is returned as 0.
 /// @throws rigid::Error if ρ is negative or not finite at a sample point (naming it), the mass
 ///         is not positive, or an estimated error exceeds kDensityFieldRelativeError.
 [[nodiscard]] mass::DensityIntegration integrate_density_field(
