@@ -93,7 +93,8 @@ inline void add_run_command(CLI::App& app) {
   add_regressor_options(e, *regressor);
   e->callback([eom, latex, format, emit, regressor] {
     if (regressor->enabled) {
-      rigid::cli::run_regressor(*eom, *regressor, {*latex, *format, emit->language});
+      rigid::cli::run_regressor(*eom, *regressor,
+                                 {*latex, *format, emit->language, emit->output, emit->flat});
       return;
     }
     if (!emit->language.empty()) {

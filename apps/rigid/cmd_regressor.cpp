@@ -1,5 +1,7 @@
 #include "cmd_regressor.hpp"
 
+#include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -8,8 +10,11 @@
 
 #include "rigid/common/error.hpp"
 #include "rigid/common/escape.hpp"
+#include "rigid/io/atomic_file.hpp"
 #include "rigid/io/robot_model.hpp"
+#include "rigid/lagrange/export.hpp"
 #include "rigid/robot/regressor.hpp"
+#include "rigid/robot/regressor_export.hpp"
 #include "rigid/scene/robot_scene.hpp"
 #include "scene_output.hpp"
 
@@ -22,7 +27,13 @@ void refuse_other_flags(const SceneOptions& scene, const EomFlags& eom) {
   const auto refuse = [](const char* flag, const char* why) {
     throw Error(fmt::format("--regressor: {} {}", flag, why));
   };
-  if (!eom.language.empty()) refuse("--emit", "writes the equations as code; give one of the two");
+  if (!eom.language.empty() && (eom.format == "json" || eom.format == "text")) {
+    refuse(fmt::format("--format {}", eom.format).c_str(),
+           "prints the base parameters; --emit writes them as code: give one of the two");
+  }
+  if (eom.flat) {
+    refuse("--flat", "is the layout of the exported dynamics; the exported regressor has one layout");
+  }
   if (eom.latex) refuse("--latex", "prints the equations; use --json for the regressor's document");
   if (!eom.format.empty() && eom.format != "text" && eom.format != "json") {
     refuse(fmt::format("--format {}", eom.format).c_str(),
@@ -127,6 +138,11 @@ std::string json_document(const std::string& file, const io::RobotModel& model,
   return doc.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n";
 }
 
+[[noreturn]] void refuse_json_with_emit() {
+  throw Error("--regressor: --json prints the base parameters; --emit writes them as code: give "
+              "one of the two");
+}
+
 }  // namespace
 
 void run_regressor(const SceneOptions& scene, const RegressorOptions& opts, const EomFlags& eom) {
@@ -134,6 +150,22 @@ void run_regressor(const SceneOptions& scene, const RegressorOptions& opts, cons
   const io::RobotModel model = read_model(scene);
   const robot::BaseParameterOptions options;
   const robot::BaseParameters base = robot::base_parameters(model, options);
+  if (!eom.language.empty()) {
+    if (opts.json) refuse_json_with_emit();
+    const std::filesystem::path out(eom.output);
+    robot::RegressorExportOptions export_options;
+    export_options.name = (out.empty() ? std::filesystem::path(scene.scene) : out).stem().string();
+    if (export_options.name.empty()) export_options.name = "model";
+    export_options.source = rigid::escaped(scene.scene);
+    const std::string code = robot::emit_regressor(
+        model, base, lagrange::parse_language(eom.language), export_options);
+    if (out.empty()) {
+      std::fwrite(code.data(), 1, code.size(), stdout);
+    } else {
+      io::write_file_atomically(out, code);
+    }
+    return;
+  }
   const bool json = opts.json || eom.format == "json";
   fmt::print("{}", json ? json_document(scene.scene, model, base, options)
                         : text_document(scene.scene, base, options));

@@ -16,15 +16,19 @@ struct RegressorOptions {
 struct EomFlags {
   bool latex = false;
   std::string format;    ///< --format; "json" is --json, "text" the default
-  std::string language;  ///< --emit
+  std::string language;  ///< --emit: the regressor as code (c++ or python)
+  std::string output;    ///< -o with --emit: the file (default: standard output)
+  bool flat = false;     ///< --flat (the dynamics' layout; refused here)
 };
 
 /// `rigid eom MODEL --regressor`: the base parameters of a robot model file's inverse dynamics
 /// (robot::base_parameters), each as a combination of the named standard parameters with its
-/// value for the model, the rank and the unidentifiable parameters; text or JSON.
+/// value for the model, the rank and the unidentifiable parameters; text or JSON. With --emit,
+/// the regressor and the base parameters as code instead (robot::emit_regressor), to -o FILE
+/// or standard output; the C++ namespace is the output file's stem, else the model file's.
 /// @throws rigid::Error for a file that is not a robot model (a TOML scene), or a flag that
-///   does not apply (--set, --integrator, --symbolic-inertia, --emit, --latex, --format other
-///   than text or json).
+///   does not apply (--set, --integrator, --symbolic-inertia, --latex, --format other than
+///   text or json, --json or --flat with --emit).
 void run_regressor(const SceneOptions& scene, const RegressorOptions& opts, const EomFlags& eom);
 
 }  // namespace rigid::cli

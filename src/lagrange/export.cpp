@@ -1357,6 +1357,10 @@ std::string emit_python(const System& system, const ExportOptions& options) {
   return out;
 }
 
+std::string export_namespace(const std::string& name) {
+  return export_identifiers({name}, Language::kCpp, Scope::kNamespace)[0];
+}
+
 std::string emit(const System& system, Language language, const ExportOptions& options) {
   return language == Language::kCpp ? emit_cpp(system, options) : emit_python(system, options);
 }

@@ -124,7 +124,7 @@ def test_a_scene_file_is_refused(run):
 
 
 @pytest.mark.parametrize("flags, message", [
-    (["--emit", "c++"], "--regressor: --emit writes the equations as code"),
+    (["--emit", "c++", "--json"], "--regressor: --json prints the base parameters; --emit writes"),
     (["--latex"], "--regressor: --latex prints the equations"),
     (["--format", "latex"], "--regressor: --format latex is not a format of the base parameters"),
     (["--set", "m_link1=2"], "--regressor: --set changes a scene's values"),

@@ -91,6 +91,11 @@ struct ExportOptions {
 /// ZeroDivisionError.
 [[nodiscard]] std::string emit_python(const System& system, const ExportOptions& options = {});
 
+/// The C++ namespace the export writes for `name`, by the export's naming rule (emit_cpp):
+/// other characters than letters, digits and '_' become '_'; `main`, `std`, keywords, macros
+/// and the names <cmath> declares take a trailing '_' ("main" gives "main_").
+[[nodiscard]] std::string export_namespace(const std::string& name);
+
 /// emit_cpp or emit_python.
 [[nodiscard]] std::string emit(const System& system, Language language,
                                const ExportOptions& options = {});
