@@ -1,11 +1,14 @@
-// The rigid command-line tool: CLI11 parsing and the single error exit path.
-#include <cstdio>
+// The rigid command line: CLI11 parsing and the single error exit path (command_line.hpp; main()
+// is in program.cpp, so that the cli_args fuzz target can parse command lines too).
 #include <exception>
 #include <new>
+#include <ostream>
 
 #include <CLI/CLI.hpp>
+#include <fmt/format.h>
 
 #include "cli_error.hpp"
+#include "command_line.hpp"
 #include "rigid/common/error.hpp"
 #include "rigid/common/wording.hpp"
 #include "rigid/version.hpp"
@@ -21,16 +24,16 @@
 #include "cli_suggest.hpp"
 #include "cli_sweep.hpp"
 
+namespace rigid::cli {
 namespace {
-// The exit status of every subcommand (documented in the --help footer, README and
-// docs/reliability.md).
-constexpr int kExitOk = 0;
-constexpr int kExitRefused = 1;      // a rigid::Error: the input was refused with a reason
-constexpr int kExitUsage = 2;        // the command line itself is wrong
-constexpr int kExitInterrupted = 130;  // Ctrl-C (the shell's 128 + SIGINT)
+
+// Thrown when Dispatch::kParseOnly stops command_line after parsing, before any subcommand's
+// callback (its work) runs.
+struct ParsedOnly {};
+
 }  // namespace
 
-int main(int argc, char** argv) {
+int command_line(int argc, char** argv, std::ostream& out, std::ostream& err, Dispatch dispatch) {
   CLI::App app{
       "rigid: rigid-body mechanics from isometries and inertia tensors to Euler's equations.\n"
       "SI units throughout; quaternions are (w, x, y, z) unless an option says otherwise."};
@@ -51,57 +54,67 @@ int main(int argc, char** argv) {
   add_modes_command(app);
   add_sweep_command(app);
   add_plot_command(app);
+  // CLI11 calls the root's parse-complete callback when every argument is parsed and validated,
+  // before the subcommands' callbacks: parsing only ends there (the callbacks stay, since they
+  // own the options' storage)
+  if (dispatch == Dispatch::kParseOnly) app.parse_complete_callback([] { throw ParsedOnly{}; });
 
   // One rule for empty arguments, before CLI11 sees them (an empty positional followed by an
   // option sent its parser into an endless loop): no argument of rigid may be empty.
   for (int i = 1; i < argc; ++i) {
     if (argv[i][0] == '\0') {
-      std::fprintf(stderr,
-                   "rigid: error: argument %d is empty%s%s%s; every argument needs a value (a file, a "
-                   "number, a name): remove it or give one\n",
-                   i, i > 1 ? " (after '" : "", i > 1 ? argv[i - 1] : "", i > 1 ? "')" : "");
+      err << fmt::format(
+          "rigid: error: argument {} is empty{}{}{}; every argument needs a value (a file, a "
+          "number, a name): remove it or give one\n",
+          i, i > 1 ? " (after '" : "", i > 1 ? argv[i - 1] : "", i > 1 ? "')" : "");
       return kExitUsage;
     }
   }
   try {
     rigid::cli::refuse_misspelt_names(app, argc, argv);
-    app.parse(argc, argv);
+    try {
+      app.parse(argc, argv);
+    } catch (const ParsedOnly&) {
+      // parsed and validated: the subcommand is not run
+    }
     if (app.get_subcommands().empty()) {
-      std::fputs(app.help().c_str(), stderr);
-      std::fputs("rigid: error: a subcommand is required (see the list above)\n", stderr);
+      err << app.help() << "rigid: error: a subcommand is required (see the list above)\n";
       return kExitUsage;
     }
   } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);  // --help: the text on stdout, 0
+    return app.exit(e, out, err);  // --help: the text on `out`, 0
   } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
+    return app.exit(e, out, err);
   } catch (const CLI::CallForVersion& e) {
-    return app.exit(e);
+    return app.exit(e, out, err);
   } catch (const CLI::ParseError& e) {
     // CLI11's message for a bad command line (and its own exit code, e.g. 106, replaced by the
     // one usage code)
-    (void)app.exit(e);
+    (void)app.exit(e, out, err);
     return kExitUsage;
   } catch (const rigid::cli::UsageError& e) {
     // a bad option value found by a command (not by CLI11): the same status as CLI11's
-    std::fprintf(stderr, "rigid: error: %s\n", rigid::word_for(rigid::Surface::kCli, e.what()).c_str());
-    std::fputs("Run with --help for more information.\n", stderr);
+    err << "rigid: error: " << word_for(Surface::kCli, e.what())
+        << "\nRun with --help for more information.\n";
     return kExitUsage;
   } catch (const rigid::Cancelled& e) {
-    std::fprintf(stderr, "rigid: interrupted: %s\n", e.what());
+    err << "rigid: interrupted: " << e.what() << "\n";
     return kExitInterrupted;
   } catch (const rigid::Error& e) {
     // the library names its settings in its own terms; here they are flags
-    std::fprintf(stderr, "rigid: error: %s\n", rigid::word_for(rigid::Surface::kCli, e.what()).c_str());
+    err << "rigid: error: " << word_for(Surface::kCli, e.what()) << "\n";
     return kExitRefused;
   } catch (const std::bad_alloc&) {
-    std::fputs("rigid: error: out of memory; the input asks for more memory than is available (see "
-               "--max-memory for runs)\n",
-               stderr);
+    if (dispatch == Dispatch::kParseOnly) throw;
+    err << "rigid: error: out of memory; the input asks for more memory than is available (see "
+           "--max-memory for runs)\n";
     return kExitRefused;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "rigid: error: %s\n", e.what());
+    if (dispatch == Dispatch::kParseOnly) throw;
+    err << "rigid: error: " << e.what() << "\n";
     return kExitRefused;
   }
   return kExitOk;
 }
+
+}  // namespace rigid::cli
