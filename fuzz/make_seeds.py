@@ -1,9 +1,11 @@
 #!/usr/bin/env python3
 """Writes the seed corpus of every fuzz target into OUT/<target>/: small well-formed inputs
 generated here (a tetrahedron and a cube in every mesh format and encoding, inertials in the
-three XML formats, expressions, run schemas), the example scenes, and the smallest meshes of the CGAL demo
+three XML formats, expressions, run schemas, sweep journals, CSV files, command lines), the
+example scenes, and the smallest meshes of the CGAL demo
 data set when it is installed (libcgal-demo). Nothing large is committed: the seeds are made
 when `make fuzz` runs.  Usage: fuzz/make_seeds.py OUT"""
+import json
 import os
 import shutil
 import struct
@@ -229,6 +231,125 @@ def run_schemas(out):
         write(out, "run_schema", name + ".json", text)
 
 
+# the small sweep of fuzz/sweep_journal_fuzz.cpp: its scene file's bytes (kScene there) and grid
+SWEEP_SCENE = b"# the scene of the sweep_journal fuzz target\n"
+
+
+def fnv1a64(data):
+    h = 0xcbf29ce484222325
+    for b in data:
+        h = ((h ^ b) * 0x100000001b3) & 0xFFFFFFFFFFFFFFFF
+    return f"{h:016x}"
+
+
+def journal_line(obj):
+    return json.dumps(obj, separators=(",", ":"), ensure_ascii=False) + "\n"
+
+
+def sweep_journals(out):
+    """Journals as `rigid sweep` writes them (sweep.hpp: a header line, then one row per run,
+    nlohmann's compact JSON) for the target's small sweep (a=0:1:3), whole and damaged."""
+    desc = f"scene sweep.toml (fnv1a64 {fnv1a64(SWEEP_SCENE)}); grid a=0:1:3"
+
+    def header(**changes):
+        h = {"names": ["a"], "rigid_sweep": 1, "runs": 3, "shard": "0/1", "sweep": desc}
+        h.update(changes)
+        return journal_line(h)
+
+    def row(run, a, results=(("energy", 0.5), ("period", 2.0)), error=""):
+        return journal_line({"error": error, "results": [list(r) for r in results], "run": run,
+                             "values": [a]})
+
+    rows = [row(0, 0), row(1, 0.5, (("energy", 0.25), ("period", "nan"))),
+            row(2, 1, (), "run 2: the step size fell below 1e-14 at t = 0.3, \"stiff\"\nsee docs")]
+    seeds = {
+        "complete": header() + "".join(rows),
+        "out_of_order": header() + rows[2] + rows[0] + rows[1],
+        "cut_short": header() + rows[0] + rows[1][:-9],
+        "header_only": header(),
+        "header_cut": header()[:-20],
+        "shard": header(shard="1/2") + row(1, 0.5),
+        "another_sweep": header(sweep=desc.replace("a=0:1:3", "a=0:2:3")) + rows[0],
+        "wrong_index": header() + rows[0] + row(7, 3.5),
+        "negative_index": header() + row(-1, 0),
+        "twice_differently": header() + "".join(rows) + row(0, 0, (("energy", 0.75),)),
+        "twice_alike": header() + "".join(rows) + rows[1],
+        "non_finite": header() + row(0, "nan", (("energy", "inf"), ("period", "-inf"))) + rows[1] + rows[2],
+        "missing_values": header() + journal_line({"error": "", "results": [], "run": 0}),
+        "value_as_text": header() + row(0, "zero"),
+        "crlf": (header() + "".join(rows)).replace("\n", "\r\n"),
+        "huge_runs": header(runs=4294967296) + rows[0],
+        "version_2": header(rigid_sweep=2) + rows[0],
+        "not_json": "rigid sweep journal\n",
+        "extra_values_partial": header() + row(0, 0)[:-len('0]}\n')] + "0,1,2,3]}\n",
+    }
+    for name, text in seeds.items():
+        write(out, "sweep_journal", name + ".jsonl", text)
+
+
+def csv_tables(out):
+    """A run's trajectory.csv (io::to_csv: a header, shortest round-trip doubles) and a sweep's
+    runs.csv (numbers, then the error text quoted as RFC 4180 says), whole and damaged."""
+    trajectory = "t,theta,theta_dot,energy\n0,0.5,0,1.2\n0.01,0.49975,-0.049,1.2\n0.02,0.499,-0.098,1.2000000000000002\n"
+    runs = ('run,a,energy,period,error\n0,0,0.5,2,\n1,0.5,0.25,,"run 1: ""stiff"", step size\nbelow 1e-14"\n'
+            '2,1,nan,inf,\n')
+    seeds = {
+        "trajectory.csv": trajectory,
+        "trajectory_crlf.csv": trajectory.replace("\n", "\r\n"),
+        "trajectory_non_finite.csv": "t,x\n0,nan\n1,inf\n2,-inf\n3,-0\n4,1e308\n5,4.9e-324\n",
+        "trajectory_ragged.csv": "t,x\n0,1\n1\n",
+        "trajectory_not_a_number.csv": "t,x\n0,one\n",
+        "trajectory_repeated_name.csv": "t,x,x\n0,1,2\n",
+        "trajectory_empty_name.csv": "t,,x\n0,1,2\n",
+        "header_only.csv": "t,x\n",
+        "runs.csv": runs,
+        "runs_crlf.csv": runs.replace("\n", "\r\n"),
+        "runs_unterminated_quote.csv": 'run,a,energy,error\n0,0,1,"cut\n',
+        "runs_ragged.csv": "run,a,energy,error\n0,0,1\n",
+        "runs_no_error_column.csv": "run,a,energy\n0,0,1\n",
+        "runs_all_failed.csv": 'run,a,energy,error\n0,0,,failed\n1,1,,"failed, too"\n',
+    }
+    for name, text in seeds.items():
+        write(out, "csv_table", name, text)
+
+
+def command_lines(out):
+    """Command lines (arguments joined by NUL bytes) of every subcommand, well formed; the
+    target parses them only, so the files they name need not exist."""
+    seeds = {
+        "help": ["--help"],
+        "version": ["--version"],
+        "none": [],
+        "run": ["run", "pendulum.toml", "-o", "out", "--set", "m=2", "--integrator", "dopri5",
+                "--format", "csv", "--format", "npy", "--max-memory", "512MiB", "-q", "--report"],
+        "check": ["check", "pendulum.toml", "--set", "simulation.t_end=20"],
+        "eom": ["eom", "pendulum.toml", "--format", "latex"],
+        "eom_emit": ["eom", "pendulum.toml", "--emit", "c++", "--flat", "-o", "eom.hpp"],
+        "report": ["report", "out", "--report-frames", "100"],
+        "modes": ["modes", "pendulum.toml", "--at", "theta=0"],
+        "sweep": ["sweep", "pendulum.toml", "--grid", "m=1:2:3", "--threads", "2", "-o", "dir",
+                  "--shard", "0/2"],
+        "sweep_sample": ["sweep", "pendulum.toml", "--sample", "m=uniform(1,2)", "-n", "10",
+                         "--seed", "18446744073709551615"],
+        "sweep_merge": ["sweep", "merge", "a", "b", "-o", "c"],
+        "plot": ["plot", "out", "--column", "theta", "--x", "t", "-o", "p.svg"],
+        "inertia_box": ["inertia", "box", "--lx", "1", "--ly", "2", "--lz", "3", "--mass", "2",
+                        "--about", "origin", "--format", "json", "--tolerance", "dims=±0.1mm"],
+        "inertia_cylinder": ["inertia", "cylinder", "--radius", "0.1", "--height", "0.2",
+                             "--density", "7800", "--axis", "x", "--rpy", "0,0.5,0"],
+        "inertia_mesh": ["inertia", "part.stl", "--density", "2700", "--units", "mm", "--shell",
+                         "--thickness", "0.001"],
+        "inertia_check": ["inertia", "check", "robot.urdf"],
+        "inertia_fix": ["inertia", "fix", "robot.urdf", "-o", "fixed.urdf", "--only", "a", "b"],
+        "mesh_check": ["mesh", "check", "part.stl", "--units", "mm", "--fill-holes"],
+        "rotation": ["rotation", "--euler", "10,20,30", "--unit", "deg", "--convention", "ZYX"],
+        "rotation_quaternion": ["rotation", "--quaternion=0.5,0.5,0.5,0.5", "--order", "xyzw"],
+        "demo": ["demo", "--no-report"],
+    }
+    for name, args in seeds.items():
+        write(out, "cli_args", name, "\0".join(args))
+
+
 def scenes(out):
     ex = os.path.join(ROOT, "examples")
     for name in sorted(os.listdir(ex)):
@@ -247,6 +368,9 @@ def main():
     robot_models(out)
     expressions(out)
     run_schemas(out)
+    sweep_journals(out)
+    csv_tables(out)
+    command_lines(out)
     scenes(out)
     for target in sorted(os.listdir(out)):
         print(f"seeds: {target}: {len(os.listdir(os.path.join(out, target)))} files")
