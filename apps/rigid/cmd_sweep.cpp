@@ -22,6 +22,7 @@
 #include <mpi.h>
 #endif
 
+#include "cli_error.hpp"
 #include "progress.hpp"
 #include "scene_output.hpp"
 #include "rigid/common/error.hpp"
@@ -180,26 +181,32 @@ class Ranks {
 };
 
 scene::SweepSpec parse_spec(const SweepOptions& opts) {
+  // every refusal here is of the command line itself (a value none of the option's forms, a
+  // missing or conflicting option): usage, exit 2
   scene::SweepSpec spec;
   try {
     for (const auto& g : opts.grid) spec.grid.push_back(scene::parse_grid_axis(g));
   } catch (const Error& e) {
-    throw Error(fmt::format("--grid: {}", e.what()));
+    throw UsageError(fmt::format("--grid: {}", e.what()));
   }
   try {
     for (const auto& s : opts.sample) spec.sample.push_back(scene::parse_sample_axis(s));
   } catch (const Error& e) {
-    throw Error(fmt::format("--sample: {}", e.what()));
+    throw UsageError(fmt::format("--sample: {}", e.what()));
   }
   spec.samples = unsigned_option(opts.samples, "-n", "the number of runs");
   spec.seed = unsigned_option(opts.seed, "--seed", "the seed");
   if (spec.grid.empty() && spec.sample.empty()) {
-    throw Error("give the runs: --grid NAME=START:STOP:COUNT (repeatable) or --sample NAME=DIST(A,B) with -n N");
+    throw UsageError("give the runs: --grid NAME=START:STOP:COUNT (repeatable) or --sample NAME=DIST(A,B) with -n N");
   }
-  if (!spec.grid.empty() && !spec.sample.empty()) throw Error("--grid and --sample: give one of them");
-  if (!spec.sample.empty() && spec.samples == 0) throw Error("--sample needs -n N, the number of runs");
-  if (!spec.grid.empty() && spec.samples > 0) throw Error("-n is for --sample; a --grid axis has its own count");
-  scene::check_spec(spec);
+  if (!spec.grid.empty() && !spec.sample.empty()) throw UsageError("--grid and --sample: give one of them");
+  if (!spec.sample.empty() && spec.samples == 0) throw UsageError("--sample needs -n N, the number of runs");
+  if (!spec.grid.empty() && spec.samples > 0) throw UsageError("-n is for --sample; a --grid axis has its own count");
+  try {
+    scene::check_spec(spec);
+  } catch (const Error& e) {
+    throw UsageError(fmt::format("{}: {}", spec.grid.empty() ? "--sample" : "--grid", e.what()));
+  }
   return spec;
 }
 
@@ -395,7 +402,7 @@ void run_sweep(const SweepOptions& opts) {
     try {
       return scene::parse_shard(opts.shard);
     } catch (const Error& e) {
-      throw Error(fmt::format("--shard: {}", e.what()));
+      throw UsageError(fmt::format("--shard: {}", e.what()));
     }
   }();
   check_names(id);

@@ -272,20 +272,31 @@ def test_a_sweep_whose_every_run_failed_exits_1_and_groups_the_errors(run, tmp_p
 
 
 def test_bad_commands_are_refused_with_a_reason(run, tmp_path):
+    # a value that is none of --grid's/--sample's/--shard's forms, or a missing or conflicting
+    # option, is usage (exit 2, as in every subcommand); a name the scene lacks is the input's (1)
     cases = [
-        (("--grid", "x=0:1:3"), "--grid: "),  # the override's own refusal follows, naming 'x'
-        (("--grid", "x=0:1:3"), "'x"),
-        (("--grid", "L=0:1"), "--grid: 'L=0:1' has 2 field(s) after '='"),
-        (("--sample", "L=uniform(1,2)"), "--sample needs -n N"),
-        (("--sample", "L=gauss(1,2)", "-n", "3"), "unknown distribution 'gauss'"),
-        (("--grid", "L=1:2:2", "--sample", "m=uniform(1,2)", "-n", "2"), "--grid and --sample: give one"),
-        ((), "give the runs: --grid"),
-        (("--grid", "L=1:2:2", "--shard", "3/3"), "--shard: shard '3/3' is not I/N"),
+        (("--grid", "x=0:1:3"), "--grid: ", 1),  # the override's own refusal follows, naming 'x'
+        (("--grid", "x=0:1:3"), "'x", 1),
+        (("--grid", "L=0:1"), "--grid: 'L=0:1' has 2 field(s) after '='", 2),
+        (("--grid", "L=a:1:3"), "--grid: 'L=a:1:3': START and STOP must be finite numbers", 2),
+        (("--grid", "L=0:1:0"), "COUNT must be a whole number from 1", 2),
+        (("--grid", "L=0:1:2", "--grid", "L=1:2:2"), "--grid: 'L' is swept twice", 2),
+        (("--grid", "L=0:1:65536", "--grid", "m=1:2:65536", "--grid", "c=0:1:2"),
+         "--grid: the grid has more than 4294967296 runs", 2),
+        (("--sample", "L=uniform(1,2)"), "--sample needs -n N", 2),
+        (("--sample", "L=gauss(1,2)", "-n", "3"), "unknown distribution 'gauss'", 2),
+        (("--sample", "L=uniform(2,1)", "-n", "3"), "--sample: 'L=uniform(2,1)': uniform(a, b) needs a < b", 2),
+        (("--sample", "L=normal(1)", "-n", "3"), "--sample: 'L=normal(1)': expected two finite numbers", 2),
+        (("--grid", "L=1:2:2", "--sample", "m=uniform(1,2)", "-n", "2"), "--grid and --sample: give one", 2),
+        (("--grid", "L=1:2:2", "-n", "2"), "-n is for --sample", 2),
+        ((), "give the runs: --grid", 2),
+        (("--grid", "L=1:2:2", "--shard", "3/3"), "--shard: shard '3/3' is not I/N", 2),
     ]
-    for extra, message in cases:
+    for extra, message, status in cases:
         p = run("sweep", PENDULUM, *extra, "-o", tmp_path / "s", check=False)
-        assert p.returncode == 1, (extra, p.stderr)
+        assert p.returncode == status, (extra, p.returncode, p.stderr)
         assert message in p.stderr, (extra, p.stderr)
+        assert not (tmp_path / "s").exists(), extra  # refused before the output directory is made
     # another sweep in the same directory is refused
     run("sweep", PENDULUM, "--grid", "L=1:2:2", "-o", tmp_path / "d", "-q", check=True)
     p = run("sweep", PENDULUM, "--grid", "L=1:2:3", "-o", tmp_path / "d", check=False)
