@@ -676,6 +676,13 @@ SweepOutputs make_outputs(const std::vector<std::string>& names, std::size_t run
   std::vector<SweepRow> unique;
   for (auto& r : rows) {
     if (r.index >= runs) throw Error(fmt::format("run {} is beyond the sweep's {} runs", r.index, runs));
+    // a row of an edited or damaged journal: its swept values are the sweep's names, one each
+    if (r.values.size() != names.size()) {
+      throw Error(fmt::format("run {} holds {} swept value{}; the sweep has {} ({}): the journal was edited "
+                              "or damaged; start the sweep again in a new directory",
+                              r.index, r.values.size(), r.values.size() == 1 ? "" : "s", names.size(),
+                              fmt::join(names, ", ")));
+    }
     if (!unique.empty() && unique.back().index == r.index) {
       if (row_to_json(unique.back()) != row_to_json(r)) {
         throw Error(fmt::format("run {} was recorded twice with different results", r.index));
