@@ -34,15 +34,9 @@ void run_plot(const PlotOptions& opts) {
                     "-o {}: the plot is an SVG file; give a name ending in .svg",
                     escaped(opts.output));
   const fs::path out(opts.output);
-  std::error_code ec;
-  const fs::file_status status = fs::status(out, ec);
-  CLI_REQUIRE(!fs::is_directory(status), "-o {}: is a directory; expected the SVG file to write",
-              escaped(opts.output));
-  // the rename would replace a FIFO, socket or device with the file: refused instead
-  CLI_REQUIRE(!fs::exists(status) || fs::is_regular_file(status),
-              "-o {}: is not a regular file (a FIFO, socket or device); expected the SVG file to "
-              "write (a new name, or a file to replace)",
-              escaped(opts.output));
+  // what is at -o (a directory, FIFO, socket or device is refused; a link is written through),
+  // checked as the writer checks it
+  (void)io::check_output_file(out);
 
   const report::Plot plot =
       report::plot_of_directory(opts.directory, {.columns = opts.columns, .x = opts.x});

@@ -17,6 +17,7 @@
 
 #include "detail/temporary.hpp"
 #include "rigid/common/error.hpp"
+#include "rigid/common/escape.hpp"
 
 namespace rigid::io {
 namespace {
@@ -89,16 +90,71 @@ void remove_stale_temporaries(const std::filesystem::path& dir, std::string_view
 
 }  // namespace detail
 
-void write_file_atomically(const std::filesystem::path& path, std::string_view contents) {
-  require(!path.empty(), "the output path is empty");
-  const std::filesystem::path dir =
-      path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
-  std::error_code ec;
-  require(std::filesystem::is_directory(dir, ec),
-                "cannot write '{}': directory '{}' does not exist", path.string(), dir.string());
+namespace {
 
-  detail::remove_stale_temporaries(dir, path.filename().string());
-  TempFile tmp(dir / detail::temporary_name(path.filename().string()));
+// What a non-regular file is, in words.
+const char* kind_of(std::filesystem::file_type type) {
+  switch (type) {
+    case std::filesystem::file_type::directory:
+      return "a directory";
+    case std::filesystem::file_type::fifo:
+      return "a FIFO (named pipe)";
+    case std::filesystem::file_type::socket:
+      return "a socket";
+    case std::filesystem::file_type::character:
+      return "a character device";
+    case std::filesystem::file_type::block:
+      return "a block device";
+    default:
+      return "a file of unknown type";
+  }
+}
+
+// The same limit as the kernel's path resolution (Linux MAXSYMLINKS, ELOOP beyond it).
+constexpr int kMaxLinks = 40;
+
+}  // namespace
+
+std::filesystem::path check_output_file(const std::filesystem::path& path) {
+  namespace fs = std::filesystem;
+  require(!path.empty(), "the output path is empty");
+  const std::string shown = escaped(path.string());
+  fs::path target = path;
+  fs::file_status status;
+  for (int links = 0;; ++links) {
+    std::error_code ec;
+    status = fs::symlink_status(target, ec);
+    require(!ec || status.type() == fs::file_type::not_found, "cannot write '{}': {}",
+            shown, ec.message());
+    if (!fs::is_symlink(status)) break;
+    require(links < kMaxLinks, "cannot write '{}': more than {} symbolic links to follow",
+            shown, kMaxLinks);
+    const fs::path link = fs::read_symlink(target, ec);
+    require(!ec, "cannot write '{}': {}", shown, ec.message());
+    // a relative link is relative to the directory that holds it
+    target = link.is_absolute() ? link : target.parent_path() / link;
+  }
+  const std::string through =
+      target == path ? std::string() : fmt::format(" (a symbolic link to '{}')", escaped(target.string()));
+  require(fs::is_regular_file(status) || status.type() == fs::file_type::not_found,
+          "cannot write '{}'{}: it is {}, not a regular file; expected a regular file to "
+          "replace or a new name",
+          shown, through, kind_of(status.type()));
+  const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
+  std::error_code ec;
+  require(fs::is_directory(dir, ec), "cannot write '{}'{}: directory '{}' does not exist",
+          shown, through, escaped(dir.string()));
+  return target;
+}
+
+void write_file_atomically(const std::filesystem::path& path, std::string_view contents) {
+  // a link is written through: the temporary goes next to the file it names
+  const std::filesystem::path target = check_output_file(path);
+  const std::filesystem::path dir =
+      target.has_parent_path() ? target.parent_path() : std::filesystem::path(".");
+
+  detail::remove_stale_temporaries(dir, target.filename().string());
+  TempFile tmp(dir / detail::temporary_name(target.filename().string()));
   tmp.fd() = ::open(tmp.path().c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
   require(tmp.fd() >= 0, "cannot write '{}': {}", path.string(), errno_text());
 
@@ -115,8 +171,8 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view c
   const int fd = tmp.fd();
   tmp.fd() = -1;
   require(::close(fd) == 0, "cannot write '{}': {}", path.string(), errno_text());
-  require(std::rename(tmp.path().c_str(), path.c_str()) == 0, "cannot write '{}': {}",
-                path.string(), errno_text());
+  require(std::rename(tmp.path().c_str(), target.c_str()) == 0, "cannot write '{}': {}",
+          path.string(), errno_text());
   tmp.commit();
 }
 

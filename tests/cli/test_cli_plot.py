@@ -215,7 +215,7 @@ def test_bad_outputs_and_directories_are_refused(run, rigid_exe, dirs, tmp_path)
     # opening a FIFO blocks until a reader comes: the timeout catches that
     proc = subprocess.run([rigid_exe, "plot", str(run_dir), "--column", "theta", "-o", str(fifo)],
                           capture_output=True, text=True, timeout=30)
-    assert proc.returncode == 1 and "is not a regular file (a FIFO" in proc.stderr
+    assert proc.returncode == 1 and "it is a FIFO (named pipe), not a regular file" in proc.stderr
     assert os.path.exists(fifo) and not os.path.isfile(fifo)
     empty = tmp_path / "empty"
     empty.mkdir()
