@@ -767,10 +767,16 @@ InertialFixResult fix_inertials(const std::string& xml, const std::string& sourc
     result.links.push_back(std::move(f));
   }
   if (density_assumed) {
-    result.warnings.push_back(fmt::format(
-        "no density given: {} kg/m³ (water) assumed for every geometry; give the material's "
-        "with {}, or keep the stated masses with {}", density, setting("density", "RHO"),
-        setting("keep_mass")));
+    // with keep_mass the stated masses are kept already: the water density went only to the
+    // links that state none (or an invalid one), and only a density helps them
+    result.warnings.push_back(
+        options.keep_mass
+            ? fmt::format("no density given: {} kg/m³ (water) assumed for the geometry of every "
+                          "link without a valid stated mass to keep; give the material's with {}",
+                          density, setting("density", "RHO"))
+            : fmt::format("no density given: {} kg/m³ (water) assumed for every geometry; give "
+                          "the material's with {}, or keep the stated masses with {}",
+                          density, setting("density", "RHO"), setting("keep_mass")));
   }
   for (const auto* c : includes) {
     const std::string& included = file_of(model->included_root(c));

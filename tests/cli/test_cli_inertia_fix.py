@@ -86,6 +86,28 @@ def test_assumed_density_is_said_in_cli_terms(run, robot, tmp_path):
     assert "--density RHO" in proc.stdout and "--keep-mass" in proc.stdout
 
 
+def test_keep_mass_is_not_advised_to_who_gave_it(run, robot, tmp_path):
+    # with --keep-mass the base keeps its stated 1 kg and only the arm, which states no mass,
+    # gets water's density: the warning went on "or keep the stated masses with --keep-mass"
+    proc = run("inertia", "fix", robot, "--keep-mass", "--package-path",
+               f"parts={tmp_path / 'parts'}", check=True)
+    assert ("no density given: 1000 kg/m³ (water) assumed for the geometry of every link without "
+            "a valid stated mass to keep; give the material's with --density RHO") in proc.stdout
+    assert "keep the stated masses" not in proc.stdout
+    report = json.loads(run("inertia", "fix", robot, "--keep-mass", "--package-path",
+                            f"parts={tmp_path / 'parts'}", "--format", "json", check=True).stdout)
+    assert report["links"][0]["new"]["mass"] == pytest.approx(1, rel=1e-15)  # kept
+    # the arm at 1000 kg/m³: cylinder π r² l and the scaled cube 0.1 × 0.2 × 0.3 m
+    assert report["links"][1]["new"]["mass"] == pytest.approx(
+        1000 * (math.pi * 0.05**2 * 0.5 + 0.006), rel=1e-13)
+    # Python words the same warning with its keywords
+    import rigid
+    r = rigid.mass.fix_inertials(str(robot), keep_mass=True,
+                                 package_path=f"parts={tmp_path / 'parts'}")
+    assert any("without a valid stated mass to keep" in w for w in r["warnings"]), r["warnings"]
+    assert not any("keep_mass=True" in w for w in r["warnings"]), r["warnings"]
+
+
 def test_unfixable_links_exit_1_and_write_nothing(run, tmp_path):
     model = tmp_path / "bad.urdf"
     model.write_text('<robot name="b">\n  <link name="l">\n    <collision><geometry>'
