@@ -56,10 +56,10 @@ HoleFillReport fill_holes(TriangleMesh& mesh) {
     const Eigen::Vector3d& p = mesh.vertices[v];
     RIGID_THROW(
         "boundary loop through vertex {} at ({:.9g}, {:.9g}, {:.9g}) m is not simple: the vertex "
-        "is on {} boundary edges (expected 2: holes that touch, a non-manifold border, or "
-        "inconsistent winding; run repair_mesh first); only simple holes can be filled, use "
-        "{} or repair the mesh in a modelling tool",
-        v, p.x(), p.y(), p.z(), starts[v] + ends[v], setting("shell"));
+        "is on {} boundary edges (expected 2: holes that touch, or a non-manifold border); only "
+        "simple holes can be filled: measure the open mesh as a thin shell ({} without {}), or "
+        "repair the mesh in a modelling tool",
+        v, p.x(), p.y(), p.z(), starts[v] + ends[v], setting("shell"), setting("fill_holes"));
   }
 
   // Walk each loop from its lowest vertex and close it.

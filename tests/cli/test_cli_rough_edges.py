@@ -209,6 +209,25 @@ def test_shell_with_thickness_and_areal_density(run, tmp_path):
     assert "warning" not in proc.stderr
 
 
+def test_a_shell_whose_holes_cannot_be_filled_is_not_told_to_use_shell(run, tmp_path):
+    # two triangles meeting at one vertex: the boundary through it is not a simple loop, so
+    # --fill-holes refuses it; the remedy said "use --shell" to a shell (and named repair_mesh,
+    # which the command had run). It now fits both: a shell without --fill-holes.
+    bowtie = write_off(tmp_path / "bowtie.off",
+                       [(0, 0, 0), (1, 0, 0), (0, 1, 0), (-1, 0, 0), (0, -1, 0)],
+                       [(0, 1, 2), (0, 3, 4)])
+    for given in (["--shell", "--thickness", 0.002, "--density", 7850], ["--areal-density", 1],
+                  ["--density", 7850]):
+        proc = run("inertia", bowtie, *given, "--fill-holes", check=False)
+        assert proc.returncode == 1, proc.stderr
+        assert ("only simple holes can be filled: measure the open mesh as a thin shell (--shell "
+                "without --fill-holes)") in proc.stderr
+        assert "use --shell" not in proc.stderr and "repair_mesh" not in proc.stderr
+    # and the shell is measured as advised: two unit right triangles, 1 m² at 1 kg/m²
+    proc = run("inertia", bowtie, "--areal-density", 1, "--format", "json", check=True)
+    assert json.loads(proc.stdout)["mass"] == pytest.approx(1.0, rel=1e-15)
+
+
 def test_implausible_areal_density_is_warned_without_suggesting_given_options(run, tmp_path):
     proc = run("inertia", open_box(tmp_path), "--areal-density", 7850, "--format", "json", check=True)
     assert json.loads(proc.stdout)["mass"] == pytest.approx(7850 * 5.5, rel=1e-12)
