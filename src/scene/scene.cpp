@@ -890,6 +890,15 @@ void parse_velocity_constraints(const toml::table& root, const Parser& p, Scene&
       for (const auto& co : s.coordinates) coords.push_back(co.name);
       for (auto&& [key, value] : ct) {
         const std::string coord(key.str());
+        if (coords.empty()) {
+          // nothing to list: say what kind of scene takes velocity constraints
+          p.fail(key.source(), fmt::format("{} coefficients: '{}' is not a coordinate: the scene "
+                                           "has no coordinates; velocity constraints act on the "
+                                           "generalized coordinates of a scene posed by "
+                                           "[[coordinates]] or a robot [model] (a scene of free "
+                                           "bodies has none)",
+                                           ctx, coord));
+        }
         if (std::find(coords.begin(), coords.end(), coord) == coords.end()) {
           p.fail(key.source(), fmt::format("{} coefficients: '{}' is not a coordinate{}; expected "
                                            "one of: {}",

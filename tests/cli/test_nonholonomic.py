@@ -133,3 +133,19 @@ def test_unknown_coordinate_in_a_scene_is_refused_at_its_key(run, tmp_path):
     p = run("check", path, check=False)
     assert p.returncode == 1
     assert f"{path}:{line}:18: [[velocity_constraints]] entry 1 coefficients: 'X' is not a coordinate" in p.stderr
+
+
+def test_a_scene_without_coordinates_says_so_instead_of_an_empty_list(run, tmp_path):
+    # a free body has no coordinates: the message listed "expected one of: " and nothing
+    path = tmp_path / "free.toml"
+    path.write_text('[[bodies]]\nname = "b"\nfree = true\nprimitive = "sphere"\nradius = 0.1\n'
+                    'mass = 1\n\n[[velocity_constraints]]\ncoefficients = { x = "1" }\n\n'
+                    '[simulation]\nt_end = 1\n')
+    p = run("check", path, check=False)
+    assert p.returncode == 1
+    assert (f"{path}:9:18: [[velocity_constraints]] entry 1 coefficients: 'x' is not a coordinate: "
+            "the scene has no coordinates; velocity constraints act on the generalized coordinates "
+            "of a scene posed by [[coordinates]] or a robot [model]") in p.stderr
+    assert "expected one of" not in p.stderr
+    with pytest.raises(rigid.Error, match="the scene has no coordinates"):
+        rigid.Scene(path)
