@@ -11,6 +11,7 @@
 #include "rigid/common/error.hpp"
 #include "rigid/common/wording.hpp"
 #include "rigid/io/table.hpp"
+#include "rigid/scene/density_field.hpp"
 
 namespace rigid::cli {
 
@@ -31,6 +32,9 @@ std::string bodies_lines(const scene::Model& model) {
                        "{:.6g}, {:.6g}) kg·m²{}\n",
                        b.name, b.mass.mass(), c.x(), c.y(), c.z(), I(0, 0), I(1, 1), I(2, 2),
                        b.free ? ", free" : "");
+    // a density field's numbers are a cubature's: its estimated errors, as `rigid inertia
+    // --density-field` prints them
+    if (b.density_field) out += fmt::format("    density field: {}\n", scene::describe(*b.density_field));
   }
   return out;
 }

@@ -131,6 +131,7 @@ struct BodyMass {
   MassProperties numeric;
   lagrange::BodyMass symbolic;
   std::vector<std::pair<std::string, double>> sizes{};  // a primitive's, canonical names
+  std::optional<mass::DensityIntegration> density_field{};  // a density field's cubature
 };
 
 // Names for the constants of a body that the scene did not write (a mesh file's mass
@@ -199,14 +200,15 @@ BodyMass mass_of(const Body& b, const Evaluator& eval, std::vector<lagrange::Par
       }
       if (m.density_field) {
         // ρ(x, y, z) with the run's parameters: integrated, named as constants (no closed form)
-        MassProperties numeric = at_location(m.where, ctx, [&] {
+        const mass::DensityIntegration integration = at_location(m.where, ctx, [&] {
           const auto rho = compile_density_field(
               lagrange::Expression(m.density_field->text, m.density_field->where), params,
               ctx + " density_field");
-          return integrate_density_field(m.primitive, args.sizes, rho, ctx + " density_field")
-              .mass_properties;
+          return integrate_density_field(m.primitive, args.sizes, rho, ctx + " density_field");
         });
-        return {numeric, named_constants(b.name, numeric, params, derived, derived_units), {}};
+        const MassProperties& numeric = integration.mass_properties;
+        return {numeric, named_constants(b.name, numeric, params, derived, derived_units), {},
+                integration};
       }
       const bool by_mass = m.mass.has_value();
       const Expression& amount = by_mass ? *m.mass : *m.density;
@@ -814,7 +816,7 @@ Model::Model(const Scene& scene, const Model* like) : impl_(std::make_unique<Imp
     }
     BodyMass bm = mass_of(b, eval, derived, derived_units, m.warnings, prepared);
     m.meshes.push_back(std::move(prepared));
-    m.bodies.push_back({b.name, bm.numeric, b.free, bm.sizes});
+    m.bodies.push_back({b.name, bm.numeric, b.free, bm.sizes, bm.density_field});
     masses.push_back(std::move(bm.symbolic));
   }
   m.params.insert(m.params.end(), derived.begin(), derived.end());

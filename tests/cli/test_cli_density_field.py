@@ -3,6 +3,7 @@ in m in the shape's own frame) integrated by adaptive cubature, against closed f
 cubature's error estimate is printed, and a field it cannot integrate is refused."""
 import json
 import math
+import re
 
 import pytest
 
@@ -119,3 +120,26 @@ def test_a_scene_field_is_refused_where_it_is_written(run, tmp_path, body, messa
     assert proc.returncode == 1, proc.stderr
     assert message in proc.stderr, proc.stderr
     assert "brick.toml:" in proc.stderr, proc.stderr  # located in the file
+
+
+def test_check_prints_the_cubature_error_estimate_as_inertia_does(run):
+    # `rigid check` of a scene with a density field: the body's line is followed by the field's
+    # cubature and estimated errors, the line `rigid inertia --density-field` prints for the same
+    # shape and field (parameters written out: the same numbers at the same points, so the same
+    # line to the digit)
+    proc = run("check", EXAMPLE, check=True)
+    _, note = inertia(run, "cylinder", "--radius", 0.01, "--height", 1.0, "--density-field",
+                      "2700*(1 - z/1.0)")
+    line = next(l for l in note.splitlines() if l.startswith("density field: "))
+    lines = proc.stdout.splitlines()
+    rod = next(i for i, l in enumerate(lines) if l.startswith("  rod "))
+    assert lines[rod + 1] == "    " + line, proc.stdout
+    # the estimate bounds the actual error of the mass against its closed form, rho0 pi r^2 h
+    # (the body line prints 6 digits, so the comparison allows that rounding too)
+    estimate = float(re.search(r"estimated errors: mass (\S+) kg", line).group(1))
+    printed = float(re.search(r"  rod +mass (\S+) kg", lines[rod]).group(1))
+    exact = 2700 * math.pi * 0.01 ** 2 * 1.0
+    assert abs(printed - exact) <= estimate + 5e-6 * exact
+    # a scene without a density field prints no such line
+    plain = run("check", EXAMPLE.parent / "physical_pendulum.toml", check=True).stdout
+    assert "density field" not in plain

@@ -23,6 +23,7 @@
 #include "rigid/integrate/march.hpp"
 #include "rigid/io/run_output.hpp"
 #include "rigid/lagrange/system.hpp"
+#include "rigid/mass/density.hpp"
 #include "rigid/mass/mass_properties.hpp"
 #include "rigid/scene/scene.hpp"
 
@@ -56,6 +57,9 @@ struct ModelBody {
   /// A primitive's sizes (m) by their canonical names in the catalogue (rigid::mass::
   /// primitive_table), in the catalogue's order; empty for other bodies.
   std::vector<std::pair<std::string, double>> sizes{};
+  /// For a body with a `density_field`: the cubature's result with its estimated errors
+  /// (describe() in density_field.hpp words them); empty for other bodies.
+  std::optional<mass::DensityIntegration> density_field{};
 };
 
 class Model {
