@@ -19,7 +19,9 @@
 #include "interrupt.hpp"
 #include "rigid/io/atomic_file.hpp"
 #include "rigid/io/run_output.hpp"
+#include "rigid/common/escape.hpp"
 #include "rigid/report/report.hpp"
+#include "rigid/report/sweep_page.hpp"
 #include "rigid/scene/export.hpp"
 #include "rigid/scene/model.hpp"
 #include "rigid/scene/scene.hpp"
@@ -182,7 +184,8 @@ py::dict run(const Model& model, const std::string& integrator, std::optional<st
 // flight.
 py::dict sweep(const py::object& scene_arg, const std::vector<std::string>& grid, const std::vector<std::string>& sample,
                std::size_t samples, std::uint64_t seed, const std::vector<std::string>& set,
-               const std::string& integrator, std::size_t threads, const py::object& output_arg) {
+               const std::string& integrator, std::size_t threads, const py::object& output_arg,
+               const py::object& report_arg) {
   namespace sc = rigid::scene;
   const char* f = "rigid.sweep";
   const std::string file = cv::path(scene_arg, {f, "scene"});
@@ -220,6 +223,15 @@ py::dict sweep(const py::object& scene_arg, const std::vector<std::string>& grid
     sc::check_overrides(id);
   });
   if (output) rigid::io::check_output_directory(*output);
+  std::optional<std::filesystem::path> report;
+  if (!report_arg.is_none()) {
+    report = cv::path(report_arg, {f, "report"});
+    if (!rigid::report::available()) {
+      throw rigid::Error(fmt::format("{}(): report: this build of rigid has no report page (built with "
+                                     "RIGID_REPORT=OFF); rebuild with RIGID_REPORT=ON to write pages", f));
+    }
+    (void)rigid::io::check_output_file(*report);
+  }
   const std::size_t runs = sc::run_count(spec);
   std::vector<std::size_t> indices(runs);
   std::iota(indices.begin(), indices.end(), std::size_t{0});
@@ -238,6 +250,8 @@ py::dict sweep(const py::object& scene_arg, const std::vector<std::string>& grid
   std::vector<sc::SweepRow> rows;
   {
     py::gil_scoped_release release;
+    // run 0, checked once (run_sweep would); its schema gives the page's units
+    options.first_run = sc::check_first_run(id);
     rows = sc::run_sweep(id, indices, options);
   }
   const sc::SweepOutputs outputs = sc::make_outputs(sc::swept_names(spec), runs, std::move(rows));
@@ -259,6 +273,24 @@ py::dict sweep(const py::object& scene_arg, const std::vector<std::string>& grid
     for (const auto& p : sc::write_outputs(*output, outputs)) written.append(py::str(p.string()));
     out["written"] = written;
   }
+  if (report) {
+    // the page from the runs in memory: the same data `rigid report DIR` reads from the files
+    rigid::report::SweepData data;
+    data.names = t.columns();
+    data.columns.assign(t.columns().size(), std::vector<double>(t.rows()));
+    for (std::size_t c = 0; c < t.columns().size(); ++c) {
+      for (std::size_t k = 0; k < t.rows(); ++k) data.columns[c][k] = t(k, c);
+    }
+    data.errors = outputs.errors;
+    data.swept = sc::swept_names(spec);
+    data.summary_json = outputs.summary_json;
+    // the units of run 0's schema
+    if (options.first_run) data.units = rigid::report::sweep_units_of(options.first_run->schema());
+    data.description = sc::describe(id);
+    data.title = rigid::escaped(std::filesystem::path(file).stem().string());
+    rigid::io::write_file_atomically(*report, rigid::report::sweep_page(data));
+    out["report"] = py::str(report->string());
+  }
   return out;
 }
 
@@ -268,7 +300,7 @@ void bind_scene(py::module_& m) {
   m.def("sweep", &sweep, py::arg("scene"), py::kw_only(), py::arg("grid") = std::vector<std::string>{},
         py::arg("sample") = std::vector<std::string>{}, py::arg("samples") = 0, py::arg("seed") = 0,
         py::arg("set") = std::vector<std::string>{}, py::arg("integrator") = std::string{},
-        py::arg("threads") = 1, py::arg("output") = py::none(),
+        py::arg("threads") = 1, py::arg("output") = py::none(), py::arg("report") = py::none(),
         "Runs one scene file many times, as `rigid sweep`: over a grid (grid=['L=0.5:2:4', ...], "
         "every combination, the first axis slowest) or a Monte Carlo sample "
         "(sample=['m=uniform(1,2)', 'k=normal(10,1)', 'c=loguniform(1e-3,1)'], samples=N, seed=S; "
@@ -276,7 +308,9 @@ void bind_scene(py::module_& m) {
         "Returns {'columns': {run, the swept names, each run's metrics and diagnostics: numpy "
         "arrays, NaN for a failed run}, 'errors': [text per run, '' when it succeeded], 'summary': "
         "statistics per column as summary.json}; with `output` (a directory) also writes runs.csv, "
-        "runs.npy and summary.json, byte for byte what `rigid sweep` writes. Runs on `threads` "
+        "runs.npy and summary.json, byte for byte what `rigid sweep` writes; with `report` (a file "
+        "name) also writes the sweep's page there, as `rigid sweep --report` (returned as 'report'). "
+        "Runs on `threads` "
         "threads with the GIL released; Ctrl-C raises KeyboardInterrupt.");
 
   py::class_<Model>(m, "Scene",

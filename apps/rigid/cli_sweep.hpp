@@ -45,6 +45,12 @@ inline void add_sweep_command(CLI::App& app) {
   cmd->add_flag("-q,--quiet", opts->quiet,
                 "print nothing on success (no summary, no progress bar); a sweep whose every run failed "
                 "is still an error (stderr, exit status 1)");
+  auto* report = cmd->add_option("--report", opts->report_path,
+                                 "also write the sweep's page: plots of the results against the swept values "
+                                 "(a heatmap for two grid axes, histograms for a sample) and the failed runs; "
+                                 "PATH defaults to DIR/report.html (docs/report.md)")
+                      ->expected(0, 1)
+                      ->type_name("[PATH]");
   add_model_options(cmd, opts->model);
 
   auto merge = std::make_shared<rigid::cli::SweepMergeOptions>();
@@ -55,8 +61,9 @@ inline void add_sweep_command(CLI::App& app) {
   m->add_flag("-q,--quiet", merge->quiet, "print nothing on success");
   m->callback([merge] { rigid::cli::run_sweep_merge(*merge); });
 
-  cmd->callback([opts, m] {
+  cmd->callback([opts, m, report] {
     if (m->parsed()) return;
+    opts->report = report->count() > 0;
     if (opts->scene.empty()) throw CLI::RequiredError("SCENE (or: rigid sweep merge DIR... -o OUT)");
     rigid::cli::run_sweep(*opts);
   });

@@ -18,7 +18,9 @@
 #include "rigid/common/wording.hpp"
 #include "rigid/io/run_output.hpp"
 #include "rigid/io/atomic_file.hpp"
+#include "rigid/common/escape.hpp"
 #include "rigid/report/report.hpp"
+#include "rigid/report/sweep_page.hpp"
 #include "rigid/scene/model.hpp"
 #include "progress.hpp"
 #include "scene_output.hpp"
@@ -168,6 +170,38 @@ void run_run(const RunOptions& opts) {
 void run_report(const ReportOptions& opts) {
   const report::ReportOptions ro = report_options(opts.report_frames);
   const fs::path dir = opts.directory;
+  const std::string shown = escaped(dir.string());
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) {
+    throw Error(fmt::format("'{}' is not a directory; expected the directory of a run (rigid run -o DIR) or of a "
+                            "sweep (rigid sweep -o DIR)",
+                            shown));
+  }
+  if (report::is_sweep_directory(dir)) {
+    if (!opts.report_frames.empty()) {
+      throw UsageError(fmt::format("--report-frames: '{}' is a sweep's directory, whose page shows every run "
+                                   "(frames are a run's page's)",
+                                   shown));
+    }
+    const fs::path out = opts.output.empty() ? dir / io::kReportFileName : fs::path(opts.output);
+    io::write_file_atomically(out, report::sweep_page(report::read_sweep(dir)));
+    fmt::print("wrote {}\n", out.string());
+    return;
+  }
+  const bool run_files = fs::exists(dir / "summary.json", ec) ||
+                         fs::exists(dir / io::file_name(io::OutputFormat::kCsv), ec) ||
+                         fs::exists(dir / io::file_name(io::OutputFormat::kNpy), ec) ||
+                         fs::exists(dir / io::file_name(io::OutputFormat::kJson), ec);
+  if (!run_files) {
+    throw Error(fmt::format(
+        "'{}' is neither a run's directory (trajectory.csv and summary.json, from rigid run -o DIR) nor a "
+        "sweep's (runs.csv and summary.json, from rigid sweep -o DIR){}",
+        shown,
+        fs::exists(dir / ".journal.jsonl", ec)
+            ? ": it holds a sweep's journal but no runs.csv (a shard's directory: join the shards with rigid "
+              "sweep merge; or a sweep that has not finished: run its command again)"
+            : ""));
+  }
   io::RunResult result = report::read_run(dir);
   const fs::path scene_file = report::scene_of_run(dir);
   // the run's own parameter values (a run made with --set): those of the scene's parameters

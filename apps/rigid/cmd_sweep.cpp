@@ -27,6 +27,10 @@
 #include "scene_output.hpp"
 #include "rigid/common/error.hpp"
 #include "rigid/common/wording.hpp"
+#include "rigid/io/atomic_file.hpp"
+#include "rigid/io/run_output.hpp"
+#include "rigid/report/report.hpp"
+#include "rigid/report/sweep_page.hpp"
 #include "rigid/scene/model.hpp"
 #include "rigid/scene/scene.hpp"
 #include "rigid/scene/sweep.hpp"
@@ -377,7 +381,15 @@ std::string sweep_on_ranks(const SweepOptions& opts, const scene::SweepIdentity&
   // every row, from the journal: those it held, this run's and the other ranks'
   std::vector<scene::SweepRow> all = scene::read_journal(dir).rows;
   const scene::SweepOutputs outputs = scene::make_outputs(names, runs, std::move(all));
-  const auto written = scene::write_outputs(dir, outputs);
+  auto written = scene::write_outputs(dir, outputs);
+  if (opts.report) {
+    // the page of the files just written, with the units of run 0's schema
+    report::SweepData data = report::read_sweep(dir);
+    if (first_run) data.units.merge(report::sweep_units_of(first_run->schema()));
+    const fs::path page = opts.report_path.empty() ? dir / io::kReportFileName : fs::path(opts.report_path);
+    io::write_file_atomically(page, report::sweep_page(data));
+    written.push_back(page);
+  }
   if (!opts.quiet) {
     const std::size_t failures = failure_count(outputs);
     fmt::print("sweep: {} runs ({} now in {:.3g} s on {} thread(s) x {} rank(s), {} from the journal), {} failed{}\n",
@@ -405,6 +417,17 @@ void run_sweep(const SweepOptions& opts) {
       throw UsageError(fmt::format("--shard: {}", e.what()));
     }
   }();
+  if (opts.report) {
+    if (!report::available()) {
+      throw Error("--report: this rigid was built without the report page (CMake option RIGID_REPORT=OFF, a "
+                  "build without node): rebuild with the ci or release preset to write reports");
+    }
+    if (shard.count > 1) {
+      throw UsageError("--report with --shard: a shard writes no runs.csv; merge the shards (rigid sweep merge) "
+                       "and write the page with rigid report DIR");
+    }
+    if (!opts.report_path.empty()) (void)io::check_output_file(opts.report_path);
+  }
   check_names(id);
   // run 0 built and checked as its run would be (integrator, metrics' columns, values), before
   // the directory is made: a sweep every run of which would be refused is refused once

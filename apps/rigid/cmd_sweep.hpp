@@ -23,6 +23,8 @@ struct SweepOptions {
   std::string shard;                ///< I/N: the runs i ≡ I (mod N)
   bool quiet = false;
   ModelFlags model;                 ///< how a robot model file is read
+  bool report = false;              ///< --report: also write the sweep's page
+  std::string report_path;          ///< --report PATH as given (empty: DIR/report.html)
 };
 
 /// Options of `rigid sweep merge DIR... -o OUT`.
@@ -34,7 +36,8 @@ struct SweepMergeOptions {
 
 /// `rigid sweep SCENE --grid … | --sample … -n N`: runs the sweep (on threads; on MPI ranks when
 /// launched by mpirun), resuming from DIR's journal, and writes runs.csv, runs.npy and
-/// summary.json (a shard writes its journal only). Before DIR is made, run 0 is built and
+/// summary.json (a shard writes its journal only), and with --report the sweep's page (units from
+/// the schema of run 0). Before DIR is made, run 0 is built and
 /// checked (scene::check_first_run); the summary lists the failed runs by message.
 /// @throws rigid::Error when run 0 is refused (nothing written), and after the outputs are
 ///   written when every run failed (even with quiet).

@@ -1,6 +1,7 @@
 // Entry of the report page: reads the run's data from the JSON script element and builds the
 // page (header, 3D view, plots) into document.body. For tests and scripts it exposes
-// window.rigidReport = {setTime(t), time(), ready, plots: {group: uPlot}, equationsTypeset()}:
+// window.rigidReport = {setTime(t), time(), ready, plots: {group: uPlot}, equationsTypeset()}
+// (a sweep's page, sweep_page.js: {ready, sweep: {data, columns, figures}}):
 // `ready` resolves once the page is built and drawn; the equations are typeset after it, a few
 // at a time (equations.js), and equationsTypeset() resolves when every open block's are.
 import { decodeArray, readReport } from './data.js';
@@ -9,6 +10,7 @@ import { buildHeader } from './header.js';
 import { Player } from './player.js';
 import { buildPlots } from './plots.js';
 import { buildView } from './view3d.js';
+import { buildSweepPage } from './sweep_page.js';
 
 function main() {
   const api = { plots: {} };
@@ -18,6 +20,12 @@ function main() {
   window.rigidReport = api;
   try {
     const data = document.getElementById('rigid-report-data');
+    // a sweep's page (its data begin {"rigid_sweep_page":…}) or a run's
+    if (data && /^\s*\{"rigid_sweep_page"/.test(data.textContent)) {
+      api.sweep = buildSweepPage(JSON.parse(data.textContent), document.body);
+      requestAnimationFrame(() => requestAnimationFrame(() => resolveReady()));
+      return;
+    }
     const report = readReport(data ? data.textContent : null);
     const ts = decodeArray(report.frames.t);
     const page = el('main', { class: 'rigid-report' });

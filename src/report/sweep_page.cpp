@@ -1,0 +1,383 @@
+// The page of a sweep (rigid sweep --report, rigid report SWEEP_DIR, rigid.sweep(report=)).
+#include "rigid/report/sweep_page.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <fstream>
+#include <optional>
+#include <sstream>
+#include <string_view>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "rigid/common/error.hpp"
+#include "rigid/common/escape.hpp"
+#include "rigid/report/report.hpp"
+
+namespace rigid::report {
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::ordered_json;
+
+// Two values of a 1-D grid's axis are evenly spaced when their step is within this fraction of
+// the axis' range of the first step: linspace's values are start + i (stop − start)/(n − 1),
+// each rounded once (a relative error of a few 1e-16), so 1e-9 separates them from a sample's
+// random gaps by many orders of magnitude.
+constexpr double kEvenSpacing = 1e-9;
+
+// the text of a regular file (a FIFO or device is refused before it is opened)
+std::string read_text(const fs::path& file, std::string_view what) {
+  std::error_code ec;
+  if (!fs::is_regular_file(file, ec)) {
+    throw Error(
+        fmt::format("'{}' is not a regular file; expected {}", escaped(file.string()), what));
+  }
+  std::ifstream in(file, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  if (!in.good() && !in.eof()) {
+    throw Error(fmt::format("'{}' cannot be read; expected {}", escaped(file.string()), what));
+  }
+  return text.str();
+}
+
+// RFC 4648 base64 with padding (the run page's encoder, src/report/report.cpp, is private to it)
+std::string base64(std::string_view bytes) {
+  static constexpr char kAlphabet[] =
+      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  out.reserve((bytes.size() + 2) / 3 * 4);
+  auto byte = [&](std::size_t k) {
+    return static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[k]));
+  };
+  std::size_t i = 0;
+  for (; i + 3 <= bytes.size(); i += 3) {
+    const std::uint32_t v = byte(i) << 16 | byte(i + 1) << 8 | byte(i + 2);
+    for (int s = 18; s >= 0; s -= 6) out.push_back(kAlphabet[(v >> s) & 63]);
+  }
+  const std::size_t rest = bytes.size() - i;
+  if (rest > 0) {
+    const std::uint32_t v = byte(i) << 16 | (rest == 2 ? byte(i + 1) << 8 : 0);
+    out.push_back(kAlphabet[(v >> 18) & 63]);
+    out.push_back(kAlphabet[(v >> 12) & 63]);
+    out.push_back(rest == 2 ? kAlphabet[(v >> 6) & 63] : '=');
+    out.push_back('=');
+  }
+  return out;
+}
+
+// "f64:BASE64": the doubles' little-endian bytes, whatever the machine's order (exact, NaN kept)
+std::string f64(const std::vector<double>& values) {
+  std::string bytes;
+  bytes.reserve(8 * values.size());
+  for (const double v : values) {
+    const auto w = std::bit_cast<std::uint64_t>(v);
+    for (int k = 0; k < 8; ++k) bytes.push_back(static_cast<char>((w >> (8 * k)) & 0xFF));
+  }
+  return "f64:" + base64(bytes);
+}
+
+std::string u32(const std::vector<std::uint32_t>& values) {
+  std::string bytes;
+  bytes.reserve(4 * values.size());
+  for (const std::uint32_t w : values) {
+    for (int k = 0; k < 4; ++k) bytes.push_back(static_cast<char>((w >> (8 * k)) & 0xFF));
+  }
+  return "u32:" + base64(bytes);
+}
+
+// runs.csv: a header of names, then rows of numbers and the quoted `error` text (RFC 4180: a
+// field in double quotes may hold commas, line breaks and doubled quotes). The same format
+// rigid plot reads (src/report/directory_plot.cpp).
+void read_runs_csv(const fs::path& file, SweepData& out) {
+  const std::string text = read_text(file, "the runs.csv that rigid sweep writes");
+  std::vector<std::vector<std::string>> rows;
+  std::vector<std::string> row;
+  std::string field;
+  bool quoted = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (quoted) {
+      if (c == '"' && i + 1 < text.size() && text[i + 1] == '"') {
+        field += '"';
+        ++i;
+      } else if (c == '"') {
+        quoted = false;
+      } else {
+        field += c;
+      }
+    } else if (c == '"' && field.empty()) {
+      quoted = true;
+    } else if (c == ',') {
+      row.push_back(std::move(field));
+      field.clear();
+    } else if (c == '\n' || c == '\r') {
+      if (c == '\r' && i + 1 < text.size() && text[i + 1] == '\n') ++i;
+      row.push_back(std::move(field));
+      field.clear();
+      rows.push_back(std::move(row));
+      row.clear();
+    } else {
+      field += c;
+    }
+  }
+  if (quoted) {
+    throw Error(
+        fmt::format("'{}' ends inside a quoted field; expected the runs.csv that rigid sweep "
+                    "writes (cut short?)",
+                    escaped(file.string())));
+  }
+  if (!field.empty() || !row.empty()) {
+    row.push_back(std::move(field));
+    rows.push_back(std::move(row));
+  }
+  if (rows.empty() || rows[0].size() < 2 || rows[0].back() != "error") {
+    throw Error(fmt::format(
+        "'{}' has no header line ending in 'error'; expected the runs.csv that rigid sweep writes",
+        escaped(file.string())));
+  }
+  out.names = rows[0];
+  out.names.pop_back();  // `error`
+  out.columns.assign(out.names.size(), {});
+  out.errors.clear();
+  for (std::size_t r = 1; r < rows.size(); ++r) {
+    if (rows[r].size() == 1 && rows[r][0].empty()) continue;  // a blank line
+    if (rows[r].size() != rows[0].size()) {
+      throw Error(fmt::format("'{}': run row {} has {} fields, expected {} (one per column)",
+                              escaped(file.string()), r, rows[r].size(), rows[0].size()));
+    }
+    for (std::size_t k = 0; k < out.names.size(); ++k) {
+      const std::string& f = rows[r][k];
+      double v = NAN;  // a failed run's results may be empty
+      if (!f.empty()) {
+        const auto [end, ec] = std::from_chars(f.data(), f.data() + f.size(), v);
+        if (ec != std::errc() || end != f.data() + f.size()) {
+          throw Error(fmt::format("'{}': run row {}, column '{}': '{}' is not a number",
+                                  escaped(file.string()), r, out.names[k], escaped(f)));
+        }
+      }
+      out.columns[k].push_back(v);
+    }
+    out.errors.push_back(rows[r].back());
+  }
+}
+
+// the units of the first run the sweep kept (--keep-trajectories: runs/NNNNN/summary.json)
+std::map<std::string, std::string> kept_run_units(const fs::path& dir) {
+  std::error_code ec;
+  const fs::path runs = dir / "runs";
+  if (!fs::is_directory(runs, ec)) return {};
+  std::vector<fs::path> kept;
+  for (fs::directory_iterator it(runs, ec), end; !ec && it != end; it.increment(ec)) {
+    if (fs::is_regular_file(it->path() / "summary.json", ec)) kept.push_back(it->path());
+  }
+  if (kept.empty()) return {};
+  const fs::path file = *std::min_element(kept.begin(), kept.end()) / "summary.json";
+  const auto j = nlohmann::json::parse(read_text(file, "a run's summary.json"), nullptr, false);
+  if (j.is_discarded() || !j.is_object() || !j.contains("schema")) return {};
+  return sweep_units_of(io::parse_schema_json(j["schema"].dump(), file.string()));
+}
+
+// "grid" or "sample" from the journal's description ("scene …; grid L=…; grid m=…"), or ""
+std::string kind_of_description(const std::string& description) {
+  if (description.find("; sample ") != std::string::npos) return "sample";
+  if (description.find("; grid ") != std::string::npos) return "grid";
+  return {};
+}
+
+// The grid's axes when the swept columns are one (the values of each in the order they first
+// appear; every combination, the first axis varying slowest, as rigid sweep runs a grid), or
+// nothing. One axis is a grid only when its values are evenly spaced (a sample's are not).
+std::optional<std::vector<std::vector<double>>> grid_axes(const SweepData& s,
+                                                          const std::vector<std::size_t>& cols,
+                                                          std::size_t runs) {
+  if (cols.empty() || runs == 0) return std::nullopt;
+  std::vector<std::vector<double>> axes;
+  std::size_t product = 1;
+  for (const std::size_t c : cols) {
+    std::vector<double> values;
+    for (const double v : s.columns[c]) {
+      if (!std::isfinite(v)) return std::nullopt;
+      if (std::find(values.begin(), values.end(), v) == values.end()) values.push_back(v);
+    }
+    product *= values.size();
+    if (product > runs) return std::nullopt;
+    axes.push_back(std::move(values));
+  }
+  if (product != runs) return std::nullopt;
+  for (std::size_t i = 0; i < runs; ++i) {
+    std::size_t rest = i;
+    for (std::size_t k = axes.size(); k-- > 0;) {
+      const std::size_t digit = rest % axes[k].size();
+      rest /= axes[k].size();
+      if (s.columns[cols[k]][i] != axes[k][digit]) return std::nullopt;
+    }
+  }
+  if (const std::vector<double>& a = axes.front(); axes.size() == 1 && a.size() >= 3) {
+    const double step = a[1] - a[0];
+    const double range = std::abs(a.back() - a.front());
+    for (std::size_t k = 2; k < a.size(); ++k) {
+      if (std::abs(a[k] - a[k - 1] - step) > kEvenSpacing * range) return std::nullopt;
+    }
+  }
+  return axes;
+}
+
+}  // namespace
+
+std::map<std::string, std::string> sweep_units_of(const io::RunSchema& schema) {
+  // the settings a sweep can set that are times (docs/scene-format.md, [simulation])
+  std::map<std::string, std::string> units = {
+      {"simulation.t_end", "s"}, {"simulation.dt", "s"}, {"simulation.output_dt", "s"}};
+  for (const io::Column& c : schema.columns) {
+    if (c.quantity == io::Quantity::kCoordinate) units[c.owner + ".initial"] = c.unit;
+    if (c.quantity == io::Quantity::kCoordinateRate) units[c.owner + ".velocity"] = c.unit;
+  }
+  for (const auto* group : {&schema.parameters, &schema.diagnostics, &schema.metrics}) {
+    for (const io::Scalar& s : *group) {
+      units[s.name] = s.unit;
+      units["result." + s.name] = s.unit;  // a metric named like a swept name
+    }
+  }
+  return units;
+}
+
+bool is_sweep_directory(const fs::path& directory) {
+  std::error_code ec;
+  return fs::exists(directory / "runs.csv", ec);
+}
+
+SweepData read_sweep(const fs::path& directory) {
+  const std::string dir = escaped(directory.string());
+  std::error_code ec;
+  if (!fs::is_directory(directory, ec)) {
+    throw Error(fmt::format(
+        "'{}' is not a directory; expected the directory of a sweep (rigid sweep -o DIR)", dir));
+  }
+  if (!is_sweep_directory(directory)) {
+    throw Error(fmt::format(
+        "'{}' holds no runs.csv; expected the directory of a sweep (rigid sweep -o DIR)", dir));
+  }
+  SweepData s;
+  read_runs_csv(directory / "runs.csv", s);
+  const fs::path summary_file = directory / "summary.json";
+  s.summary_json = read_text(summary_file, "the summary.json that rigid sweep writes");
+  const auto summary = json::parse(s.summary_json, nullptr, false);
+  if (summary.is_discarded() || !summary.is_object() || !summary.contains("swept") ||
+      !summary["swept"].is_array()) {
+    throw Error(fmt::format(
+        "'{}' names no swept value (\"swept\"); expected the summary.json that rigid sweep writes",
+        escaped(summary_file.string())));
+  }
+  for (const auto& n : summary["swept"]) {
+    if (n.is_string()) s.swept.push_back(n.get<std::string>());
+  }
+  s.units = kept_run_units(directory);
+  if (summary.contains("units") && summary["units"].is_object()) {
+    for (const auto& [name, unit] : summary["units"].items()) {
+      if (unit.is_string()) s.units[name] = unit.get<std::string>();
+    }
+  }
+  // the journal's first line: {"rigid_sweep":1,"sweep":"<description>",…}
+  if (std::ifstream journal(directory / ".journal.jsonl"); journal) {
+    std::string line;
+    std::getline(journal, line);
+    const auto head = json::parse(line, nullptr, false);
+    if (!head.is_discarded() && head.is_object() && head.contains("sweep") &&
+        head["sweep"].is_string()) {
+      s.description = head["sweep"].get<std::string>();
+    }
+  }
+  fs::path name = directory.filename();
+  if (name.empty()) name = directory.parent_path().filename();
+  s.title = escaped(name.string());
+  return s;
+}
+
+std::string sweep_json(const SweepData& s) {
+  RIGID_REQUIRE(s.names.size() == s.columns.size(), "a sweep's data have {} names and {} columns",
+                s.names.size(), s.columns.size());
+  const std::size_t runs = s.errors.size();
+  for (std::size_t k = 0; k < s.columns.size(); ++k) {
+    RIGID_REQUIRE(s.columns[k].size() == runs, "the sweep's column '{}' has {} values for {} runs",
+                  s.names[k], s.columns[k].size(), runs);
+  }
+  json j;
+  j["rigid_sweep_page"] = 1;
+  j["title"] = s.title;
+  j["description"] = escaped(s.description);
+  j["runs"] = runs;
+  j["swept"] = s.swept;
+
+  // the swept columns, and whether they are a grid's
+  std::vector<std::size_t> swept_cols;
+  for (const std::string& n : s.swept) {
+    const auto it = std::find(s.names.begin(), s.names.end(), n);
+    if (it == s.names.end()) {
+      throw Error(
+          fmt::format("the sweep's swept name '{}' is not a column of its runs.csv", escaped(n)));
+    }
+    swept_cols.push_back(static_cast<std::size_t>(it - s.names.begin()));
+  }
+  const std::string stated = kind_of_description(s.description);
+  const auto axes = stated == "sample" ? std::nullopt : grid_axes(s, swept_cols, runs);
+  json layout;
+  layout["kind"] = axes ? "grid" : "sample";
+  if (axes) {
+    json a = json::array();
+    for (std::size_t k = 0; k < axes->size(); ++k)
+      a.push_back({{"name", s.swept[k]}, {"values", (*axes)[k]}});
+    layout["axes"] = a;
+  }
+  j["layout"] = layout;
+
+  json columns = json::array();
+  for (std::size_t k = 0; k < s.names.size(); ++k) {
+    const auto u = s.units.find(s.names[k]);
+    columns.push_back(
+        {{"name", s.names[k]},
+         {"unit", u == s.units.end() ? std::string() : u->second},
+         {"swept", std::find(s.swept.begin(), s.swept.end(), s.names[k]) != s.swept.end()},
+         {"values", f64(s.columns[k])}});
+  }
+  j["columns"] = columns;
+
+  // each run's error as an index into the distinct messages (0: it succeeded; k: messages[k−1])
+  json messages = json::array();
+  std::map<std::string, std::uint32_t, std::less<>> index;
+  std::vector<std::uint32_t> error(runs, 0);
+  std::size_t failed = 0;
+  for (std::size_t r = 0; r < runs; ++r) {
+    if (s.errors[r].empty()) continue;
+    ++failed;
+    auto it = index.find(s.errors[r]);
+    if (it == index.end()) {
+      it = index.emplace(s.errors[r], static_cast<std::uint32_t>(messages.size() + 1)).first;
+      messages.push_back(escaped(s.errors[r]));
+    }
+    error[r] = it->second;
+  }
+  j["failures"] = failed;
+  j["messages"] = messages;
+  j["error"] = u32(error);
+
+  const auto summary =
+      json::parse(s.summary_json.empty() ? std::string("{}") : s.summary_json, nullptr, false);
+  const bool ok = !summary.is_discarded() && summary.is_object();
+  j["statistics"] = ok && summary.contains("results") ? summary["results"] : json::object();
+  j["failure_groups"] =
+      ok && summary.contains("failure_groups") ? summary["failure_groups"] : json::array();
+  return j.dump();
+}
+
+std::string sweep_page(const SweepData& sweep) {
+  if (!available()) return assemble_page("", "");  // refuses before the work
+  return assemble_page("sweep " + sweep.title, sweep_json(sweep));
+}
+
+}  // namespace rigid::report
