@@ -40,7 +40,9 @@ export class Player {
         if (s === this.speed) o.selected = true;
         return o;
       }));
-    root.append(el('div', { class: 'player' }, this.button, this.prev, this.next, this.slider, this.label, this.speedSelect));
+    // the row of controls; others (the 3D view's recorder) append theirs to it
+    this.bar = el('div', { class: 'player' }, this.button, this.prev, this.next, this.slider, this.label, this.speedSelect);
+    root.append(this.bar);
 
     this.button.addEventListener('click', () => this.toggle());
     this.prev.addEventListener('click', () => this.step(-1));

@@ -8,6 +8,7 @@ import { el, saveDataUrl } from './format.js';
 import { bodyRadius, equivalentBox, equivalentEllipsoid, principalRotation, shapeGeometry } from './shapes.js';
 import { buildLinks } from './links.js';
 import { buildPoinsot } from './poinsot.js';
+import { buildRecorder } from './record.js';
 
 const kBodyColours = [0x4e79a7, 0xf28e2b, 0x59a14f, 0xe15759, 0x76b7b2, 0xedc948, 0xb07aa1, 0xff9da7, 0x9c755f, 0xbab0ac];
 
@@ -294,6 +295,9 @@ export function buildView(report, player, root) {
     saveDataUrl(renderer.domElement.toDataURL('image/png'), `${report.scene?.name ?? 'rigid'}-view.png`);
   });
   toggles.append(download);
+  // the animation as a video (or PNG frames), beside the player
+  const fileName = String(report.scene?.name ?? 'rigid').replace(/[^\w.-]+/g, '_');
+  const recorder = player.bar ? buildRecorder({ canvas: renderer.domElement, render, player, name: fileName, bar: player.bar }) : null;
 
   resize();
   player.onChange(setFrame);
@@ -307,6 +311,7 @@ export function buildView(report, player, root) {
   return {
     renderer,
     render,
+    recorder,
     canvas: renderer.domElement,
     // for tests and scripts: the rods' world ends at the current frame, the pivots, a world
     // point's position in the canvas (CSS pixels), a body's drawn orientation (w, x, y, z)
