@@ -89,8 +89,8 @@ function webmTrack(buf) {
 // 0.5 s of simulated time at 10 fps and speed ×1: the frames of t = 0, 0.1, …, 0.5
 async function setUpSpan(page) {
   await page.locator('.player select[aria-label=speed]').selectOption('1');
-  await page.locator('.player select.record-fps').selectOption('10');
-  await page.locator('.player input.record-span').fill('0.5');
+  await page.locator('.record-row select.record-fps').selectOption('10');
+  await page.locator('.record-row input.record-span').fill('0.5');
   await page.evaluate(() => window.rigidReport.setTime(0));
 }
 
@@ -101,7 +101,7 @@ describe('recording the 3D view', () => {
       const type = await page.evaluate(() => window.rigidReport.view.recorder.type);
       assert.match(type, /^video\/webm;codecs=vp[89]$/);
       await setUpSpan(page);
-      const video = await download(page, page.locator('.player button.record'));
+      const video = await download(page, page.locator('.record-row button.record'));
       assert.equal(video.name, 'physical_pendulum_0-0.5s.webm');
       // EBML's magic number, the first bytes of every Matroska/WebM file (RFC 8794 §8)
       assert.deepEqual([...video.bytes.subarray(0, 4)], [0x1a, 0x45, 0xdf, 0xa3]);
@@ -115,8 +115,15 @@ describe('recording the 3D view', () => {
       assert.deepEqual(track, { codec: type.endsWith('vp9') ? 'V_VP9' : 'V_VP8', width: size[0], height: size[1], frames: 6 });
       // the page stopped at the span's end and says what it saved
       assert.ok(Math.abs((await page.evaluate(() => window.rigidReport.time())) - 0.5) < 1e-9);
-      assert.match(await page.locator('.player .record-note').textContent(), /saved physical_pendulum_0-0\.5s\.webm \(6 frames at 10 fps/);
-      await page.locator('.player').screenshot({ path: screenshotPath('record_controls.png') });
+      assert.match(await page.locator('.record-row .record-note').textContent(), /saved physical_pendulum_0-0\.5s\.webm \(6 frames at 10 fps/);
+      // PNG frames chosen where there is a video too: the same span as a .tar of 6 frames
+      assert.deepEqual(await page.locator('.record-row select.record-format option').allTextContents(), [`WebM (${type.slice(-3)})`, 'PNG frames (.tar)']);
+      await page.locator('.record-row select.record-format').selectOption('png');
+      await setUpSpan(page);
+      const tar = await download(page, page.locator('.record-row button.record'));
+      assert.equal(tar.name, 'physical_pendulum_0-0.5s.tar');
+      assert.equal(untar(tar.bytes).filter((f) => f.bytes.subarray(0, 8).equals(Buffer.from(kPng))).length, 6);
+      await page.locator('.stage').screenshot({ path: screenshotPath('record_controls.png') });
       assert.deepEqual(problems, []);
     } finally {
       await page.close();
@@ -132,9 +139,10 @@ describe('recording the 3D view', () => {
       await page.goto(`file://${join(dir, 'report.html')}`);
       await page.evaluate(() => window.rigidReport.ready);
       assert.equal(await page.evaluate(() => window.rigidReport.view.recorder.type), null);
-      assert.match(await page.locator('.player .record-note').textContent(), /PNG frames in a \.tar/);
+      assert.match(await page.locator('.record-row .record-note').textContent(), /no MediaRecorder: PNG frames only/);
+      assert.deepEqual(await page.locator('.record-row select.record-format option').allTextContents(), ['PNG frames (.tar)']);
       await setUpSpan(page);
-      const tar = await download(page, page.locator('.player button.record'));
+      const tar = await download(page, page.locator('.record-row button.record'));
       assert.equal(tar.name, 'physical_pendulum_0-0.5s.tar');
       const files = untar(tar.bytes);
       assert.deepEqual(files.map((f) => f.name), [0, 1, 2, 3, 4, 5].map((k) => `physical_pendulum_0s/frame_0000${k}.png`));

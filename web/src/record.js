@@ -73,14 +73,16 @@ function save(blob, name) {
 }
 
 /**
- * The control, appended to `bar` (the player's row): `canvas` is the 3D view's canvas (drawn
+ * The control, in a row after `bar` (the player's row): `canvas` is the 3D view's canvas (drawn
  * with preserveDrawingBuffer), `render()` draws the current frame at once, `name` the scene's.
  * Returns {record(): Promise of {name, size, frames} once the file is offered, type (the video
- * type, or null for PNG frames)}.
+ * type, or null where there is none: PNG frames only)}.
  */
 export function buildRecorder({ canvas, render, player, name, bar }) {
   const type = videoType();
-  const ext = type === null ? 'tar' : type.startsWith('video/mp4') ? 'mp4' : 'webm';
+  const videoExt = type?.startsWith('video/mp4') ? 'mp4' : 'webm';
+  const videoName = type === null ? null : `${videoExt === 'mp4' ? 'MP4' : 'WebM'} (${/codecs=(\w+)/.exec(type)?.[1] ?? 'default codec'})`;
+  const framesName = 'PNG frames (.tar)';
   const button = el('button', {
     type: 'button', class: 'record',
     title: 'record the 3D view from the current time to the end (or for the span) at the player’s speed',
@@ -97,12 +99,17 @@ export function buildRecorder({ canvas, render, player, name, bar }) {
     title: 'simulated seconds to record from the current time (empty: to the end)', 'aria-label': 'recording span (s)',
   });
   span.style.width = '5.5em';
-  const what = type === null
-    ? 'PNG frames in a .tar (this browser has no MediaRecorder)'
-    : `${ext === 'mp4' ? 'MP4' : 'WebM'} (${/codecs=(\w+)/.exec(type)?.[1] ?? 'default codec'})`;
-  const note = el('span', { class: 'record-note', text: what });
+  // the format: the video where the browser records one, else PNG frames (said in the note)
+  const format = el('select', { class: 'record-format', title: 'what the recording is saved as', 'aria-label': 'recording format' },
+    ...(type === null ? [] : [el('option', { value: 'video', text: videoName })]),
+    el('option', { value: 'png', text: framesName }));
+  const note = el('span', { class: 'record-note', text: type === null ? 'this browser has no MediaRecorder: PNG frames only' : '' });
   note.style.fontSize = '0.8rem';
-  bar.append(button, fps, span, note);
+  // a row of its own under the player's
+  const row = el('div', { class: 'player record-row' }, button, format, fps,
+    el('label', { title: span.title }, 'span ', span, ' s'), note);
+  button.style.whiteSpace = 'nowrap';
+  bar.after(row);
 
   let busy = null;
   let stop = false;
@@ -125,8 +132,10 @@ export function buildRecorder({ canvas, render, player, name, bar }) {
     };
     let done = 0;
     const progress = () => { note.textContent = `recording frame ${done}/${count}… (click to stop)`; };
+    const video = type !== null && format.value === 'video';
+    const ext = video ? videoExt : 'tar';
     let blob;
-    if (type !== null) {
+    if (video) {
       // captureStream(0) with requestFrame: exactly one video frame per rendered frame; without
       // requestFrame, the canvas is sampled at the rate
       let stream = canvas.captureStream(0);
@@ -183,7 +192,7 @@ export function buildRecorder({ canvas, render, player, name, bar }) {
     const t1 = t0 + Math.max(0, done - 1) * dt;
     const file = `${name}_${stamp(t0)}-${stamp(t1)}s.${ext}`;
     save(blob, file);
-    note.textContent = `${what}: saved ${file} (${done} frames at ${rate} fps, ${megabytes(blob.size)})`;
+    note.textContent = `saved ${file} (${done} frames at ${rate} fps, ${megabytes(blob.size)})`;
     return { name: file, size: blob.size, frames: done };
   };
 
