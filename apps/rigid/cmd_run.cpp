@@ -192,17 +192,22 @@ void run_report(const ReportOptions& opts) {
                          fs::exists(dir / io::file_name(io::OutputFormat::kCsv), ec) ||
                          fs::exists(dir / io::file_name(io::OutputFormat::kNpy), ec) ||
                          fs::exists(dir / io::file_name(io::OutputFormat::kJson), ec);
-  if (!run_files) {
+  // a directory with none of a run's files is named neither, with what read_run missed
+  io::RunResult result;
+  try {
+    result = report::read_run(dir);
+  } catch (const Error& e) {
+    if (run_files) throw;
     throw Error(fmt::format(
         "'{}' is neither a run's directory (trajectory.csv and summary.json, from rigid run -o DIR) nor a "
-        "sweep's (runs.csv and summary.json, from rigid sweep -o DIR){}",
+        "sweep's (runs.csv and summary.json, from rigid sweep -o DIR){}: {}",
         shown,
         fs::exists(dir / ".journal.jsonl", ec)
-            ? ": it holds a sweep's journal but no runs.csv (a shard's directory: join the shards with rigid "
+            ? "; it holds a sweep's journal but no runs.csv (a shard's directory: join the shards with rigid "
               "sweep merge; or a sweep that has not finished: run its command again)"
-            : ""));
+            : "",
+        e.what()));
   }
-  io::RunResult result = report::read_run(dir);
   const fs::path scene_file = report::scene_of_run(dir);
   // the run's own parameter values (a run made with --set): those of the scene's parameters
   scene::Scene sc = scene::load_scene(scene_file);
