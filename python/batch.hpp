@@ -118,9 +118,13 @@ struct RowError {
 /// the calling thread asks Python, at most every 50 ms, whether a signal came
 /// (PyErr_CheckSignals, as python/interrupt.hpp does for runs); Ctrl-C stops every thread at
 /// its next block and the call raises KeyboardInterrupt (rigid::Cancelled), returning nothing.
-template <class Kernel>
+/// With `range` (for_each_row's second form): range(begin, end), for blocks of at most kBlock
+/// rows, computes them all at once (a vectorised loop) and returns true, or returns false when
+/// some row of the block needs kernel; kernel(i) then computes (or refuses) each row of that
+/// block, so refusals read as without `range`. range must not throw or touch Python objects.
+template <class Kernel, class Range>
 void for_each_row(py::ssize_t n, bool single, std::string_view function,
-                  std::string_view first_argument, const Kernel& kernel) {
+                  std::string_view first_argument, const Kernel& kernel, const Range& range) {
   constexpr py::ssize_t kReleaseGil = 4096;
   constexpr py::ssize_t kThreadRows = 32768;
   constexpr py::ssize_t kBlock = 4096;
@@ -146,7 +150,7 @@ void for_each_row(py::ssize_t n, bool single, std::string_view function,
     for (py::ssize_t b = begin; b < end; b += kBlock) {
       if (cancel.load(std::memory_order_relaxed)) return;
       const py::ssize_t block_end = std::min(end, b + kBlock);
-      for (py::ssize_t i = b; i < block_end; ++i) {
+      for (py::ssize_t i = range(b, block_end) ? block_end : b; i < block_end; ++i) {
         try {
           kernel(i);
         } catch (const RowError& e) {
@@ -199,6 +203,13 @@ void for_each_row(py::ssize_t n, bool single, std::string_view function,
           fmt::format("{}(): argument '{}' row {}: {}", function, f.argument, f.row, f.message));
     }
   }
+}
+
+template <class Kernel>
+void for_each_row(py::ssize_t n, bool single, std::string_view function,
+                  std::string_view first_argument, const Kernel& kernel) {
+  for_each_row(n, single, function, first_argument, kernel,
+               [](py::ssize_t, py::ssize_t) { return false; });
 }
 
 }  // namespace rigid::python
