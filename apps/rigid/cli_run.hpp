@@ -51,11 +51,12 @@ inline void add_run_command(CLI::App& app) {
 
   auto report = std::make_shared<rigid::cli::ReportOptions>();
   auto* r = app.add_subcommand("report", "Write the report page of an earlier run from its output "
-                                         "directory (trajectory.csv, summary.json and the scene file)");
-  r->add_option("DIR", report->directory, "the output directory of a `rigid run`")->required();
+                                         "directory (trajectory.csv, summary.json and the scene file), "
+                                         "or the page of a sweep from its directory (runs.csv, summary.json)");
+  r->add_option("DIR", report->directory, "the output directory of a `rigid run` or a `rigid sweep`")->required();
   r->add_option("-o,--output", report->output, "the page to write (default: DIR/report.html)")
       ->type_name("FILE");
-  r->add_option("--report-frames", report->report_frames, "most frames the report keeps (default 2000)")
+  r->add_option("--report-frames", report->report_frames, "most frames a run's report keeps (default 2000)")
       ->type_name("N");
   r->callback([report] { rigid::cli::run_report(*report); });
 

@@ -29,7 +29,7 @@ struct RunOptions {
 
 /// Options of `rigid report DIR`.
 struct ReportOptions {
-  std::string directory;              ///< an earlier run's output directory
+  std::string directory;              ///< an earlier run's (or sweep's) output directory
   std::string output;                 ///< the page; empty: DIR/report.html
   std::string report_frames;          ///< most frames, as given; empty: the default (2000)
 };
@@ -39,7 +39,8 @@ struct ReportOptions {
 void require_known_integrator(const std::string& name);
 
 /// `rigid report DIR`: the report page of an earlier run, from its trajectory.csv, its
-/// summary.json and the scene file summary.json names.
+/// summary.json and the scene file summary.json names; or, when DIR holds runs.csv, the page of
+/// the sweep (report::read_sweep, report::sweep_page). A directory that is neither is refused.
 void run_report(const ReportOptions& opts);
 
 /// `rigid run SCENE`: simulates and writes trajectory.csv / trajectory.npy / summary.json
