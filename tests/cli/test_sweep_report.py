@@ -144,6 +144,17 @@ def test_a_one_axis_sample_is_not_taken_for_a_grid(run, tmp_path):
     assert decode(data["columns"][1]["values"]) == list(r["columns"]["L"])
 
 
+def test_rigid_report_takes_units_from_a_kept_run(run, tmp_path):
+    out = tmp_path / "kept"
+    run("sweep", PENDULUM, "--grid", "simulation.t_end=0.02:0.04:3", "--keep-trajectories", "-o", out, "-q",
+        check=True)
+    run("report", out, check=True)
+    data = check_page_holds_runs_csv(out / "report.html", out)
+    units = {c["name"]: c["unit"] for c in data["columns"]}
+    assert units["simulation.t_end"] == "s" and units["energy_initial"] == "J" and units["period"] == "s"
+    assert data["layout"]["axes"] == [{"name": "simulation.t_end", "values": [0.02, 0.03, 0.04]}]
+
+
 def test_report_refuses_a_directory_that_is_neither(run, tmp_path):
     empty = tmp_path / "empty"
     empty.mkdir()
