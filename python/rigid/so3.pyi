@@ -7,12 +7,12 @@ import numpy
 from numpy.typing import NDArray
 
 
-def exp(omega: object, *, output: str = ..., order: str = ...) -> NDArray[numpy.float64]:
-    """Exponential map: rotation vectors omega (N, 3), axis times angle in rad (right hand), to rotations: quaternions (N, 4) (output='quaternion') or matrices (N, 3, 3) (output='matrix'). As SO3.exp(omega[i]). Refuses a non-finite omega."""
+def exp(omega: object, *, output: str = ..., order: str = ..., fast: bool = ...) -> NDArray[numpy.float64]:
+    """Exponential map: rotation vectors omega (N, 3), axis times angle in rad (right hand), to rotations: quaternions (N, 4) (output='quaternion') or matrices (N, 3, 3) (output='matrix'). As SO3.exp(omega[i]), bit for bit. Refuses a non-finite omega. fast=True: a vectorised loop (polynomial sin and cos), each quaternion component within 4 ε (ε = 2⁻⁵²) of the default's (so3_kernels::kFastExpUlps), matrix entries within 24 ε; the same refusals."""
 
 
-def log(q: object, *, order: str = ...) -> NDArray[numpy.float64]:
-    """Logarithm: quaternions (N, 4) to rotation vectors (N, 3) in rad with angle in [0, π] (accurate near 0 and π). As SO3.from_quaternion(*q[i]).log()."""
+def log(q: object, *, order: str = ..., fast: bool = ...) -> NDArray[numpy.float64]:
+    """Logarithm: quaternions (N, 4) to rotation vectors (N, 3) in rad with angle in [0, π] (accurate near 0 and π). As SO3.from_quaternion(*q[i]).log() (to an ulp: the quaternion is normalised by a Newton step). fast=True: a vectorised loop (polynomial atan), each component within 4 ε |ω| (ε = 2⁻⁵², |ω| the angle) of the default's (so3_kernels::kFastLogUlps); the same refusals."""
 
 
 def compose(a: object, b: object, *, order: str = ...) -> NDArray[numpy.float64]:

@@ -10,7 +10,8 @@ times the scale of the result (1 for unit quaternions and matrices, π for rotat
 |v| for rotated vectors); Euler angles near gimbal lock are ill-conditioned (an ε in the
 matrix moves the angles by ε / distance to the lock), so their difference times
 min(1, distance to the lock) is compared. Independent checks of the numbers themselves are in
-test_so3_scipy.py.
+test_so3_scipy.py. The vectorised exp and log (fast=True) are compared with the default to
+their stated ulp bounds, on random rows and the edges, and refuse alike (at the end).
 """
 import math
 
@@ -264,3 +265,141 @@ def test_ctrl_c_interrupts_a_large_batch():
         timer.cancel()
     # stopped well before the end: the whole batch takes ≥ 0.2 s even on an idle machine
     assert time.perf_counter() - start < 0.2
+
+
+# --- the vectorised path (fast=True) against the default ---------------------------------------
+# The default exp and log compute each row with SO3d's operations (bitwise SO3.exp above; log
+# as the batch reader then SO3.log); fast=True replaces atan2, sin and cos by polynomials in a
+# vectorised loop. Its stated bounds (the docstrings, python/so3_kernels.hpp): each component of
+# log within FAST_LOG_ULPS · ε · |ω| of the default's (the error of an angle is relative to the
+# angle: Cephes' atan is within 1 ulp, plus a few roundings of the reduction, of |v| and of the
+# final scaling; 2.5 measured), each quaternion component of exp within FAST_EXP_ULPS · ε
+# (|q| = 1; Cephes' sin/cos within 1 ulp after an exact Cody–Waite reduction; 1.0 measured).
+EPS = np.finfo(float).eps
+FAST_LOG_ULPS = 4.0
+FAST_EXP_ULPS = 4.0
+
+
+def norms(v):
+    """|v| of each row without underflow (np.linalg.norm squares 1e-300 to 0)."""
+    scale = np.abs(v).max(axis=1)
+    return scale * np.linalg.norm(v / np.where(scale > 0, scale, 1.0)[:, None], axis=1)
+
+
+def log_edges():
+    """Quaternions (w, x, y, z) at the edges of log: angles near 0 (both branches of the series
+    threshold |v| = 1e-5), near π (w → 0), exactly π (w = ±0), the identity, unnormalised."""
+    rng = np.random.default_rng(5)
+    axes = rng.normal(size=(64, 3))
+    axes /= np.linalg.norm(axes, axis=1)[:, None]
+    rows = []
+    for half in [0.0, 1e-300, 1e-160, 1e-12, 1e-8, 5e-6, 1e-5 * (1 - 1e-12), 1e-5, 1e-5 * (1 + 1e-12), 1e-3,
+                 0.3, 0.66, math.pi / 4, 1.0, math.pi / 2 - 1e-9, math.pi / 2 - 1e-17, math.pi / 2]:
+        for a in axes[:8]:
+            rows.append(np.concatenate([[math.cos(half)], math.sin(half) * a]))
+    for a in axes:
+        rows.append(np.concatenate([[0.0], a]))    # exactly π
+        rows.append(np.concatenate([[-0.0], a]))   # exactly π, w = −0
+        rows.append(np.concatenate([[-1e-17], a]))  # π from the other side: the w ≥ 0 representative
+    q = np.array(rows)
+    q = np.concatenate([q, -q, q * 1e-11, q * 3.0, q * 1e100])  # both signs, unnormalised (|q|² ≥ 2e-24)
+    return q[np.linalg.norm(q, axis=1) > 0]
+
+
+def test_fast_log_within_the_stated_ulps_of_the_default():
+    rng = np.random.default_rng(31)
+    q = rng.normal(size=(200_000, 4))
+    q[:100_000] /= np.linalg.norm(q[:100_000], axis=1)[:, None]
+    q = np.concatenate([q, log_edges()])
+    want = rigid.so3.log(q)
+    got = rigid.so3.log(q, fast=True)
+    angle = norms(want)
+    err = np.abs(got - want).max(axis=1)
+    assert np.all(err <= FAST_LOG_ULPS * EPS * angle), (err / (EPS * np.maximum(angle, 1e-300))).max()
+    assert np.array_equal(got[angle == 0], want[angle == 0])  # the identity: exactly 0
+    # the same representative (w ≥ 0, w = −0 as +0): near π the two ±ω never mix
+    assert np.all(np.einsum("ij,ij->i", got, want) >= 0)
+    # xyzw is the same computation on reordered columns
+    assert np.array_equal(rigid.so3.log(q[:, [1, 2, 3, 0]], order="xyzw", fast=True), got)
+    # and within the default's 16-ulp tolerance plus the fast bound of the scalar SO3.log
+    small = log_edges()
+    scalar_log = np.array([scalar(x).log() for x in small])
+    bound = (ULPS * math.pi + FAST_LOG_ULPS * EPS * norms(scalar_log))[:, None]
+    assert np.all(np.abs(rigid.so3.log(small, fast=True) - scalar_log) <= bound)
+
+
+def test_fast_exp_within_the_stated_ulps_of_the_default():
+    rng = np.random.default_rng(32)
+    w = rng.normal(size=(200_000, 3)) * rng.uniform(0, 20, size=(200_000, 1))
+    axes = w[:64] / np.linalg.norm(w[:64], axis=1)[:, None]
+    # θ at 0, around the series threshold 1e-5, multiples of π/2 (where the reduction switches
+    # quadrant) and large angles up to and beyond the fast domain (|ω| ≤ 1e6; beyond, the default)
+    angles = [0.0, 1e-300, 1e-12, 1e-5 * (1 - 1e-12), 1e-5, 1e-5 * (1 + 1e-12), 1e-3]
+    angles += [k * math.pi / 2 + d for k in range(1, 9) for d in (-1e-12, 0.0, 1e-12)]
+    angles += [1e3, 12345.678, 2e4, 999_999.0, 1e6, 1.5e6, 1e9, 1e15]
+    edges = np.array([t * a for t in angles for a in axes[:8]])
+    w = np.concatenate([w, edges, -edges])
+    want = rigid.so3.exp(w)
+    got = rigid.so3.exp(w, fast=True)
+    assert np.abs(got - want).max() <= FAST_EXP_ULPS * EPS
+    assert np.array_equal(got[np.linalg.norm(w, axis=1) == 0], want[np.linalg.norm(w, axis=1) == 0])
+    assert np.array_equal(rigid.so3.exp(w, fast=True, order="xyzw"), got[:, [1, 2, 3, 0]])
+    # matrices from the fast quaternions: an entry is a sum of products 2 q_a q_b whose gradient in q
+    # has 1-norm ≤ 4√2, so 4√2 · FAST_EXP_ULPS ε plus a few roundings: 24 ε, as the docstring says
+    m = rigid.so3.exp(w[:20_000], fast=True, output="matrix")
+    assert np.abs(m - rigid.so3.exp(w[:20_000], output="matrix")).max() <= 24 * EPS
+
+
+def test_fast_bounds_are_the_documented_ones():
+    assert "4 ε |ω|" in rigid.so3.log.__doc__
+    assert "4 ε (ε = 2⁻⁵²)" in rigid.so3.exp.__doc__ and "24 ε" in rigid.so3.exp.__doc__
+
+
+def test_default_log_blocks_are_bitwise_the_per_row_code():
+    # A row the block loop does not take (|q|² overflows: scaled first) sends its whole block of
+    # 4096 rows through read_rotation and SO3d::log one by one; every other row must come out
+    # bitwise the same as from the block loop.
+    rng = np.random.default_rng(33)
+    q = rng.normal(size=(4096, 4))
+    q[::2] /= np.linalg.norm(q[::2], axis=1)[:, None]
+    q = np.concatenate([q, log_edges()[:300]])
+    mixed = q.copy()
+    mixed[7] = [1e200, 1e200, 0.0, 0.0]
+    a, b = rigid.so3.log(q), rigid.so3.log(mixed)
+    keep = np.arange(len(q)) != 7
+    assert np.array_equal(a[keep], b[keep])
+    assert np.allclose(b[7], [math.pi / 2, 0, 0], rtol=0, atol=4 * EPS)
+
+
+BAD_LOG = [
+    ([[1, 0, 0, 0], [0, 0, 0, 0]], r"argument 'q' row 1: quaternion \(w, x, y, z\) = \(0, 0, 0, 0\) has norm 0"),
+    ([[1, 0, 0, 0], [1, float("nan"), 0, 0]], r"argument 'q' row 1: quaternion .* has a non-finite component"),
+    ([1e-13, 0, 0, 0], r"argument 'q': quaternion .* has norm 1e-13"),
+    ([[1, 0, 0, 0], [1, 0, float("inf"), 0]], r"argument 'q' row 1: quaternion .* has a non-finite component"),
+]
+BAD_EXP = [
+    ([[0, 0, 1], [0, float("nan"), 0]], r"argument 'omega' row 1: rotation vector \[0, nan, 0\] has a non-finite"),
+    ([[0, 0, 1], [2e15, 0, 0]], r"argument 'omega' row 1: rotation vector \[2000000000000000, 0, 0\] is too long: angle"),
+    ([1e200, 0, 0], r"argument 'omega': rotation vector \[1e\+200, 0, 0\] is too long: \|ω\|² overflows"),
+]
+
+
+@pytest.mark.parametrize("function, argument, message",
+                         [("log", a, m) for a, m in BAD_LOG] + [("exp", a, m) for a, m in BAD_EXP])
+def test_fast_refuses_as_the_default(function, argument, message):
+    f = getattr(rigid.so3, function)
+    errors = []
+    for fast in (False, True):
+        with pytest.raises(rigid.Error, match=message) as e:
+            f(argument, fast=fast)
+        errors.append(str(e.value))
+    assert errors[0] == errors[1]
+
+
+def test_fast_refusal_in_a_threaded_batch_names_the_first_bad_row():
+    q = np.tile([1.0, 0.0, 0.0, 0.0], (200_000, 1))
+    q[150_001] = 0.0  # in the second thread's chunk
+    q[199_999, 0] = np.nan
+    for fast in (False, True):
+        with pytest.raises(rigid.Error, match=r"so3.log\(\): argument 'q' row 150001: .* has norm 0"):
+            rigid.so3.log(q, fast=fast)
