@@ -135,6 +135,11 @@ inline void add_inertia_command(CLI::App& app) {
       "mesh files: a thin shell's mass per unit area (kg/m²; implies --shell, instead of "
       "--thickness and --density)")
       ->type_name("KG_PER_M2");
+  inertia->add_option("--density-field", source->density_field,
+                      "mesh files: a density varying in space, an expression of x, y, z (m, the "
+                      "mesh's frame) in kg/m³ over the closed mesh, integrated by adaptive "
+                      "cubature (its error estimate is printed); instead of --mass/--density")
+      ->type_name("EXPR");
   inertia->add_option("--units", source->units, "mesh files: length unit m, cm, mm or in")
       ->default_str("m");
   inertia->add_flag("--shell", source->shell, "mesh files: a thin shell, not a solid");

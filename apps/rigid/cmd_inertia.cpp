@@ -357,7 +357,7 @@ void run_inertia_source(const InertiaSourceOptions& opts) {
     run_inertia_mesh(
         opts.source,
         {opts.mass, opts.density, opts.areal_density, opts.units, opts.shell, opts.thickness,
-         opts.fill_holes, opts.tolerance},
+         opts.fill_holes, opts.tolerance, opts.density_field},
         opts.output);
     return;
   }

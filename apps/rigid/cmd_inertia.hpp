@@ -107,6 +107,7 @@ struct InertiaSourceOptions {
   std::optional<double> mass;       ///< kg (mesh files)
   std::optional<double> density;    ///< kg/m³: a solid's, or a shell's material (with thickness)
   std::optional<double> areal_density;  ///< kg/m²: a shell's mass per unit area (implies shell)
+  std::string density_field;        ///< ρ(x, y, z) in kg/m³ over a closed mesh (m, its frame)
   std::string units = "m";          ///< mesh file unit: m, cm, mm or in
   bool shell = false;               ///< mesh as a thin shell
   std::optional<double> thickness;  ///< m, with shell

@@ -29,6 +29,9 @@ struct MeshInertiaOptions {
   std::optional<double> thickness;  ///< m, shell only
   bool fill_holes = false;          ///< close simple holes (mesh::fill_holes) first
   std::string tolerance;            ///< "vertices=±0.05mm,density=±2%": values ± 1σ
+  /// ρ(x, y, z) in kg/m³ (x, y, z in m in the mesh's frame, after --units) over the closed
+  /// mesh, instead of an amount (scene::integrate_density_field_over_mesh)
+  std::string density_field{};
 };
 
 /// True when `path` has a mesh extension (.stl, .obj, .ply, .off, any case).

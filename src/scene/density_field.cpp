@@ -20,36 +20,12 @@ lagrange::CompiledFunction compile_density_field(const lagrange::Expression& rho
   return lagrange::compile_function(rho, {"x", "y", "z"}, parameters, what);
 }
 
-mass::DensityIntegration integrate_density_field(
-    std::string_view primitive, const std::vector<std::pair<std::string, double>>& sizes,
-    const lagrange::CompiledFunction& rho, std::string_view what) {
-  RIGID_REQUIRE_AS("density field", takes_density_field(primitive),
-                   "{}: a density field is integrated over a box, a cylinder or a sphere, not a "
-                   "{}; give it a constant density",
-                   what, primitive);
-  const mass::DensityFunction f = [&rho](const Eigen::Vector3d& p) {
-    return rho(std::span<const double>(p.data(), 3));
-  };
-  const auto size = [&](std::string_view key) {
-    for (const auto& [k, v] : sizes) {
-      if (k == key) return v;
-    }
-    return 0.0;
-  };
-  const bool box = primitive == "solid_box", cylinder = primitive == "solid_cylinder";
-  const mass::DensityIntegration r = [&] {
-    try {
-      return box        ? mass::integrate_density_over_box(f, size("lx"), size("ly"), size("lz"))
-             : cylinder ? mass::integrate_density_over_cylinder(f, size("radius"), size("height"))
-                        : mass::integrate_density_over_sphere(f, size("radius"));
-    } catch (const Error& e) {  // a negative or non-finite density at a point, no mass
-      throw Error(fmt::format("{} '{}': {}", what, rho.text(), e.what()));
-    }
-  }();
-  // the shape's size, for the COM's error
-  const double length = box        ? std::max({size("lx"), size("ly"), size("lz")})
-                        : cylinder ? std::max(2 * size("radius"), size("height"))
-                                   : 2 * size("radius");
+namespace {
+
+// The estimated errors against kDensityFieldRelativeError (relative to the mass, the shape's
+// size `length` and tr I), and the moments within their error of zero set to 0.
+mass::DensityIntegration checked(const mass::DensityIntegration& r, double length,
+                                 const lagrange::CompiledFunction& rho, std::string_view what) {
   const MassProperties& mp = r.mass_properties;
   const double mass_rel = r.mass_error / mp.mass();
   const double com_rel = r.com_error / length;
@@ -80,12 +56,72 @@ mass::DensityIntegration integrate_density_field(
   return out;
 }
 
+}  // namespace
+
+mass::DensityIntegration integrate_density_field(
+    std::string_view primitive, const std::vector<std::pair<std::string, double>>& sizes,
+    const lagrange::CompiledFunction& rho, std::string_view what) {
+  RIGID_REQUIRE_AS("density field", takes_density_field(primitive),
+                   "{}: a density field is integrated over a box, a cylinder or a sphere, not a "
+                   "{}; give it a constant density",
+                   what, primitive);
+  const mass::DensityFunction f = [&rho](const Eigen::Vector3d& p) {
+    return rho(std::span<const double>(p.data(), 3));
+  };
+  const auto size = [&](std::string_view key) {
+    for (const auto& [k, v] : sizes) {
+      if (k == key) return v;
+    }
+    return 0.0;
+  };
+  const bool box = primitive == "solid_box", cylinder = primitive == "solid_cylinder";
+  const mass::DensityIntegration r = [&] {
+    try {
+      return box        ? mass::integrate_density_over_box(f, size("lx"), size("ly"), size("lz"))
+             : cylinder ? mass::integrate_density_over_cylinder(f, size("radius"), size("height"))
+                        : mass::integrate_density_over_sphere(f, size("radius"));
+    } catch (const Error& e) {  // a negative or non-finite density at a point, no mass
+      throw Error(fmt::format("{} '{}': {}", what, rho.text(), e.what()));
+    }
+  }();
+  // the shape's size, for the COM's error
+  const double length = box        ? std::max({size("lx"), size("ly"), size("lz")})
+                        : cylinder ? std::max(2 * size("radius"), size("height"))
+                                   : 2 * size("radius");
+  return checked(r, length, rho, what);
+}
+
+mass::DensityIntegration integrate_density_field_over_mesh(
+    const std::vector<Eigen::Vector3d>& vertices,
+    const std::vector<std::array<std::uint32_t, 3>>& triangles,
+    const lagrange::CompiledFunction& rho, std::string_view what) {
+  const mass::DensityFunction f = [&rho](const Eigen::Vector3d& p) {
+    return rho(std::span<const double>(p.data(), 3));
+  };
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(HUGE_VAL), hi = -lo;
+  for (const Eigen::Vector3d& v : vertices) {
+    lo = lo.cwiseMin(v);
+    hi = hi.cwiseMax(v);
+  }
+  const mass::DensityIntegration r = [&] {
+    try {
+      return mass::integrate_density_over_mesh(f, vertices, triangles);
+    } catch (const Error& e) {  // a negative or non-finite density at a point, no mass
+      throw Error(fmt::format("{} '{}': {}", what, rho.text(), e.what()));
+    }
+  }();
+  return checked(r, (hi - lo).norm(), rho, what);
+}
+
 std::string describe(const mass::DensityIntegration& r) {
+  const std::string cells =
+      r.points_per_cell == 3375
+          ? fmt::format("{} cell{} of 15³ points", r.cells, r.cells == 1 ? "" : "s")
+          : fmt::format("{} tetrahedr{} of {} points", r.cells, r.cells == 1 ? "on" : "a",
+                        r.points_per_cell);
   return fmt::format(
-      "{} cell{} of 15³ points; estimated errors: mass {:.2g} kg ({:.2g} of it), COM {:.2g} m, "
-      "inertia {:.2g} kg·m²",
-      r.cells, r.cells == 1 ? "" : "s", r.mass_error, r.mass_error / r.mass_properties.mass(),
-      r.com_error, r.inertia_error);
+      "{}; estimated errors: mass {:.2g} kg ({:.2g} of it), COM {:.2g} m, inertia {:.2g} kg·m²",
+      cells, r.mass_error, r.mass_error / r.mass_properties.mass(), r.com_error, r.inertia_error);
 }
 
 }  // namespace rigid::scene

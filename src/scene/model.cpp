@@ -233,6 +233,30 @@ BodyMass mass_of(const Body& b, const Evaluator& eval, std::vector<lagrange::Par
       return {numeric, symbolic, evaluated};
     }
     case MassSpec::Kind::kMesh: {
+      if (m.density_field) {
+        // ρ(x, y, z) over the closed mesh, read and checked as a solid of unit mass (its
+        // refusals and warnings), then integrated; named as constants like a uniform mesh's
+        const mass::DensityIntegration integration = at_location(m.where, ctx, [&] {
+          if (!prepared) {
+            prepared = std::make_shared<const mesh::PreparedMesh>(
+                mesh::prepare_mesh_file(m.mesh_file.string(), mesh::unit_scale(m.units), {}, m.fill_holes));
+          }
+          (void)mesh::measure_prepared_mesh(*prepared, {1.0, std::nullopt, false, std::nullopt});
+          const auto rho = compile_density_field(
+              lagrange::Expression(m.density_field->text, m.density_field->where), params,
+              ctx + " density_field");
+          mass::DensityIntegration r = integrate_density_field_over_mesh(
+              prepared->mesh.vertices, prepared->mesh.triangles, rho, ctx + " density_field");
+          // the warnings of a solid of that mass: its size and its mean density against real materials
+          const mesh::MeshFileMass solid = mesh::measure_prepared_mesh(
+              *prepared, {r.mass_properties.mass(), std::nullopt, false, std::nullopt});
+          for (const auto& w : solid.warnings()) warnings.push_back(fmt::format("{}: {}", ctx, word_for(Surface::kScene, w)));
+          return r;
+        });
+        const MassProperties& numeric = integration.mass_properties;
+        return {numeric, named_constants(b.name, numeric, params, derived, derived_units), {},
+                integration};
+      }
       mesh::MassSpec spec;
       if (m.mass) spec.mass = eval.value(*m.mass, ctx + " mass");
       if (m.density) spec.density = eval.value(*m.density, ctx + " density");

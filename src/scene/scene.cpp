@@ -392,15 +392,22 @@ void parse_mass(const Parser& p, const toml::table& t, const std::string& contex
       }
     }
     if (entry != nullptr && !takes_density_field(entry->name)) {
-      p.fail(*n, fmt::format("{}: density_field is integrated over a box, a cylinder or a sphere, "
-                             "not a {}; give it a constant 'density'", context, entry->name));
+      p.fail(*n, fmt::format("{}: density_field is integrated over a box, a cylinder, a sphere or "
+                             "a closed mesh, not a {}; give it a constant 'density'",
+                             context, entry->name));
     }
-    if (!t.contains("primitive")) {
-      p.fail(*n, fmt::format("{}: density_field goes with 'primitive' (box, cylinder or sphere); "
-                             "a mesh takes a constant 'density'", context));
+    if (!t.contains("primitive") && !t.contains("mesh")) {
+      p.fail(*n, fmt::format("{}: density_field goes with 'primitive' (box, cylinder or sphere) "
+                             "or 'mesh' (a closed one)", context));
+    }
+    for (const char* key : {"shell", "thickness"}) {
+      if (t.contains(key)) {
+        p.fail(*n, fmt::format("{}: density_field is the density of a solid; a mesh with '{}' is "
+                               "a shell: give it a constant 'density'", context, key));
+      }
     }
   }
-  const bool needs_amount = (t.contains("primitive") && !m.density_field) || t.contains("mesh");
+  const bool needs_amount = (t.contains("primitive") || t.contains("mesh")) && !m.density_field;
   if (needs_amount && m.mass.has_value() == m.density.has_value()) {
     p.fail(t.source(), fmt::format("{} needs exactly one of 'mass' (kg) and 'density' (kg/m³){}",
                                    context, m.mass ? ", not both" : ""));

@@ -101,11 +101,14 @@ t_end = 0.1
 
 @pytest.mark.parametrize("body, message", [
     ('primitive = "cone"\nradius = 1\nheight = 1\ndensity_field = "rho0"',
-     "density_field is integrated over a box, a cylinder or a sphere, not a solid_cone"),
+     "density_field is integrated over a box, a cylinder, a sphere or a closed mesh, not a "
+     "solid_cone"),
     ('primitive = "box"\nlx = 1\nly = 1\nlz = 1\ndensity_field = "rho0"\nmass = 2',
      "density_field gives the mass; it takes no 'mass' or 'density'"),
-    ('mesh = "part.stl"\ndensity_field = "rho0"',
-     "density_field goes with 'primitive' (box, cylinder or sphere)"),
+    ('mesh = "part.stl"\ndensity_field = "rho0"\nshell = true',
+     "density_field is the density of a solid; a mesh with 'shell' is a shell"),
+    ('point_masses = [{ mass = 1, position = [0, 0, 0] }]\ndensity_field = "rho0"',
+     "density_field goes with 'primitive' (box, cylinder or sphere) or 'mesh' (a closed one)"),
     ('primitive = "box"\nlx = 1\nly = 1\nlz = 1\ndensity_field = "rho0*q"',
      "undefined symbol 'q'"),
     ('primitive = "box"\nlx = 1\nly = 1\nlz = 1\ndensity_field = 1000',

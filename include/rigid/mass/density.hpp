@@ -34,6 +34,9 @@ struct DensityIntegration {
   double inertia_error;  ///< kg·m² (bound on every element of the inertia about the COM)
   int cells;             ///< cells used (a mesh: tetrahedra)
   bool converged;        ///< false if max_cells was reached first
+  /// The density evaluations per cell: 15³ = 3375 for a box, a cylinder or a sphere; 105 (the
+  /// two simplex rules) per tetrahedron of a mesh.
+  int points_per_cell = 3375;
 };
 
 /// ρ over the box [−lx/2, lx/2] × [−ly/2, ly/2] × [−lz/2, lz/2].

@@ -1,10 +1,12 @@
 #pragma once
 
-/// A density that varies in space, ρ(x, y, z), over a catalogue primitive: the scenes'
-/// `density_field` and `rigid inertia … --density-field`. ρ is an expression of x, y, z (m, in
+/// A density that varies in space, ρ(x, y, z), over a catalogue primitive or a closed mesh: the
+/// scenes' `density_field` and `rigid inertia … --density-field`. ρ is an expression of x, y, z (m, in
 /// the shape's own frame) compiled once (lagrange::compile_function) and integrated by the
 /// adaptive cubature of rigid/mass/density.hpp.
 
+#include <array>
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -38,6 +40,16 @@ inline constexpr double kDensityFieldRelativeError = 1e-8;
 ///         is not positive, or an estimated error exceeds kDensityFieldRelativeError.
 [[nodiscard]] mass::DensityIntegration integrate_density_field(
     std::string_view primitive, const std::vector<std::pair<std::string, double>>& sizes,
+    const lagrange::CompiledFunction& rho, std::string_view what);
+
+/// ρ over the solid a closed, outward-oriented triangle mesh bounds (vertices in m, the mesh's
+/// frame; mass::integrate_density_over_mesh), refused as integrate_density_field is: a negative
+/// or non-finite ρ at a sample point, no mass, or an estimated error above
+/// kDensityFieldRelativeError (relative to the mass, the bounding-box diagonal and tr I). The
+/// caller gives a closed mesh (a repaired one: mesh::repair_mesh says whether it is).
+[[nodiscard]] mass::DensityIntegration integrate_density_field_over_mesh(
+    const std::vector<Eigen::Vector3d>& vertices,
+    const std::vector<std::array<std::uint32_t, 3>>& triangles,
     const lagrange::CompiledFunction& rho, std::string_view what);
 
 /// One line for the user: the cells and the estimated errors of an integration.
