@@ -54,8 +54,10 @@ export function statistics(values) {
 export function histogram(values) {
   const v = Array.from(values).filter(Number.isFinite);
   if (!v.length) return { edges: [0, 1], counts: [0] };
-  let lo = Math.min(...v);
-  let hi = Math.max(...v);
+  // a loop, not Math.min(...v): a spread of a million arguments overflows the stack
+  let lo = Infinity;
+  let hi = -Infinity;
+  for (const x of v) { lo = Math.min(lo, x); hi = Math.max(hi, x); }
   if (hi === lo) {
     const d = lo === 0 ? 0.5 : Math.abs(lo) * 0.05;
     lo -= d;
