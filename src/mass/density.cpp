@@ -338,6 +338,38 @@ DensityIntegration integrate_density_over_mesh(const DensityFunction& rho,
                    "relative_tolerance must be positive and max_cells at least 1, got {} and {}",
                    options.relative_tolerance, options.max_cells);
   RIGID_REQUIRE_AS(__func__, !triangles.empty(), "the mesh has no triangles");
+  // closed and consistently oriented: each directed edge once, and its reverse once (an open or
+  // mis-wound mesh bounds no solid, and its tetrahedra would sum to a wrong volume silently)
+  {
+    std::vector<std::uint64_t> edges, reversed;
+    edges.reserve(3 * triangles.size());
+    reversed.reserve(3 * triangles.size());
+    for (const auto& t : triangles) {
+      for (std::size_t k = 0; k < 3; ++k) {
+        RIGID_REQUIRE_AS(__func__, t[k] < vertices.size(),
+                         "a triangle names vertex {}; the mesh has {}", t[k], vertices.size());
+        const std::uint64_t a = t[k], b = t[(k + 1) % 3];
+        edges.push_back(a << 32 | b);
+        reversed.push_back(b << 32 | a);
+      }
+    }
+    std::sort(edges.begin(), edges.end());
+    std::sort(reversed.begin(), reversed.end());
+    const auto repeated = std::adjacent_find(edges.begin(), edges.end());
+    if (repeated != edges.end() || edges != reversed) {
+      const std::uint64_t e = repeated != edges.end() ? *repeated : [&] {
+        const auto m = std::mismatch(edges.begin(), edges.end(), reversed.begin());
+        return m.first != edges.end() ? *m.first : 0;
+      }();
+      detail::throw_error(
+          __func__, fmt::format("the mesh is not closed and consistently oriented (edge {} → {} "
+                                "{}); a density field is integrated over the solid a closed "
+                                "mesh bounds: repair it first (mesh::repair_mesh)",
+                                e >> 32, e & 0xFFFFFFFFu,
+                                repeated != edges.end() ? "is used twice in the same direction"
+                                                        : "has no triangle on its other side"));
+    }
+  }
   // the reference point: the centroid of the vertices, inside a convex solid, so that the
   // tetrahedra stay inside it (and their round-off small)
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(HUGE_VAL), hi = -lo;
@@ -357,8 +389,6 @@ DensityIntegration integrate_density_over_mesh(const DensityFunction& rho,
     Tetrahedron t;
     t.p[0] = Eigen::Vector3d::Zero();
     for (std::size_t k = 0; k < 3; ++k) {
-      RIGID_REQUIRE_AS(__func__, tri[k] < vertices.size(),
-                       "a triangle names vertex {}; the mesh has {}", tri[k], vertices.size());
       t.p[k + 1] = vertices[tri[k]] - origin;
     }
     t.det = t.p[1].dot(t.p[2].cross(t.p[3]));

@@ -231,6 +231,17 @@ TEST(DensityMeshCubature, BadInput) {
   EXPECT_RIGID_ERROR((void)mass::integrate_density_over_mesh(
                          [](const Eigen::Vector3d&) { return 0.0; }, m.vertices, m.triangles),
                      "the density integrates to a mass of 0 kg");
+  PrismMesh open = m;
+  open.triangles.pop_back();
+  EXPECT_RIGID_ERROR((void)mass::integrate_density_over_mesh(
+                         [](const Eigen::Vector3d&) { return 1.0; }, open.vertices, open.triangles),
+                     "the mesh is not closed and consistently oriented");
+  PrismMesh flipped = m;
+  std::swap(flipped.triangles[0][1], flipped.triangles[0][2]);
+  EXPECT_RIGID_ERROR((void)mass::integrate_density_over_mesh(
+                         [](const Eigen::Vector3d&) { return 1.0; }, flipped.vertices,
+                         flipped.triangles),
+                     "is used twice in the same direction");
   const std::vector<std::array<std::uint32_t, 3>> missing = {{0, 1, 99}};
   EXPECT_RIGID_ERROR((void)mass::integrate_density_over_mesh(
                          [](const Eigen::Vector3d&) { return 1.0; }, m.vertices, missing),
