@@ -19,9 +19,13 @@
 #include "rigid/io/run_output.hpp"
 #include "rigid/io/run_schema.hpp"
 #include "rigid/report/report.hpp"
+#include "detail/sweep_files.hpp"
 
 namespace rigid::report {
 namespace {
+using detail::read_text;
+using detail::read_runs_csv;
+using detail::RunsCsv;
 
 namespace fs = std::filesystem;
 
@@ -36,21 +40,6 @@ struct Column {
   std::vector<double> values;
 };
 
-// the text of a regular file (a FIFO or device is refused before it is opened)
-std::string read_text(const fs::path& file, std::string_view what) {
-  std::error_code ec;
-  if (!fs::is_regular_file(file, ec)) {
-    throw Error(
-        fmt::format("'{}' is not a regular file; expected {}", escaped(file.string()), what));
-  }
-  std::ifstream in(file, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  if (!in.good() && !in.eof()) {
-    throw Error(fmt::format("'{}' cannot be read; expected {}", escaped(file.string()), what));
-  }
-  return text.str();
-}
 
 // the names close to `word` (a few edits away, or containing it), closest first
 std::vector<std::string> close_names(std::string_view word, const std::vector<std::string>& names) {
@@ -154,88 +143,6 @@ Plot plot_run(const fs::path& dir, const PlotRequest& request) {
 
 // ---- a sweep ----
 
-// runs.csv: a header of names, then rows of numbers and the quoted `error` text (RFC 4180: a
-// field in double quotes may hold commas, line breaks and doubled quotes)
-struct RunsCsv {
-  std::vector<std::string> names;            // without `error`
-  std::vector<std::vector<double>> columns;  // one per name
-  std::vector<std::string> errors;           // one per run
-};
-
-RunsCsv read_runs_csv(const fs::path& file) {
-  const std::string text = read_text(file, "the runs.csv that rigid sweep writes");
-  std::vector<std::vector<std::string>> rows;
-  std::vector<std::string> row;
-  std::string field;
-  bool quoted = false;
-  for (std::size_t i = 0; i < text.size(); ++i) {
-    const char c = text[i];
-    if (quoted) {
-      if (c == '"' && i + 1 < text.size() && text[i + 1] == '"') {
-        field += '"';
-        ++i;
-      } else if (c == '"') {
-        quoted = false;
-      } else {
-        field += c;
-      }
-    } else if (c == '"' && field.empty()) {
-      quoted = true;
-    } else if (c == ',') {
-      row.push_back(std::move(field));
-      field.clear();
-    } else if (c == '\n' || c == '\r') {
-      if (c == '\r' && i + 1 < text.size() && text[i + 1] == '\n') ++i;
-      row.push_back(std::move(field));
-      field.clear();
-      rows.push_back(std::move(row));
-      row.clear();
-    } else {
-      field += c;
-    }
-  }
-  if (quoted) {
-    throw Error(
-        fmt::format("'{}' ends inside a quoted field; expected the runs.csv that rigid sweep "
-                    "writes (cut short?)",
-                    escaped(file.string())));
-  }
-  if (!field.empty() || !row.empty()) {
-    row.push_back(std::move(field));
-    rows.push_back(std::move(row));
-  }
-  if (rows.empty() || rows[0].size() < 2 || rows[0].back() != "error") {
-    throw Error(
-        fmt::format("'{}' has no header line ending in 'error'; expected the runs.csv that "
-                    "rigid sweep writes",
-                    escaped(file.string())));
-  }
-  RunsCsv out;
-  out.names = rows[0];
-  out.names.pop_back();  // `error`
-  out.columns.resize(out.names.size());
-  for (std::size_t r = 1; r < rows.size(); ++r) {
-    if (rows[r].size() == 1 && rows[r][0].empty()) continue;  // a blank line
-    if (rows[r].size() != rows[0].size()) {
-      throw Error(fmt::format("'{}': run row {} has {} fields, expected {} (one per column)",
-                              escaped(file.string()), r, rows[r].size(), rows[0].size()));
-    }
-    for (std::size_t k = 0; k < out.names.size(); ++k) {
-      const std::string& f = rows[r][k];
-      double v = NAN;  // a failed run's results may be empty
-      if (!f.empty()) {
-        const auto [end, ec] = std::from_chars(f.data(), f.data() + f.size(), v);
-        if (ec != std::errc() || end != f.data() + f.size()) {
-          throw Error(fmt::format("'{}': run row {}, column '{}': '{}' is not a number",
-                                  escaped(file.string()), r, out.names[k], escaped(f)));
-        }
-      }
-      out.columns[k].push_back(v);
-    }
-    out.errors.push_back(rows[r].back());
-  }
-  return out;
-}
 
 // the units of a sweep's columns: those of the schema of a run it kept (--keep-trajectories),
 // whose parameters, diagnostics and metrics are the sweep's swept names and results

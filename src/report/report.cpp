@@ -21,9 +21,11 @@
 #include "rigid/io/table.hpp"
 #include "rigid/mass/primitive_table.hpp"
 #include "rigid/mesh/read_mesh.hpp"
+#include "detail/sweep_files.hpp"
 
 namespace rigid::report {
 namespace {
+using detail::base64;
 
 namespace fs = std::filesystem;
 using json = nlohmann::ordered_json;
@@ -32,28 +34,6 @@ using json = nlohmann::ordered_json;
 // ones as plain JSON arrays.
 constexpr std::size_t kPlainArrayMax = 16;
 
-// RFC 4648 base64 with padding. Written here because none of the project's libraries has a
-// public encoder (Boost's is in beast::detail, fmt and nlohmann have none); 20 lines.
-std::string base64(const std::string& bytes) {
-  static constexpr char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  out.reserve((bytes.size() + 2) / 3 * 4);
-  std::size_t i = 0;
-  auto byte = [&](std::size_t k) { return static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[k])); };
-  for (; i + 3 <= bytes.size(); i += 3) {
-    const std::uint32_t v = byte(i) << 16 | byte(i + 1) << 8 | byte(i + 2);
-    for (int s = 18; s >= 0; s -= 6) out.push_back(kAlphabet[(v >> s) & 63]);
-  }
-  const std::size_t rest = bytes.size() - i;
-  if (rest > 0) {
-    const std::uint32_t v = byte(i) << 16 | (rest == 2 ? byte(i + 1) << 8 : 0);
-    out.push_back(kAlphabet[(v >> 18) & 63]);
-    out.push_back(kAlphabet[(v >> 12) & 63]);
-    out.push_back(rest == 2 ? kAlphabet[(v >> 6) & 63] : '=');
-    out.push_back('=');
-  }
-  return out;
-}
 
 // Little-endian bytes of 32-bit words, whatever the machine's order.
 void append_le(std::string& out, std::uint32_t w) {
