@@ -376,7 +376,8 @@ void bind_so3_batch(py::module_& m) {
       "(N, 3, 3) with R @ v rotating v. A single element ((4,), (3,), (3, 3)) gives a single "
       "result; in compose and act a single element is combined with every row of the other "
       "argument. Each element is computed by the same code as the rigid.SO3 method: the same "
-      "numbers, to an ulp where a quaternion is normalised. Bad input (shape, dtype, a non-finite "
+      "numbers, to an ulp where a quaternion is normalised (exp and log with fast=True: to the few "
+      "ulps their docstrings state). Bad input (shape, dtype, a non-finite "
       "or zero quaternion, a "
       "matrix that is not a rotation) raises rigid.Error naming the argument and the row.");
 
