@@ -6,6 +6,8 @@ from typing import Any, Callable, ClassVar, Iterable, Iterator, Sequence
 import numpy
 from numpy.typing import NDArray
 
+import rigid.mass
+
 
 class _Pybind11Type(type):
     """The metaclass of the classes (pybind11_builtins.pybind11_type)."""
@@ -178,3 +180,7 @@ def mass_from_file(path: object, *, mass: float | None = ..., density: float | N
 
 def vertex_noise_uncertainty(mesh: TriangleMesh, sigma: float, *, mass: float | None = ..., density: float | None = ..., about: object = ...) -> dict[str, Any]:
     """Mass, COM and inertia (about `about`, the COM when None) of a solid mesh with their 1σ when each vertex coordinate has an independent error of standard deviation sigma (m): first-order propagation, as `rigid inertia FILE --tolerance vertices=±…`."""
+
+
+def integrate_density(mesh: TriangleMesh, rho: Callable[..., Any], relative_tolerance: float = ..., max_cells: int = ...) -> rigid.mass.DensityIntegration:
+    """Mass properties of the density rho(p) (kg/m³; p a point in m, the mesh's frame) over the solid the closed, outward-oriented mesh bounds (run repair first), by adaptive cubature on the tetrahedra from its vertices' centroid (Grundmann–Möller, degrees 9 and 7): a rigid.mass.DensityIntegration (cells: tetrahedra). For a non-convex mesh rho is also sampled outside the solid, where it must be finite and non-negative. An open or misoriented mesh is refused."""
