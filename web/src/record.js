@@ -9,9 +9,10 @@
 import { el, saveDataUrl } from './format.js';
 
 const kRates = [10, 24, 25, 30, 50, 60];
-// after the last frame: how long the encoder must have written nothing, and the most to wait
-const kQuietMs = 1500;
+// after the last frame: the most to wait for the encoder, and (where its frames cannot be
+// counted: MP4) how long it must have written nothing
 const kDrainMs = 60000;
+const kQuietMs = 3000;
 
 /** The first recording type MediaRecorder says it supports, or null (none, or no MediaRecorder). */
 export function videoType() {
@@ -19,6 +20,40 @@ export function videoType() {
   if (typeof HTMLCanvasElement.prototype.captureStream !== 'function') return null;
   const types = ['video/webm;codecs=vp9', 'video/webm;codecs=vp8', 'video/webm', 'video/mp4;codecs=avc1', 'video/mp4'];
   return types.find((t) => MediaRecorder.isTypeSupported(t)) ?? null;
+}
+
+/**
+ * The number of whole frames (SimpleBlocks, BlockGroups) in the start of a WebM file (EBML, RFC
+ * 8794; Matroska's element IDs, RFC 9559). Segment, Cluster and BlockGroup are entered (a
+ * recorder writes Segments and Clusters of unknown size); other elements are skipped by their
+ * size. An element cut off by the end is not counted.
+ */
+export function webmFrames(b) {
+  const kEnter = new Set([0x18538067, 0x1f43b675]);
+  const vint = (at, keepMarker) => {
+    if (at >= b.length) return null;
+    let len = 1;
+    while (len <= 8 && !(b[at] & (0x80 >> (len - 1)))) len += 1;
+    if (len > 8 || at + len > b.length) return null;
+    let v = keepMarker ? b[at] : b[at] & ((0x80 >> (len - 1)) - 1);
+    for (let i = 1; i < len; i += 1) v = v * 256 + b[at + i];
+    return { v, len };
+  };
+  let frames = 0;
+  let at = 0;
+  for (;;) {
+    const id = vint(at, true);
+    const size = id && vint(at + id.len, false);
+    if (!size) return frames;
+    const body = at + id.len + size.len;
+    if (kEnter.has(id.v)) {
+      at = body;
+      continue;
+    }
+    if (body + size.v > b.length) return frames;
+    if (id.v === 0xa3 || id.v === 0xa0) frames += 1;
+    at = body + size.v;
+  }
 }
 
 const ascii = (s) => Uint8Array.from(s, (c) => c.charCodeAt(0) & 0x7f);
@@ -131,6 +166,7 @@ export function buildRecorder({ canvas, render, player, name, bar }) {
       render();
     };
     let done = 0;
+    let written = null;
     const progress = () => { note.textContent = `recording frame ${done}/${count}… (click to stop)`; };
     const video = type !== null && format.value === 'video';
     const ext = video ? videoExt : 'tar';
@@ -167,14 +203,27 @@ export function buildRecorder({ canvas, render, player, name, bar }) {
         await pause(start + (k + 1) * (1000 / rate) - performance.now());
       }
       // the encoder runs behind the frames (a second or more for a large view in software), and
-      // a stop drops what it has not written: stop once it has written nothing for kQuietMs
+      // a stop drops what it has not written: a WebM is stopped once it holds every frame sent
+      // but the last (which the muxer keeps until the next frame or the stop, and the stop
+      // writes) or after kDrainMs; an MP4 once nothing was written for kQuietMs
       const last = performance.now();
-      note.textContent = `encoding the last frames… (${done} sent)`;
-      while (performance.now() - Math.max(last, lastData) < kQuietMs && performance.now() - last < kDrainMs) await pause(100);
+      const inFile = async () => (videoExt === 'webm' ? webmFrames(new Uint8Array(await new Blob(chunks).arrayBuffer())) : null);
+      for (;;) {
+        const n = await inFile();
+        note.textContent = `encoding the last frames… (${n ?? '?'} of ${done} written)`;
+        const now = performance.now();
+        if ((n !== null && n >= done - 1) || now - Math.max(last, lastData) >= kQuietMs) break;
+        if (now - last >= kDrainMs) break;
+        await pause(n === null ? 100 : 250);
+      }
       recorder.stop();
       await stopped;
       for (const t of stream.getTracks()) t.stop();
       blob = new Blob(chunks, { type: type.split(';')[0] });
+      if (videoExt === 'webm') {
+        // what the file holds (a frame the encoder dropped is not in it)
+        written = webmFrames(new Uint8Array(await blob.arrayBuffer()));
+      }
     } else {
       const entries = [];
       const dir = `${name}_${stamp(t0)}s`;
@@ -192,8 +241,9 @@ export function buildRecorder({ canvas, render, player, name, bar }) {
     const t1 = t0 + Math.max(0, done - 1) * dt;
     const file = `${name}_${stamp(t0)}-${stamp(t1)}s.${ext}`;
     save(blob, file);
-    note.textContent = `saved ${file} (${done} frames at ${rate} fps, ${megabytes(blob.size)})`;
-    return { name: file, size: blob.size, frames: done };
+    const lost = written !== null && written < done ? `; ${done - written} dropped by the encoder` : '';
+    note.textContent = `saved ${file} (${written ?? done} frames at ${rate} fps${lost}, ${megabytes(blob.size)})`;
+    return { name: file, size: blob.size, frames: written ?? done };
   };
 
   const run = () => {
