@@ -203,9 +203,10 @@ export function buildRecorder({ canvas, render, player, name, bar }) {
         await pause(start + (k + 1) * (1000 / rate) - performance.now());
       }
       // the encoder runs behind the frames (a second or more for a large view in software), and
-      // a stop drops what it has not written: a WebM is stopped once it holds every frame sent
-      // but the last (which the muxer keeps until the next frame or the stop, and the stop
-      // writes) or after kDrainMs; an MP4 once nothing was written for kQuietMs
+      // a stop drops what it has not written: stopped once a WebM holds every frame sent but the
+      // last (which the muxer keeps until the next frame or the stop, and the stop writes), or
+      // once nothing was written for kQuietMs (an MP4, whose frames are not counted here; an
+      // encoder that keeps more), at most kDrainMs after the last frame
       const last = performance.now();
       const inFile = async () => (videoExt === 'webm' ? webmFrames(new Uint8Array(await new Blob(chunks).arrayBuffer())) : null);
       for (;;) {
