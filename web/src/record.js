@@ -13,6 +13,8 @@ const kRates = [10, 24, 25, 30, 50, 60];
 // counted: MP4) how long it must have written nothing
 const kDrainMs = 60000;
 const kQuietMs = 3000;
+// the most frames one recording makes (10 min at 30 fps): PNG frames are held in memory
+const kMaxFrames = 18000;
 
 /** The first recording type MediaRecorder says it supports, or null (none, or no MediaRecorder). */
 export function videoType() {
@@ -161,6 +163,9 @@ export function buildRecorder({ canvas, render, player, name, bar }) {
     const dt = player.speed / rate;
     // frames at t0, t0 + dt, …, never past the end; one at least
     const count = Math.floor(length / dt + 1e-9) + 1;
+    if (count > kMaxFrames) {
+      throw new Error(`${count} frames is more than ${kMaxFrames}: choose a shorter span, a lower rate or a higher speed`);
+    }
     const frameAt = (k) => {
       player.setTime(t0 + k * dt);
       render();
