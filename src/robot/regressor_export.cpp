@@ -12,7 +12,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
-#include <iterator>
 #include <string_view>
 
 #include <fmt/format.h>
@@ -63,7 +62,8 @@ std::string quoted(std::string_view s) {
       out += '\\';
       out += c;
     } else if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
-      out += fmt::format("\\x{:02x}", static_cast<unsigned char>(c));
+      // three octal digits: the same in C++ and Python, and (unlike \x) never longer
+      out += fmt::format("\\{:03o}", static_cast<unsigned char>(c));
     } else {
       out += c;
     }
