@@ -154,11 +154,13 @@ void run_regressor(const SceneOptions& scene, const RegressorOptions& opts, cons
     if (opts.json) refuse_json_with_emit();
     const std::filesystem::path out(eom.output);
     robot::RegressorExportOptions export_options;
-    export_options.name = (out.empty() ? std::filesystem::path(scene.scene) : out).stem().string();
-    if (export_options.name.empty()) export_options.name = "model";
+    // the namespace: the output file's stem, else the model's, by the code export's naming rule
+    std::string stem = (out.empty() ? std::filesystem::path(scene.scene) : out).stem().string();
+    export_options.name = lagrange::export_namespace(stem.empty() ? "model" : stem);
     export_options.source = rigid::escaped(scene.scene);
-    const std::string code = robot::emit_regressor(
-        model, base, lagrange::parse_language(eom.language), export_options);
+    const std::string code = lagrange::parse_language(eom.language) == lagrange::Language::kCpp
+                                 ? robot::emit_regressor_cpp(model, base, export_options)
+                                 : robot::emit_regressor_python(model, base, export_options);
     if (out.empty()) {
       std::fwrite(code.data(), 1, code.size(), stdout);
     } else {

@@ -10,6 +10,7 @@
 #include "rigid/robot/regressor_export.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstddef>
 #include <string_view>
@@ -456,9 +457,17 @@ std::string emit_regressor_cpp(const io::RobotModel& model, const BaseParameters
   const Layout layout = layout_of(model);
   check_base(layout, base);
   const StandardParameters& s = base.standard;
-  const std::string ns = lagrange::export_namespace(options.name);
+  const std::string& ns = options.name;
+  const bool identifier =
+      !ns.empty() && std::isdigit(static_cast<unsigned char>(ns[0])) == 0 &&
+      std::all_of(ns.begin(), ns.end(), [](char c) {
+        return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_';
+      });
+  RIGID_REQUIRE_AS("regressor export", identifier,
+                   "the namespace '{}' is not a C++ identifier (letters, digits and '_', not "
+                   "starting with a digit)",
+                   ns);
   std::string out = header_comment(model, base, options, "//");
-  if (ns != options.name) out += fmt::format("// namespace {} → {}\n", options.name, ns);
   out += "//\n// Arrays are row-major: Y[i*np + j], Y_b[i*nb + k].\n";
   out += "#pragma once\n\n#include <cmath>\n\n";
   out += fmt::format("namespace {} {{\n\n", ns);
@@ -691,12 +700,6 @@ def base_parameters(pi=None):
   const std::size_t first_code = out.find("\nCOORDINATES");
   out.insert(first_code + 1, "import math\n\n");
   return out;
-}
-
-std::string emit_regressor(const io::RobotModel& model, const BaseParameters& base,
-                           lagrange::Language language, const RegressorExportOptions& options) {
-  return language == lagrange::Language::kCpp ? emit_regressor_cpp(model, base, options)
-                                              : emit_regressor_python(model, base, options);
 }
 
 }  // namespace rigid::robot

@@ -6,15 +6,15 @@
 #include <string>
 
 #include "rigid/io/robot_model.hpp"
-#include "rigid/lagrange/export.hpp"
 #include "rigid/robot/regressor.hpp"
 
 namespace rigid::robot {
 
 /// What the exported file is called and where it comes from (for its comments).
 struct RegressorExportOptions {
-  /// The C++ namespace, made an identifier by the export's rule (lagrange::export_namespace):
-  /// "main" gives `namespace main_`. Unused by Python.
+  /// The C++ namespace: an identifier (letters, digits, '_', not starting with a digit; refused
+  /// otherwise). `rigid eom` makes one from the output file's name by the code export's rule,
+  /// lagrange::export_namespace ("main" gives "main_"). Unused by Python.
   std::string name = "model";
   /// The model file, named in the file's first comment; may be empty.
   std::string source{};
@@ -34,7 +34,8 @@ struct RegressorExportOptions {
 /// robot::base_parameters: the same recursion with the model's joints and placements as
 /// constants; the same numbers up to rounding). The file's first comment gives each base
 /// parameter as a combination of the named standard parameters.
-/// @throws rigid::Error for a joint other than a hinge or a slide (as robot::regressor).
+/// @throws rigid::Error for a joint other than a hinge or a slide (as robot::regressor), a
+///   namespace that is not an identifier, or base parameters of another model.
 [[nodiscard]] std::string emit_regressor_cpp(const io::RobotModel& model,
                                              const BaseParameters& base,
                                              const RegressorExportOptions& options = {});
@@ -47,10 +48,5 @@ struct RegressorExportOptions {
 [[nodiscard]] std::string emit_regressor_python(const io::RobotModel& model,
                                                 const BaseParameters& base,
                                                 const RegressorExportOptions& options = {});
-
-/// emit_regressor_cpp or emit_regressor_python.
-[[nodiscard]] std::string emit_regressor(const io::RobotModel& model, const BaseParameters& base,
-                                         lagrange::Language language,
-                                         const RegressorExportOptions& options = {});
 
 }  // namespace rigid::robot
