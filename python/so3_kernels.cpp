@@ -57,15 +57,22 @@ constexpr std::array<double, 6> kCos = {-1.13585365213876817300e-11, 2.087570084
 inline double sin_series(double z) { return z * horner(z, kSin); }
 inline double cos_series(double z) { return z * z * horner(z, kCos); }
 
-// One block of m ≤ kRows rows of log; returns 1 for a row the fast kind does not take.
+// The m rows of quaternions at q (w first, or last with kScalarLast) into four columns.
 template <bool kScalarLast>
-[[gnu::always_inline]] inline int log_block(const double* q, int m, double* omega) {
-  alignas(64) double W[kRows], X[kRows], Y[kRows], Z[kRows], K[kRows];
+[[gnu::always_inline]] inline void load_quaternions(const double* q, int m, double* W, double* X,
+                                                    double* Y, double* Z) {
   constexpr int iw = kScalarLast ? 3 : 0, ix = kScalarLast ? 0 : 1;
   for (int i = 0; i < m; ++i) {
     W[i] = q[4 * i + iw], X[i] = q[4 * i + ix], Y[i] = q[4 * i + ix + 1];
     Z[i] = q[4 * i + ix + 2];
   }
+}
+
+// One block of m ≤ kRows rows of log; returns 1 for a row the fast kind does not take.
+template <bool kScalarLast>
+[[gnu::always_inline]] inline int log_block(const double* q, int m, double* omega) {
+  alignas(64) double W[kRows], X[kRows], Y[kRows], Z[kRows], K[kRows];
+  load_quaternions<kScalarLast>(q, m, W, X, Y, Z);
   int bad = 0;
   for (int i = 0; i < m; ++i) {
     const double w = W[i], x = X[i], y = Y[i], z = Z[i];
@@ -140,11 +147,7 @@ template <bool kScalarLast>
 template <bool kScalarLast>
 [[gnu::always_inline]] inline int log_exact_block(const double* q, int m, double* omega) {
   alignas(64) double W[kRows], X[kRows], Y[kRows], Z[kRows], N[kRows], A[kRows];
-  constexpr int iw = kScalarLast ? 3 : 0, ix = kScalarLast ? 0 : 1;
-  for (int i = 0; i < m; ++i) {
-    W[i] = q[4 * i + iw], X[i] = q[4 * i + ix], Y[i] = q[4 * i + ix + 1];
-    Z[i] = q[4 * i + ix + 2];
-  }
+  load_quaternions<kScalarLast>(q, m, W, X, Y, Z);
   int bad = 0;
   for (int i = 0; i < m; ++i) {
     const double n2 = (W[i] * W[i] + Y[i] * Y[i]) + (X[i] * X[i] + Z[i] * Z[i]);
