@@ -19,10 +19,11 @@ build: configure
 
 # The C++ suite is built and run once, under ASan + UBSan (test-asan); the optimised `ci` build
 # is what pytest (Python and the CLI), the browser tests and ctest's install test run.
+# pytest runs as two processes at once (scripts/run-pytest.sh), each about one core's worth.
 test: build test-asan test-tsan test-browser
 	ctest --preset $(PRESET)
 	RIGID_PYTHON_DIR=$(CURDIR)/$(BUILD)/python RIGID_EXE=$(CURDIR)/$(BUILD)/bin/rigid \
-	  $(PYTHON) -m pytest -q python/tests tests/cli
+	  scripts/run-pytest.sh $(PYTHON) python/tests tests/cli
 
 demo: build
 	$(BUILD)/bin/rigid demo
@@ -44,14 +45,13 @@ test-asan: deps
 
 # One model run from several threads at once, under ThreadSanitizer: a Lagrangian system
 # (per-run workspaces), scenes (immutable models) and sweeps (the runs of a coordinate scene
-# share one derivation), robot trees (TreeDynamics, a robot scene); builds only those three test
-# binaries.
+# share one derivation), robot trees (TreeDynamics, a robot scene); builds only the test binary
+# that holds those tests (rigid_threads_tests, tests/CMakeLists.txt).
+TSAN_SUITES := Workspace.*:ModelThreads.*:SweepRun.*:SymbolicThreads.*:RobotSceneThreads.*:TreeDynamicsThreads.*
 test-tsan: deps
 	cmake --preset tsan >/dev/null
-	cmake --build --preset tsan --target rigid_lagrange_tests rigid_scene_tests rigid_robot_tests
-	TSAN_OPTIONS=halt_on_error=1 build/tsan/bin/rigid_lagrange_tests --gtest_brief=1 --gtest_filter='Workspace.*'
-	TSAN_OPTIONS=halt_on_error=1 build/tsan/bin/rigid_scene_tests --gtest_brief=1 --gtest_filter='ModelThreads.*:SweepRun.*:SymbolicThreads.*:RobotSceneThreads.*'
-	TSAN_OPTIONS=halt_on_error=1 build/tsan/bin/rigid_robot_tests --gtest_brief=1 --gtest_filter='TreeDynamicsThreads.*'
+	cmake --build --preset tsan --target rigid_threads_tests
+	TSAN_OPTIONS=halt_on_error=1 build/tsan/bin/rigid_threads_tests --gtest_brief=1 --gtest_filter='$(TSAN_SUITES)'
 
 asan: test-asan
 

@@ -12,6 +12,7 @@
 #include "rigid/mass/density.hpp"
 #include "rigid/common/error.hpp"
 #include "rigid/common/wording.hpp"
+#include "rigid/io/atomic_file.hpp"
 #include "rigid/mesh.hpp"
 
 namespace py = pybind11;
@@ -264,10 +265,13 @@ void bind_mesh_files(py::module_& mesh) {
       "write_stl",
       [](const TriangleMesh& t, const py::object& path) {
         const std::string file = cv::path(path, {"rigid.mesh.write_stl", "path"});
-        cv::reading("rigid.mesh.write_stl", file, [&] { rm::write_stl_binary(t, file); });
+        cv::reading("rigid.mesh.write_stl", file,
+                    [&] { rigid::io::write_file_atomically(file, rm::stl_binary(t)); });
       },
       py::arg("mesh"), py::arg("path"),
-      "Writes a binary STL (float32 coordinates, m) to path (a str or pathlib.Path).");
+      "Writes a binary STL (float32 coordinates, m) to path (a str or pathlib.Path), "
+      "atomically: a new file renamed over the old one; a directory, FIFO, socket or device "
+      "at path is refused, and a symlink is written through.");
   mesh.def("unit_scale", &rm::unit_scale, py::arg("unit"), "Metres per unit: m, cm, mm or in.");
 }
 

@@ -143,7 +143,7 @@ def read(path: object, scale: float = ...) -> TriangleMesh:
 
 
 def write_stl(mesh: TriangleMesh, path: object) -> None:
-    """Writes a binary STL (float32 coordinates, m) to path (a str or pathlib.Path)."""
+    """Writes a binary STL (float32 coordinates, m) to path (a str or pathlib.Path), atomically: a new file renamed over the old one; a directory, FIFO, socket or device at path is refused, and a symlink is written through."""
 
 
 def unit_scale(unit: str) -> float:

@@ -157,7 +157,21 @@ Table read_csv(const std::filesystem::path& path) {
                 "'{}' is empty; expected a header line of column names", path.string());
   if (!line.empty() && line.back() == '\r') line.pop_back();
   std::vector<std::string> names;
-  for (auto f : split_commas(line)) names.emplace_back(f);
+  int header_column = 1;
+  for (auto f : split_commas(line)) {
+    // the header's names, each once and none empty (Table's own check, here with the place)
+    if (f.empty() || std::find(names.begin(), names.end(), f) != names.end()) {
+      detail::throw_error_at({path.string(), 1, header_column},
+                             f.empty() ? fmt::format("column {} of the header has an empty name; "
+                                                     "expected a column name",
+                                                     names.size() + 1)
+                                       : fmt::format("column name '{}' appears twice in the "
+                                                     "header; expected each name once",
+                                                     f));
+    }
+    names.emplace_back(f);
+    header_column += static_cast<int>(f.size()) + 1;
+  }
   Table table(std::move(names));
   std::vector<double> row;
   int line_no = 1;

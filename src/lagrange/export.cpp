@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <map>
 #include <set>
 #include <utility>
 
@@ -303,6 +304,16 @@ class TapePrinter {
       const auto s = static_cast<std::size_t>(slot);
       return s >= base && !done[s - base];
     };
+    // First the library calls on the inputs (sin q_i, cos q_i): a call clobbers every
+    // floating-point register, so a value alive across one is spilled; up front, none is.
+    for (std::size_t k = 0; k < code.size(); ++k) {
+      const Instruction& in = code[k];
+      const auto input = [&](std::int32_t slot) { return static_cast<std::size_t>(slot) < base; };
+      if (library_call(in.op) && input(in.a) && (!binary(in.op) || input(in.b))) {
+        done[k] = 1;
+        order.push_back(k);
+      }
+    }
     for (std::int32_t root : tape_.outputs()) {
       if (!pending(root)) continue;
       stack.emplace_back(static_cast<std::size_t>(root) - base, 0);
@@ -331,6 +342,16 @@ class TapePrinter {
   }
   static bool binary(Op op) {
     return op == Op::kAdd || op == Op::kSub || op == Op::kMul || op == Op::kDiv || op == Op::kPow;
+  }
+  // an operation printed as a call of <cmath> (kInvSqrt too: 1.0 / std::sqrt)
+  static bool library_call(Op op) {
+    switch (op) {
+      case Op::kAdd: case Op::kSub: case Op::kMul: case Op::kDiv: case Op::kNeg: case Op::kInv:
+      case Op::kSquare: case Op::kPowInt:
+        return false;
+      default:
+        return true;
+    }
   }
   // The instructions split in two, each part one line per instruction: those that read no
   // input slot of `deferred` (directly or through another instruction), then those that do;
@@ -415,11 +436,10 @@ class TapePrinter {
 // the exported functions
 
 // M's upper triangle, row by row.
-std::vector<GiNaC::ex> upper_triangle(const System::Impl& s) {
-  const auto n = static_cast<std::size_t>(s.n);
+std::vector<GiNaC::ex> upper_triangle(const std::vector<GiNaC::ex>& M, std::size_t n) {
   std::vector<GiNaC::ex> out;
   for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t j = i; j < n; ++j) out.push_back(s.M[i * n + j]);
+    for (std::size_t j = i; j < n; ++j) out.push_back(M[i * n + j]);
   return out;
 }
 
@@ -975,32 +995,6 @@ std::vector<GiNaC::ex> flat_tau(const System::Impl& s, const detail::TreeInverse
   return tau;
 }
 
-// f = −τ(q̈ = 0) of a tree from its body-coordinate inverse dynamics (fewer operations than
-// the world-coordinate f beside M): the inverse dynamics' intermediates at q̈ = 0, as fresh
-// symbols (a tape may hold both), those that become a number or a symbol substituted into
-// the later ones; `definitions` receives them.
-std::vector<GiNaC::ex> flat_bias(const System::Impl& s, const detail::TreeInverseDynamics& id,
-                                 std::vector<std::pair<GiNaC::symbol, GiNaC::ex>>& definitions) {
-  if (id.tau.empty()) return s.f;
-  GiNaC::exmap at_rest;
-  for (const GiNaC::symbol& a : s.qdd) at_rest[a] = 0;
-  for (std::size_t k = 0; k < id.aux.size(); ++k) {
-    const GiNaC::ex value = id.defs[k].subs(at_rest).expand();
-    if (GiNaC::is_a<GiNaC::numeric>(value) || GiNaC::is_a<GiNaC::symbol>(value)) {
-      at_rest[id.aux[k]] = value;
-      continue;
-    }
-    const GiNaC::symbol fresh(id.aux[k].get_name() + "_rest");
-    definitions.emplace_back(fresh, value);
-    at_rest[id.aux[k]] = fresh;
-  }
-  std::vector<GiNaC::ex> f(s.f.size());
-  for (std::size_t i = 0; i < f.size(); ++i) {
-    f[i] = (-id.tau[i].subs(at_rest) + (s.f[i] - s.tree_bias[i])).expand();
-  }
-  return f;
-}
-
 // The definitions the flat tapes add after the system's intermediates: the body-coordinate
 // inverse dynamics', then `more`.
 std::vector<std::pair<GiNaC::symbol, GiNaC::ex>> flat_definitions(
@@ -1012,17 +1006,122 @@ std::vector<std::pair<GiNaC::symbol, GiNaC::ex>> flat_definitions(
   return out;
 }
 
-// A tree's inverse dynamics in body coordinates (recursive.cpp), derived here, when the flat
-// layout is asked for, rather than with every System; empty for an expanded derivation.
-detail::TreeInverseDynamics body_coordinate_inverse_dynamics(const System::Impl& s) {
-  if (s.tree_bodies.empty()) return {};
-  // names the intermediates do not take (they are compiled, never printed: for legibility)
+// The names the flat layout's own intermediates do not take (they are compiled, never
+// printed: for legibility): the system's symbols and intermediates, and `more`.
+std::set<std::string> taken_names(const System::Impl& s, const std::vector<GiNaC::symbol>& more) {
   std::set<std::string> taken(detail::reserved_names());
   for (const std::vector<std::string>* names : {&s.coord_names, &s.param_names}) {
     taken.insert(names->begin(), names->end());
   }
   for (const GiNaC::symbol& a : s.aux) taken.insert(a.get_name());
-  return detail::tree_inverse_dynamics(s, s.tree_bodies, s.tree_gravity, taken);
+  for (const GiNaC::symbol& a : more) taken.insert(a.get_name());
+  return taken;
+}
+
+// A tree's inverse dynamics in body coordinates (recursive.cpp), derived here, when the flat
+// layout is asked for, rather than with every System; empty for an expanded derivation.
+detail::TreeInverseDynamics body_coordinate_inverse_dynamics(const System::Impl& s) {
+  if (s.tree_bodies.empty()) return {};
+  return detail::tree_inverse_dynamics(s, s.tree_bodies, s.tree_gravity, taken_names(s, {}));
+}
+
+// M, f and ∂τ/∂(q, q̇) (n × 2n row-major) of flat_tau's τ, with the intermediates they read,
+// for mass_matrix, forward_dynamics and the two derivative functions, so that the derivatives'
+// q̈ and M are forward_dynamics' and mass_matrix's to the bit. A tree's own part comes from
+// tree_inverse_dynamics_derivatives (closed form: ~40% of the operations of forward mode through
+// the recursion's intermediates for a 7-joint arm, its M and f sharing them); what the rest of
+// the system adds (springs, dampers, a given Lagrangian), and a system without a tree, by
+// forward mode through the intermediates those terms read.
+struct FlatDynamics {
+  std::vector<std::pair<GiNaC::symbol, GiNaC::ex>> definitions;
+  std::vector<GiNaC::ex> M, f, d;
+};
+
+FlatDynamics flat_dynamics(const System::Impl& s, const detail::TreeInverseDynamics& id,
+                           const std::vector<GiNaC::ex>& tau) {
+  const auto n = static_cast<std::size_t>(s.n);
+  std::vector<GiNaC::symbol> vars(s.q.begin(), s.q.end());
+  vars.insert(vars.end(), s.qd.begin(), s.qd.end());
+  if (id.tau.empty()) {
+    detail::ForwardDerivatives D = detail::forward_derivatives(s.aux, s.aux_def, tau, vars);
+    return {std::move(D.definitions), s.M, s.f, std::move(D.d)};
+  }
+  std::vector<GiNaC::ex> extra(n), extra_f(n), extra_M(n * n);
+  for (std::size_t i = 0; i < n; ++i) {
+    extra_f[i] = (s.f[i] - s.tree_bias[i]).expand();
+    GiNaC::ex e = -extra_f[i];
+    for (std::size_t j = 0; j < n; ++j) {
+      extra_M[i * n + j] = (s.M[i * n + j] - s.tree_M[i * n + j]).expand();
+      e += extra_M[i * n + j] * s.qdd[j];
+    }
+    extra[i] = e;
+  }
+  // the system's intermediates the extra terms read, directly or through others (each
+  // intermediate reads only earlier ones)
+  std::map<GiNaC::ex, std::size_t, GiNaC::ex_is_less> index;
+  for (std::size_t k = 0; k < s.aux.size(); ++k) index.emplace(s.aux[k], k);
+  std::vector<bool> needed(s.aux.size(), false);
+  auto mark_read = [&](const GiNaC::ex& e) {
+    for (auto it = e.preorder_begin(); it != e.preorder_end(); ++it) {
+      if (!GiNaC::is_a<GiNaC::symbol>(*it)) continue;
+      const auto found = index.find(*it);
+      if (found != index.end()) needed[found->second] = true;
+    }
+  };
+  for (const GiNaC::ex& e : extra) mark_read(e);
+  for (std::size_t k = s.aux.size(); k-- > 0;) {
+    if (needed[k]) mark_read(s.aux_def[k]);
+  }
+  std::vector<GiNaC::symbol> aux;
+  std::vector<GiNaC::ex> defs;
+  for (std::size_t k = 0; k < s.aux.size(); ++k) {
+    if (!needed[k]) continue;
+    aux.push_back(s.aux[k]);
+    defs.push_back(s.aux_def[k]);
+  }
+  const detail::ForwardDerivatives D = detail::forward_derivatives(aux, defs, extra, vars);
+  const detail::TreeDerivatives tree = detail::tree_inverse_dynamics_derivatives(
+      s, s.tree_bodies, s.tree_gravity, taken_names(s, id.aux));
+  FlatDynamics out;
+  for (std::size_t k = 0; k < tree.aux.size(); ++k) {
+    out.definitions.emplace_back(tree.aux[k], tree.defs[k]);
+  }
+  out.definitions.insert(out.definitions.end(), D.definitions.begin(), D.definitions.end());
+  out.d.resize(D.d.size());
+  for (std::size_t k = 0; k < D.d.size(); ++k) out.d[k] = (D.d[k] + tree.d[k]).expand();
+  out.M.resize(n * n);
+  for (std::size_t k = 0; k < n * n; ++k) out.M[k] = (tree.M[k] + extra_M[k]).expand();
+  out.f.resize(n);
+  for (std::size_t i = 0; i < n; ++i) out.f[i] = (-tree.tau_rest[i] + extra_f[i]).expand();
+  return out;
+}
+
+// The largest n for which forward_dynamics_derivatives keeps M⁻¹ and ∂τ/∂x as n × n locals.
+constexpr std::size_t kMaxStackProduct = 64;
+
+// ∂q̈/∂x = −M⁻¹ ∂τ/∂x column by column and ∂q̈/∂τ = M⁻¹, each column one solve along the tree:
+// O(n) stack, for the trees too large for the products. ∂τ/∂q and ∂τ/∂q̇ are the printer's
+// outputs from `first`; closes the function.
+std::string derivative_solves(const TapePrinter& printer, std::size_t first, std::size_t n,
+                              const std::string& helpers) {
+  std::string out = fmt::format("  double c[{}];\n", n);
+  std::size_t k = first;
+  for (const char* name : {"dq_ddot_dq", "dq_ddot_dq_dot"}) {
+    for (std::size_t j = 0; j < n; ++j) {
+      for (std::size_t i = 0; i < n; ++i) out += fmt::format("  c[{}] = -{};\n", i, printer.output(k + i * n + j));
+      out += fmt::format("  {}::solve(H, c);\n", helpers);
+      out += fmt::format("  for (int i = 0; i < {}; ++i) {}[i * {} + {}] = c[i];\n", n, name, n, j);
+    }
+    k += n * n;
+  }
+  out += fmt::format(
+      "  for (int j = 0; j < {0}; ++j) {{\n"
+      "    for (int i = 0; i < {0}; ++i) c[i] = i == j ? 1.0 : 0.0;\n"
+      "    {1}::solve(H, c);\n"
+      "    for (int i = 0; i < {0}; ++i) dq_ddot_dtau[i * {0} + j] = c[i];\n"
+      "  }}\n}}\n",
+      n, helpers);
+  return out;
 }
 
 std::string flat_functions(const System::Impl& s, const std::vector<std::string>& params,
@@ -1039,10 +1138,12 @@ std::string flat_functions(const System::Impl& s, const std::vector<std::string>
     for (std::size_t i : ancestors(lambda, k)) pairs.emplace_back(k, i);
   }
   std::string out;
+  const std::vector<GiNaC::ex> tau = flat_tau(s, id);
+  const FlatDynamics F = flat_dynamics(s, id, tau);
 
   // mass_matrix
   {
-    const Tape tape = flat_tape(s, upper_triangle(s), {});
+    const Tape tape = flat_tape(s, upper_triangle(F.M, n), F.definitions);
     const TapePrinter printer(tape, flat_syntax(n, params, "q_ddot", pow_int));
     out += "/// M(q), nv × nv, row-major: the mass matrix (kinetic energy ½ q̇ᵀ M q̇).\n"
            "inline void mass_matrix([[maybe_unused]] const double* q, double* M, "
@@ -1052,7 +1153,6 @@ std::string flat_functions(const System::Impl& s, const std::vector<std::string>
     out += symmetric_assignments(printer, k, "M", n);
     out += "}\n\n";
   }
-  const std::vector<GiNaC::ex> tau = flat_tau(s, id);
   // inverse_dynamics
   {
     const Tape tape = flat_tape(s, tau, flat_definitions(id, {}));
@@ -1081,13 +1181,11 @@ std::string flat_functions(const System::Impl& s, const std::vector<std::string>
     return text;
   };
   std::vector<GiNaC::ex> mass_and_forces;
-  for (const auto& [r, c] : pairs) mass_and_forces.push_back(s.M[c * n + r]);
-  std::vector<std::pair<GiNaC::symbol, GiNaC::ex>> bias_definitions;
-  const std::vector<GiNaC::ex> bias = flat_bias(s, id, bias_definitions);
-  mass_and_forces.insert(mass_and_forces.end(), bias.begin(), bias.end());
+  for (const auto& [r, c] : pairs) mass_and_forces.push_back(F.M[c * n + r]);
+  mass_and_forces.insert(mass_and_forces.end(), F.f.begin(), F.f.end());
   // forward_dynamics
   {
-    const Tape tape = flat_tape(s, mass_and_forces, flat_definitions(id, bias_definitions));
+    const Tape tape = flat_tape(s, mass_and_forces, F.definitions);
     const TapePrinter printer(tape, flat_syntax(n, params, "q_ddot", pow_int));
     out += "/// q̈ = M(q)⁻¹ (f(q, q̇) + τ) (forward dynamics), M factored along the tree (factor()).\n"
            "/// Where M is not positive definite (a pivot ≤ 0: parameters no body can have) "
@@ -1099,18 +1197,7 @@ std::string flat_functions(const System::Impl& s, const std::vector<std::string>
     out += solve_text(printer, fmt::format("    for (int i = 0; i < {}; ++i) q_ddot[i] = std::nan(\"\");\n", n));
     out += fmt::format("  for (int i = 0; i < {}; ++i) q_ddot[i] = x[i];\n}}\n\n", n);
   }
-  // the derivatives of τ, through the intermediates
-  std::vector<GiNaC::symbol> vars(s.q.begin(), s.q.end());
-  vars.insert(vars.end(), s.qd.begin(), s.qd.end());
-  std::vector<GiNaC::symbol> aux = s.aux;
-  aux.insert(aux.end(), id.aux.begin(), id.aux.end());
-  std::vector<GiNaC::ex> defs = s.aux_def;
-  defs.insert(defs.end(), id.defs.begin(), id.defs.end());
-  const detail::ForwardDerivatives D = detail::forward_derivatives(aux, defs, tau, vars);
-  const auto definitions = flat_definitions(id, D.definitions);
-  auto with_bias = D.definitions;
-  with_bias.insert(with_bias.end(), bias_definitions.begin(), bias_definitions.end());
-  auto dtau = [&](std::size_t i, std::size_t j) -> const GiNaC::ex& { return D.d[i * 2 * n + j]; };
+  auto dtau = [&](std::size_t i, std::size_t j) -> const GiNaC::ex& { return F.d[i * 2 * n + j]; };
   std::vector<GiNaC::ex> derivatives;
   for (std::size_t half = 0; half < 2; ++half) {
     for (std::size_t i = 0; i < n; ++i)
@@ -1119,8 +1206,8 @@ std::string flat_functions(const System::Impl& s, const std::vector<std::string>
   // inverse_dynamics_derivatives
   {
     std::vector<GiNaC::ex> outputs = derivatives;
-    for (const GiNaC::ex& e : upper_triangle(s)) outputs.push_back(e);
-    const Tape tape = flat_tape(s, outputs, definitions);
+    for (const GiNaC::ex& e : upper_triangle(F.M, n)) outputs.push_back(e);
+    const Tape tape = flat_tape(s, outputs, F.definitions);
     const TapePrinter printer(tape, flat_syntax(n, params, "q_ddot", pow_int));
     out += "/// ∂τ/∂q, ∂τ/∂q̇ and ∂τ/∂q̈ = M of inverse_dynamics, nv × nv row-major each "
            "([i*nv + j] = ∂τ_i/∂x_j),\n/// exact (forward-mode differentiation of the same "
@@ -1146,7 +1233,7 @@ std::string flat_functions(const System::Impl& s, const std::vector<std::string>
   {
     std::vector<GiNaC::ex> outputs = mass_and_forces;
     outputs.insert(outputs.end(), derivatives.begin(), derivatives.end());
-    const Tape tape = flat_tape(s, outputs, flat_definitions(id, with_bias));
+    const Tape tape = flat_tape(s, outputs, F.definitions);
     const TapePrinter printer(tape, flat_syntax(n, params, "qdd", pow_int));
     std::vector<bool> deferred(none);
     for (std::size_t i = 0; i < n; ++i) deferred[2 * n + i] = true;
@@ -1170,25 +1257,37 @@ std::string flat_functions(const System::Impl& s, const std::vector<std::string>
     out += fmt::format("  [[maybe_unused]] const double* qdd = x;\n"
                        "  for (int i = 0; i < {}; ++i) q_ddot[i] = x[i];\n", n);
     out += after;
-    std::size_t k = pairs.size() + n;
-    out += fmt::format("  double c[{}];\n", n);
-    for (const char* name : {"dq_ddot_dq", "dq_ddot_dq_dot"}) {
-      for (std::size_t j = 0; j < n; ++j) {
-        for (std::size_t i = 0; i < n; ++i) {
-          out += fmt::format("  c[{}] = -{};\n", i, printer.output(k + i * n + j));
-        }
-        out += fmt::format("  {}::solve(H, c);\n", helpers);
-        out += fmt::format("  for (int i = 0; i < {}; ++i) {}[i * {} + {}] = c[i];\n", n, name, n, j);
-      }
-      k += n * n;
+    // M⁻¹ by n solves along the tree, then the two products −M⁻¹ ∂τ/∂x as plain loops (the
+    // compiler vectorises them; 2n more solves would each be a chain of dependent steps). The
+    // two n × n locals stay on the stack up to n = 64 (64 KB); beyond, 2n more solves.
+    if (n > kMaxStackProduct) {
+      out += derivative_solves(printer, pairs.size() + n, n, helpers);
+      return out;
     }
     out += fmt::format(
-        "  for (int j = 0; j < {0}; ++j) {{\n"
-        "    for (int i = 0; i < {0}; ++i) c[i] = i == j ? 1.0 : 0.0;\n"
-        "    {1}::solve(H, c);\n"
-        "    for (int i = 0; i < {0}; ++i) dq_ddot_dtau[i * {0} + j] = c[i];\n"
-        "  }}\n}}\n",
-        n, helpers);
+        "  double Mi[{0}], c[{1}], D[{0}];\n"
+        "  for (int j = 0; j < {1}; ++j) {{\n"
+        "    for (int i = 0; i < {1}; ++i) c[i] = i == j ? 1.0 : 0.0;\n"
+        "    {2}::solve(H, c);\n"
+        "    for (int i = 0; i < {1}; ++i) Mi[i * {1} + j] = c[i];\n"
+        "  }}\n"
+        "  for (int i = 0; i < {0}; ++i) dq_ddot_dtau[i] = Mi[i];\n",
+        n * n, n, helpers);
+    std::size_t k = pairs.size() + n;
+    for (const char* name : {"dq_ddot_dq", "dq_ddot_dq_dot"}) {
+      for (std::size_t i = 0; i < n * n; ++i) out += fmt::format("  D[{}] = {};\n", i, printer.output(k + i));
+      out += fmt::format(
+          "  for (int i = 0; i < {0}; ++i) {{\n"
+          "    double row[{0}] = {{}};\n"
+          "    for (int l = 0; l < {0}; ++l) {{\n"
+          "      for (int j = 0; j < {0}; ++j) row[j] -= Mi[i * {0} + l] * D[l * {0} + j];\n"
+          "    }}\n"
+          "    for (int j = 0; j < {0}; ++j) {1}[i * {0} + j] = row[j];\n"
+          "  }}\n",
+          n, name);
+      k += n * n;
+    }
+    out += "}\n";
   }
   return out;
 }

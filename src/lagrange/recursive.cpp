@@ -153,6 +153,7 @@ struct Kinematics {
   Vec3 p;
   Spatial V, A;               // velocity and (q̈ = 0, no gravity) acceleration
   std::vector<Spatial> S;     // per joint of the body: its motion subspace
+  std::vector<Spatial> V_in, A_in;  // per joint: V and A of the frame it turns in (V_j⁻, A_j⁻)
   Inertia body, composite;
   Spatial force, composite_force;
 };
@@ -189,6 +190,8 @@ void forward(const System::Impl& s, Namer& name, const TreeBody& b, const Kinema
       p = plus(p, scaled(S.b, s.q[J.coordinate]));
     }
     // the frame the joint turns in moves with V (V_j⁻): A gains (V_j⁻ × S_j) q̇_j
+    K.V_in.push_back(V);
+    K.A_in.push_back(A);
     A = plus(A, scaled(cross_motion(V, S), qd));
     V = plus(V, scaled(S, qd));
     K.S.push_back(S);
@@ -199,14 +202,17 @@ void forward(const System::Impl& s, Namer& name, const TreeBody& b, const Kinema
   K.A = name("aw_" + b.name, "av_" + b.name, A);
 }
 
-// The body's inertia about O from its mass, COM and inertia about the COM in B.
-Inertia body_inertia(Namer& name, const TreeBody& b, const Kinematics& K) {
+// The body's inertia about O from its mass, COM and inertia about the COM in B. `staged`
+// names I_C Rᵀ first, so that R (I_C Rᵀ) costs two 3 × 3 products rather than the expanded
+// triple sums (the exported derivatives; the engine's equations keep the expanded form).
+Inertia body_inertia(Namer& name, const TreeBody& b, const Kinematics& K, bool staged = false) {
   Inertia in;
   in.m = b.mass;
   const Vec3 c = name("c_" + b.name, plus(K.p, mat_vec(K.R, b.com)));
   in.h = scaled(c, b.mass);
   // I_O = R I_C Rᵀ + m (|c|² 1 − c cᵀ)
-  const Mat3 IW = mat_mul(mat_mul(K.R, b.inertia), transpose(K.R));
+  const Mat3 IW = staged ? mat_mul(K.R, name("ICRt_" + b.name, mat_mul(b.inertia, transpose(K.R))))
+                         : mat_mul(mat_mul(K.R, b.inertia), transpose(K.R));
   Mat3 IO;
   const ex c2 = dot(c, c);
   for (int i = 0; i < 3; ++i) {
@@ -404,6 +410,189 @@ TreeEquations tree_equations(System::Impl& s, const std::vector<TreeBody>& bodie
   }
   out.T = out.T.expand();
   out.V = out.V.expand();
+  return out;
+}
+
+// ----------------------------------------------------------------------------------------
+// ∂τ/∂q and ∂τ/∂q̇ of the inverse dynamics, analytically
+//
+// World coordinates as in tree_equations, the joints ordered along the tree (j ⪯ i: j is i or
+// on the path to it; the joints of one body are joined by massless links). A joint's motion
+// S_j moves with every joint before it, ∂S_i/∂q_j = S_j × S_i (j ⪯ i), and so does a body's
+// inertia, ∂I_k/∂q_j = S_j ×* I_k − I_k S_j×. With v_k, a_k (q̈ and the world's −g included),
+// h_k = I_k v_k and f_k = I_k a_k + v_k ×* h_k as in Newton–Euler, ψ̇_j = v_j⁻ × S_j and
+// ψ̈_j = a_j⁻ × S_j + v_j⁻ × ψ̇_j (v_j⁻, a_j⁻: the frame joint j turns in), differentiating
+// v_k = Σ S_l q̇_l and a_k = a₀ + Σ (S_l q̈_l + ψ̇_l q̇_l) along the path (Jacobi's identity
+// for the products) gives, for a body k below joint j,
+//   ∂v_k/∂q_j = S_j × v_k + ψ̇_j,            ∂a_k/∂q_j = S_j × a_k + ψ̈_j + ψ̇_j × v_k,
+//   ∂f_k/∂q_j = S_j ×* f_k + I_k ψ̈_j + B_k ψ̇_j,   ∂f_k/∂q̇_j = B_k S_j + 2 I_k ψ̇_j,
+// with B_k x = I_k (x × v_k) + x ×* h_k + v_k ×* (I_k x). Summed over the subtree (the
+// composites I^C, B^C, F^C of the body carrying the lower joint) and paired with S_i, where
+// (S_j × S_i)·F + S_i·(S_j ×* F) = 0 cancels the turning of S_i:
+//   j ⪯ i:  ∂τ_i/∂q_j = S_i·(I^C_i ψ̈_j + B^C_i ψ̇_j),   ∂τ_i/∂q̇_j = S_i·(B^C_i S_j + 2 I^C_i ψ̇_j)
+//   i ≺ j:  ∂τ_i/∂q_j = S_i·(S_j ×* F^C_j + I^C_j ψ̈_j + B^C_j ψ̇_j),
+//           ∂τ_i/∂q̇_j = S_i·(B^C_j S_j + 2 I^C_j ψ̇_j)
+// and 0 for joints on different branches (Carpentier and Mansard, "Analytical derivatives of
+// rigid body dynamics algorithms", RSS 2018, derive the same in their notation). The pairs
+// j ⪯ i need two vectors per joint i, I^C_i S_i and B^C_iᵀ S_i (S_i·I^C x = x·I^C S_i), so
+// the assembly is a dot product per pair.
+
+namespace {
+
+// A spatial vector's six components (angular or moment first).
+const ex& component(const Spatial& x, int m) { return m < 3 ? x.a[m] : x.b[m - 3]; }
+Spatial unit_spatial(int m) {
+  Spatial e;
+  if (m < 3) {
+    e.a[m] = 1;
+  } else {
+    e.b[m - 3] = 1;
+  }
+  return e;
+}
+// a 6 × 6 operator by its columns (B e_m)
+using Columns = std::array<Spatial, 6>;
+Spatial apply_columns(const Columns& B, const Spatial& x) {
+  Spatial out;
+  for (int m = 0; m < 6; ++m) out = plus(out, scaled(B[m], component(x, m)));
+  return out;
+}
+// the pairing S·(B x) = (Bᵀ S)·x, as the components of Bᵀ S
+std::array<ex, 6> transposed_apply(const Columns& B, const Spatial& S) {
+  std::array<ex, 6> out;
+  for (int m = 0; m < 6; ++m) out[m] = power(S, B[m]);
+  return out;
+}
+ex dot6(const std::array<ex, 6>& y, const Spatial& x) {
+  ex sum = 0;
+  for (int m = 0; m < 6; ++m) sum += y[m] * component(x, m);
+  return sum;
+}
+
+}  // namespace
+
+TreeDerivatives tree_inverse_dynamics_derivatives(const System::Impl& s,
+                                                  const std::vector<TreeBody>& bodies,
+                                                  const Vec3& gravity,
+                                                  const std::set<std::string>& taken) {
+  const auto n = static_cast<std::size_t>(s.n);
+  TreeDerivatives out;
+  Namer name(out.aux, out.defs, taken);
+  const Spatial a0{{0, 0, 0}, {-gravity[0], -gravity[1], -gravity[2]}};
+  struct Joint {
+    std::size_t coordinate;
+    std::size_t body;
+    Spatial S, dS, ddS;  // S_j, ψ̇_j, ψ̈_j
+  };
+  std::vector<Joint> joints;
+  std::vector<std::vector<std::size_t>> path(bodies.size());  // indices into joints
+  std::vector<Kinematics> K(bodies.size());
+  std::vector<Spatial> qdd_part(bodies.size());  // Σ S_l q̈_l along the path
+  std::vector<Inertia> IC(bodies.size());
+  std::vector<Columns> BC(bodies.size());
+  // composites: the force at q̈ = 0 (gravity included), the force of q̈, the momentum
+  std::vector<Spatial> FC(bodies.size()), GC(bodies.size()), HC(bodies.size());
+  // forward: frames, motions, ψ̇, ψ̈; each body's I, h, f and B
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    const TreeBody& body = bodies[b];
+    RIGID_ASSERT(body.parent < static_cast<int>(b));
+    const auto parent = static_cast<std::size_t>(body.parent);
+    forward(s, name, body, body.parent < 0 ? nullptr : &K[parent], K[b]);
+    Spatial acc = body.parent < 0 ? Spatial{} : qdd_part[parent];
+    if (body.parent >= 0) path[b] = path[parent];
+    for (std::size_t j = 0; j < body.joints.size(); ++j) {
+      const std::size_t c = body.joints[j].coordinate;
+      const std::string& coord = s.coord_names[c];
+      Joint J{c, b, K[b].S[j], {}, {}};
+      const Spatial& v_in = K[b].V_in[j];
+      const Spatial a_in = plus(plus(K[b].A_in[j], a0), acc);
+      J.dS = name("dSa_" + coord, "dSb_" + coord, cross_motion(v_in, J.S));
+      J.ddS = name("ddSa_" + coord, "ddSb_" + coord,
+                   plus(cross_motion(a_in, J.S), cross_motion(v_in, J.dS)));
+      // named, so that each use reads six values rather than a sum along the whole path
+      acc = name("dQa_" + coord, "dQb_" + coord, plus(acc, scaled(J.S, s.qdd[c])));
+      path[b].push_back(joints.size());
+      joints.push_back(J);
+    }
+    qdd_part[b] = acc;
+    const Inertia I = body_inertia(name, body, K[b], true);
+    const Spatial& v = K[b].V;
+    const Spatial a = name("dAa_" + body.name, "dAb_" + body.name, plus(K[b].A, a0));
+    const Spatial h = name("dha_" + body.name, "dhb_" + body.name, apply(I, v));
+    FC[b] = plus(apply(I, a), cross_force(v, h));
+    GC[b] = apply(I, acc);
+    HC[b] = h;
+    for (int m = 0; m < 6; ++m) {
+      const Spatial e = unit_spatial(m);
+      BC[b][static_cast<std::size_t>(m)] =
+          plus(plus(apply(I, cross_motion(e, v)), cross_force(e, h)), cross_force(v, apply(I, e)));
+    }
+    IC[b] = I;
+  }
+  // backward: the composites, children into parents (children come later)
+  for (std::size_t b = bodies.size(); b-- > 0;) {
+    const std::string& body = bodies[b].name;
+    IC[b].m = name("dmC_" + body, IC[b].m);
+    IC[b].h = name("dhC_" + body, IC[b].h);
+    IC[b].I = name.symmetric("dIC_" + body, IC[b].I);
+    FC[b] = name("dFCa_" + body, "dFCb_" + body, FC[b]);
+    GC[b] = name("dGCa_" + body, "dGCb_" + body, GC[b]);
+    HC[b] = name("dHCa_" + body, "dHCb_" + body, HC[b]);
+    for (std::size_t m = 0; m < 6; ++m) {
+      BC[b][m] =
+          name(fmt::format("dBCa{}_{}", m, body), fmt::format("dBCb{}_{}", m, body), BC[b][m]);
+    }
+    if (bodies[b].parent < 0) continue;
+    const auto p = static_cast<std::size_t>(bodies[b].parent);
+    IC[p].m += IC[b].m;
+    IC[p].h = plus(IC[p].h, IC[b].h);
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) IC[p].I[i][j] += IC[b].I[i][j];
+    FC[p] = plus(FC[p], FC[b]);
+    GC[p] = plus(GC[p], GC[b]);
+    HC[p] = plus(HC[p], HC[b]);
+    for (std::size_t m = 0; m < 6; ++m) BC[p][m] = plus(BC[p][m], BC[b][m]);
+  }
+  // per joint i: I^C S_i, B^Cᵀ S_i (for the pairs j ⪯ i) and the two vectors the joints above
+  // it pair with (i ≺ j)
+  out.d.assign(n * 2 * n, 0);
+  out.M.assign(n * n, 0);
+  out.tau_rest.assign(n, 0);
+  auto d_q = [&](std::size_t i, std::size_t j) -> ex& { return out.d[i * 2 * n + j]; };
+  auto d_qd = [&](std::size_t i, std::size_t j) -> ex& { return out.d[i * 2 * n + n + j]; };
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    for (std::size_t jb = path[b].size() - bodies[b].joints.size(); jb < path[b].size(); ++jb) {
+      const Joint& Ji = joints[path[b][jb]];
+      const std::string& coord = s.coord_names[Ji.coordinate];
+      const Spatial X = name("dXa_" + coord, "dXb_" + coord, apply(IC[b], Ji.S));
+      std::array<ex, 6> Y = transposed_apply(BC[b], Ji.S);
+      for (int m = 0; m < 6; ++m)
+        Y[static_cast<std::size_t>(m)] =
+            name(fmt::format("dY{}_{}", m, coord), Y[static_cast<std::size_t>(m)]);
+      // the whole force F^C = FC + GC: q̈ enters only here and in the pairs through it
+      const Spatial Zq = name("dZqa_" + coord, "dZqb_" + coord,
+                              plus(plus(cross_force(Ji.S, plus(FC[b], GC[b])), apply(IC[b], Ji.ddS)),
+                                   apply_columns(BC[b], Ji.dS)));
+      // B = P + Pᵀ + h×̄ with P = (v×*) I and h×̄ x = x ×* h skew, so B S = Bᵀ S + 2 S ×* h
+      Spatial BS{{Y[0], Y[1], Y[2]}, {Y[3], Y[4], Y[5]}};
+      BS = plus(BS, scaled(cross_force(Ji.S, HC[b]), 2));
+      const Spatial Zv = name("dZva_" + coord, "dZvb_" + coord,
+                              plus(BS, scaled(apply(IC[b], Ji.dS), 2)));
+      const std::size_t i = Ji.coordinate;
+      out.tau_rest[i] = power(Ji.S, FC[b]).expand();
+      for (std::size_t k = 0; k <= jb; ++k) {
+        const Joint& Jj = joints[path[b][k]];
+        const std::size_t j = Jj.coordinate;
+        // composite rigid bodies: M_ji = S_j · I^C S_i for j ⪯ i
+        out.M[i * n + j] = out.M[j * n + i] = power(Jj.S, X).expand();
+        d_q(i, j) = (power(Jj.ddS, X) + dot6(Y, Jj.dS)).expand();
+        d_qd(i, j) = (dot6(Y, Jj.S) + 2 * power(Jj.dS, X)).expand();
+        if (k == jb) continue;
+        d_q(j, i) = power(Jj.S, Zq).expand();
+        d_qd(j, i) = power(Jj.S, Zv).expand();
+      }
+    }
+  }
   return out;
 }
 

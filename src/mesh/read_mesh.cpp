@@ -751,14 +751,14 @@ TriangleMesh read_mesh(const std::string& path, double scale) {
   return detail::read_mesh(path, scale).mesh;
 }
 
-void write_stl_binary(const TriangleMesh& mesh, const std::string& path) {
-  std::ofstream out(path, std::ios::binary);
-  RIGID_REQUIRE(out.good(), "cannot open {} for writing", path);
-  char header[80] = {};
-  std::memcpy(header, "binary STL written by rigid", 27);
-  out.write(header, 80);
+std::string stl_binary(const TriangleMesh& mesh) {
+  RIGID_REQUIRE(mesh.triangles.size() <= 0xFFFFFFFFu,
+                "{} triangles do not fit a binary STL's 32-bit count", mesh.triangles.size());
+  std::string out(84 + 50 * mesh.triangles.size(), '\0');
+  std::memcpy(out.data(), "binary STL written by rigid", 27);
   const auto n = static_cast<std::uint32_t>(mesh.triangles.size());
-  out.write(reinterpret_cast<const char*>(&n), 4);
+  std::memcpy(out.data() + 80, &n, 4);
+  char* at = out.data() + 84;
   for (const auto& t : mesh.triangles) {
     float buf[12] = {};
     const Eigen::Vector3d& a = mesh.vertices[t[0]];
@@ -771,10 +771,17 @@ void write_stl_binary(const TriangleMesh& mesh, const std::string& path) {
       buf[6 + k] = static_cast<float>(b[k]);
       buf[9 + k] = static_cast<float>(c[k]);
     }
-    out.write(reinterpret_cast<const char*>(buf), sizeof(buf));
-    const std::uint16_t attr = 0;
-    out.write(reinterpret_cast<const char*>(&attr), 2);
+    std::memcpy(at, buf, sizeof(buf));
+    at += 50;  // the two attribute bytes stay 0
   }
+  return out;
+}
+
+void write_stl_binary(const TriangleMesh& mesh, const std::string& path) {
+  const std::string bytes = stl_binary(mesh);
+  std::ofstream out(path, std::ios::binary);
+  RIGID_REQUIRE(out.good(), "cannot open {} for writing", path);
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
   RIGID_REQUIRE(out.good(), "writing {} failed", path);
 }
 

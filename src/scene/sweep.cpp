@@ -389,6 +389,8 @@ SweepRow row_from_json(std::string_view line, std::string_view where) {
   try {
     const Json j = Json::parse(line);
     SweepRow row;
+    // a run number is a whole number ≥ 0 (nlohmann would turn −1 into 2⁶⁴ − 1, and 2.5 into 2)
+    if (!j.at("run").is_number_unsigned()) throw std::invalid_argument("run");
     row.index = j.at("run").get<std::size_t>();
     for (const auto& v : j.at("values")) row.values.push_back(number_from_json(v));
     for (const auto& r : j.at("results")) {

@@ -145,9 +145,13 @@ def test_arm7_derivatives_match_central_differences(arm7):
     h ~ 1e-5 (~1e-10 relative); it must reach 1e-6 relative there and shrink as h² from 1e-2 to
     1e-3 (a wrong derivative stays at its error whatever h)."""
     robot, flat, _ = arm7
-    states = random_states(robot, 3, 2)
-    results = flat["g++"](states)
-    for (q, v, a, tau), r in zip(states, results):
+    check_derivatives(robot, flat["g++"], random_states(robot, 3, 2))
+
+
+def check_derivatives(robot, run, states):
+    """The exported derivatives at `states` against central differences of `robot`, with the
+    step-size study of test_arm7_derivatives_match_central_differences."""
+    for (q, v, a, tau), r in zip(states, run(states)):
         checks = [
             (r["dtau_dq"], lambda x: robot.inverse_dynamics(x, v, a), q),
             (r["dtau_dqd"], lambda x: robot.inverse_dynamics(q, x, a), v),
@@ -161,6 +165,50 @@ def test_arm7_derivatives_match_central_differences(arm7):
             assert errors[1e-5] < 1e-6, errors
             if errors[1e-2] > 1e-9:  # not linear in x (τ is linear in τ: no truncation error)
                 assert errors[1e-3] < errors[1e-2] / 30, errors
+
+
+# A branched tree whose bodies carry several joints (a slide and a hinge on one body, two
+# hinges on another, axes not along a frame axis, anchors off the origin), with damping and a
+# spring: the closed-form derivatives of the tree (recursive.cpp) meet every case of their
+# pairs (a joint above, below, on the same body, on another branch) and the forward-mode
+# derivatives of what the joints add.
+BRANCHED = """<mujoco model="branched">
+  <option gravity="0.3 -0.2 -9.81"/>
+  <worldbody>
+    <body name="torso" pos="0.1 0 1" quat="0.9 0.1 0.3 0.2">
+      <joint name="slide" type="slide" axis="1 0.2 0" damping="0.3"/>
+      <joint name="yaw" type="hinge" axis="0 0.1 1" pos="0.05 0 0"/>
+      <inertial pos="0.02 0.01 -0.03" mass="3" fullinertia="0.09 0.07 0.05 0.004 -0.003 0.002"/>
+      <body name="left" pos="0 0.2 -0.1" quat="0.8 0.2 -0.1 0.3">
+        <joint name="lx" type="hinge" axis="1 0 0" pos="0 0 0.02" stiffness="4" springref="0.2"/>
+        <joint name="ly" type="hinge" axis="0.3 1 0.1"/>
+        <inertial pos="0 0.01 -0.15" mass="1.2" fullinertia="0.02 0.021 0.004 0.001 0.0005 -0.002"/>
+        <body name="foot" pos="0.01 0 -0.3">
+          <joint name="ankle" type="hinge" axis="0 1 1" pos="0 0.03 0" damping="0.05"/>
+          <inertial pos="0.05 0 -0.02" mass="0.4" diaginertia="0.001 0.002 0.0025"/>
+        </body>
+      </body>
+      <body name="right" pos="0 -0.2 -0.1">
+        <joint name="rx" type="hinge" axis="0.2 0.1 1" pos="0 -0.01 0.02"/>
+        <inertial pos="0.01 -0.02 -0.12" mass="0.9" diaginertia="0.012 0.011 0.003"/>
+      </body>
+    </body>
+  </worldbody>
+</mujoco>
+"""
+
+
+def test_branched_tree_derivatives_match_central_differences(tmp_path):
+    model = tmp_path / "branched.xml"
+    model.write_text(BRANCHED)
+    robot = rigid.robot.Robot(str(model))
+    assert robot.dof == 6
+    run = Flat(build(tmp_path, model, "g++"), robot.dof)
+    states = random_states(robot, 3, 4)
+    for (q, v, a, tau), r in zip(states, run(states)):
+        assert rel(r["tau"], robot.inverse_dynamics(q, v, a)) < 1e-12
+        assert rel(r["qdd"], robot.forward_dynamics(q, v, tau)) < 1e-10
+    check_derivatives(robot, run, states)
 
 
 def test_flat_export_is_the_same_through_python(arm7):

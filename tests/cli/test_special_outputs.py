@@ -166,3 +166,28 @@ def test_python_outputs_refuse_a_fifo_and_write_through_a_link(inputs, tmp_path)
     assert stat.S_ISFIFO(os.lstat(report_fifo).st_mode)
     scene.run(report=str(link))
     assert link.is_symlink() and page.read_text().lower().startswith("<!doctype html>")
+
+
+def test_python_write_stl_refuses_a_fifo_and_writes_through_a_link(tmp_path):
+    """rigid.mesh.write_stl goes through the same atomic writer: a FIFO is refused and kept, a
+    link's target is replaced, and the file written reads back as the mesh (84 + 50 bytes a
+    triangle)."""
+    rigid = pytest.importorskip("rigid")
+    np = pytest.importorskip("numpy")
+    vertices = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], dtype=float)
+    mesh = rigid.mesh.TriangleMesh(vertices, np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]]))
+    fifo = tmp_path / "out.stl"
+    os.mkfifo(fifo)
+    with pytest.raises(rigid.Error, match="it is a FIFO"):
+        rigid.mesh.write_stl(mesh, fifo)
+    assert stat.S_ISFIFO(os.lstat(fifo).st_mode)
+    (tmp_path / "meshes").mkdir()
+    target = tmp_path / "meshes" / "cube.stl"
+    target.write_text("old")
+    link = tmp_path / "cube.stl"
+    link.symlink_to(target)
+    rigid.mesh.write_stl(mesh, link)
+    assert link.is_symlink()
+    assert target.stat().st_size == 84 + 50 * len(mesh.triangles)
+    back = rigid.mesh.read(str(target))
+    assert np.allclose(back.vertices[back.triangles], mesh.vertices[mesh.triangles], atol=1e-6)

@@ -73,6 +73,19 @@ TEST(Table, BadInputIsNamed) {
     out << "a,b\n1,2,3\n";
   }
   EXPECT_RIGID_ERROR((void)read_csv(file), file.string() + ":2:1: row has 3 fields, expected 2");
+  // a header's repeated or empty name, at its place in the file
+  {
+    std::ofstream out(file);
+    out << "t,x,t\n1,2,3\n";
+  }
+  EXPECT_RIGID_ERROR((void)read_csv(file),
+                     file.string() + ":1:5: column name 't' appears twice in the header");
+  {
+    std::ofstream out(file);
+    out << "t,,x\n1,2,3\n";
+  }
+  EXPECT_RIGID_ERROR((void)read_csv(file),
+                     file.string() + ":1:3: column 2 of the header has an empty name");
   EXPECT_RIGID_ERROR((void)read_csv(file.string() + ".missing"), "cannot open");
 }
 

@@ -86,7 +86,7 @@ TEST(NormalModes, PhysicalPendulum) {
   rod.mass.inertia = {Expression("Ic"), Expression("Ic"), Expression("0.001"), Expression("0"),
                       Expression("0"), Expression("0")};
   rod.position = {Expression("-d*sin(theta)"), Expression("0"), Expression("-d*cos(theta)")};
-  rod.rotations = {{Eigen::Vector3d::UnitY(), Expression("-theta")}};
+  rod.rotations = {{Eigen::Vector3d::UnitY(), Expression("theta")}};  // body z to the pivot
   spec.bodies = {rod};
   spec.gravity_W = Eigen::Vector3d(0, 0, -9.81);
   const NormalModes r = normal_modes(System(spec));

@@ -29,7 +29,7 @@ SystemSpec symbolic_pendulum() {
   rod.mass = "m";
   rod.inertia = {"m*L^2/12", "m*L^2/12", "0", "0", "0", "0"};
   spec.bodies.push_back(Body{"rod", rod, {"-(L/2)*sin(theta)", "0", "-(L/2)*cos(theta)"},
-                             {AxisRotation{Eigen::Vector3d::UnitY(), "-theta"}}});
+                             {AxisRotation{Eigen::Vector3d::UnitY(), "theta"}}});  // body z along the rod, to the pivot
   spec.gravity_W = Vector3Expression(std::array<Expression, 3>{"0", "0", "-g"});
   return spec;
 }

@@ -213,6 +213,17 @@ TEST(SweepJournal, KeepsRowsRefusesAnotherSweepAndDropsACutLine) {
   fs::remove_all(dir);
 }
 
+// A run number is a whole number ≥ 0: −1 and 2.5 are refused as damage, not read as 2⁶⁴ − 1 or 2.
+TEST(SweepJournal, ARowsRunNumberIsAWholeNumber) {
+  const auto row = [](std::string_view run) {
+    return fmt::format(R"({{"run":{},"values":[1],"results":[],"error":""}})", run);
+  };
+  EXPECT_EQ(row_from_json(row("7"), "j:1").index, 7u);
+  for (const char* run : {"-1", "2.5", "\"3\"", "1e3"}) {
+    EXPECT_RIGID_ERROR((void)row_from_json(row(run), "j:2"), "j:2: not a row of a rigid sweep journal");
+  }
+}
+
 constexpr const char* kRacket = R"toml(
 [parameters]
 I2 = 2

@@ -20,7 +20,7 @@ primitive = "thin_rod"
 length = "L"
 mass = "m"
 position = ["-(L/2)*sin(theta)", 0, "-(L/2)*cos(theta)"]
-rotation = [{axis = [0, 1, 0], angle = "-theta"}]
+rotation = [{axis = [0, 1, 0], angle = "theta"}]  # R_y(theta) e_z points from the COM to the pivot
 [simulation]
 t_end = 2
 integrator = "rk4"

@@ -45,7 +45,11 @@ inline constexpr std::string_view kSupportedExtensions = ".stl, .obj, .ply and .
 [[nodiscard]] TriangleMesh read_ply(const std::string& path, double scale = 1.0);
 [[nodiscard]] TriangleMesh read_off(const std::string& path, double scale = 1.0);
 
-/// Writes a binary STL (80-byte header, count, 50 bytes per triangle; float32 coordinates).
+/// The bytes of a binary STL (80-byte header, count, 50 bytes per triangle; float32
+/// coordinates), for a caller that writes them its own way (rigid.mesh.write_stl: atomically).
+[[nodiscard]] std::string stl_binary(const TriangleMesh& mesh);
+/// Writes stl_binary(mesh) to `path` with a plain stream (tests and benchmarks; a user-facing
+/// output goes through io::write_file_atomically).
 void write_stl_binary(const TriangleMesh& mesh, const std::string& path);
 
 }  // namespace rigid::mesh

@@ -45,6 +45,23 @@ struct TreeInverseDynamics {
                                                         const Vec3& gravity,
                                                         const std::set<std::string>& taken);
 
+/// ∂τ/∂q and ∂τ/∂q̇ of the tree's inverse dynamics (τ of tree_inverse_dynamics) in closed
+/// form (recursive.cpp: the derivatives of Newton–Euler in world coordinates, an O(n) pass
+/// and a dot product per pair of joints on one path), for the exported derivatives. Its
+/// intermediates are its own, named apart from `taken`.
+struct TreeDerivatives {
+  std::vector<GiNaC::symbol> aux;
+  std::vector<GiNaC::ex> defs;
+  /// n × 2n, row-major: ∂τ_i/∂q_j at [i·2n + j], ∂τ_i/∂q̇_j at [i·2n + n + j]
+  std::vector<GiNaC::ex> d;
+  /// the tree's M (n × n) and τ at q̈ = 0 (= −bias, gravity included) from the same
+  /// intermediates, so that code holding the derivatives computes no second recursion
+  std::vector<GiNaC::ex> M, tau_rest;
+};
+[[nodiscard]] TreeDerivatives tree_inverse_dynamics_derivatives(
+    const System::Impl& s, const std::vector<TreeBody>& bodies, const Vec3& gravity,
+    const std::set<std::string>& taken);
+
 /// Derives the tree's M, bias forces and energies; `taken` holds the names the intermediates
 /// must not take (the system's own symbols).
 [[nodiscard]] TreeEquations tree_equations(System::Impl& s, const std::vector<TreeBody>& bodies,
