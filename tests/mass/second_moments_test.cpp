@@ -34,11 +34,11 @@ TEST(SecondMoments, ThreeDRelationToInertia) {
 
 TEST(SecondMoments, NBallVolumes) {
   // unit-density unit balls: V₁ = 2, V₂ = π, V₄ = π²/2, V₅ = 8π²/15
-  const double pi = std::numbers::pi;
+  const double kPi = std::numbers::pi;
   EXPECT_NEAR(mass::n_ball_with_density(1.0, 1.0, 1).mass(), 2.0, ulps(8));
-  EXPECT_NEAR(mass::n_ball_with_density(1.0, 1.0, 2).mass(), pi, ulps(8, pi));
-  EXPECT_NEAR(mass::n_ball_with_density(1.0, 1.0, 4).mass(), pi * pi / 2, ulps(16, 5));
-  EXPECT_NEAR(mass::n_ball_with_density(1.0, 1.0, 5).mass(), 8 * pi * pi / 15, ulps(16, 5));
+  EXPECT_NEAR(mass::n_ball_with_density(1.0, 1.0, 2).mass(), kPi, ulps(8, kPi));
+  EXPECT_NEAR(mass::n_ball_with_density(1.0, 1.0, 4).mass(), kPi * kPi / 2, ulps(16, 5));
+  EXPECT_NEAR(mass::n_ball_with_density(1.0, 1.0, 5).mass(), 8 * kPi * kPi / 15, ulps(16, 5));
   // 1D ball = rod of length 2r: J = m r²/3 = m (2r)²/12
   EXPECT_NEAR(mass::n_ball_with_mass(3.0, 0.5, 1).J_com()(0, 0), 3.0 * 1.0 / 12, ulps(4));
 }
