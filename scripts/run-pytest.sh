@@ -20,10 +20,16 @@ mapfile -t shards < <(awk -v n=2 '
        END { print list[0]; print list[1] }')
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
+# A shell without job control starts `&` commands with SIGINT ignored, and Python then never
+# raises KeyboardInterrupt (nor do the processes it starts see SIGINT): each shard puts Python's
+# own handler back before pytest starts, for the tests of Ctrl-C.
+run_shard='import signal, sys, pytest
+signal.signal(signal.SIGINT, signal.default_int_handler)
+sys.exit(pytest.main(sys.argv[1:]))'
 pids=()
 for k in 0 1; do
   # shellcheck disable=SC2086 # the file list is split on purpose
-  "$python" -m pytest -q -p no:cacheprovider ${shards[$k]} >"$out/$k.log" 2>&1 &
+  "$python" -c "$run_shard" -q -p no:cacheprovider ${shards[$k]} >"$out/$k.log" 2>&1 &
   pids+=($!)
 done
 status=0
