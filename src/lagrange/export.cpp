@@ -995,14 +995,12 @@ std::vector<GiNaC::ex> flat_tau(const System::Impl& s, const detail::TreeInverse
   return tau;
 }
 
-// The definitions the flat tapes add after the system's intermediates: the body-coordinate
-// inverse dynamics', then `more`.
+// The definitions inverse_dynamics' tape adds after the system's intermediates: the
+// body-coordinate inverse dynamics'.
 std::vector<std::pair<GiNaC::symbol, GiNaC::ex>> flat_definitions(
-    const detail::TreeInverseDynamics& id,
-    const std::vector<std::pair<GiNaC::symbol, GiNaC::ex>>& more) {
+    const detail::TreeInverseDynamics& id) {
   std::vector<std::pair<GiNaC::symbol, GiNaC::ex>> out;
   for (std::size_t k = 0; k < id.aux.size(); ++k) out.emplace_back(id.aux[k], id.defs[k]);
-  out.insert(out.end(), more.begin(), more.end());
   return out;
 }
 
@@ -1155,7 +1153,7 @@ std::string flat_functions(const System::Impl& s, const std::vector<std::string>
   }
   // inverse_dynamics
   {
-    const Tape tape = flat_tape(s, tau, flat_definitions(id, {}));
+    const Tape tape = flat_tape(s, tau, flat_definitions(id));
     const TapePrinter printer(tape, flat_syntax(n, params, "q_ddot", pow_int));
     out += "/// τ = M(q) q̈ − f(q, q̇) (inverse dynamics): the joint forces that give the "
            "accelerations q̈.\n"
