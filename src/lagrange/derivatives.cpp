@@ -50,7 +50,18 @@ ForwardDerivatives forward_derivatives(const std::vector<GiNaC::symbol>& aux,
     }
     return sum.expand();
   };
+  // only the intermediates the outputs read, directly or through others (each reads only
+  // earlier ones), are differentiated
+  std::vector<bool> needed(aux.size(), false);
+  for (const ex& e : outputs) {
+    for (std::size_t i : intermediates_in(e, index)) needed[i] = true;
+  }
+  for (std::size_t k = aux.size(); k-- > 0;) {
+    if (!needed[k]) continue;
+    for (std::size_t i : intermediates_in(defs[k], index)) needed[i] = true;
+  }
   for (std::size_t k = 0; k < aux.size(); ++k) {
+    if (!needed[k]) continue;
     const std::vector<std::size_t> reads = intermediates_in(defs[k], index);
     for (std::size_t j = 0; j < nv; ++j) {
       const ex value = derivative(defs[k], reads, j);

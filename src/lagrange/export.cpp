@@ -10,7 +10,6 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <map>
 #include <set>
 #include <utility>
 
@@ -1054,30 +1053,8 @@ FlatDynamics flat_dynamics(const System::Impl& s, const detail::TreeInverseDynam
     }
     extra[i] = e;
   }
-  // the system's intermediates the extra terms read, directly or through others (each
-  // intermediate reads only earlier ones)
-  std::map<GiNaC::ex, std::size_t, GiNaC::ex_is_less> index;
-  for (std::size_t k = 0; k < s.aux.size(); ++k) index.emplace(s.aux[k], k);
-  std::vector<bool> needed(s.aux.size(), false);
-  auto mark_read = [&](const GiNaC::ex& e) {
-    for (auto it = e.preorder_begin(); it != e.preorder_end(); ++it) {
-      if (!GiNaC::is_a<GiNaC::symbol>(*it)) continue;
-      const auto found = index.find(*it);
-      if (found != index.end()) needed[found->second] = true;
-    }
-  };
-  for (const GiNaC::ex& e : extra) mark_read(e);
-  for (std::size_t k = s.aux.size(); k-- > 0;) {
-    if (needed[k]) mark_read(s.aux_def[k]);
-  }
-  std::vector<GiNaC::symbol> aux;
-  std::vector<GiNaC::ex> defs;
-  for (std::size_t k = 0; k < s.aux.size(); ++k) {
-    if (!needed[k]) continue;
-    aux.push_back(s.aux[k]);
-    defs.push_back(s.aux_def[k]);
-  }
-  const detail::ForwardDerivatives D = detail::forward_derivatives(aux, defs, extra, vars);
+  const detail::ForwardDerivatives D =
+      detail::forward_derivatives(s.aux, s.aux_def, extra, vars);
   const detail::TreeDerivatives tree = detail::tree_inverse_dynamics_derivatives(
       s, s.tree_bodies, s.tree_gravity, taken_names(s, id.aux));
   FlatDynamics out;
