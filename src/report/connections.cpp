@@ -51,6 +51,14 @@ std::vector<Link> find_links(const scene::Model& model, const std::vector<BodyPo
   }
   const double still = 1e-9 * std::max(scale, 1e-300);
 
+  // a body the scene connects by a spring or a rope: that is what is drawn, not a rod found
+  // from its motion (two particles on a spinning spring stay at one distance)
+  auto named = [&](const std::string& name) {
+    const auto on = [&](const auto& ends) { return ends.body_a == name || ends.body_b == name; };
+    return std::any_of(sc.springs.begin(), sc.springs.end(), on) ||
+           std::any_of(sc.ropes.begin(), sc.ropes.end(), on);
+  };
+
   for (std::size_t i = 0; i < n; ++i) {
     const scene::Body& b = sc.bodies[i];
     const scene::ModelBody& mb = model.bodies()[i];
@@ -82,6 +90,7 @@ std::vector<Link> find_links(const scene::Model& model, const std::vector<BodyPo
       }
       continue;
     }
+    if (named(b.name)) continue;
     if (travel(pose.p_WB) > still) {
       // a rod to the nearest earlier body whose origin stays at one distance, else to the world
       // origin when that distance is constant
@@ -107,6 +116,25 @@ std::vector<Link> find_links(const scene::Model& model, const std::vector<BodyPo
       links.push_back({i, mb.mass.com(), std::nullopt, pose.p_WB.front(), "fixed origin"});
     }
   }
+
+  // the springs and the constraints' ropes, as the scene gives their ends
+  auto index_of = [&](const std::string& name) -> std::optional<std::size_t> {
+    for (std::size_t j = 0; j < n; ++j) {
+      if (sc.bodies[j].name == name) return j;
+    }
+    return std::nullopt;
+  };
+  auto add_ends = [&](const auto& ends, const char* rule) {
+    const std::optional<std::size_t> a = index_of(ends.body_a);
+    const std::optional<std::size_t> b =
+        ends.body_b.empty() ? std::nullopt : index_of(ends.body_b);
+    if (!a || (!ends.body_b.empty() && !b)) return;  // the scene's check names them
+    const auto& pa = ends.point_a;
+    const auto& pb = ends.point_b;
+    links.push_back({*a, {pa[0], pa[1], pa[2]}, b, {pb[0], pb[1], pb[2]}, rule});
+  };
+  for (const scene::Spring& sp : sc.springs) add_ends(sp, "spring");
+  for (const scene::Rope& r : sc.ropes) add_ends(r, "rope");
   return links;
 }
 

@@ -863,12 +863,29 @@ void parse_bodies(const toml::table& root, const Parser& p, NameClaims& names, S
   });
 }
 
-// [[constraints]], [[potentials]] and [[forces]]: a name (under `name_key`) and an expression.
+// The two ends of a spring or a rope: body_a (required) and point_a, body_b and point_b.
+template <typename T>
+void parse_ends(const toml::table& t, const Parser& p, const std::string& ctx, T& out) {
+  const toml::node& body_a = p.required(t, t.source(), "body_a", ctx);
+  out.body_a = p.string(body_a, "body_a");
+  if (out.body_a.empty()) p.fail(body_a, ctx + " body_a is empty; expected the name of a body");
+  if (auto n = t.get("point_a")) out.point_a = p.vector3(*n, "point_a");
+  if (auto n = t.get("body_b")) out.body_b = p.string(*n, "body_b");
+  if (auto n = t.get("point_b")) out.point_b = p.vector3(*n, "point_b");
+}
+
+// [[constraints]], [[potentials]], [[forces]]: a name (or the coordinate a force acts on) and
+// an expression; a constraint may say how it is drawn (`rope`, into `ropes`).
 void parse_named_expressions(const toml::table& root, const Parser& p, std::string_view key,
-                             std::string_view name_key, std::vector<NamedExpression>& out) {
+                             std::string_view name_key, std::vector<NamedExpression>& out,
+                             std::vector<Rope>* ropes = nullptr) {
   p.each_table(root, key, [&](const toml::table& t, std::size_t i) {
     const std::string ctx = fmt::format("[[{}]] entry {}", key, i);
-    p.check_keys(t, ctx, {std::string(name_key), "expression"});
+    if (ropes != nullptr) {
+      p.check_keys(t, ctx, {std::string(name_key), "expression", "rope"});
+    } else {
+      p.check_keys(t, ctx, {std::string(name_key), "expression"});
+    }
     NamedExpression e;
     if (auto n = t.get(name_key)) {
       e.name = p.string(*n, ctx + " " + std::string(name_key));
@@ -878,6 +895,16 @@ void parse_named_expressions(const toml::table& root, const Parser& p, std::stri
       e.name = fmt::format("{}{}", key.substr(0, key.size() - 1), i);
     }
     e.expression = p.expression(p.required(t, t.source(), "expression", ctx), ctx + " expression");
+    if (const toml::node* r = ropes != nullptr ? t.get("rope") : nullptr) {
+      const std::string rctx = ctx + " rope";
+      const toml::table& rt = p.table(*r, rctx);
+      p.check_keys(rt, rctx, {"body_a", "point_a", "body_b", "point_b"});
+      Rope rope;
+      rope.constraint = e.name;
+      rope.where = p.where(rt.source());
+      parse_ends(rt, p, rctx, rope);
+      ropes->push_back(std::move(rope));
+    }
     out.push_back(std::move(e));
   });
 }
@@ -932,12 +959,7 @@ void parse_springs(const toml::table& root, const Parser& p, Scene& s) {
     p.check_keys(t, ctx, {"body_a", "point_a", "body_b", "point_b", "stiffness", "rest_length"});
     Spring sp;
     sp.where = p.where(t.source());
-    const toml::node& body_a = p.required(t, t.source(), "body_a", ctx);
-    sp.body_a = p.string(body_a, "body_a");
-    if (sp.body_a.empty()) p.fail(body_a, ctx + " body_a is empty; expected the name of a body");
-    if (auto n = t.get("point_a")) sp.point_a = p.vector3(*n, "point_a");
-    if (auto n = t.get("body_b")) sp.body_b = p.string(*n, "body_b");
-    if (auto n = t.get("point_b")) sp.point_b = p.vector3(*n, "point_b");
+    parse_ends(t, p, ctx, sp);
     sp.stiffness = p.expression(p.required(t, t.source(), "stiffness", ctx), "stiffness");
     sp.rest_length = t.contains("rest_length") ? p.expression(*t.get("rest_length"), "rest_length")
                                                : Expression{"0", sp.where, 0.0, false};
@@ -1112,7 +1134,7 @@ void check_parents(const Scene& s) {
   }
 }
 
-// Every force names a coordinate and every spring's bodies exist.
+// Every force names a coordinate and every spring's and rope's bodies exist.
 void check_references(const Scene& s) {
   for (const NamedExpression& f : s.forces) {
     const bool known = std::any_of(s.coordinates.begin(), s.coordinates.end(),
@@ -1125,20 +1147,22 @@ void check_references(const Scene& s) {
       detail::throw_error_at(f.expression.where, msg);
     }
   }
-  for (const Spring& sp : s.springs) {
-    for (const std::string* name : {&sp.body_a, &sp.body_b}) {
+  auto check_ends = [&](const auto& ends, std::string_view what) {
+    for (const std::string* name : {&ends.body_a, &ends.body_b}) {
       if (name->empty()) continue;
       const bool known = std::any_of(s.bodies.begin(), s.bodies.end(),
                                      [&](const Body& b) { return b.name == *name; });
       if (!known) {
         std::vector<std::string> bodies;
         for (const auto& b : s.bodies) bodies.push_back(b.name);
-        std::string msg = fmt::format("spring attached to unknown body '{}'", *name);
+        std::string msg = fmt::format("{} attached to unknown body '{}'", what, *name);
         if (auto g = did_you_mean(*name, bodies)) msg += fmt::format("; did you mean '{}'?", *g);
-        detail::throw_error_at(sp.where, msg);
+        detail::throw_error_at(ends.where, msg);
       }
     }
-  }
+  };
+  for (const Spring& sp : s.springs) check_ends(sp, "spring");
+  for (const Rope& r : s.ropes) check_ends(r, fmt::format("rope of constraint '{}'", r.constraint));
 }
 
 // The text of `file`, a regular file of at most kMaxSceneFileBytes: `what` names it in messages
@@ -1288,7 +1312,7 @@ Scene parse_document(const toml::table& root, const Parser& p, const ModelOption
   parse_parameters(root, p, names, s);
   parse_coordinates(root, p, names, s);
   parse_bodies(root, p, names, s);
-  parse_named_expressions(root, p, "constraints", "name", s.constraints);
+  parse_named_expressions(root, p, "constraints", "name", s.constraints, &s.ropes);
   parse_named_expressions(root, p, "potentials", "name", s.potentials);
   parse_named_expressions(root, p, "forces", "coordinate", s.forces);
   parse_velocity_constraints(root, p, s);

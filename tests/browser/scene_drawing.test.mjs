@@ -1,6 +1,6 @@
 // What the run page draws of the scene and what it gives for slides: the double pendulum's two
 // rods and pivot (dark pixels along the rod between the pivot and the bob, which go when the
-// rods are hidden), the tennis racket's flip (its drawn frame turns by 180° relative to L between
+// rods are hidden), the Atwood machine's ropes and the stiff dumbbell's spring (likewise), the tennis racket's flip (its drawn frame turns by 180° relative to L between
 // t = 0 and the middle of its first two flips), the scene's metrics in the header and marked on
 // the plots, the units of every axis, and the PNG and SVG downloads.
 import assert from 'node:assert/strict';
@@ -15,11 +15,12 @@ let browser;
 before(async () => { browser = await launch(); });
 after(async () => { await browser?.close(); });
 
-// Samples the 3D view's canvas at CSS-pixel points; for each, whether a pixel within 2 px of it is
-// dark (every channel below 0x70: the rods are #3b3b3b lit, the background #f7f7f7, the grid
-// #bbbbbb and #dddddd, the bodies' colours each have a channel above 0x70).
-async function darkAt(page, points) {
-  return page.evaluate((pts) => {
+// Samples the 3D view's canvas at CSS-pixel points; for each, whether a pixel within `within` CSS
+// px of it is dark (every channel below 0x70: the rods are #3b3b3b lit, ropes #4a3a28, springs
+// #23344f, the background #f7f7f7, the grid #bbbbbb and #dddddd, the bodies' colours each have
+// a channel above 0x70).
+async function darkAt(page, points, within = 2) {
+  return page.evaluate(([pts, rad]) => {
     const view = window.rigidReport.view;
     view.render();
     const src = view.canvas;
@@ -30,9 +31,11 @@ async function darkAt(page, points) {
     const g = c.getContext('2d');
     g.drawImage(src, 0, 0);
     const px = g.getImageData(0, 0, c.width, c.height).data;
+    const r = Math.ceil(rad * scale);
     return pts.map(([x, y]) => {
-      for (let dy = -2; dy <= 2; dy += 1) {
-        for (let dx = -2; dx <= 2; dx += 1) {
+      for (let dy = -r; dy <= r; dy += 1) {
+        for (let dx = -r; dx <= r; dx += 1) {
+          if (dx * dx + dy * dy > r * r + 2 * r) continue;
           const i = Math.round(y * scale + dy);
           const j = Math.round(x * scale + dx);
           if (i < 0 || j < 0 || i >= c.height || j >= c.width) continue;
@@ -42,7 +45,7 @@ async function darkAt(page, points) {
       }
       return false;
     });
-  }, points);
+  }, [points, within]);
 }
 
 async function settle(page) {
@@ -87,12 +90,7 @@ describe('double pendulum: two rods and a pivot', { skip }, () => {
       for (const [a, b] of ends) assert.ok(Math.abs(Math.hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]) - 1) < 1e-5);
       // points along each rod between 30 % and 70 % of its length (clear of the pivot's sphere
       // and the bobs' markers, which are within 0.1 m of the ends here)
-      const points = [];
-      for (const [a, b] of ends) {
-        const pa = await page.evaluate((p) => window.rigidReport.view.project(p), a);
-        const pb = await page.evaluate((p) => window.rigidReport.view.project(p), b);
-        for (const f of [0.3, 0.4, 0.5, 0.6, 0.7]) points.push([pa[0] + f * (pb[0] - pa[0]), pa[1] + f * (pb[1] - pa[1])]);
-      }
+      const points = await alongLinks(page, ends);
       assert.deepEqual(await darkAt(page, points), points.map(() => true), 'a dark pixel at each point along the rods');
       await page.locator('.canvas-box canvas').screenshot({ path: screenshotPath(`double_pendulum_rods_t${t}.png`) });
       // the control: with the rods hidden the same points are background
@@ -109,6 +107,96 @@ describe('double pendulum: two rods and a pivot', { skip }, () => {
     assert.deepEqual(labels.velocities, ['t (s)', 'coordinate rate (m/s or rad/s)']);
     // E(0) is the round-off of 0 here: the change itself, in J
     assert.deepEqual(labels.energy_error, ['t (s)', 'change (J)']);
+    assert.deepEqual(problems, []);
+  });
+});
+
+// points between 30 % and 70 % along each link [a, b], projected to CSS pixels
+async function alongLinks(page, ends) {
+  const points = [];
+  for (const [a, b] of ends) {
+    const pa = await page.evaluate((p) => window.rigidReport.view.project(p), a);
+    const pb = await page.evaluate((p) => window.rigidReport.view.project(p), b);
+    for (const f of [0.3, 0.4, 0.5, 0.6, 0.7]) points.push([pa[0] + f * (pb[0] - pa[0]), pa[1] + f * (pb[1] - pa[1])]);
+  }
+  return points;
+}
+
+describe('Atwood machine: the constraints\' ropes', { skip }, () => {
+  let page;
+  let problems;
+  before(async () => {
+    const dir = writeReport('examples/atwood.toml');
+    ({ page, problems } = await openPage(browser, join(dir, 'report.html')));
+  });
+  after(async () => { await page?.close(); });
+
+  test('the data name a rope from each weight to where it leaves the pulley, and no rod', async () => {
+    const links = await page.evaluate(() => JSON.parse(document.getElementById('rigid-report-data').textContent).links);
+    assert.deepEqual(links.map((l) => [l.rule, l.body, l.to, l.to_point]), [['rope', 0, null, [-0.1, 0, 0]], ['rope', 1, null, [0.1, 0, 0]]]);
+    assert.deepEqual(await page.evaluate(() => window.rigidReport.view.pivots), []);
+  });
+
+  for (const t of [0, 0.9]) {
+    test(`at t = ${t} s each rope runs from its weight to the pulley`, async () => {
+      await page.evaluate((tt) => window.rigidReport.setTime(tt), t);
+      await settle(page);
+      const ends = await page.evaluate(() => window.rigidReport.view.links());
+      // the closed form of the scene's comment: weight 1 falls by a t²/2, a = 1.635 m/s², and
+      // weight 2 rises as much; the frame's poses are float32 (1e-5 m)
+      const fall = (0.5 * 1.635 * t * t);
+      assert.ok(Math.hypot(ends[0][0][0] + 0.1, ends[0][0][1], ends[0][0][2] + 1 + fall) < 1e-5, JSON.stringify(ends[0]));
+      assert.ok(Math.hypot(ends[1][0][0] - 0.1, ends[1][0][1], ends[1][0][2] + 1 - fall) < 1e-5, JSON.stringify(ends[1]));
+      assert.deepEqual(ends.map((e) => e[1]), [[-0.1, 0, 0], [0.1, 0, 0]]);
+      const points = await alongLinks(page, ends);
+      assert.deepEqual(await darkAt(page, points), points.map(() => true), 'a dark pixel at each point along the ropes');
+      await page.locator('.canvas-box canvas').screenshot({ path: screenshotPath(`atwood_ropes_t${t}.png`) });
+      await setToggle(page, 'rods and pivots', false);
+      assert.deepEqual(await darkAt(page, points), points.map(() => false), 'no dark pixel there without the ropes');
+      await setToggle(page, 'rods and pivots', true);
+      assert.deepEqual(problems, []);
+    });
+  }
+});
+
+describe('stiff dumbbell: a spring between two particles', { skip }, () => {
+  let page;
+  let problems;
+  before(async () => {
+    const dir = writeReport('examples/stiff_dumbbell.toml');
+    ({ page, problems } = await openPage(browser, join(dir, 'report.html')));
+  });
+  after(async () => { await page?.close(); });
+
+  test('the data name the spring and no rod from the motion', async () => {
+    const links = await page.evaluate(() => JSON.parse(document.getElementById('rigid-report-data').textContent).links);
+    assert.deepEqual(links.map((l) => [l.rule, l.body, l.to]), [['spring', 0, 1]]);
+  });
+
+  test('the coil is drawn between the particles, as long as they are apart', async () => {
+    await page.evaluate(() => window.rigidReport.setTime(1.3));
+    await settle(page);
+    const ends = await page.evaluate(() => window.rigidReport.view.links());
+    assert.equal(ends.length, 1);
+    // the steady radius of the scene's comment: the particles are 2 r = 1.00020004 m apart
+    const [a, b] = ends[0];
+    assert.ok(Math.abs(Math.hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]) - 2 * 0.50010002) < 1e-5);
+    // every cross-section of the coil has a point within its radius of the axis: search a disc
+    // of the coil's projected radius (+2 px) around points along the axis
+    const radius = (await page.evaluate(() => window.rigidReport.view.linkRadii))[0];
+    const mid = a.map((x, i) => (x + b[i]) / 2);
+    const [pm, pz] = await Promise.all([mid, [mid[0], mid[1], mid[2] + radius]]
+      .map((p) => page.evaluate((q) => window.rigidReport.view.project(q), p)));
+    const [pa, pb] = await Promise.all([a, b].map((p) => page.evaluate((q) => window.rigidReport.view.project(q), p)));
+    const axis = Math.hypot(pb[0] - pa[0], pb[1] - pa[1]);
+    const across = Math.hypot(pz[0] - pm[0], pz[1] - pm[1]);
+    assert.ok(axis > 100 && across > 2 && across < axis / 5, `${axis} px along, ${across} px across`);
+    const points = await alongLinks(page, ends);
+    assert.deepEqual(await darkAt(page, points, across + 2), points.map(() => true), 'the coil near each point along the spring');
+    await page.locator('.canvas-box canvas').screenshot({ path: screenshotPath('stiff_dumbbell_spring.png') });
+    await setToggle(page, 'rods and pivots', false);
+    assert.deepEqual(await darkAt(page, points, across + 2), points.map(() => false), 'nothing dark there without it');
+    await setToggle(page, 'rods and pivots', true);
     assert.deepEqual(problems, []);
   });
 });

@@ -150,6 +150,14 @@ describe('sweep page: a sample as histograms and scatter plots', { skip }, () =>
     const sums = await page.evaluate(() => Object.fromEntries(Object.entries(window.rigidReport.sweep.figures)
       .filter(([, f]) => f.bins).map(([n, f]) => [n, f.bins.counts.reduce((a, b) => a + b, 0)])));
     for (const name of ['energy_initial-histogram', 'energy_final-histogram']) assert.equal(sums[name], succeeded, name);
+    // the failed runs, which have no value to bin, are counted in the title and marked in the legend
+    const failed = rows.length - succeeded;
+    const marks = await page.evaluate(() => {
+      const f = window.rigidReport.sweep.figures['energy_initial-histogram'];
+      return { title: f.spec.title, labels: f.spec.layers.filter((l) => l.kind === 'crosses').map((l) => l.label) };
+    });
+    assert.match(marks.title, new RegExp(`: ${succeeded} runs, ${failed} failed$`));
+    assert.deepEqual(marks.labels, [`${failed} failed runs (no value, not binned)`]);
   });
 
   test('scatter plots against each input, the failed runs as crosses, the statistics', async () => {

@@ -311,6 +311,25 @@ def test_check_refuses_inconsistent_initial_conditions(run, tmp_path):
     assert "initial conditions violate constraint 'rope1'" in p.stderr
 
 
+def test_a_constraints_rope_names_its_bodies_and_keys(run, tmp_path):
+    # the rope only draws the constraint; its bodies and keys are checked as a spring's are
+    atwood = (EXAMPLES / "atwood.toml").read_text()
+    lines = atwood.splitlines()
+    row = next(i for i, line in enumerate(lines) if line.startswith('rope = {body_a = "weight1"')) + 1
+    p = run("check", write(tmp_path, atwood.replace('body_a = "weight1"', 'body_a = "weigth1"')), check=False)
+    assert p.returncode != 0
+    assert f":{row}:8: rope of constraint 'rope1' attached to unknown body 'weigth1'; did you mean 'weight1'?" in p.stderr
+    p = run("check", write(tmp_path, atwood.replace('body_a = "weight1",', 'body_a = "weight1", colour = 2,')), check=False)
+    assert p.returncode != 0 and "unknown key 'colour' in [[constraints]] entry 1 rope" in p.stderr
+    p = run("check", write(tmp_path, atwood.replace('rope = {body_a = "weight1", point_b = [-0.1, 0, 0]}', 'rope = "weight1"')), check=False)
+    assert p.returncode != 0 and f":{row}:8:" in p.stderr and "rope" in p.stderr
+    # a potential or a force has no rope
+    text = atwood + '[[potentials]]\nexpression = "0"\nrope = {body_a = "weight1"}\n'
+    p = run("check", write(tmp_path, text), check=False)
+    assert p.returncode != 0 and "unknown key 'rope' in [[potentials]] entry 1" in p.stderr
+    assert run("check", EXAMPLES / "atwood.toml").returncode == 0
+
+
 def test_unknown_key_suggests_the_right_one(run, tmp_path):
     text = PENDULUM.replace("thta", "theta").replace("t_end = 1", "t_ned = 1")
     p = run("run", write(tmp_path, text), "-o", tmp_path / "o", check=False)

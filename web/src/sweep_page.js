@@ -206,9 +206,14 @@ export function buildSweepPage(data, root) {
       add(fig, (hit) => runText(hit.layer.rows[hit.index], c));
     } else {
       const h = histogram(yv);
-      const fig = new Figure({ name: `${c.name}-histogram`, title: `${c.name}: ${h.counts.reduce((a, b) => a + b, 0)} runs`, xLabel: withUnit(c.name, c.unit), yLabel: 'runs',
+      const binned = h.counts.reduce((a, b) => a + b, 0);
+      // a failed run has no value to bin: the title counts it and the legend marks it
+      const failedNote = failedRuns.length ? `, ${failedRuns.length} failed` : '';
+      const layers = [{ kind: 'bars', edges: h.edges, counts: h.counts, colour: kColour }];
+      if (failedRuns.length) layers.push({ kind: 'crosses', x: [], y: null, colour: kFailedColour, label: `${failedRuns.length} failed run${failedRuns.length === 1 ? '' : 's'} (no value, not binned)` });
+      const fig = new Figure({ name: `${c.name}-histogram`, title: `${c.name}: ${binned} runs${failedNote}`, xLabel: withUnit(c.name, c.unit), yLabel: 'runs',
         xRange: [h.edges[0], h.edges[h.edges.length - 1]], yRange: [0, Math.max(...h.counts) * 1.08 || 1],
-        layers: [{ kind: 'bars', edges: h.edges, counts: h.counts, colour: kColour }] });
+        layers });
       fig.bins = h;
       add(fig, (hit) => `${num(h.edges[hit.index])} \u2264 ${c.name} ${hit.index === h.counts.length - 1 ? '\u2264' : '<'} ${num(h.edges[hit.index + 1])}${c.unit ? ` ${c.unit}` : ''}: ${h.counts[hit.index]} runs`);
       for (const x of swept) {

@@ -281,7 +281,7 @@ export function buildView(report, player, root) {
   };
   // a free body's turning is read from its frame: on by default where there is one
   toggle('body frames', layers.frames, bodies.some((b) => b.info.free), 'x red, y green, z blue, at each body frame origin');
-  toggle('rods and pivots', links.count ? [links.group] : [], true, 'what each body hangs from: a rod to it, a sphere at a pivot fixed in the world');
+  toggle('rods and pivots', links.count ? [links.group] : [], true, 'what connects the bodies: a rod to what a body hangs from, a sphere at a pivot fixed in the world, the springs, the constraints\' ropes');
   toggle('ω', layers.omega, true, 'angular velocity in the world (red)');
   toggle('L', layers.L, true, 'angular momentum about the COM, in the world (green): constant for a free body');
   toggle('inertia ellipsoids', layers.ellipsoids, false, 'the uniform solid ellipsoid with the body’s mass and principal moments');
@@ -316,6 +316,8 @@ export function buildView(report, player, root) {
     // for tests and scripts: the rods' world ends at the current frame, the pivots, a world
     // point's position in the canvas (CSS pixels), a body's drawn orientation (w, x, y, z)
     links: () => links.ends(player.index),
+    linkRules: links.rules,
+    linkRadii: links.radii,
     pivots: links.pivots,
     project,
     bodyQuaternion: (i) => { const g = bodies[i].group.quaternion; return [g.w, g.x, g.y, g.z]; },

@@ -156,6 +156,16 @@ struct Spring {
   SourceLocation where;
 };
 
+/// How the run page draws a constraint (`rope = {...}` in a `[[constraints]]` entry): a straight
+/// rope from a point of `body_a` to a point of `body_b` or of the world. Drawing only: the
+/// constraint's expression is what the equations use.
+struct Rope {
+  std::string constraint;                      ///< the constraint's name
+  std::string body_a, body_b;                  ///< body_b empty: ends in the world
+  std::array<double, 3> point_a{}, point_b{};  ///< in the body frames (or world for b), m
+  SourceLocation where;
+};
+
 /// `[simulation]`.
 struct Simulation {
   Expression t_end;                   ///< s
@@ -256,6 +266,7 @@ struct Scene {
   std::vector<NamedExpression> potentials;
   std::vector<NamedExpression> forces;
   std::vector<Spring> springs;
+  std::vector<Rope> ropes;  ///< from the constraints' `rope` keys, for drawing
   std::vector<VelocityConstraint> velocity_constraints;
   std::array<Expression, 3> gravity;  ///< m/s², world frame; default (0, 0, 0)
   /// `lagrangian`: a Lagrangian L(q, q̇, t) (J) of the coordinates, added to the bodies'

@@ -4,7 +4,8 @@
 // it hangs from, or to a fixed pivot in the world. Found from the scene (a body's `parent` and
 // its last turn joint, a top's `pivot`) and, for a body posed by expressions alone, from its
 // motion: a rod wherever the distance from its frame origin to an earlier body's origin (or to
-// the world origin) stays the same over the run.
+// the world origin) stays the same over the run. Springs and the ropes the constraints name
+// come from the scene as written.
 #include <cstddef>
 #include <optional>
 #include <string>
@@ -23,7 +24,9 @@ struct Link {
   Eigen::Vector3d point_B = Eigen::Vector3d::Zero();
   std::optional<std::size_t> to;
   Eigen::Vector3d point_to = Eigen::Vector3d::Zero();
-  std::string rule;  ///< "parent", "pivot", "constant distance" or "fixed origin"
+  /// "parent", "pivot", "constant distance" or "fixed origin" (rods), "spring" (a
+  /// [[springs]] entry) or "rope" (a constraint's `rope`)
+  std::string rule;
 };
 
 /// The poses X_WB of every body (index as in the model) at the report's frames.
