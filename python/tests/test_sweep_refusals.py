@@ -39,3 +39,26 @@ def test_failed_runs_are_grouped_by_message_in_the_summary():
     assert summary["failures"] == 2
     assert summary["failure_groups"] == [{"message": errors[1], "count": 1, "runs": [1]},
                                          {"message": errors[2], "count": 1, "runs": [2]}]
+
+
+# Values that underflow (subnormal or to 0), as axes, `set` values, sample ranges and expressions:
+# each is a rigid.Error (a ValueError) naming the value, never a RuntimeError or another
+# library's exception, and no run starts.
+@pytest.mark.parametrize("kwargs", [
+    dict(grid=["theta.initial=1e-309:2e-309:2"]),
+    dict(grid=["g=1e-320:2e-320:2"]),
+    dict(grid=["theta.initial=0.1:0.2:2"], set=["g=2.2250738585072014e-309"]),
+    dict(grid=["theta.initial=0.1:0.2:2"], set=["L=1e-400"]),
+    dict(grid=["theta.initial=0.1:0.2:2"], set=["g=exp(-800)"]),
+    dict(grid=["theta.initial=0.1:0.2:2"], set=["g=1e-300*1e-10"]),
+    dict(grid=["theta.initial=0.1:0.2:2"], set=["simulation.t_end=1e-320"]),
+    dict(grid=["theta.initial=0.1:0.2:2"], set=["simulation.dt=1e-320"]),
+    dict(sample=["g=uniform(1e-320,2e-320)"], samples=3),
+])
+def test_an_underflowing_value_is_a_rigid_error(tmp_path, kwargs):
+    out = tmp_path / "out"
+    with pytest.raises(rigid.Error) as e:
+        rigid.sweep(str(PENDULUM), output=str(out), **kwargs)
+    assert type(e.value) is rigid.Error
+    assert "underflow" in str(e.value) or "evaluates to" in str(e.value)
+    assert not (out / "runs.csv").exists()
