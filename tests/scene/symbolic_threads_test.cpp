@@ -1,5 +1,5 @@
 // Every front-end path that reaches the symbolic core (deriving a model, printing its equations
-// in every format, normal modes, code export, a run and its report's data) called from eight
+// in every format, normal modes, code export in both layouts, a run and its report's data) called from eight
 // threads at once, on several scenes, gives what one thread alone gives. Run under
 // ThreadSanitizer by `make test` (test-tsan), where a race on GiNaC's shared expression nodes
 // is reported even when it does not crash.
@@ -38,6 +38,8 @@ const std::vector<Case>& cases() {
       {"rolling_disk.toml", {"simulation.t_end=0.05"}},
       {"tennis_racket.toml", {"simulation.t_end=0.5"}},
       {"heavy_top.toml", {"simulation.t_end=0.05"}},
+      // a tree read from a URDF: the flat export's closed-form derivatives of its recursion
+      {"cart_arm.urdf", {"simulation.t_end=0.05"}},
   };
   return kCases;
 }
@@ -69,6 +71,8 @@ Outputs pass(const Case& c) {
   out.text.push_back(or_refusal([&] { return lagrange::to_text(normal_modes(model)); }));
   out.text.push_back(or_refusal([&] { return emit_code(model, "c++"); }));
   out.text.push_back(or_refusal([&] { return emit_code(model, "python"); }));
+  // the flat layout: M, forward dynamics and both derivative functions
+  out.text.push_back(or_refusal([&] { return emit_code(model, "c++", "flat", true); }));
   RunResult result = model.run();
   result.summary.wall_seconds = 0.0;  // the one entry that differs from run to run
   out.numbers.push_back(result.trajectory.data());
@@ -81,7 +85,9 @@ TEST(SymbolicThreads, EveryPathFromEightThreadsGivesTheSerialOutputs) {
   for (const Case& c : cases()) serial.push_back(pass(c));
   // every scene refused something that the others do: the passes cover modes, export and a
   // refusal of each (rolling_disk has velocity constraints; the free bodies no coordinates)
-  for (const Outputs& o : serial) ASSERT_EQ(o.text.size(), 7U);
+  for (const Outputs& o : serial) ASSERT_EQ(o.text.size(), 8U);
+  // the tree's flat export holds the derivative functions (not a refusal)
+  EXPECT_NE(serial.back().text[6].find("void forward_dynamics_derivatives("), std::string::npos);
 
   constexpr int kThreads = 8;
   std::vector<std::vector<Outputs>> together(kThreads);
