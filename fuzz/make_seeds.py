@@ -280,6 +280,9 @@ def sweep_journals(out):
         "crlf": (header() + "".join(rows)).replace("\n", "\r\n"),
         "huge_runs": header(runs=4294967296) + rows[0],
         "version_2": header(rigid_sweep=2) + rows[0],
+        "units": header(units={"a": "m", "energy": "J", "period": "s", "result.a": ""}) + "".join(rows),
+        "units_not_text": header(units={"a": 1}) + rows[0],
+        "units_not_a_table": header(units=["m"]) + rows[0],
         "not_json": "rigid sweep journal\n",
         "extra_values_partial": header() + row(0, 0)[:-len('0]}\n')] + "0,1,2,3]}\n",
     }

@@ -2,7 +2,7 @@
 // merge` reads) and scene::Journal opening an existing journal (what a sweep started again on
 // DIR does to resume). The input is written as the journal of a scratch directory, then:
 //  1. read_journal(DIR): refused, or a header and the complete lines' rows;
-//  2. the merge: make_outputs(names, runs, rows) of the journal's own header, when it declares
+//  2. the merge: make_outputs(names, runs, rows, units) of the journal's own header, when it declares
 //     at most kMaxRuns runs (the outputs are made per run: a header of 2^32 runs would be a
 //     finding of the target's memory, not of the reader);
 //  3. the resume of a small sweep (kGrid, described once by scene::describe): Journal(DIR, …)
@@ -80,7 +80,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (!read) return 0;
   if (contents.runs <= kMaxRuns) {
     rigid::fuzz::refuse_or_return(
-        input, [&] { (void)sc::make_outputs(contents.names, contents.runs, contents.rows); });
+        input, [&] { (void)sc::make_outputs(contents.names, contents.runs, contents.rows, contents.units); });
   }
   rigid::fuzz::refuse_or_return(input, [&] {
     const sc::Journal journal(dir, small.description, small.names, small.runs, sc::Shard{});

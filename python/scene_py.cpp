@@ -254,7 +254,9 @@ py::dict sweep(const py::object& scene_arg, const std::vector<std::string>& grid
     options.first_run = sc::check_first_run(id);
     rows = sc::run_sweep(id, indices, options);
   }
-  const sc::SweepOutputs outputs = sc::make_outputs(sc::swept_names(spec), runs, std::move(rows));
+  // the units of run 0's schema, in summary.json and on the page
+  const sc::SweepUnits units = options.first_run ? sc::sweep_units(options.first_run->schema()) : sc::SweepUnits{};
+  const sc::SweepOutputs outputs = sc::make_outputs(sc::swept_names(spec), runs, std::move(rows), units);
   py::dict columns;
   const rigid::io::Table& t = outputs.numbers;
   for (std::size_t c = 0; c < t.columns().size(); ++c) {
@@ -284,8 +286,7 @@ py::dict sweep(const py::object& scene_arg, const std::vector<std::string>& grid
     data.errors = outputs.errors;
     data.swept = sc::swept_names(spec);
     data.summary_json = outputs.summary_json;
-    // the units of run 0's schema
-    if (options.first_run) data.units = rigid::report::sweep_units_of(options.first_run->schema());
+    data.units = units;
     data.description = sc::describe(id);
     data.title = rigid::escaped(std::filesystem::path(file).stem().string());
     rigid::io::write_file_atomically(*report, rigid::report::sweep_page(data));

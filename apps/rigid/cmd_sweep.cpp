@@ -378,14 +378,17 @@ std::string sweep_on_ranks(const SweepOptions& opts, const scene::SweepIdentity&
     }
     return {};
   }
-  // every row, from the journal: those it held, this run's and the other ranks'
-  std::vector<scene::SweepRow> all = scene::read_journal(dir).rows;
-  const scene::SweepOutputs outputs = scene::make_outputs(names, runs, std::move(all));
+  // every row, from the journal: those it held, this run's and the other ranks'; the units its
+  // header holds (run 0's, as when the journal was started)
+  scene::JournalContents journaled = scene::read_journal(dir);
+  const scene::SweepOutputs outputs =
+      scene::make_outputs(names, runs, std::move(journaled.rows), journaled.units);
   auto written = scene::write_outputs(dir, outputs);
   if (opts.report) {
-    // the page of the files just written, with the units of run 0's schema
+    // the page of the files just written (summary.json's units), with every unit of run 0's
+    // schema for names it does not list
     report::SweepData data = report::read_sweep(dir);
-    if (first_run) data.units.merge(report::sweep_units_of(first_run->schema()));
+    if (first_run) data.units.merge(scene::sweep_units(first_run->schema()));
     const fs::path page = opts.report_path.empty() ? dir / io::kReportFileName : fs::path(opts.report_path);
     io::write_file_atomically(page, report::sweep_page(data));
     written.push_back(page);
@@ -445,7 +448,8 @@ void run_sweep(const SweepOptions& opts) {
   std::vector<std::uint64_t> finished;  // the journal's runs, ascending (none allocated per requested run)
   if (ranks.root()) {
     try {
-      journal = std::make_unique<scene::Journal>(dir, description, names, runs, shard);
+      journal = std::make_unique<scene::Journal>(dir, description, names, runs, shard,
+                                                 scene::sweep_units(first_run->schema()));
       for (const auto& r : journal->finished()) finished.push_back(r.index);
       std::sort(finished.begin(), finished.end());
       finished.erase(std::unique(finished.begin(), finished.end()), finished.end());
@@ -483,11 +487,24 @@ void run_sweep_merge(const SweepMergeOptions& opts) {
     }
     shards.push_back(fmt::format("{}/{}", p.shard.index, p.shard.count));
   }
+  // the units the shards' headers state (run 0's schema; a journal of an older rigid has none)
+  scene::SweepUnits units;
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    if (parts[i].units.empty()) continue;
+    if (units.empty()) {
+      units = parts[i].units;
+    } else if (parts[i].units != units) {
+      throw Error(fmt::format("'{}' states other units for the sweep's columns than the shards before it: its "
+                              "scene file's schema changed between shards; run every shard on one version of "
+                              "the scene and of rigid",
+                              opts.directories[i]));
+    }
+  }
   std::vector<scene::SweepRow> all;
   for (const auto& p : parts) all.insert(all.end(), p.rows.begin(), p.rows.end());
   const scene::SweepOutputs outputs = [&] {
     try {
-      return scene::make_outputs(first.names, first.runs, all);
+      return scene::make_outputs(first.names, first.runs, all, units);
     } catch (const Error& e) {
       throw Error(fmt::format("rigid sweep merge of shards {}: {}; run the missing shards (or finish them: the "
                               "same command again) and merge again",
@@ -497,7 +514,7 @@ void run_sweep_merge(const SweepMergeOptions& opts) {
   // the merged directory is an unsharded sweep's: its journal holds every run, so the sweep's
   // own command on it finds everything done
   const fs::path out = opts.output.empty() ? fs::path("out/sweep-merged") : fs::path(opts.output);
-  scene::Journal journal(out, first.description, first.names, first.runs, scene::Shard{});
+  scene::Journal journal(out, first.description, first.names, first.runs, scene::Shard{}, units);
   std::set<std::size_t> have;
   for (const auto& r : journal.finished()) have.insert(r.index);
   for (const auto& r : all) {

@@ -143,33 +143,6 @@ Plot plot_run(const fs::path& dir, const PlotRequest& request) {
 
 // ---- a sweep ----
 
-
-// the units of a sweep's columns: those of the schema of a run it kept (--keep-trajectories),
-// whose parameters, diagnostics and metrics are the sweep's swept names and results
-std::map<std::string, std::string> sweep_units(const fs::path& dir) {
-  std::map<std::string, std::string> units;
-  std::error_code ec;
-  const fs::path runs = dir / "runs";
-  if (!fs::is_directory(runs, ec)) return units;
-  std::vector<fs::path> kept;
-  for (fs::directory_iterator it(runs, ec), end; !ec && it != end; it.increment(ec)) {
-    if (fs::is_regular_file(it->path() / "summary.json", ec)) kept.push_back(it->path());
-  }
-  if (kept.empty()) return units;
-  std::sort(kept.begin(), kept.end());
-  const fs::path file = kept.front() / "summary.json";
-  const auto j = nlohmann::json::parse(read_text(file, "a run's summary.json"), nullptr, false);
-  if (j.is_discarded() || !j.is_object() || !j.contains("schema")) return units;
-  const io::RunSchema schema = io::parse_schema_json(j["schema"].dump(), file.string());
-  for (const auto* group : {&schema.parameters, &schema.diagnostics, &schema.metrics}) {
-    for (const io::Scalar& s : *group) {
-      units[s.name] = s.unit;
-      units["result." + s.name] = s.unit;  // a metric named like a swept name
-    }
-  }
-  return units;
-}
-
 Plot plot_sweep(const fs::path& dir, const PlotRequest& request) {
   const fs::path summary_file = dir / "summary.json";
   const auto summary = nlohmann::json::parse(
@@ -188,7 +161,7 @@ Plot plot_sweep(const fs::path& dir, const PlotRequest& request) {
                     escaped(summary_file.string())));
   }
   const RunsCsv runs = read_runs_csv(dir / "runs.csv");
-  const std::map<std::string, std::string> units = sweep_units(dir);
+  const std::map<std::string, std::string> units = detail::sweep_directory_units(dir);
   const std::string what = fmt::format("the sweep in '{}'", escaped(dir.string()));
   const auto column = [&](const std::string& option, const std::string& name) {
     const auto it = std::find(runs.names.begin(), runs.names.end(), name);

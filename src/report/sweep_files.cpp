@@ -1,6 +1,7 @@
 // What the report's readers and writers share (detail/sweep_files.hpp).
 #include "detail/sweep_files.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
@@ -9,9 +10,12 @@
 #include <system_error>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "rigid/common/error.hpp"
 #include "rigid/common/escape.hpp"
+#include "rigid/io/run_schema.hpp"
+#include "rigid/scene/sweep.hpp"
 
 namespace rigid::report::detail {
 
@@ -129,6 +133,36 @@ std::string base64(std::string_view bytes) {
     out.push_back('=');
   }
   return out;
+}
+
+std::map<std::string, std::string> sweep_directory_units(const fs::path& directory) {
+  std::map<std::string, std::string> units;
+  std::error_code ec;
+  const fs::path runs = directory / "runs";
+  if (fs::is_directory(runs, ec)) {
+    std::vector<fs::path> kept;
+    for (fs::directory_iterator it(runs, ec), end; !ec && it != end; it.increment(ec)) {
+      if (fs::is_regular_file(it->path() / "summary.json", ec)) kept.push_back(it->path());
+    }
+    if (!kept.empty()) {
+      const fs::path file = *std::min_element(kept.begin(), kept.end()) / "summary.json";
+      const auto j = nlohmann::json::parse(read_text(file, "a run's summary.json"), nullptr, false);
+      if (!j.is_discarded() && j.is_object() && j.contains("schema")) {
+        units = scene::sweep_units(io::parse_schema_json(j["schema"].dump(), file.string()));
+      }
+    }
+  }
+  const fs::path summary_file = directory / "summary.json";
+  if (!fs::is_regular_file(summary_file, ec)) return units;
+  const auto summary = nlohmann::json::parse(
+      read_text(summary_file, "the summary.json that rigid sweep writes"), nullptr, false);
+  if (!summary.is_discarded() && summary.is_object() && summary.contains("units") &&
+      summary["units"].is_object()) {
+    for (const auto& [name, unit] : summary["units"].items()) {
+      if (unit.is_string()) units[name] = unit.get<std::string>();
+    }
+  }
+  return units;
 }
 
 }  // namespace rigid::report::detail

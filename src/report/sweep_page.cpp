@@ -63,22 +63,6 @@ void read_runs_csv(const fs::path& file, SweepData& out) {
   out.errors = std::move(csv.errors);
 }
 
-// the units of the first run the sweep kept (--keep-trajectories: runs/NNNNN/summary.json)
-std::map<std::string, std::string> kept_run_units(const fs::path& dir) {
-  std::error_code ec;
-  const fs::path runs = dir / "runs";
-  if (!fs::is_directory(runs, ec)) return {};
-  std::vector<fs::path> kept;
-  for (fs::directory_iterator it(runs, ec), end; !ec && it != end; it.increment(ec)) {
-    if (fs::is_regular_file(it->path() / "summary.json", ec)) kept.push_back(it->path());
-  }
-  if (kept.empty()) return {};
-  const fs::path file = *std::min_element(kept.begin(), kept.end()) / "summary.json";
-  const auto j = nlohmann::json::parse(read_text(file, "a run's summary.json"), nullptr, false);
-  if (j.is_discarded() || !j.is_object() || !j.contains("schema")) return {};
-  return sweep_units_of(io::parse_schema_json(j["schema"].dump(), file.string()));
-}
-
 // "grid" or "sample" from the journal's description ("scene …; grid L=…; grid m=…"), or ""
 std::string kind_of_description(const std::string& description) {
   if (description.find("; sample ") != std::string::npos) return "sample";
@@ -126,23 +110,6 @@ std::optional<std::vector<std::vector<double>>> grid_axes(const SweepData& s,
 
 }  // namespace
 
-std::map<std::string, std::string> sweep_units_of(const io::RunSchema& schema) {
-  // the settings a sweep can set that are times (docs/scene-format.md, [simulation])
-  std::map<std::string, std::string> units = {
-      {"simulation.t_end", "s"}, {"simulation.dt", "s"}, {"simulation.output_dt", "s"}};
-  for (const io::Column& c : schema.columns) {
-    if (c.quantity == io::Quantity::kCoordinate) units[c.owner + ".initial"] = c.unit;
-    if (c.quantity == io::Quantity::kCoordinateRate) units[c.owner + ".velocity"] = c.unit;
-  }
-  for (const auto* group : {&schema.parameters, &schema.diagnostics, &schema.metrics}) {
-    for (const io::Scalar& s : *group) {
-      units[s.name] = s.unit;
-      units["result." + s.name] = s.unit;  // a metric named like a swept name
-    }
-  }
-  return units;
-}
-
 bool is_sweep_directory(const fs::path& directory) {
   std::error_code ec;
   return fs::exists(directory / "runs.csv", ec);
@@ -173,12 +140,7 @@ SweepData read_sweep(const fs::path& directory) {
   for (const auto& n : summary["swept"]) {
     if (n.is_string()) s.swept.push_back(n.get<std::string>());
   }
-  s.units = kept_run_units(directory);
-  if (summary.contains("units") && summary["units"].is_object()) {
-    for (const auto& [name, unit] : summary["units"].items()) {
-      if (unit.is_string()) s.units[name] = unit.get<std::string>();
-    }
-  }
+  s.units = detail::sweep_directory_units(directory);
   // the journal's first line: {"rigid_sweep":1,"sweep":"<description>",…}
   if (std::ifstream journal(directory / ".journal.jsonl"); journal) {
     std::string line;

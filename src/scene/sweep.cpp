@@ -114,13 +114,14 @@ double number_from_json(const Json& j) {
 std::string shard_text(Shard s) { return fmt::format("{}/{}", s.index, s.count); }
 
 Json header_json(const std::string& description, const std::vector<std::string>& names, std::size_t runs,
-                 Shard shard) {
+                 Shard shard, const SweepUnits& units) {
   Json j;
   j["rigid_sweep"] = 1;
   j["sweep"] = description;
   j["names"] = names;
   j["runs"] = runs;
   j["shard"] = shard_text(shard);
+  if (!units.empty()) j["units"] = units;
   return j;
 }
 
@@ -155,6 +156,7 @@ JournalText parse_journal(const fs::path& path) {
         out.contents.names = h.at("names").get<std::vector<std::string>>();
         out.contents.runs = h.at("runs").get<std::size_t>();
         out.contents.shard = parse_shard(h.at("shard").get<std::string>());
+        if (h.contains("units")) out.contents.units = h.at("units").get<SweepUnits>();
         if (h.at("rigid_sweep").get<int>() != 1) throw Error("version");
       } catch (const std::exception&) {
         throw Error(fmt::format("{}: not the header of a rigid sweep journal", where));
@@ -424,7 +426,7 @@ std::string describe(const SweepIdentity& id) {
 }
 
 Journal::Journal(const fs::path& directory, const std::string& description, const std::vector<std::string>& names,
-                 std::size_t runs, Shard shard)
+                 std::size_t runs, Shard shard, const SweepUnits& units)
     : path_(journal_path(directory)) {
   std::error_code ec;
   fs::create_directories(directory, ec);
@@ -432,7 +434,7 @@ Journal::Journal(const fs::path& directory, const std::string& description, cons
     throw Error(fmt::format("cannot make the sweep directory '{}': {}", directory.string(),
                             ec ? ec.message() : "a file of that name is in the way"));
   }
-  const std::string header = header_json(description, names, runs, shard).dump() + "\n";
+  const std::string header = header_json(description, names, runs, shard, units).dump() + "\n";
   if (fs::exists(path_)) {
     const JournalText j = parse_journal(path_);
     const JournalContents& c = j.contents;
@@ -672,7 +674,27 @@ std::vector<FailureGroup> group_failures(const std::vector<std::string>& errors)
   return groups;
 }
 
-SweepOutputs make_outputs(const std::vector<std::string>& names, std::size_t runs, std::vector<SweepRow> rows) {
+SweepUnits sweep_units(const io::RunSchema& schema) {
+  // the settings a sweep can set that are times (docs/scene-format.md, [simulation])
+  SweepUnits units = {{"simulation.t_end", "s"}, {"simulation.dt", "s"}, {"simulation.output_dt", "s"}};
+  // a unit "" is not known (a coordinate that may be a length or an angle, a scene's parameter)
+  for (const io::Column& c : schema.columns) {
+    if (c.unit.empty()) continue;
+    if (c.quantity == io::Quantity::kCoordinate) units[c.owner + ".initial"] = c.unit;
+    if (c.quantity == io::Quantity::kCoordinateRate) units[c.owner + ".velocity"] = c.unit;
+  }
+  for (const auto* group : {&schema.parameters, &schema.diagnostics, &schema.metrics}) {
+    for (const io::Scalar& s : *group) {
+      if (s.unit.empty()) continue;
+      units[s.name] = s.unit;
+      units["result." + s.name] = s.unit;  // a metric named like a swept name
+    }
+  }
+  return units;
+}
+
+SweepOutputs make_outputs(const std::vector<std::string>& names, std::size_t runs, std::vector<SweepRow> rows,
+                          const SweepUnits& units) {
   std::sort(rows.begin(), rows.end(), [](const SweepRow& a, const SweepRow& b) { return a.index < b.index; });
   // each index once (a row run twice, e.g. by two shards that overlap, must agree)
   std::vector<SweepRow> unique;
@@ -762,6 +784,13 @@ SweepOutputs make_outputs(const std::vector<std::string>& names, std::size_t run
   }
   j["columns"] = columns;
   j["swept"] = names;
+  // the units of the columns whose unit run 0's schema knows
+  Json known = Json::object();
+  for (std::size_t c = 1; c < columns.size(); ++c) {
+    const auto u = units.find(columns[c]);
+    if (u != units.end()) known[columns[c]] = u->second;
+  }
+  if (!known.empty()) j["units"] = known;
   j["results"] = Json::object();
   for (std::size_t k = 0; k < result_names.size(); ++k) {
     std::vector<double>& x = per_column[k];

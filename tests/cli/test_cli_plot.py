@@ -4,6 +4,7 @@ import csv
 import json
 import math
 import os
+import shutil
 import subprocess
 import xml.etree.ElementTree as ET
 
@@ -149,7 +150,7 @@ def test_sweep_points_skip_failed_runs_and_say_so(run, dirs, tmp_path):
     ok = [r for r in rows if not r["error"]]
     failed = len(rows) - len(ok)
     assert len(rows) == 12 and failed == 6  # m = 0 and m = -0.5, each with 3 lengths
-    circles = series(root)["energy_initial"].findall(f"{SVG}circle")
+    circles = series(root)["energy_initial (J)"].findall(f"{SVG}circle")  # summary.json's unit
     assert len(circles) == len(ok)
     for c, row in zip(circles, ok):
         x, y = to_data(float(c.get("cx")), float(c.get("cy")))
@@ -161,13 +162,22 @@ def test_sweep_points_skip_failed_runs_and_say_so(run, dirs, tmp_path):
     # --x picks another swept name
     plot(run, sweep_dir, "--column", "energy_initial", "--x", "L", "-o", out)
     root, to_data, (tol_x, _) = parse(out)
-    circles = series(root)["energy_initial"].findall(f"{SVG}circle")
+    circles = series(root)["energy_initial (J)"].findall(f"{SVG}circle")  # summary.json's unit
     for c, row in zip(circles, ok):
         assert abs(to_data(float(c.get("cx")), 0)[0] - float(row["L"])) <= tol_x
 
 
-def test_sweep_units_come_from_a_kept_run_schema(run, dirs, tmp_path):
-    kept_dir = dirs[2]
+def test_sweep_units_come_from_summary_json_or_a_kept_run_schema(run, dirs, tmp_path):
+    # summary.json states the units of run 0's schema: no run needs to be kept
+    out = tmp_path / "sweep.svg"
+    plot(run, dirs[1], "--column", "energy_initial", "-o", out)
+    assert text_of(parse(out)[0], "y-label") == ["energy_initial (J)"]
+    # a summary.json without them (a sweep of an older rigid): the schema of a run it kept
+    kept_dir = tmp_path / "kept"
+    shutil.copytree(dirs[2], kept_dir)
+    summary = json.loads((kept_dir / "summary.json").read_text())
+    assert summary.pop("units")["energy_initial"] == "J"
+    (kept_dir / "summary.json").write_text(json.dumps(summary))
     out = tmp_path / "kept.svg"
     plot(run, kept_dir, "--column", "energy_initial", "--column", "energy_final", "-o", out)
     root, _, _ = parse(out)

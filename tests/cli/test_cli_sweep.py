@@ -102,6 +102,40 @@ def test_a_row_is_the_run_of_rigid_run_with_that_override(run, tmp_path):
         assert float(row[name]) == value, name
 
 
+def test_summary_states_the_units_run_0s_schema_knows(run, tmp_path):
+    # the seam: the units summary.json gives a sweep's columns are those `rigid run` states in its
+    # own schema for the same scene; a scene's own parameter (L) and a coordinate the scene does not
+    # say is an angle or a length have none
+    out = tmp_path / "s"
+    run("sweep", PENDULUM, "--grid", "L=0.5:2:3", "--grid", "simulation.t_end=0.5:1:2", "-o", out, "-q", check=True)
+    summary = json.loads((out / "summary.json").read_text())
+    run("run", PENDULUM, "--set", "simulation.t_end=0.5", "-o", tmp_path / "r", "-q", check=True)
+    schema = json.loads((tmp_path / "r" / "summary.json").read_text())["schema"]
+    expected = {n: u for group in ("diagnostics", "metrics") for n, u in schema[group].items() if u}
+    expected["simulation.t_end"] = "s"
+    assert set(summary["results"]) <= set(expected), "every result column has a unit here"
+    assert summary["units"] == {c: expected[c] for c in summary["columns"] if c in expected}
+    assert summary["units"]["period"] == "s" and summary["units"]["energy_initial"] == "J"
+    assert "L" not in summary["units"] and "run" not in summary["units"]
+
+
+def test_merged_shards_keep_the_units_and_refuse_other_units(run, tmp_path):
+    args = ("sweep", PENDULUM, "--grid", "L=0.5:2:4", "--set", "simulation.t_end=0.5", "-q")
+    for i in range(2):
+        run(*args, "--shard", f"{i}/2", "-o", tmp_path / f"s{i}", check=True)
+    run("sweep", "merge", tmp_path / "s0", tmp_path / "s1", "-o", tmp_path / "m", "-q", check=True)
+    assert json.loads((tmp_path / "m" / "summary.json").read_text())["units"]["period"] == "s"
+    # a shard whose journal states other units (its scene changed between the shards)
+    journal = tmp_path / "s1" / ".journal.jsonl"
+    lines = journal.read_text().split("\n")
+    header = json.loads(lines[0])
+    header["units"]["period"] = "min"
+    journal.write_text("\n".join([json.dumps(header, separators=(",", ":"))] + lines[1:]))
+    p = run("sweep", "merge", tmp_path / "s0", tmp_path / "s1", "-o", tmp_path / "m2", check=False)
+    assert p.returncode == 1 and "states other units" in p.stderr and str(tmp_path / "s1") in p.stderr
+    assert not (tmp_path / "m2" / "summary.json").exists()
+
+
 def test_one_and_two_threads_give_the_same_bytes(run, tmp_path):
     scene = racket(tmp_path, t_end=20)
     args = ("sweep", scene, "--sample", "I2=uniform(1.98,2.02)", "-n", "12", "--seed", "5", "-q")

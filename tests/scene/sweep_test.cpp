@@ -182,6 +182,31 @@ TEST(SweepOutputs, CsvHasOneRowPerRunInIndexOrderAndStatistics) {
   EXPECT_EQ(j["results"]["x"]["max"].get<double>(), 9.0);
 }
 
+TEST(SweepOutputs, UnitsAreStatedForTheColumnsThatHaveOne) {
+  const std::vector<SweepRow> rows{{.index = 0, .values = {1}, .results = {{"x", 2}, {"a", 3}, {"n", 4}}}};
+  // "x" has a unit, the swept "a" has one, its namesake result is "result.a"; "n" has none; a
+  // unit of a name the sweep does not hold is not listed
+  const SweepUnits units{{"x", "J"}, {"a", "s"}, {"result.a", "m"}, {"other", "kg"}};
+  const auto j = nlohmann::json::parse(make_outputs({"a"}, 1, rows, units).summary_json);
+  EXPECT_EQ(j["units"], nlohmann::json({{"a", "s"}, {"x", "J"}, {"result.a", "m"}}));
+  EXPECT_FALSE(nlohmann::json::parse(make_outputs({"a"}, 1, rows).summary_json).contains("units"));
+}
+
+TEST(SweepJournal, TheHeaderKeepsTheUnitsOfTheSweepThatStartedIt) {
+  const fs::path dir = temp_dir("units");
+  const SweepUnits units{{"x", "J"}, {"simulation.t_end", "s"}};
+  { Journal j(dir, "sweep A", {"a"}, 2, Shard{}, units); }
+  EXPECT_EQ(read_journal(dir).units, units);
+  // reopened (a resumed sweep) with other units: the journal's stay
+  { Journal j(dir, "sweep A", {"a"}, 2, Shard{}, SweepUnits{{"x", "kJ"}}); }
+  EXPECT_EQ(read_journal(dir).units, units);
+  fs::remove_all(dir);
+  // a journal without units (an older rigid's) has none
+  { Journal j(dir, "sweep A", {"a"}, 2, Shard{}); }
+  EXPECT_TRUE(read_journal(dir).units.empty());
+  fs::remove_all(dir);
+}
+
 TEST(SweepOutputs, MissingOrConflictingRunsAreRefused) {
   std::vector<SweepRow> rows{{.index = 0}, {.index = 2}};
   EXPECT_RIGID_ERROR((void)make_outputs({}, 4, rows), "2 of the sweep's 4 runs are missing (runs 1, 3)");

@@ -24,8 +24,9 @@ struct PlotRequest {
 ///   a non-finite value breaks the line and is counted in a note;
 /// - a sweep's directory (runs.csv and summary.json with "swept"): a circle per run, x default
 ///   the first swept name; the runs that failed (a non-empty `error`) and the non-finite results
-///   are left out and counted in a note; units from the schema of a run the sweep kept
-///   (--keep-trajectories: runs/NNNNN/summary.json), else none (runs.csv states none).
+///   are left out and counted in a note; units from summary.json's "units" (run 0's schema),
+///   or the schema of a run the sweep kept (--keep-trajectories: runs/NNNNN/summary.json), else
+///   none (runs.csv states none).
 /// The y label is the column's name and unit, or the names with their common unit.
 /// @throws rigid::Error if `directory` is neither, a file is malformed, a column is not in it
 ///   (naming the closest and listing its columns), or no column has a finite point.

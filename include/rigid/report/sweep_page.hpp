@@ -30,13 +30,6 @@ struct SweepData {
   std::string title;                         ///< the page's title: the directory or the scene
 };
 
-/// The units of a run schema's scalars (parameters, diagnostics, metrics, and "result.NAME" for
-/// a result named like a swept name), of the initial values a sweep can set
-/// (COORDINATE.initial, COORDINATE.velocity) and of the [simulation] times (t_end, dt,
-/// output_dt: s): what a sweep's columns are measured in. A scene's own parameters have a unit
-/// only where the scene implies one (the schema's).
-[[nodiscard]] std::map<std::string, std::string> sweep_units_of(const io::RunSchema& schema);
-
 /// True when `directory` holds runs.csv (a sweep's directory).
 [[nodiscard]] bool is_sweep_directory(const std::filesystem::path& directory);
 

@@ -20,6 +20,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <span>
@@ -29,6 +30,7 @@
 #include <vector>
 
 #include "rigid/common/wording.hpp"
+#include "rigid/io/run_schema.hpp"
 #include "rigid/io/table.hpp"
 #include "rigid/scene/scene.hpp"
 
@@ -130,18 +132,29 @@ struct SweepIdentity {
 /// integrator, the model options set, the axes, samples and seed. @throws rigid::Error if the scene cannot be read.
 [[nodiscard]] std::string describe(const SweepIdentity& identity);
 
+/// The units of a sweep's columns, from run 0's schema: its scalars (parameters, diagnostics,
+/// metrics, and "result.NAME" for a result named like a swept name), the initial values a
+/// sweep can set (COORDINATE.initial, COORDINATE.velocity) and the [simulation] times (t_end,
+/// dt, output_dt: s), for the names whose unit is known (not a scene's own parameters, nor a
+/// coordinate that the scene does not say is a length or an angle).
+using SweepUnits = std::map<std::string, std::string>;
+[[nodiscard]] SweepUnits sweep_units(const io::RunSchema& schema);
+
 /// The journal of a sweep's directory, DIR/.journal.jsonl: a header line
-/// {"rigid_sweep":1,"sweep":<describe()>,"names":[…],"runs":N,"shard":"i/N"} then one row per finished
-/// run, appended with one write(2) each, so a killed process loses at most the runs in flight
-/// (a last line cut short is dropped when the journal is opened again).
+/// {"rigid_sweep":1,"sweep":<describe()>,"names":[…],"runs":N,"shard":"i/N","units":{…}} ("units"
+/// only when known: sweep_units of run 0) then one row per finished run, appended with one
+/// write(2) each, so a killed process loses at most the runs in flight (a last line cut short is
+/// dropped when the journal is opened again).
 class Journal {
  public:
   /// Opens DIR/.journal.jsonl (making DIR if needed) for the sweep `description` of `runs` runs,
-  /// shard `shard`: a new journal gets its header; an existing one must have the same header.
+  /// shard `shard`: a new journal gets its header, with `units`; an existing one must have the
+  /// same header (its units are kept: read_journal gives them).
   /// @throws rigid::Error if DIR cannot be made or written, or holds the journal of another
   ///   sweep or shard (saying which, with the remedy: another directory).
   Journal(const std::filesystem::path& directory, const std::string& description,
-          const std::vector<std::string>& names, std::size_t runs, Shard shard);
+          const std::vector<std::string>& names, std::size_t runs, Shard shard,
+          const SweepUnits& units = {});
   ~Journal();
   Journal(const Journal&) = delete;
   Journal& operator=(const Journal&) = delete;
@@ -164,6 +177,7 @@ struct JournalContents {
   std::size_t runs = 0;
   Shard shard;
   std::vector<SweepRow> rows;
+  SweepUnits units;  ///< the header's, empty when it has none
 };
 /// @throws rigid::Error if DIR holds no journal or it is not one.
 [[nodiscard]] JournalContents read_journal(const std::filesystem::path& directory);
@@ -245,8 +259,9 @@ inline constexpr std::size_t kFailureGroupsListed = 20;
 /// kFailureGroupsListed of group_failures as {"message", "count", "runs"}, with
 /// failure_groups_left_out {"groups", "runs"} when there are more; npy columns; per result
 /// column: mean, std (n−1), min, max, quantiles 0.05 0.25 0.5 0.75 0.95 by linear
-/// interpolation, over the runs where it is finite). Result columns are the union of the rows'
-/// result names in index order; a name equal to an earlier column is prefixed "result.".
+/// interpolation, over the runs where it is finite; "units" {column: unit} for the swept and
+/// result columns `units` names, when any). Result columns are the union of the rows' result
+/// names in index order; a name equal to an earlier column is prefixed "result.".
 struct SweepOutputs {
   io::Table numbers{{"run"}};
   std::vector<std::string> errors{};
@@ -256,7 +271,7 @@ struct SweepOutputs {
 /// @throws rigid::Error if an index is missing, repeated (with different rows) or out of range.
 /// `names` are the swept names, `runs` the sweep's run count.
 [[nodiscard]] SweepOutputs make_outputs(const std::vector<std::string>& names, std::size_t runs,
-                                        std::vector<SweepRow> rows);
+                                        std::vector<SweepRow> rows, const SweepUnits& units = {});
 /// Writes runs.csv, runs.npy and summary.json into `directory`, each atomically.
 /// Returns the paths written.
 std::vector<std::filesystem::path> write_outputs(const std::filesystem::path& directory, const SweepOutputs& outputs);

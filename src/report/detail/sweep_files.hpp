@@ -4,6 +4,7 @@
 // the base64 of the pages' binary arrays. Used by the run page (report.cpp), rigid plot
 // (directory_plot.cpp) and the sweep page (sweep_page.cpp).
 #include <filesystem>
+#include <map>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -25,6 +26,11 @@ struct RunsCsv {
 
 /// @throws rigid::Error naming the file, the row and the column of what is not runs.csv.
 [[nodiscard]] RunsCsv read_runs_csv(const std::filesystem::path& file);
+
+/// The units of a sweep directory's columns: summary.json's "units" (run 0's schema, written by
+/// the sweep), and for the names it does not list (a sweep of an older rigid), those of the
+/// schema of the first run it kept (--keep-trajectories: runs/NNNNN/summary.json).
+[[nodiscard]] std::map<std::string, std::string> sweep_directory_units(const std::filesystem::path& directory);
 
 /// RFC 4648 base64 with padding. Written here because none of the project's libraries has a
 /// public encoder (Boost's is in beast::detail, fmt and nlohmann have none).
