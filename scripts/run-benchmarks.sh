@@ -2,7 +2,8 @@
 # Runs every benchmark executable of a build tree: scripts/run-benchmarks.sh build/bench
 # [Google Benchmark flags], then the Python benchmarks against the module of that tree
 # (bench/so3_batch_bench.py: rigid.so3 vs SciPy; bench/python_args_bench.py: the cost of an
-# array argument), when the tree has the module.
+# array argument; bench/free_bodies_python.py: step_free_bodies by steps per call), when the
+# tree has the module.
 set -euo pipefail
 dir="${1:-build/bench}"
 shopt -s nullglob
@@ -24,6 +25,9 @@ if [[ ${#modules[@]} -gt 0 ]]; then
   # the per-call cost of array arguments (python/convert.hpp)
   echo "== python_args_bench.py"
   PYTHONPATH="$dir/python" /usr/bin/python3 "$root/bench/python_args_bench.py"
+  # rigid.body.step_free_bodies per body-step, by steps per call
+  echo "== free_bodies_python.py"
+  PYTHONPATH="$dir/python" /usr/bin/python3 "$root/bench/free_bodies_python.py"
 else
   echo "run-benchmarks: no Python module in $dir/python: the Python benchmarks (bench/*.py) not run" >&2
 fi

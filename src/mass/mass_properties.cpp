@@ -234,6 +234,17 @@ std::optional<std::string> check_rotational_moments(const Eigen::Vector3d& momen
   if (!moments.allFinite()) {
     return fmt::format("principal moments must be finite, got {} kg·m²", to_string(moments.transpose()));
   }
+  // fast path (a batch checks every body): moments clear of every bound of the full check by
+  // tol = 1e-10·ΣI or more, where round-off (1e-16·ΣI) cannot change its verdict, pass
+  // without building the tensor; the others take the full check and its message
+  {
+    const double sum = moments(0) + moments(1) + moments(2);
+    const double tol = MassProperties::kRelativeTolerance * sum;
+    if (std::isfinite(sum) && moments.minCoeff() > 2.0 * tol &&
+        (0.5 * sum - moments.array()).minCoeff() > tol) {
+      return std::nullopt;
+    }
+  }
   if (auto report = MassProperties::check(1.0, Eigen::Vector3d::Zero(), moments.asDiagonal().toDenseMatrix())) {
     return report;
   }

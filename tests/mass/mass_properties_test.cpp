@@ -2,6 +2,9 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
+#include <string>
+#include <vector>
 
 #include <Eigen/Geometry>
 #include <gmock/gmock.h>
@@ -272,6 +275,38 @@ TEST(MassProperties, RefusesResultsThatOverflow) {
                      "transformed(): the result overflows a double");
   // two bodies of 1e308 kg: the total mass overflows
   EXPECT_RIGID_ERROR((void)combine(heavy, heavy), "combine(): the result overflows a double");
+}
+
+// check_rotational_moments passes moments clear of the bounds without the tensor check: its
+// verdict and message must be those of the full check (MassProperties::check of diag(moments),
+// then a moment above 1e-10·ΣI) for moments on, near and far from every bound.
+TEST(RotationalMoments, TheFastPathGivesTheFullChecksVerdict) {
+  auto full = [](const Eigen::Vector3d& m) -> std::optional<std::string> {
+    if (!m.allFinite()) return "not finite";
+    if (auto r = MassProperties::check(1.0, Eigen::Vector3d::Zero(), m.asDiagonal().toDenseMatrix())) return r;
+    if (!(m.minCoeff() > MassProperties::kRelativeTolerance * m.sum())) return "zero moment";
+    return std::nullopt;
+  };
+  std::vector<Eigen::Vector3d> cases = {{1, 2, 3}, {1, 1, 1}, {0, 1, 1}, {-1, 2, 3}, {1, 1, 2}, {1, 1, 2.1}};
+  // I₃ = I₁ + I₂ + k·1e-10·ΣI·s and a smallest moment of k·1e-10·ΣI·s, for k around the
+  // tolerances of both paths (1 and 2 in units of 1e-10·ΣI) and scales s from 1e-200 to 1e200
+  for (const double scale : {1e-200, 1e-3, 1.0, 7.0, 1e5, 1e200}) {
+    for (const double k : {-3.0, -1.0, -0.5, 0.0, 0.5, 0.99, 1.0, 1.01, 1.5, 1.99, 2.0, 2.01, 3.0, 1e3}) {
+      const double a = 1.0 * scale;
+      const double b = 2.0 * scale;
+      const double sum = 2 * (a + b);
+      cases.push_back({a, b, a + b + k * 1e-10 * sum});
+      cases.push_back({k * 1e-10 * (2 * b), b, b});
+    }
+  }
+  for (const Eigen::Vector3d& m : cases) {
+    const std::optional<std::string> fast = check_rotational_moments(m);
+    const std::optional<std::string> reference = full(m);
+    ASSERT_EQ(fast.has_value(), reference.has_value()) << m.transpose();
+    if (fast && *reference != "zero moment") {
+      EXPECT_EQ(*fast, *reference) << m.transpose();
+    }
+  }
 }
 
 }  // namespace
