@@ -1,5 +1,7 @@
 // Python bindings of the Lagrangian engine: rigid.lagrange.System (derive once, simulate with
 // numpy arrays out) and the integrator names.
+#include <optional>
+
 #include <fmt/format.h>
 
 #include <pybind11/eigen.h>
@@ -360,7 +362,8 @@ void bind_system_description(py::class_<System>& cls) {
            "rigid.lagrange.Equations with each quantity as text and LaTeX.")
       .def(
           "emit",
-          [](const System& s, const std::string& language, const std::string& name, bool flat) {
+          [](const System& s, const std::string& language, const std::string& name, bool flat,
+             std::optional<std::size_t> max_stack_bytes) {
             rigid::lagrange::ExportOptions o;
             o.name = name;
             o.flat = flat;
@@ -369,14 +372,22 @@ void bind_system_description(py::class_<System>& cls) {
               throw rigid::Error("flat=True is a layout of the C++ export (global functions "
                                  "without t); the Python module has one layout");
             }
+            if (max_stack_bytes && !flat) {
+              throw rigid::Error("rigid.lagrange.System.emit(): max_stack_bytes bounds the stack of "
+                                 "the flat layout's derivatives; give flat=True with it");
+            }
+            if (max_stack_bytes) o.max_stack_bytes = *max_stack_bytes;
             return rigid::lagrange::emit(s, lang, o);
           },
           py::arg("language"), py::arg("name") = "model", py::arg("flat") = false,
+          py::kw_only(), py::arg("max_stack_bytes") = py::none(),
           "The equations of motion (M, f, G, γ) as one dependency-free source file: language "
           "'c++' (a header, <cmath> only, namespace `name`) or 'python' (a module, math only); "
           "parameters are named arguments with the current values as defaults. flat=True (C++): "
           "the dynamics at global scope without t (mass_matrix, inverse_dynamics, "
-          "forward_dynamics and their derivatives), as `rigid eom --emit c++ --flat`.");
+          "forward_dynamics and their derivatives), as `rigid eom --emit c++ --flat`; "
+          "max_stack_bytes (with flat=True): the stack bound of the derivatives (16 n² + 8 n "
+          "bytes for the products; default 66048), as Scene.emit.");
 }
 
 // A System evaluated at (t, q) or (t, q, q̇): constraint residuals, energies and body poses.

@@ -18,6 +18,7 @@
 #include "convert.hpp"
 #include "interrupt.hpp"
 #include "rigid/io/atomic_file.hpp"
+#include "rigid/lagrange/export.hpp"
 #include "rigid/io/run_output.hpp"
 #include "rigid/common/escape.hpp"
 #include "rigid/report/report.hpp"
@@ -406,14 +407,25 @@ void bind_scene(py::module_& m) {
           "or 'json' (latex=True is format='latex').")
       .def(
           "emit",
-          [](const Model& mo, const std::string& language, const std::string& name, bool flat) {
-            return rigid::scene::emit_code(mo, language, name, flat);
+          [](const Model& mo, const std::string& language, const std::string& name, bool flat,
+             std::optional<std::size_t> max_stack_bytes) {
+            if (max_stack_bytes && !flat) {
+              throw rigid::Error("rigid.Scene.emit(): max_stack_bytes bounds the stack of the flat "
+                                 "layout's derivatives; give flat=True with it");
+            }
+            return rigid::scene::emit_code(
+                mo, language, name, flat,
+                max_stack_bytes.value_or(rigid::lagrange::ExportOptions::kDefaultMaxStackBytes));
           },
           py::arg("language"), py::arg("name") = std::string{}, py::arg("flat") = false,
+          py::kw_only(), py::arg("max_stack_bytes") = py::none(),
           "The equations of motion (M, f, G, γ) as one dependency-free source file: 'c++' (a "
           "header, <cmath> only; namespace `name`, default the file's stem) or 'python' (a "
           "module, math only), with the scene's parameters as defaults. flat=True (C++): the "
-          "dynamics at global scope without t, as `rigid eom --emit c++ --flat`.")
+          "dynamics at global scope without t, as `rigid eom --emit c++ --flat`; "
+          "max_stack_bytes (with flat=True): the most stack forward_dynamics_derivatives may "
+          "take for M⁻¹ and its products, 16 n² + 8 n bytes (default 66048: n ≤ 64), above "
+          "which it solves column by column, as --max-stack-bytes.")
       .def_property_readonly("system", &Model::system, py::return_value_policy::reference_internal,
                              "The rigid.lagrange.System of a coordinate scene.")
       .def(

@@ -85,11 +85,17 @@ inline void add_run_command(CLI::App& app) {
   e->add_option("-o,--output", emit->output, "with --emit: the file to write (default: standard output)")
       ->needs(emit_opt)
       ->type_name("FILE");
-  e->add_flag("--flat", emit->flat,
-              "with --emit c++: the dynamics as robot code calls them, at global scope and without "
-              "t: mass_matrix, inverse_dynamics, forward_dynamics (factored along the tree) and "
-              "their derivatives")
-      ->needs(emit_opt);
+  auto* flat_opt = e->add_flag("--flat", emit->flat,
+                               "with --emit c++: the dynamics as robot code calls them, at global "
+                               "scope and without t: mass_matrix, inverse_dynamics, "
+                               "forward_dynamics (factored along the tree) and their derivatives")
+                       ->needs(emit_opt);
+  e->add_option("--max-stack-bytes", emit->max_stack_bytes,
+                "with --flat: the most stack forward_dynamics_derivatives may take for M^-1 and "
+                "its products, 16 n^2 + 8 n bytes for n degrees of freedom (default 66048: n <= "
+                "64); above, it solves column by column with O(n) stack")
+      ->needs(flat_opt)
+      ->type_name("BYTES");
   auto regressor = std::make_shared<rigid::cli::RegressorOptions>();
   add_regressor_options(e, *regressor);
   e->callback([eom, latex, format, emit, regressor] {

@@ -25,11 +25,16 @@ std::string check_emit_language(const std::string& language) {
 }
 
 void run_emit(const SceneOptions& opts, const EmitOptions& emit) {
+  const std::size_t max_stack_bytes =
+      emit.max_stack_bytes.empty()
+          ? lagrange::ExportOptions::kDefaultMaxStackBytes
+          : unsigned_option(emit.max_stack_bytes, "--max-stack-bytes", "the stack bound (bytes)");
   scene::Model model = load_scene(opts.scene, opts.set, opts.model);
   const std::filesystem::path out(emit.output);
   // the C++ namespace: the output file's stem, else the scene's
   const std::string code = about_scene(opts.scene, [&] {
-    return scene::emit_code(model, emit.language, out.empty() ? "" : out.stem().string(), emit.flat);
+    return scene::emit_code(model, emit.language, out.empty() ? "" : out.stem().string(), emit.flat,
+                            max_stack_bytes);
   });
   if (out.empty()) {
     std::fwrite(code.data(), 1, code.size(), stdout);

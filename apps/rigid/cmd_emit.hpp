@@ -11,6 +11,9 @@ struct EmitOptions {
   std::string language;  ///< c++ or python; empty: print the equations instead
   std::string output;    ///< the file to write (atomically); empty: standard output
   bool flat = false;     ///< C++: the flat layout (lagrange::ExportOptions::flat)
+  /// --max-stack-bytes as given (a whole number; empty: the default of
+  /// lagrange::ExportOptions::max_stack_bytes)
+  std::string max_stack_bytes{};
 };
 
 /// "" for a known --emit language, else the reason (an unknown name, with a close match).

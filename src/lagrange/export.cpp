@@ -1071,9 +1071,6 @@ FlatDynamics flat_dynamics(const System::Impl& s, const detail::TreeInverseDynam
   return out;
 }
 
-// The largest n for which forward_dynamics_derivatives keeps M⁻¹ and ∂τ/∂x as n × n locals.
-constexpr std::size_t kMaxStackProduct = 64;
-
 // ∂q̈/∂x = −M⁻¹ ∂τ/∂x column by column and ∂q̈/∂τ = M⁻¹, each column one solve along the tree:
 // O(n) stack, for the trees too large for the products. ∂τ/∂q and ∂τ/∂q̇ are the printer's
 // outputs from `first`; closes the function.
@@ -1100,7 +1097,7 @@ std::string derivative_solves(const TapePrinter& printer, std::size_t first, std
 }
 
 std::string flat_functions(const System::Impl& s, const std::vector<std::string>& params,
-                           const std::string& helpers) {
+                           const std::string& helpers, std::size_t max_stack_bytes) {
   const auto n = static_cast<std::size_t>(s.n);
   const detail::TreeInverseDynamics id = body_coordinate_inverse_dynamics(s);
   const std::vector<int> lambda = coordinate_tree(s);
@@ -1234,8 +1231,9 @@ std::string flat_functions(const System::Impl& s, const std::vector<std::string>
     out += after;
     // M⁻¹ by n solves along the tree, then the two products −M⁻¹ ∂τ/∂x as plain loops (the
     // compiler vectorises them; 2n more solves would each be a chain of dependent steps). The
-    // two n × n locals stay on the stack up to n = 64 (64 KB); beyond, 2n more solves.
-    if (n > kMaxStackProduct) {
+    // two n × n locals and c take 16 n² + 8 n bytes of stack; beyond max_stack_bytes, 2n more
+    // solves instead.
+    if (16 * n * n + 8 * n > max_stack_bytes) {
       out += derivative_solves(printer, pairs.size() + n, n, helpers);
       return out;
     }
@@ -1333,7 +1331,7 @@ std::string emit_cpp_flat(const System::Impl& s, const ExportOptions& options) {
   out += "\n";
   out += flat_factor_and_solve(coordinate_tree(s));
   out += fmt::format("}}  // namespace {}\n\n", helpers);
-  out += flat_functions(s, params, helpers);
+  out += flat_functions(s, params, helpers, options.max_stack_bytes);
   return out;
 }
 

@@ -46,10 +46,11 @@ int main() {
 """
 
 
-def build(tmp_path, model, compiler):
-    """Exports `model` flat, compiles the driver with `compiler`; returns the program."""
+def build(tmp_path, model, compiler, *options):
+    """Exports `model` flat (with the CLI's `options`), compiles the driver with `compiler`;
+    returns the program."""
     header = tmp_path / "model.hpp"
-    subprocess.run([rigid_exe(), "eom", str(model), "--emit", "c++", "--flat", "-o", str(header)],
+    subprocess.run([rigid_exe(), "eom", str(model), "--emit", "c++", "--flat", *options, "-o", str(header)],
                    check=True)
     source = tmp_path / "driver.cpp"
     source.write_text(DRIVER)
@@ -209,6 +210,41 @@ def test_branched_tree_derivatives_match_central_differences(tmp_path):
         assert rel(r["tau"], robot.inverse_dynamics(q, v, a)) < 1e-12
         assert rel(r["qdd"], robot.forward_dynamics(q, v, tau)) < 1e-10
     check_derivatives(robot, run, states)
+
+
+def test_derivatives_by_column_solves_within_a_stack_bound(arm7, tmp_path):
+    """Below 16 n² + 8 n bytes of --max-stack-bytes, forward_dynamics_derivatives solves column by
+    column with O(n) stack (the path of a tree of more than 64 degrees of freedom): its numbers
+    are the products' to round-off, and everything else is the same code."""
+    robot, programs, _ = arm7
+    n = robot.dof
+    need = 16 * n * n + 8 * n  # M⁻¹ and the product as n × n doubles, and one column
+    scene = rigid.Scene(str(EXAMPLES / "arm7.urdf"))
+    products = scene.emit("c++", "model", flat=True, max_stack_bytes=need)
+    solves = scene.emit("c++", "model", flat=True, max_stack_bytes=need - 1)
+    assert "double Mi[" in products and "double Mi[" not in solves
+    # 2n columns of −∂τ/∂x and the loop over the n columns of M⁻¹, each a solve along the tree
+    assert solves.count("::solve(H, c);") == 2 * n + 1
+    assert products == scene.emit("c++", "model", flat=True)  # the default holds n = 7
+    run = Flat(build(tmp_path, EXAMPLES / "arm7.urdf", "g++", "--max-stack-bytes", str(need - 1)), n)
+    assert (tmp_path / "model.hpp").read_text() == solves  # the CLI and Python agree
+    states = random_states(robot, 8, 11)
+    for a, b in zip(run(states), programs["g++"](states)):
+        for key in ("M", "tau", "qdd", "qdd2", "dtau_dq", "dtau_dqd", "dtau_dqdd"):
+            np.testing.assert_array_equal(a[key], b[key], err_msg=key)
+        # the same quantities by other sums: a few ulps of the largest entry
+        for key in ("dqdd_dq", "dqdd_dqd", "dqdd_dtau"):
+            assert rel(a[key], b[key]) < 1e-13, key
+    check_derivatives(robot, run, states[:3])
+    # the bound is for the flat layout, and a whole number
+    with pytest.raises(rigid.Error, match="give flat=True with it"):
+        scene.emit("c++", "model", max_stack_bytes=0)
+    p = subprocess.run([rigid_exe(), "eom", str(EXAMPLES / "arm7.urdf"), "--emit", "c++", "--max-stack-bytes", "0"],
+                       capture_output=True, text=True)
+    assert p.returncode == 2 and "--max-stack-bytes requires --flat" in p.stderr
+    p = subprocess.run([rigid_exe(), "eom", str(EXAMPLES / "arm7.urdf"), "--emit", "c++", "--flat",
+                        "--max-stack-bytes", "-1"], capture_output=True, text=True)
+    assert p.returncode == 2 and "--max-stack-bytes -1: the stack bound (bytes) must be a whole number" in p.stderr
 
 
 def test_flat_export_is_the_same_through_python(arm7):

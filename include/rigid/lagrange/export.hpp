@@ -2,6 +2,7 @@
 
 // Code export: a System's equations of motion as one dependency-free source file.
 
+#include <cstddef>
 #include <string>
 #include <string_view>
 
@@ -28,6 +29,12 @@ struct ExportOptions {
   std::string source{};
   /// C++ only: the flat layout of robot code, at global scope (see emit_cpp).
   bool flat = false;
+  /// The flat layout: the most stack (bytes) forward_dynamics_derivatives may take for M⁻¹
+  /// and the product −M⁻¹ ∂τ/∂x as n × n locals, 16 n² + 8 n bytes; above, it solves column
+  /// by column (3n solves along the tree, O(n) stack: for controllers on small stacks). The
+  /// default is 64 degrees of freedom's worth.
+  std::size_t max_stack_bytes = kDefaultMaxStackBytes;
+  static constexpr std::size_t kDefaultMaxStackBytes = 16 * 64 * 64 + 8 * 64;
 };
 
 /// One C++ header (only <cmath>, plain arrays, no Eigen) with, in namespace `options.name`:
@@ -70,7 +77,8 @@ struct ExportOptions {
 /// Matrices nv × nv row-major, [i*nv + j] = ∂(output i)/∂(input j). forward_dynamics factors M
 /// as Lᵀ D L along the tree of the coordinates that M's pattern shows (Featherstone 2008,
 /// §6.5; a dense M: the chain), unrolled; the derivatives are the forward-mode derivatives of
-/// the same equations through their intermediates (exact up to rounding), ∂q̈/∂x = −M⁻¹ ∂τ/∂x.
+/// the same equations through their intermediates (exact up to rounding), ∂q̈/∂x = −M⁻¹ ∂τ/∂x
+/// (M⁻¹ times ∂τ/∂x as n × n locals, or column by column beyond options.max_stack_bytes).
 /// Where M is not positive definite at q (parameters no body can have) the forward outputs are
 /// NaN. Helpers live in namespace `<name>_detail`.
 /// @throws rigid::Error for a system with constraints or explicit time dependence.
