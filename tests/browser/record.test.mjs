@@ -1,7 +1,8 @@
 // The run page's pictures of the motion for slides: the "record" control makes a WebM of the 3D
-// view for a span of simulated time (MediaRecorder), or, in a browser without MediaRecorder, a
-// .tar of PNG frames, one per 1/fps × speed of simulated time, each the frame of its own time;
-// the PNG button saves the view at the canvas's size.
+// view for a span of simulated time (WebCodecs: each frame at its own time k/fps, however slowly
+// the page renders; else MediaRecorder), or, in a browser with neither, a .tar of PNG frames,
+// one per 1/fps × speed of simulated time, each the frame of its own time; the PNG button saves
+// the view at the canvas's size.
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { join } from 'node:path';
@@ -50,11 +51,13 @@ function untar(buf) {
 }
 
 // The video track of a WebM (EBML, RFC 8794; Matroska elements, RFC 9559): its codec, pixel
-// size and the number of frames (SimpleBlocks and BlockGroups). Segment, Cluster, Tracks,
-// TrackEntry and Video are entered (MediaRecorder writes Segments and Clusters of unknown size,
-// so they are read as a flat sequence); every other element is skipped by its size.
+// size and the number of frames (SimpleBlocks and BlockGroups); the time of each SimpleBlock (its
+// cluster's Timecode plus its own signed 16-bit offset, in TimecodeScale units: ms) and whether
+// it is a key frame; the Info's Duration. Segment, Info, Cluster, Tracks, TrackEntry and Video
+// are entered (MediaRecorder writes Segments and Clusters of unknown size, so they are read as a
+// flat sequence); every other element is skipped by its size.
 function webmTrack(buf) {
-  const kEnter = new Set([0x18538067, 0x1f43b675, 0x1654ae6b, 0xae, 0xe0]);
+  const kEnter = new Set([0x18538067, 0x1549a966, 0x1f43b675, 0x1654ae6b, 0xae, 0xe0]);
   const vint = (at, keepMarker) => {
     const first = buf[at];
     let len = 1;
@@ -68,7 +71,8 @@ function webmTrack(buf) {
     }
     return { v, len, unknown: !keepMarker && allOnes };
   };
-  const out = { codec: null, width: null, height: null, frames: 0 };
+  const out = { codec: null, width: null, height: null, frames: 0, times: [], keys: [], duration: null, scale: 1e6 };
+  let cluster = 0;
   let at = 0;
   while (at < buf.length) {
     const id = vint(at, true);
@@ -80,7 +84,15 @@ function webmTrack(buf) {
     if (id.v === 0x86) out.codec = data.toString('latin1');
     else if (id.v === 0xb0) out.width = data.readUIntBE(0, data.length);
     else if (id.v === 0xba) out.height = data.readUIntBE(0, data.length);
-    else if (id.v === 0xa3 || id.v === 0xa0) out.frames += 1;
+    else if (id.v === 0xe7) cluster = data.readUIntBE(0, data.length);
+    else if (id.v === 0x2ad7b1) out.scale = data.readUIntBE(0, data.length);
+    else if (id.v === 0x4489) out.duration = data.length === 8 ? data.readDoubleBE(0) : data.readFloatBE(0);
+    if (id.v === 0xa3) {
+      // track number (a 1-byte vint here), time offset, flags
+      out.times.push(cluster + data.readInt16BE(1));
+      out.keys.push((data[3] & 0x80) !== 0);
+    }
+    if (id.v === 0xa3 || id.v === 0xa0) out.frames += 1;
     at = body + size.v;
   }
   return out;
@@ -95,9 +107,44 @@ async function setUpSpan(page) {
 }
 
 describe('recording the 3D view', () => {
-  test('with MediaRecorder: a WebM of the span, named for it', async () => {
+  test('with WebCodecs: a WebM of the span, named for it, each frame at k/fps however slow the page', async () => {
     const { page, problems } = await openPage(browser, join(dir, 'report.html'));
     try {
+      assert.equal(await page.evaluate(() => window.rigidReport.view.recorder.encoder), true);
+      assert.deepEqual(await page.locator('.record-row select.record-format option').allTextContents(), ['WebM (exact frame times)', 'PNG frames (.tar)']);
+      await setUpSpan(page);
+      // the page made 20 times slower (Chrome's CPU throttling): rendering and encoding take far
+      // longer than 1/10 s a frame, which a wall-clocked video would stretch
+      const cdp = await page.context().newCDPSession(page);
+      await cdp.send('Emulation.setCPUThrottlingRate', { rate: 20 });
+      const started = Date.now();
+      const video = await download(page, page.locator('.record-row button.record'));
+      const seconds = (Date.now() - started) / 1000;
+      await cdp.send('Emulation.setCPUThrottlingRate', { rate: 1 });
+      assert.equal(video.name, 'physical_pendulum_0-0.5s.webm');
+      assert.deepEqual([...video.bytes.subarray(0, 4)], [0x1a, 0x45, 0xdf, 0xa3]);
+      assert.ok(video.bytes.subarray(0, 64).includes(Buffer.from('webm')), 'DocType webm');
+      const size = await page.evaluate(() => [window.rigidReport.view.canvas.width, window.rigidReport.view.canvas.height]);
+      const track = webmTrack(video.bytes);
+      assert.ok(['V_VP9', 'V_VP8'].includes(track.codec), track.codec);
+      assert.deepEqual([track.width, track.height, track.frames], [...size, 6]);
+      // frame k at k/10 s exactly (ms), the first a key frame, the file 0.6 s long
+      assert.equal(track.scale, 1e6);
+      assert.deepEqual(track.times, [0, 100, 200, 300, 400, 500], `recorded in ${seconds} s`);
+      assert.equal(track.keys[0], true);
+      assert.equal(track.duration, 600);
+      assert.match(await page.locator('.record-row .record-note').textContent(), /saved physical_pendulum_0-0\.5s\.webm \(6 frames at 10 fps, vp[89], /);
+      assert.ok(Math.abs((await page.evaluate(() => window.rigidReport.time())) - 0.5) < 1e-9);
+      assert.deepEqual(problems, []);
+    } finally {
+      await page.close();
+    }
+  });
+
+  test('with MediaRecorder (no WebCodecs): a WebM of the span, named for it', async () => {
+    const { page, problems } = await openPage(browser, join(dir, 'report.html'), undefined, () => { delete window.VideoEncoder; });
+    try {
+      assert.equal(await page.evaluate(() => window.rigidReport.view.recorder.encoder), false);
       const type = await page.evaluate(() => window.rigidReport.view.recorder.type);
       assert.match(type, /^video\/webm;codecs=vp[89]$/);
       await setUpSpan(page);
@@ -112,10 +159,10 @@ describe('recording the 3D view', () => {
       // one video frame per recorded frame, at the canvas's size
       const size = await page.evaluate(() => [window.rigidReport.view.canvas.width, window.rigidReport.view.canvas.height]);
       const track = webmTrack(video.bytes);
-      assert.deepEqual(track, { codec: type.endsWith('vp9') ? 'V_VP9' : 'V_VP8', width: size[0], height: size[1], frames: 6 });
+      assert.deepEqual([track.codec, track.width, track.height, track.frames], [type.endsWith('vp9') ? 'V_VP9' : 'V_VP8', size[0], size[1], 6]);
       // the page stopped at the span's end and says what it saved
       assert.ok(Math.abs((await page.evaluate(() => window.rigidReport.time())) - 0.5) < 1e-9);
-      assert.match(await page.locator('.record-row .record-note').textContent(), /saved physical_pendulum_0-0\.5s\.webm \(6 frames at 10 fps/);
+      assert.match(await page.locator('.record-row .record-note').textContent(), /saved physical_pendulum_0-0\.5s\.webm \(6 frames at 10 fps, vp[89]/);
       // PNG frames chosen where there is a video too: the same span as a .tar of 6 frames
       assert.deepEqual(await page.locator('.record-row select.record-format option').allTextContents(), [`WebM (${type.slice(-3)})`, 'PNG frames (.tar)']);
       await page.locator('.record-row select.record-format').selectOption('png');
@@ -130,16 +177,16 @@ describe('recording the 3D view', () => {
     }
   });
 
-  test('without MediaRecorder: a .tar of one distinct PNG per frame, the view at its own time', async () => {
+  test('with neither: a .tar of one distinct PNG per frame, the view at its own time', async () => {
     const page = await browser.newPage({ viewport: { width: 1200, height: 900 } });
     try {
-      await page.addInitScript(() => { delete window.MediaRecorder; });
+      await page.addInitScript(() => { delete window.MediaRecorder; delete window.VideoEncoder; });
       const errors = [];
       page.on('pageerror', (e) => errors.push(e.message));
       await page.goto(`file://${join(dir, 'report.html')}`);
       await page.evaluate(() => window.rigidReport.ready);
       assert.equal(await page.evaluate(() => window.rigidReport.view.recorder.type), null);
-      assert.match(await page.locator('.record-row .record-note').textContent(), /no MediaRecorder: PNG frames only/);
+      assert.match(await page.locator('.record-row .record-note').textContent(), /neither WebCodecs nor MediaRecorder: PNG frames only/);
       assert.deepEqual(await page.locator('.record-row select.record-format option').allTextContents(), ['PNG frames (.tar)']);
       await setUpSpan(page);
       const tar = await download(page, page.locator('.record-row button.record'));

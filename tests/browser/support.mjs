@@ -53,9 +53,11 @@ export async function launch() {
 /**
  * Opens the page from file:// and records every console error, page error and request whose URL
  * is neither the page itself nor a data: URL (those are aborted: the page must load nothing).
+ * `init`, when given, runs in the page before its own scripts (page.addInitScript).
  */
-export async function openPage(browser, htmlPath, viewport = { width: 1200, height: 900 }) {
+export async function openPage(browser, htmlPath, viewport = { width: 1200, height: 900 }, init = null) {
   const page = await browser.newPage({ viewport });
+  if (init) await page.addInitScript(init);
   const problems = [];
   const pageUrl = `file://${htmlPath}`;
   page.on('console', (m) => { if (m.type() === 'error') problems.push(`console error: ${m.text()}`); });
