@@ -71,15 +71,18 @@ test-browser: build web-deps
 	RIGID_EXE=$(CURDIR)/$(BUILD)/bin/rigid RIGID_SCREENSHOT_DIR=$(CURDIR)/$(BUILD)/browser-screenshots \
 	  node --test tests/browser/
 
-# Every fuzz target (fuzz/: mesh readers, scenes, URDF/MJCF/SDF inertials, expressions) for
-# SECONDS seconds each, built with clang, libFuzzer, ASan and UBSan in build/fuzz. Findings go
-# to build/fuzz/fuzz-findings/<target>/; the exit status is 1 when there are any.
+# Every fuzz target (fuzz/targets.def: mesh readers, scenes, robot models and inertials, the
+# inertial fixer, expressions, run schemas, sweep journals, CSV tables, the CLI's arguments) for
+# SECONDS seconds each, JOBS at a time, built with clang, libFuzzer, ASan and UBSan in
+# build/fuzz. Findings go to build/fuzz/fuzz-findings/<target>/; the exit status is 1 when
+# there are any.
 SECONDS ?= 60
+JOBS ?= 1
 fuzz:
 	@scripts/install-deps.sh fuzz
 	cmake --preset fuzz >/dev/null
 	cmake --build --preset fuzz
-	scripts/run-fuzz.sh build/fuzz $(SECONDS)
+	RIGID_FUZZ_JOBS=$(JOBS) scripts/run-fuzz.sh build/fuzz $(SECONDS)
 
 clean:
 	rm -rf build
