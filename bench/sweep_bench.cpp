@@ -7,7 +7,9 @@
 //    from the scene read once, run, make the row; the derivation amortised over 32 runs) against
 //    Model::run of a model built once: the difference is a sweep's overhead per run beyond the
 //    integration;
-//  - one run through run_sweep (the file read, and a coordinate scene's derivation, included).
+//  - one run through run_sweep (the file read, and a coordinate scene's derivation, included);
+//  - the serial work per run (the symbolic core's lock held) of a grid of the pendulum, the
+//    racket and a mesh body, and of a Monte Carlo sample of the pendulum.
 // MPI ranks are measured from the command line (docs/performance.md gives the commands).
 #include <filesystem>
 #include <fstream>
@@ -88,12 +90,24 @@ void write_sphere_once() {
 
 // The sweep of the scene `text` (written to a temporary file named after `name`) over `axis`,
 // with the overrides `set` for every run.
-rigid::scene::SweepIdentity sweep_of(const std::string& name, const char* text, const char* axis,
-                                     std::vector<std::string> set = {}) {
+std::filesystem::path scene_file(const std::string& name, const char* text) {
   const auto file = std::filesystem::temp_directory_path() / ("rigid_sweep_bench_" + name + ".toml");
   std::ofstream(file) << text;
-  return {.scene = file, .set = std::move(set), .integrator = "",
+  return file;
+}
+
+rigid::scene::SweepIdentity sweep_of(const std::string& name, const char* text, const char* axis,
+                                     std::vector<std::string> set = {}) {
+  return {.scene = scene_file(name, text), .set = std::move(set), .integrator = "",
           .spec = {.grid = {rigid::scene::parse_grid_axis(axis)}}};
+}
+
+// A Monte Carlo sweep of the scene `text` (as sweep_of): `count` runs drawn from `axis`
+// (NAME=DIST(A,B)), seed 1.
+rigid::scene::SweepIdentity sample_of(const std::string& name, const char* text, const char* axis,
+                                      std::size_t count) {
+  return {.scene = scene_file(name, text), .set = {}, .integrator = "",
+          .spec = {.sample = {rigid::scene::parse_sample_axis(axis)}, .samples = count, .seed = 1}};
 }
 
 void BM_Sweep_runs(benchmark::State& st, const char* name, const char* text, const char* axis,
@@ -148,10 +162,13 @@ void BM_Sweep_modelRun(benchmark::State& st, const char* text) {
 // `2·count` runs against one of `count`, on 2 threads. Counter "serial_us" (µs per run) and
 // "entries" (symbolic-core entries per run); the Amdahl bound at P cores is
 // 1 / (s + (1 − s)/P) with s = serial / (serial + parallel per run).
-void BM_Sweep_serialPerRun(benchmark::State& st, const char* name, const char* text, const char* axis) {
+// `axis` is a grid axis without its count ("L=0.5:2:"), or with `sample` a distribution
+// ("L=uniform(0.5,2)": a Monte Carlo sweep of 16 and 32 draws).
+void BM_Sweep_serialPerRun(benchmark::State& st, const char* name, const char* text, const char* axis,
+                           bool sample = false) {
   write_sphere_once();
-  const auto small = sweep_of(name, text, (std::string(axis) + "16").c_str());
-  const auto large = sweep_of(name, text, (std::string(axis) + "32").c_str());
+  const auto small = sample ? sample_of(name, text, axis, 16) : sweep_of(name, text, (std::string(axis) + "16").c_str());
+  const auto large = sample ? sample_of(name, text, axis, 32) : sweep_of(name, text, (std::string(axis) + "32").c_str());
   double serial = 0.0, entries = 0.0, runs = 0.0;
   for (auto _ : st) {
     for (const auto* id : {&small, &large}) {
@@ -174,6 +191,8 @@ void BM_Sweep_serialPerRun(benchmark::State& st, const char* name, const char* t
 BENCHMARK_CAPTURE(BM_Sweep_serialPerRun, pendulum, "pendulums", kSmallPendulum, "L=0.5:2:")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Sweep_serialPerRun, racket, "rackets", kSmallRacket, "I2=1.95:2.05:")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Sweep_serialPerRun, mesh, "meshs", kMeshBody, "rho=900:1100:")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Sweep_serialPerRun, pendulum_sample, "pendulumm", kSmallPendulum, "L=uniform(0.5,2)", true)
+    ->Unit(benchmark::kMillisecond);
 // A sweep of the mesh body: 8 runs on 1 and 2 threads (the file read once, by the prototype).
 BENCHMARK_CAPTURE(BM_Sweep_runs, mesh_x8, "mesh", kMeshBody, "rho=900:1100:8")
     ->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);
