@@ -11,6 +11,7 @@
 //  - the serial work per run (the symbolic core's lock held) of a grid of the pendulum, the
 //    racket and a mesh body, and of a Monte Carlo sample of the pendulum.
 // MPI ranks are measured from the command line (docs/performance.md gives the commands).
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <numeric>
@@ -20,6 +21,7 @@
 #include <benchmark/benchmark.h>
 
 #include "mesh/mesh_builders.hpp"
+#include "rigid/io/table.hpp"
 #include "rigid/lagrange/symbolic_core.hpp"
 #include "rigid/mesh/read_mesh.hpp"
 #include "rigid/scene/model.hpp"
@@ -214,5 +216,43 @@ BENCHMARK_CAPTURE(BM_Sweep_perRun, pendulum_2s_x32, "pendulump", kSmallPendulum,
 BENCHMARK_CAPTURE(BM_Sweep_oneRun, racket_10s, "racket1", kSmallRacket, "I2=2:2:1")->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_Sweep_modelRun, pendulum_2s, kSmallPendulum)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_Sweep_oneRun, pendulum_2s, "pendulum1", kSmallPendulum, "L=1:1:1")->Unit(benchmark::kMicrosecond);
+
+// The serial end of a sweep, after its runs: make_outputs (the sort by run, the table, the
+// summary's statistics) and the bytes of runs.csv and runs.npy, for `range(0)` rows of one
+// swept value and five results (the pendulum example's), in memory (no file is written);
+// the rows in the order of a sweep's journal: nearly by run.
+// Counter "rows_per_s" (its inverse is the serial cost of a row).
+std::vector<rigid::scene::SweepRow> synthetic_rows(std::size_t count) {
+  std::vector<rigid::scene::SweepRow> rows(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    const double x = 0.1 + 2.4 * static_cast<double>(i) / static_cast<double>(count);
+    rows[i].index = i ^ 1U;  // neighbours swapped, as two threads finish them (count even)
+    rows[i].values = {x};
+    rows[i].results = {{"period", 6.28 + x * x}, {"energy_initial", -2.44 * std::cos(x)},
+                       {"energy_final", -2.44 * std::cos(x) + 1e-12 * x}, {"energy_max_change", 1e-12 * x},
+                       {"jacobi_max_change", 3e-13 * x}};
+  }
+  return rows;
+}
+
+void BM_Sweep_outputs(benchmark::State& st) {
+  const auto count = static_cast<std::size_t>(st.range(0));
+  const auto rows = synthetic_rows(count);
+  const std::vector<std::string> names{"theta.initial"};
+  std::size_t bytes = 0;
+  for (auto _ : st) {
+    st.PauseTiming();
+    auto copy = rows;  // make_outputs takes them (the CLI moves its rows in)
+    st.ResumeTiming();
+    const auto out = rigid::scene::make_outputs(names, count, std::move(copy), {{"theta.initial", "rad"}});
+    const std::string csv = rigid::io::to_csv(out.numbers, "error", out.errors);
+    const std::string npy = rigid::io::to_npy(out.numbers);
+    bytes = csv.size() + npy.size() + out.summary_json.size();
+    benchmark::DoNotOptimize(bytes);
+  }
+  st.counters["rows_per_s"] = benchmark::Counter(static_cast<double>(count), benchmark::Counter::kIsIterationInvariantRate);
+  st.counters["bytes"] = static_cast<double>(bytes);
+}
+BENCHMARK(BM_Sweep_outputs)->Arg(40000)->Unit(benchmark::kMillisecond);
 
 }  // namespace

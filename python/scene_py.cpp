@@ -273,7 +273,7 @@ py::dict sweep(const py::object& scene_arg, const std::vector<std::string>& grid
   if (output) {
     py::list written;
     std::filesystem::create_directories(*output);
-    for (const auto& p : sc::write_outputs(*output, outputs)) written.append(py::str(p.string()));
+    for (const auto& p : sc::write_outputs(*output, outputs, options.threads)) written.append(py::str(p.string()));
     out["written"] = written;
   }
   if (report) {

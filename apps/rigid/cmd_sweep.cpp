@@ -332,15 +332,20 @@ std::string sweep_on_ranks(const SweepOptions& opts, const scene::SweepIdentity&
   ro.wording = Surface::kCli;
   ro.first_run = first_run;
   if (opts.keep_trajectories) ro.keep_trajectories = dir / "runs";
-  // rank 0's rows go to the journal as they come and are read back from it at the end; the
-  // other ranks keep theirs for the gather
-  ro.keep_rows = journal == nullptr;
+  // rank 0's rows go to the journal as they come (appended by the worker that ran the run).
+  // The other ranks keep theirs for the gather; rank 0 of an unsharded sweep of at most
+  // kRowsKeptInMemory runs keeps them for the outputs, which then need not read the journal
+  // back (a few µs a row, after the runs, serially); a longer sweep runs in bounded memory and
+  // reads its journal back at the end
+  constexpr std::size_t kRowsKeptInMemory = 1'000'000;
+  const bool outputs_from_memory = shard.count == 1 && planned <= kRowsKeptInMemory;
+  ro.journal = journal;
+  ro.keep_rows = journal == nullptr || outputs_from_memory;
   g_interrupted = false;
   ro.cancel = &g_interrupted;
   std::size_t done = 0;
   ProgressBar bar(!opts.quiet && ranks.root());
-  ro.on_row = [&](const scene::SweepRow& row) {
-    if (journal) journal->append(row);
+  ro.on_row = [&](const scene::SweepRow&) {
     ++done;
     bar.update(static_cast<double>(done) / static_cast<double>(planned),
                [&] { return fmt::format("{} / {} runs", done, planned); });
@@ -368,6 +373,7 @@ std::string sweep_on_ranks(const SweepOptions& opts, const scene::SweepIdentity&
   std::vector<scene::SweepRow> others = ranks.gather(rows);
   if (!ranks.root()) return {};
   for (const auto& r : others) journal->append(r);
+  journal->flush();  // the journal is whole before any output is written
 
   const std::size_t before = journal->finished().size();
   const std::size_t ran = done + others.size();
@@ -378,12 +384,24 @@ std::string sweep_on_ranks(const SweepOptions& opts, const scene::SweepIdentity&
     }
     return {};
   }
-  // every row, from the journal: those it held, this run's and the other ranks'; the units its
-  // header holds (run 0's, as when the journal was started)
-  scene::JournalContents journaled = scene::read_journal(dir);
-  const scene::SweepOutputs outputs =
-      scene::make_outputs(names, runs, std::move(journaled.rows), journaled.units);
-  auto written = scene::write_outputs(dir, outputs);
+  // every row the journal now holds: those it held when opened, this process's and the other
+  // ranks' (the same numbers as read back: a row's doubles are written in their round-trip
+  // form), or read back from it; the units its header holds (run 0's, as when the journal was
+  // started)
+  const auto outputs_start = std::chrono::steady_clock::now();
+  std::vector<scene::SweepRow> all;
+  if (outputs_from_memory) {
+    all = journal->finished();
+    all.reserve(all.size() + rows.size() + others.size());
+    std::move(rows.begin(), rows.end(), std::back_inserter(all));
+    std::move(others.begin(), others.end(), std::back_inserter(all));
+  } else {
+    all = scene::read_journal(dir).rows;
+  }
+  const scene::SweepOutputs outputs = scene::make_outputs(names, runs, std::move(all), journal->units());
+  auto written = scene::write_outputs(dir, outputs, ro.threads);
+  const double output_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - outputs_start).count();
   if (opts.report) {
     // the page of the files just written (summary.json's units), with every unit of run 0's
     // schema for names it does not list
@@ -395,8 +413,9 @@ std::string sweep_on_ranks(const SweepOptions& opts, const scene::SweepIdentity&
   }
   if (!opts.quiet) {
     const std::size_t failures = failure_count(outputs);
-    fmt::print("sweep: {} runs ({} now in {:.3g} s on {} thread(s) x {} rank(s), {} from the journal), {} failed{}\n",
-               runs, ran, seconds, ro.threads, ranks.size(), before, failures, failures > 0 ? ":" : "");
+    fmt::print("sweep: {} runs ({} now in {:.3g} s on {} thread(s) x {} rank(s), {} from the journal; outputs in "
+               "{:.2g} s), {} failed{}\n",
+               runs, ran, seconds, ro.threads, ranks.size(), before, output_seconds, failures, failures > 0 ? ":" : "");
     fmt::print("{}", failures_text(outputs.failures));
     fmt::print("wrote {}\n", paths_text(written));
     std::fflush(stdout);

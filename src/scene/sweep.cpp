@@ -4,9 +4,12 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cerrno>
 #include <charconv>
+#include <chrono>
 #include <cmath>
+#include <condition_variable>
 #include <cstring>
 #include <fstream>
 #include <limits>
@@ -14,7 +17,9 @@
 #include <memory>
 #include <mutex>
 #include <new>
+#include <numeric>
 #include <sstream>
+#include <system_error>
 #include <thread>
 
 #include <boost/math/distributions/normal.hpp>
@@ -171,7 +176,8 @@ JournalText parse_journal(const fs::path& path) {
   return out;
 }
 
-std::string system_reason() { return std::strerror(errno); }
+// the text of errno (thread-safe, unlike std::strerror: the journal's writer thread calls it)
+std::string system_reason() { return std::error_code(errno, std::generic_category()).message(); }
 
 void write_all(int fd, std::string_view bytes, const fs::path& path) {
   while (!bytes.empty()) {
@@ -425,9 +431,60 @@ std::string describe(const SweepIdentity& id) {
   return d;
 }
 
+// The rows waiting to be written, and the thread that writes them at most kDelay after the
+// first of them came (a write per row, under a lock, was the serial part of a sweep of short
+// runs: ~3 µs a row, 1.3% of a 0.2 ms run, 84% efficiency at 16 threads by itself). Rows come
+// in under `mutex` and go out under it: each write(2) is of whole lines, in the order appended.
+struct Journal::Writer {
+  static constexpr std::size_t kWriteAt = 64 * 1024;                    // bytes waiting
+  static constexpr std::chrono::milliseconds kDelay{100};             // the longest a row waits
+  int fd;
+  const fs::path& path;
+  std::mutex mutex;
+  std::condition_variable wake;
+  std::string waiting;
+  std::string failed;  // a write's error, thrown by the next append or flush
+  bool closing = false;
+  std::jthread thread;
+
+  Writer(int fd_in, const fs::path& path_in) : fd(fd_in), path(path_in) {
+    thread = std::jthread([this] { loop(); });
+  }
+  ~Writer() {
+    {
+      std::lock_guard lock(mutex);
+      closing = true;
+    }
+    wake.notify_one();
+    thread.join();  // the loop writes what is waiting before it returns
+  }
+  // under `mutex`
+  void write_waiting() {
+    if (waiting.empty() || !failed.empty()) return;
+    try {
+      write_all(fd, waiting, path);
+    } catch (const Error& e) {
+      failed = e.what();
+    }
+    waiting.clear();
+  }
+  void throw_if_failed() const {
+    if (!failed.empty()) throw Error(failed);
+  }
+  void loop() {
+    std::unique_lock lock(mutex);
+    while (true) {
+      wake.wait(lock, [&] { return closing || !waiting.empty(); });
+      if (!closing) wake.wait_for(lock, kDelay, [&] { return closing; });
+      write_waiting();
+      if (closing) return;
+    }
+  }
+};
+
 Journal::Journal(const fs::path& directory, const std::string& description, const std::vector<std::string>& names,
                  std::size_t runs, Shard shard, const SweepUnits& units)
-    : path_(journal_path(directory)) {
+    : path_(journal_path(directory)), units_(units) {
   std::error_code ec;
   fs::create_directories(directory, ec);
   if (ec || !fs::is_directory(directory)) {
@@ -448,6 +505,7 @@ Journal::Journal(const fs::path& directory, const std::string& description, cons
                               directory.string(), shard_text(c.shard), shard_text(shard)));
     }
     finished_ = c.rows;
+    units_ = c.units;
     fd_ = ::open(path_.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
     // a line cut short by a kill is cut off, so the next row starts a line of its own
     if (fd_ >= 0 && ::ftruncate(fd_, static_cast<off_t>(j.complete_bytes)) != 0) {
@@ -459,16 +517,35 @@ Journal::Journal(const fs::path& directory, const std::string& description, cons
     if (fd_ >= 0) write_all(fd_, header, path_);
   }
   if (fd_ < 0) throw Error(fmt::format("cannot write the sweep journal '{}': {}", path_.string(), system_reason()));
+  writer_ = std::make_unique<Writer>(fd_, path_);
 }
 
 Journal::~Journal() {
+  writer_.reset();  // what waits is written (an error now has no one to go to)
   if (fd_ >= 0) ::close(fd_);
 }
 
 void Journal::append(const SweepRow& row) {
-  // one write(2) per line, O_APPEND: a whole line reaches the file or (killed mid-write) a
-  // piece without its newline, which the next open drops
-  write_all(fd_, row_to_json(row) + "\n", path_);
+  // whole lines, O_APPEND: a kill mid-write leaves a piece without its newline, which the next
+  // open drops
+  std::string line = row_to_json(row);
+  line += '\n';
+  bool first = false;
+  {
+    std::lock_guard lock(writer_->mutex);
+    writer_->throw_if_failed();
+    first = writer_->waiting.empty();
+    writer_->waiting += line;
+    if (writer_->waiting.size() >= Writer::kWriteAt) writer_->write_waiting();
+    writer_->throw_if_failed();
+  }
+  if (first) writer_->wake.notify_one();
+}
+
+void Journal::flush() {
+  std::lock_guard lock(writer_->mutex);
+  writer_->write_waiting();
+  writer_->throw_if_failed();
 }
 
 JournalContents read_journal(const fs::path& directory) {
@@ -606,6 +683,7 @@ std::vector<SweepRow> run_sweep(const SweepIdentity& id, const RunIndexSource& n
       row.error = "out of memory: the run needs more memory than is available; lower its trajectory's size";
     }
     model.reset();
+    if (options.journal) options.journal->append(row);
     std::lock_guard lock(report);
     if (options.on_row) options.on_row(row);
     if (options.keep_rows) rows.push_back(std::move(row));
@@ -648,11 +726,27 @@ namespace {
 
 // Quantile q of sorted values by linear interpolation between order statistics (the default of
 // numpy.quantile and R's type 7): h = (n − 1) q, x[⌊h⌋] + (h − ⌊h⌋)(x[⌊h⌋+1] − x[⌊h⌋]).
+constexpr std::array<double, 5> kQuantiles{0.05, 0.25, 0.5, 0.75, 0.95};
+
 double quantile_sorted(const std::vector<double>& x, double q) {
   const double h = static_cast<double>(x.size() - 1) * q;
   const auto lo = static_cast<std::size_t>(std::floor(h));
   const std::size_t hi = std::min(lo + 1, x.size() - 1);
   return x[lo] + (h - static_cast<double>(lo)) * (x[hi] - x[lo]);
+}
+
+// Puts the order statistics `at` (ascending positions in x) in place, as a full sort would,
+// by selection (O(n log k) for k positions, against O(n log n): the summary of a sweep of many
+// runs is made after the runs, serially, and needs seven of them per column).
+void select_positions(std::vector<double>& x, std::span<const std::size_t> at, std::size_t begin, std::size_t end) {
+  if (at.empty() || end - begin < 2) return;
+  const std::size_t mid = at.size() / 2;
+  const std::size_t k = at[mid];
+  std::nth_element(x.begin() + static_cast<std::ptrdiff_t>(begin), x.begin() + static_cast<std::ptrdiff_t>(k),
+                   x.begin() + static_cast<std::ptrdiff_t>(end));
+  // x[begin, k) ≤ x[k] ≤ x(k, end): the positions below k are found in the left part alone
+  select_positions(x, at.first(mid), begin, k);
+  select_positions(x, at.subspan(mid + 1), k + 1, end);
 }
 
 }  // namespace
@@ -695,10 +789,15 @@ SweepUnits sweep_units(const io::RunSchema& schema) {
 
 SweepOutputs make_outputs(const std::vector<std::string>& names, std::size_t runs, std::vector<SweepRow> rows,
                           const SweepUnits& units) {
-  std::sort(rows.begin(), rows.end(), [](const SweepRow& a, const SweepRow& b) { return a.index < b.index; });
-  // each index once (a row run twice, e.g. by two shards that overlap, must agree)
-  std::vector<SweepRow> unique;
-  for (auto& r : rows) {
+  // the rows in run order, through a permutation (moving whole rows cost more than the rest of
+  // the summary); each index once (a row run twice, e.g. by two shards that overlap, must agree)
+  std::vector<std::size_t> order(rows.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return rows[a].index < rows[b].index; });
+  std::vector<const SweepRow*> unique;
+  unique.reserve(rows.size());
+  for (const std::size_t at : order) {
+    SweepRow& r = rows[at];
     if (r.index >= runs) throw Error(fmt::format("run {} is beyond the sweep's {} runs", r.index, runs));
     // a row of an edited or damaged journal: its swept values are the sweep's names, one each
     if (r.values.size() != names.size()) {
@@ -707,19 +806,23 @@ SweepOutputs make_outputs(const std::vector<std::string>& names, std::size_t run
                               r.index, r.values.size(), r.values.size() == 1 ? "" : "s", names.size(),
                               fmt::join(names, ", ")));
     }
-    if (!unique.empty() && unique.back().index == r.index) {
-      if (row_to_json(unique.back()) != row_to_json(r)) {
+    // one NaN whatever its sign and payload (x86's 0/0 has the sign bit set): a row read back
+    // from the journal ("nan") and the same row kept in memory give the same runs.npy bytes
+    for (double& v : r.values) v = std::isnan(v) ? kNaN : v;
+    for (auto& [name, v] : r.results) v = std::isnan(v) ? kNaN : v;
+    if (!unique.empty() && unique.back()->index == r.index) {
+      if (row_to_json(*unique.back()) != row_to_json(r)) {
         throw Error(fmt::format("run {} was recorded twice with different results", r.index));
       }
       continue;
     }
-    unique.push_back(std::move(r));
+    unique.push_back(&r);
   }
   if (unique.size() != runs) {
     std::vector<std::size_t> missing;
     std::size_t k = 0;
     for (std::size_t i = 0; i < runs && missing.size() < 10; ++i) {
-      if (k < unique.size() && unique[k].index == i) {
+      if (k < unique.size() && unique[k]->index == i) {
         ++k;
       } else {
         missing.push_back(i);
@@ -733,9 +836,15 @@ SweepOutputs make_outputs(const std::vector<std::string>& names, std::size_t run
   std::vector<std::string> columns{"run"};
   for (const auto& n : names) columns.push_back(n);
   std::vector<std::string> result_names;
-  for (const auto& r : unique) {
-    for (const auto& [n, v] : r.results) {
-      if (std::find(result_names.begin(), result_names.end(), n) == result_names.end()) result_names.push_back(n);
+  // where result i of a run, called n, is in result_names (its size when absent); a run's
+  // results come in the order of the others', as a rule: position i is looked at first
+  const auto result_position = [&](std::size_t i, const std::string& n) {
+    if (i < result_names.size() && result_names[i] == n) return i;
+    return static_cast<std::size_t>(std::find(result_names.begin(), result_names.end(), n) - result_names.begin());
+  };
+  for (const SweepRow* r : unique) {
+    for (std::size_t i = 0; i < r->results.size(); ++i) {
+      if (result_position(i, r->results[i].first) == result_names.size()) result_names.push_back(r->results[i].first);
     }
   }
   std::vector<std::string> result_columns;
@@ -748,15 +857,17 @@ SweepOutputs make_outputs(const std::vector<std::string>& names, std::size_t run
   SweepOutputs out{.numbers = io::Table(columns), .errors = {}, .summary_json = {}, .failures = {}};
   std::vector<double> line(columns.size());
   std::vector<std::vector<double>> per_column(result_names.size());
+  for (auto& c : per_column) c.reserve(unique.size());
+  out.numbers.reserve_rows(unique.size());
+  out.errors.reserve(unique.size());
   std::size_t failures = 0;
-  for (const auto& r : unique) {
+  for (const SweepRow* row : unique) {
+    const SweepRow& r = *row;
     std::fill(line.begin(), line.end(), kNaN);
     line[0] = static_cast<double>(r.index);
     std::copy(r.values.begin(), r.values.end(), line.begin() + 1);
-    for (const auto& [n, v] : r.results) {
-      const auto k = static_cast<std::size_t>(std::find(result_names.begin(), result_names.end(), n) -
-                                              result_names.begin());
-      line[1 + names.size() + k] = v;
+    for (std::size_t i = 0; i < r.results.size(); ++i) {
+      line[1 + names.size() + result_position(i, r.results[i].first)] = r.results[i].second;
     }
     for (std::size_t k = 0; k < result_names.size(); ++k) {
       const double v = line[1 + names.size() + k];
@@ -805,11 +916,20 @@ SweepOutputs make_outputs(const std::vector<std::string>& names, std::size_t run
       for (double v : x) ss += (v - mean) * (v - mean);
       s["mean"] = mean;
       s["std"] = x.size() > 1 ? Json(std::sqrt(ss / static_cast<double>(x.size() - 1))) : Json(nullptr);
-      std::sort(x.begin(), x.end());
+      // the positions quantile_sorted reads, the first and the last: in place as if sorted
+      std::vector<std::size_t> at{0, x.size() - 1};
+      for (double p : kQuantiles) {
+        const auto lo = static_cast<std::size_t>(std::floor(static_cast<double>(x.size() - 1) * p));
+        at.push_back(lo);
+        at.push_back(std::min(lo + 1, x.size() - 1));
+      }
+      std::sort(at.begin(), at.end());
+      at.erase(std::unique(at.begin(), at.end()), at.end());
+      select_positions(x, at, 0, x.size());
       s["min"] = x.front();
       s["max"] = x.back();
       Json q;
-      for (double p : {0.05, 0.25, 0.5, 0.75, 0.95}) q[fmt::format("{}", p)] = quantile_sorted(x, p);
+      for (double p : kQuantiles) q[fmt::format("{}", p)] = quantile_sorted(x, p);
       s["quantiles"] = q;
     }
     j["results"][result_columns[k]] = s;
@@ -818,8 +938,8 @@ SweepOutputs make_outputs(const std::vector<std::string>& names, std::size_t run
   return out;
 }
 
-std::vector<fs::path> write_outputs(const fs::path& directory, const SweepOutputs& outputs) {
-  io::write_file_atomically(directory / "runs.csv", io::to_csv(outputs.numbers, "error", outputs.errors));
+std::vector<fs::path> write_outputs(const fs::path& directory, const SweepOutputs& outputs, std::size_t threads) {
+  io::write_file_atomically(directory / "runs.csv", io::to_csv(outputs.numbers, "error", outputs.errors, threads));
   io::write_file_atomically(directory / "runs.npy", io::to_npy(outputs.numbers));
   io::write_file_atomically(directory / "summary.json", outputs.summary_json);
   return {directory / "runs.csv", directory / "runs.npy", directory / "summary.json"};

@@ -103,5 +103,36 @@ TEST(Table, CsvTextColumnIsQuotedAsRfc4180Says) {
   EXPECT_RIGID_ERROR((void)to_csv(t, "", text), "empty name");
 }
 
+// Formatted in blocks on several threads, the text is that of one thread: the rows split at
+// rows·b/blocks, for tables just below, at and above one block's 4096 rows a thread, and with
+// more threads than blocks; each line reads back to the same bits.
+TEST(Table, CsvOnSeveralThreadsIsTheTextOfOne) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-1e3, 1e3);
+  for (const std::size_t rows : {0u, 1u, 4095u, 8192u, 3u * 4096u + 17u}) {
+    Table t({"run", "x"});
+    std::vector<std::string> text;
+    for (std::size_t r = 0; r < rows; ++r) {
+      t.add_row(std::vector<double>{static_cast<double>(r), u(rng) * 1e-100});
+      text.push_back(r % 7 == 0 ? "a, \"b\"" : "");
+    }
+    const std::string one = to_csv(t), one_text = to_csv(t, "error", text);
+    for (const std::size_t threads : {0u, 2u, 3u, 4u, 64u}) {
+      EXPECT_EQ(to_csv(t, threads), one) << rows << " rows, " << threads << " threads";
+      EXPECT_EQ(to_csv(t, "error", text, threads), one_text) << rows << " rows, " << threads << " threads";
+    }
+    const fs::path file = fs::temp_directory_path() / "rigid_table_threads.csv";
+    {
+      std::ofstream(file, std::ios::binary) << to_csv(t, 3);
+    }
+    const Table back = read_csv(file);
+    ASSERT_EQ(back.rows(), rows);
+    if (rows > 0) {  // (memcmp of an empty table's null data is undefined)
+      EXPECT_EQ(std::memcmp(back.data().data(), t.data().data(), t.data().size() * sizeof(double)), 0) << rows;
+    }
+    fs::remove(file);
+  }
+}
+
 }  // namespace
 }  // namespace rigid::io

@@ -4,18 +4,22 @@
 
 #include <algorithm>
 #include <bit>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <numeric>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "rigid/io/table.hpp"
 #include "rigid/lagrange/symbolic_core.hpp"
 #include "rigid/scene/model.hpp"
 #include "rigid/scene/scene.hpp"
@@ -236,6 +240,114 @@ TEST(SweepJournal, KeepsRowsRefusesAnotherSweepAndDropsACutLine) {
   EXPECT_RIGID_ERROR(Journal(dir, "sweep A", {"a"}, 3, Shard{1, 2}), "holds shard 0/1 of this sweep, not shard 1/2");
   EXPECT_RIGID_ERROR((void)read_journal(dir / "nothing"), "holds no sweep journal");
   fs::remove_all(dir);
+}
+
+// Rows reach the file without a flush, within the writer's delay (0.1 s; waited for up to 5 s
+// here, a loaded machine's margin), in the order appended; flush writes at once; rows appended
+// from several threads are each one whole line.
+TEST(SweepJournal, RowsReachTheFileSoonWithoutAFlushAndWholeFromManyThreads) {
+  const fs::path dir = temp_dir("writer");
+  const auto rows_on_disk = [&] {
+    std::ifstream in(dir / ".journal.jsonl");
+    std::size_t lines = 0;
+    for (std::string line; std::getline(in, line);) ++lines;
+    return lines - 1;  // the header
+  };
+  {
+    Journal j(dir, "sweep A", {"a"}, 3998, Shard{});
+    j.append(SweepRow{.index = 0, .values = {0.5}, .results = {{"x", 1}}});
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+    while (rows_on_disk() < 1 && std::chrono::steady_clock::now() < deadline) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    EXPECT_EQ(rows_on_disk(), 1u);
+    j.append(SweepRow{.index = 1, .values = {1.5}});
+    j.flush();
+    EXPECT_EQ(rows_on_disk(), 2u);
+    // 4 threads × 999 rows: more than one 64 KiB write, interleaved appends
+    std::vector<std::jthread> pool;
+    for (std::size_t t = 0; t < 4; ++t) {
+      pool.emplace_back([&j, t] {
+        for (std::size_t k = 0; k < 999; ++k) {
+          const std::size_t index = 2 + t * 999 + k;
+          j.append(SweepRow{.index = index, .values = {static_cast<double>(index) / 7},
+                            .results = {{"energy_max_change", 1e-12 * static_cast<double>(index)}},
+                            .error = index % 5 == 0 ? "a \"quoted\",\nline" : ""});
+        }
+      });
+    }
+  }  // joined, then the journal's destructor writes what waits
+  const JournalContents c = read_journal(dir);
+  ASSERT_EQ(c.rows.size(), 3998u);  // 2 + 4 × 999
+  std::vector<std::size_t> seen;
+  for (const auto& r : c.rows) {
+    seen.push_back(r.index);
+    if (r.index >= 2) {
+      EXPECT_EQ(r.values.at(0), static_cast<double>(r.index) / 7) << r.index;
+    }
+  }
+  std::sort(seen.begin(), seen.end());
+  std::vector<std::size_t> all(3998);
+  std::iota(all.begin(), all.end(), std::size_t{0});
+  EXPECT_EQ(seen, all);
+  fs::remove_all(dir);
+}
+
+// runs.csv formatted on several threads is the same bytes as on one (blocks of ≥ 4096 rows);
+// the summary's order statistics, found by selection, are those of a full sort.
+TEST(SweepOutputs, TheOutputsAreTheSameBytesOnAnyNumberOfThreads) {
+  std::vector<SweepRow> rows;
+  const std::size_t n = 3 * 4096 + 17;
+  for (std::size_t i = 0; i < n; ++i) {
+    // values with many repeats and a scatter of magnitudes, results in another order now and then
+    const double x = std::ldexp(static_cast<double>((i * 2654435761U) % 1000), static_cast<int>(i % 40) - 20);
+    SweepRow r{.index = n - 1 - i, .values = {static_cast<double>(i % 97)}};
+    r.results = {{"x", x}, {"y", -x / 3}};
+    if (i % 11 == 0) std::swap(r.results[0], r.results[1]);
+    if (i % 13 == 0) r.error = "refused, \"here\"";
+    if (i % 13 == 0) r.results.clear();
+    rows.push_back(r);
+  }
+  const SweepOutputs out = make_outputs({"a"}, n, rows);
+  const fs::path one = temp_dir("outputs_one"), four = temp_dir("outputs_four");
+  (void)write_outputs(one, out, 1);
+  (void)write_outputs(four, out, 4);
+  for (const char* f : {"runs.csv", "runs.npy", "summary.json"}) {
+    std::ifstream a(one / f, std::ios::binary), b(four / f, std::ios::binary);
+    const std::string ta{std::istreambuf_iterator<char>(a), {}}, tb{std::istreambuf_iterator<char>(b), {}};
+    EXPECT_FALSE(ta.empty()) << f;
+    EXPECT_EQ(ta, tb) << f;
+  }
+  // min, max and the quantiles of x against a full sort (numpy.quantile's linear rule)
+  std::vector<double> x;
+  for (const auto& r : rows) {
+    for (const auto& [name, v] : r.results) {
+      if (name == "x") x.push_back(v);
+    }
+  }
+  std::sort(x.begin(), x.end());
+  const auto j = nlohmann::json::parse(out.summary_json)["results"]["x"];
+  EXPECT_EQ(j["min"].get<double>(), x.front());
+  EXPECT_EQ(j["max"].get<double>(), x.back());
+  for (const double p : {0.05, 0.25, 0.5, 0.75, 0.95}) {
+    const double h = static_cast<double>(x.size() - 1) * p;
+    const auto lo = static_cast<std::size_t>(std::floor(h));
+    const double expected = x[lo] + (h - static_cast<double>(lo)) * (x[lo + 1] - x[lo]);
+    EXPECT_EQ(j["quantiles"][fmt::format("{}", p)].get<double>(), expected) << p;
+  }
+  fs::remove_all(one);
+  fs::remove_all(four);
+}
+
+// A NaN result is one NaN in runs.npy whatever its sign: a row kept in memory (x86's 0/0 has the
+// sign bit set) and the same row read back from the journal ("nan") give the same bytes.
+TEST(SweepOutputs, ANaNIsTheSameBytesFromMemoryAndFromTheJournal) {
+  const double negative_nan = -std::numeric_limits<double>::quiet_NaN();
+  ASSERT_TRUE(std::signbit(negative_nan));
+  const SweepRow row{.index = 0, .values = {negative_nan}, .results = {{"x", negative_nan}}};
+  const SweepRow read_back = row_from_json(row_to_json(row), "j:2");
+  const auto bytes = [](const SweepRow& r) { return io::to_npy(make_outputs({"a"}, 1, {r}).numbers); };
+  EXPECT_EQ(bytes(row), bytes(read_back));
 }
 
 // A run number is a whole number ≥ 0: −1 and 2.5 are refused as damage, not read as 2⁶⁴ − 1 or 2.

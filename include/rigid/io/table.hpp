@@ -20,6 +20,8 @@ class Table {
 
   /// Appends one row. @throws rigid::Error if row.size() differs from the column count.
   void add_row(std::span<const double> row);
+  /// Makes room for `rows` rows in all (no row is added).
+  void reserve_rows(std::size_t rows) { data_.reserve(rows * columns_.size()); }
 
   [[nodiscard]] const std::vector<std::string>& columns() const { return columns_; }
   [[nodiscard]] std::size_t rows() const { return columns_.empty() ? 0 : data_.size() / columns_.size(); }
@@ -39,14 +41,18 @@ class Table {
 };
 
 /// CSV text: a header line of column names, then one line per row; every double is
-/// printed in its shortest form that reads back to the same bits.
-[[nodiscard]] std::string to_csv(const Table& table);
+/// printed in its shortest form that reads back to the same bits. With `threads` > 1, a table
+/// of many rows (4096 or more a thread) is formatted in blocks on that many threads: the same
+/// text.
+[[nodiscard]] std::string to_csv(const Table& table, std::size_t threads = 1);
 
 /// CSV text of `table` with one column of text after its numbers (a sweep's `error`): `name`
 /// in the header and `text[r]` on row r, quoted as RFC 4180 says (in double quotes, a quote
 /// doubled) when it holds a comma, a quote or a line break; an empty text is an empty field.
+/// `threads` as above.
 /// @throws rigid::Error if text.size() differs from table.rows() or `name` is empty.
-[[nodiscard]] std::string to_csv(const Table& table, std::string_view name, std::span<const std::string> text);
+[[nodiscard]] std::string to_csv(const Table& table, std::string_view name, std::span<const std::string> text,
+                                 std::size_t threads = 1);
 
 /// NumPy .npy (format 1.0) bytes: a little-endian float64 array of shape (rows, columns),
 /// C order. Column names are not stored; they are the CSV header.

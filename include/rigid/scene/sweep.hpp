@@ -142,9 +142,12 @@ using SweepUnits = std::map<std::string, std::string>;
 
 /// The journal of a sweep's directory, DIR/.journal.jsonl: a header line
 /// {"rigid_sweep":1,"sweep":<describe()>,"names":[…],"runs":N,"shard":"i/N","units":{…}} ("units"
-/// only when known: sweep_units of run 0) then one row per finished run, appended with one
-/// write(2) each, so a killed process loses at most the runs in flight (a last line cut short is
-/// dropped when the journal is opened again).
+/// only when known: sweep_units of run 0) then one row per finished run. Rows are gathered in
+/// memory and written (write(2), O_APPEND) at most 0.1 s after they were appended, or at once
+/// when 64 KiB are waiting, so that a sweep of many short runs does not make a system call per
+/// run under a lock: a killed process loses the runs in flight and those finished in the last
+/// 0.1 s, which the next start runs again (a last line cut short is dropped when the journal is
+/// opened again).
 class Journal {
  public:
   /// Opens DIR/.journal.jsonl (making DIR if needed) for the sweep `description` of `runs` runs,
@@ -161,13 +164,21 @@ class Journal {
 
   /// The rows the journal held when opened, in the order they finished.
   [[nodiscard]] const std::vector<SweepRow>& finished() const { return finished_; }
-  /// Appends a row (thread-safe). @throws rigid::Error if the write fails (disk full).
+  /// The units of its header (those it was started with, for a journal opened again).
+  [[nodiscard]] const SweepUnits& units() const { return units_; }
+  /// Appends a row (thread-safe; the line is made outside the lock). @throws rigid::Error if a
+  /// write failed (disk full), this one or an earlier one made in the background.
   void append(const SweepRow& row);
+  /// Writes the rows waiting. @throws rigid::Error as append.
+  void flush();
 
  private:
   std::filesystem::path path_;
   int fd_ = -1;
   std::vector<SweepRow> finished_;
+  SweepUnits units_;
+  struct Writer;  // the rows waiting and the thread that writes them
+  std::unique_ptr<Writer> writer_;
 };
 
 /// The journal's header and rows, read without opening it for appending (rigid sweep merge).
@@ -187,6 +198,9 @@ struct SweepRunOptions {
   std::size_t threads = 1;
   /// Called after each run (from the worker thread that ran it; calls are serialized).
   std::function<void(const SweepRow&)> on_row{};
+  /// When set, each row is appended to it by the worker that ran it, outside on_row's lock (the
+  /// serial part of a run is then only on_row's).
+  Journal* journal = nullptr;
   /// When set and true, no further run starts and the runs in flight stop (rigid::Cancelled,
   /// not recorded).
   const std::atomic<bool>* cancel = nullptr;
@@ -272,8 +286,9 @@ struct SweepOutputs {
 /// `names` are the swept names, `runs` the sweep's run count.
 [[nodiscard]] SweepOutputs make_outputs(const std::vector<std::string>& names, std::size_t runs,
                                         std::vector<SweepRow> rows, const SweepUnits& units = {});
-/// Writes runs.csv, runs.npy and summary.json into `directory`, each atomically.
-/// Returns the paths written.
-std::vector<std::filesystem::path> write_outputs(const std::filesystem::path& directory, const SweepOutputs& outputs);
+/// Writes runs.csv, runs.npy and summary.json into `directory`, each atomically; runs.csv is
+/// formatted on `threads` threads (io::to_csv: the same bytes). Returns the paths written.
+std::vector<std::filesystem::path> write_outputs(const std::filesystem::path& directory, const SweepOutputs& outputs,
+                                                 std::size_t threads = 1);
 
 }  // namespace rigid::scene
