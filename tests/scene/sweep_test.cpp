@@ -8,9 +8,9 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <limits>
 #include <numeric>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -314,7 +314,10 @@ TEST(SweepOutputs, TheOutputsAreTheSameBytesOnAnyNumberOfThreads) {
   (void)write_outputs(four, out, 4);
   for (const char* f : {"runs.csv", "runs.npy", "summary.json"}) {
     std::ifstream a(one / f, std::ios::binary), b(four / f, std::ios::binary);
-    const std::string ta{std::istreambuf_iterator<char>(a), {}}, tb{std::istreambuf_iterator<char>(b), {}};
+    std::stringstream sa, sb;
+    sa << a.rdbuf();
+    sb << b.rdbuf();
+    const std::string ta = sa.str(), tb = sb.str();
     EXPECT_FALSE(ta.empty()) << f;
     EXPECT_EQ(ta, tb) << f;
   }
