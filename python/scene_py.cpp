@@ -3,6 +3,7 @@
 // the summary as a dict — the same numbers `rigid run` writes — and, given an output
 // directory, writes the same files. A run releases the GIL and stops on Ctrl-C.
 #include <atomic>
+#include <chrono>
 #include <cstdint>
 #include <numeric>
 #include <filesystem>
@@ -241,7 +242,13 @@ py::dict sweep(const py::object& scene_arg, const std::vector<std::string>& grid
   options.threads = threads;
   options.wording = rigid::Surface::kPython;
   options.cancel = &cancel;
-  options.on_row = [&cancel](const sc::SweepRow&) {
+  // Ctrl-C is looked for at most every 20 ms: taking the GIL for each row would make it the
+  // serial part of a sweep of short runs (calls to on_row are serialized, so `last` needs no lock)
+  auto last = std::chrono::steady_clock::now() - std::chrono::seconds(1);
+  options.on_row = [&cancel, &last](const sc::SweepRow&) {
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last < std::chrono::milliseconds(20)) return;
+    last = now;
     py::gil_scoped_acquire gil;
     if (PyErr_CheckSignals() != 0) {
       PyErr_Clear();  // raised again as KeyboardInterrupt from rigid::Cancelled

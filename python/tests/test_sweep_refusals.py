@@ -62,3 +62,25 @@ def test_an_underflowing_value_is_a_rigid_error(tmp_path, kwargs):
     assert type(e.value) is rigid.Error
     assert "underflow" in str(e.value) or "evaluates to" in str(e.value)
     assert not (out / "runs.csv").exists()
+
+
+def test_ctrl_c_stops_a_sweep_of_short_runs_with_keyboard_interrupt(tmp_path):
+    # 200,000 runs of ~0.24 ms (~25 s on two threads): Ctrl-C after 0.3 s stops it within a
+    # second (the signal is looked for every 20 ms, not for every row) and writes no outputs
+    import os
+    import signal
+    import threading
+    import time
+
+    out = tmp_path / "out"
+    timer = threading.Timer(0.3, lambda: os.kill(os.getpid(), signal.SIGINT))
+    start = time.monotonic()
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            rigid.sweep(str(PENDULUM), grid=["theta.initial=0.1:2.5:200000"], set=["simulation.t_end=0.5"],
+                        threads=2, output=str(out))
+    finally:
+        timer.cancel()
+    assert time.monotonic() - start < 5.0  # a loaded machine's margin over the ~0.3 s expected
+    assert not (out / "runs.csv").exists()
