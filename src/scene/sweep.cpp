@@ -724,10 +724,12 @@ std::vector<SweepRow> run_sweep(const SweepIdentity& id, const RunIndexSource& n
 
 namespace {
 
-// Quantile q of sorted values by linear interpolation between order statistics (the default of
-// numpy.quantile and R's type 7): h = (n − 1) q, x[⌊h⌋] + (h − ⌊h⌋)(x[⌊h⌋+1] − x[⌊h⌋]).
+// The quantiles summary.json gives of each result.
 constexpr std::array<double, 5> kQuantiles{0.05, 0.25, 0.5, 0.75, 0.95};
 
+// Quantile q of values by linear interpolation between order statistics (the default of
+// numpy.quantile and R's type 7): h = (n − 1) q, x[⌊h⌋] + (h − ⌊h⌋)(x[⌊h⌋+1] − x[⌊h⌋]), x
+// holding at ⌊h⌋ and ⌊h⌋ + 1 what a sort would put there.
 double quantile_sorted(const std::vector<double>& x, double q) {
   const double h = static_cast<double>(x.size() - 1) * q;
   const auto lo = static_cast<std::size_t>(std::floor(h));
