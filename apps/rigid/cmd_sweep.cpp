@@ -539,6 +539,7 @@ void run_sweep_merge(const SweepMergeOptions& opts) {
   for (const auto& r : all) {
     if (have.insert(r.index).second) journal.append(r);
   }
+  journal.flush();  // the journal is whole before any output is written
   const auto written = scene::write_outputs(out, outputs);
   if (!opts.quiet) {
     const std::size_t failures = failure_count(outputs);
