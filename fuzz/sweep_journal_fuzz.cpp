@@ -94,6 +94,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       fail("reopened, it holds other rows");
     const sc::SweepRow row{.index = 0, .values = {0.5}, .results = {{"x", 1.0}}, .error = {}};
     journal.append(row);
+    journal.flush();  // appended rows are written by the journal's thread; flush waits for them
     std::vector<std::string> expected = as_json(contents.rows);
     expected.push_back(sc::row_to_json(row));
     if (as_json(sc::read_journal(dir).rows) != expected)
