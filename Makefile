@@ -45,9 +45,10 @@ test-asan: deps
 
 # One model run from several threads at once, under ThreadSanitizer: a Lagrangian system
 # (per-run workspaces), scenes (immutable models) and sweeps (the runs of a coordinate scene
-# share one derivation), robot trees (TreeDynamics, a robot scene); builds only the test binary
+# share one derivation; the journal's writer thread and the outputs formatted on several
+# threads), robot trees (TreeDynamics, a robot scene); builds only the test binary
 # that holds those tests (rigid_threads_tests, tests/CMakeLists.txt).
-TSAN_SUITES := Workspace.*:ModelThreads.*:SweepRun.*:SymbolicThreads.*:RobotSceneThreads.*:TreeDynamicsThreads.*
+TSAN_SUITES := Workspace.*:ModelThreads.*:SweepRun.*:SweepJournal.*:SweepOutputs.*:SymbolicThreads.*:RobotSceneThreads.*:TreeDynamicsThreads.*
 test-tsan: deps
 	cmake --preset tsan >/dev/null
 	cmake --build --preset tsan --target rigid_threads_tests
