@@ -516,7 +516,8 @@ Term factor_group(const std::vector<Monomial>& monomials, const ex& dynamic, con
   if (content.is_zero()) content = 1;
   // common bases
   std::vector<std::pair<ex, numeric>> common;
-  for (const auto& [base, _] : monomials.front().powers) {
+  for (const auto& front_power : monomials.front().powers) {
+    const ex& base = front_power.first;
     numeric lo = 0;
     bool everywhere = true, first = true;
     int sign = 0;
