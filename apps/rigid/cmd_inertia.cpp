@@ -7,7 +7,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <functional>
-#include <ranges>
 #include <span>
 
 #include <fmt/format.h>
@@ -317,13 +316,16 @@ void emit_uncertain(const Eigen::Matrix<double, 10, 1>& value, const Eigen::Matr
   const Eigen::Vector3d c = value.segment<3>(1), sc = sigma.segment<3>(1);
   std::string text;
   if (out.format == "json") {
+    // the inputs are the primitive's own argument names (checked against its list), so quoting suffices
+    std::vector<std::string> quoted;
+    for (const std::string& s : inputs) quoted.push_back("\"" + s + "\"");
     text = fmt::format(
         "{{\n  \"mass\": {},\n  \"com\": {},\n  \"about\": {},\n  \"frame\": \"body\",\n"
         "  \"inertia\": {},\n  \"sigma\": {{\"mass\": {}, \"com\": {}, \"inertia\": {}}},\n"
         "  \"uncertainty\": \"1 standard deviation, first-order propagation, inputs independent\",\n"
         "  \"uncertain_inputs\": [{}]\n}}\n",
         value(0), json_vec(c), json_vec(p), json_mat(I), sigma(0), json_vec(sc), json_mat(sI),
-        fmt::join(inputs | std::views::transform([](const std::string& s) { return "\"" + s + "\""; }), ", "));
+        fmt::join(quoted, ", "));
   } else {
     const std::string where = out.about == "com" ? "the center of mass" : fmt::format("{} m", json_vec(p));
     text = fmt::format("mass            {:.10g} ± {:.3g} kg\n", value(0), sigma(0));
