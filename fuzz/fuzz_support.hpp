@@ -35,11 +35,16 @@ inline constexpr std::string_view kRawLibraryText[] = {
 
 /// Aborts with the message when a refusal is not a proper rigid message: empty, an internal
 /// invariant, or a library's raw text that the input does not contain (messages quote the
-/// input, which may hold anything).
+/// input, which may hold anything; the input need only hold the text without its trailing
+/// punctuation, which the message may have added).
 inline void check_refusal(const rigid::Error& e, std::string_view input) {
   const std::string_view what = e.what();
+  // a quoted stretch of the input followed by the message's own punctuation can spell a raw
+  // text ("<basic_string:" + ": it is cut short"), so the input need only hold the text
+  // without its trailing ':', ' ', '(' and ')'
   const auto raw = [&](std::string_view text) {
-    return what.find(text) != std::string_view::npos && input.find(text) == std::string_view::npos;
+    const std::string_view core = text.substr(0, text.find_last_not_of(":() ") + 1);
+    return what.find(text) != std::string_view::npos && input.find(core) == std::string_view::npos;
   };
   bool bad = what.empty() || raw("internal error");
   for (std::string_view text : kRawLibraryText) bad = bad || raw(text);

@@ -1,7 +1,8 @@
 // XML documents parsed with their errors in plain words (detail/xml_parse.hpp). tinyxml2 gives
 // an error kind and a line; its own text ("Error=XML_ERROR_PARSING_TEXT ErrorID=8 ...") is for
 // its developers. A small scan of the text adds what a user needs to find the problem: the
-// element a truncated file ends inside, or the start tag a wrong end tag meets.
+// element a truncated file ends inside, or the start tag a wrong end tag meets. Names are
+// quoted escaped (rigid::escaped): a tag may hold control characters and bytes that are not UTF-8.
 #include "detail/xml_parse.hpp"
 
 #include <algorithm>
@@ -14,6 +15,7 @@
 #include <tinyxml2.h>
 
 #include "rigid/common/error.hpp"
+#include "rigid/common/escape.hpp"
 
 namespace rigid::io::detail {
 namespace {
@@ -110,7 +112,7 @@ Scan scan(std::string_view s) {
       const std::size_t k = s.find('>', i + 2);
       if (k == std::string_view::npos) {
         out.unfinished = i;
-        out.unfinished_kind = fmt::format("the end tag </{}", name_at(i + 2));
+        out.unfinished_kind = fmt::format("the end tag </{}", escaped(name_at(i + 2)));
         out.unfinished_tag = true;
         return out;
       }
@@ -128,7 +130,7 @@ Scan scan(std::string_view s) {
     const std::size_t k = start_tag_end(s, i);
     if (k >= s.size()) {
       out.unfinished = i;
-      out.unfinished_kind = fmt::format("the start tag <{}", name_at(i + 1));
+      out.unfinished_kind = fmt::format("the start tag <{}", escaped(name_at(i + 1)));
       out.unfinished_tag = true;
       return out;
     }
@@ -171,7 +173,7 @@ std::optional<std::string> truncation(std::string_view text, const Scan& s) {
   return fmt::format(
       "the file ends inside the element <{}> of line {}{}: it is cut short, or "
       "</{}> is missing",
-      inner.name, inner.line, middle, inner.name);
+      escaped(inner.name), inner.line, middle, escaped(inner.name));
 }
 
 }  // namespace
@@ -206,7 +208,8 @@ void parse_xml(tinyxml2::XMLDocument& doc, const std::string& text, const std::s
           "an end tag does not match its start tag: </{}> on line {} comes while "
           "<{}> of line {} is open (expected </{}> first, or <{} .../> for an "
           "element without content)",
-          s.wrong_end_tag->name, s.wrong_end_tag->line, open.name, open.line, open.name, open.name);
+          escaped(s.wrong_end_tag->name), s.wrong_end_tag->line, escaped(open.name), open.line,
+          escaped(open.name), escaped(open.name));
     }
     rigid::detail::throw_error_at(SourceLocation{source, line, 0},
                                   fmt::format("malformed XML: {}", what));

@@ -41,10 +41,6 @@ void throw_at(const Expression& expression, std::size_t offset, std::string_view
                           expression.text));
 }
 
-namespace {
-
-// What a failure inside GiNaC or CLN means for the user: their texts ("log_eval(): log(0)",
-// "floating point underflow.") name internals, so each kind gets a sentence of its own.
 std::string reason_of_library_failure(const std::exception& e) {
   if (dynamic_cast<const GiNaC::pole_error*>(&e) != nullptr || dynamic_cast<const cln::division_by_0_exception*>(&e) != nullptr) {
     return "has a pole here (a division by zero, log(0), tan(pi/2), 0 to a negative power); "
@@ -62,8 +58,14 @@ std::string reason_of_library_failure(const std::exception& e) {
   if (dynamic_cast<const std::domain_error*>(&e) != nullptr) {
     return "is undefined here (outside the domain of a function, or 0^0)";
   }
+  if (dynamic_cast<const cln::runtime_exception*>(&e) != nullptr) {
+    return "holds a number too large for exact arithmetic (such as an exact power whose exponent "
+           "is beyond 2^31)";
+  }
   return "cannot be evaluated to a number";
 }
+
+namespace {
 
 // log10 |x| of a non-zero real number, also beyond the range of a double (a rational such as
 // 10^400 has no double value; its digits are counted instead)

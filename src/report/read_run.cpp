@@ -2,6 +2,7 @@
 #include <cmath>
 #include <fstream>
 #include <sstream>
+#include <type_traits>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -49,11 +50,19 @@ T field(const nlohmann::ordered_json& j, const char* key, const fs::path& file, 
     if (!required) return fallback;
     throw Error(fmt::format("'{}' has no \"{}\"; expected the summary.json a run writes", file.string(), key));
   }
+  const auto wrong_type = [&] {
+    return Error(fmt::format("'{}': \"{}\" has the wrong type; expected the summary.json a run writes",
+                             file.string(), key));
+  };
+  // a count is a whole number ≥ 0: get<std::size_t>() turns −1 into 2⁶⁴ − 1, and of 5e66 (a
+  // float to nlohmann) it is undefined behaviour
+  if constexpr (std::is_integral_v<T>) {
+    if (!it->is_number_unsigned()) throw wrong_type();
+  }
   try {
     return it->get<T>();
   } catch (const nlohmann::json::exception&) {
-    throw Error(fmt::format("'{}': \"{}\" has the wrong type; expected the summary.json a run writes",
-                            file.string(), key));
+    throw wrong_type();
   }
 }
 

@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
+#include <cstdint>
 #include <cstring>
 #include <fstream>
 #include <limits>
@@ -159,10 +160,15 @@ JournalText parse_journal(const fs::path& path) {
         const Json h = Json::parse(line);
         out.contents.description = h.at("sweep").get<std::string>();
         out.contents.names = h.at("names").get<std::vector<std::string>>();
+        // whole numbers ≥ 0 only: get<std::size_t>() turns −1 into 2⁶⁴ − 1, and get<int>() of
+        // 5e66 (a float to nlohmann) is undefined behaviour
+        if (!h.at("runs").is_number_unsigned()) throw Error("runs");
         out.contents.runs = h.at("runs").get<std::size_t>();
         out.contents.shard = parse_shard(h.at("shard").get<std::string>());
         if (h.contains("units")) out.contents.units = h.at("units").get<SweepUnits>();
-        if (h.at("rigid_sweep").get<int>() != 1) throw Error("version");
+        if (!h.at("rigid_sweep").is_number_unsigned() || h.at("rigid_sweep").get<std::uint64_t>() != 1) {
+          throw Error("version");
+        }
       } catch (const std::exception&) {
         throw Error(fmt::format("{}: not the header of a rigid sweep journal", where));
       }

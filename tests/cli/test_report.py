@@ -111,6 +111,21 @@ def test_report_refuses_what_it_cannot_read(run, tmp_path):
     assert p.returncode == 1 and "summary.json' is missing" in p.stderr
 
 
+# A count in summary.json that is no whole number >= 0 (5.5e66 is a float to the JSON reader,
+# and its conversion to a count was undefined behaviour; -1 became 2^64 - 1) is refused by name.
+@pytest.mark.parametrize("steps", ["5.5e66", "-1", "2.5"])
+def test_report_refuses_a_count_that_is_not_a_whole_number(run, tmp_path, steps):
+    out = tmp_path / "run"
+    run("run", RACKET, "-o", out, "-q", check=True)
+    summary = out / "summary.json"
+    text = summary.read_text()
+    assert re.search(r'"steps": \d+', text)
+    summary.write_text(re.sub(r'"steps": \d+', f'"steps": {steps}', text, count=1))
+    p = run("report", out, check=False)
+    assert p.returncode == 1, p.stderr
+    assert '"steps" has the wrong type; expected the summary.json a run writes' in p.stderr, p.stderr
+
+
 def test_report_frames_are_checked_and_obeyed(run, tmp_path):
     p = run("run", RACKET, "--report", "--report-frames", "1", "-o", tmp_path / "a", check=False)
     assert p.returncode == 2 and "--report-frames 1: expected a number of frames from 2 to 1000000" in p.stderr

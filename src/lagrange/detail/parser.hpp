@@ -1,5 +1,6 @@
 #pragma once
 
+#include <exception>
 #include <map>
 #include <string>
 #include <string_view>
@@ -16,6 +17,12 @@ namespace rigid::lagrange::detail {
 [[nodiscard]] GiNaC::ex parse_expression(const Expression& expression,
                                          const std::map<std::string, GiNaC::ex>& names,
                                          std::string_view context);
+
+/// What a failure inside GiNaC or CLN (pole_error, CLN's floating-point and runtime exceptions,
+/// std::domain_error, std::bad_alloc) means for the user, as the end of a sentence whose
+/// subject is the expression ("has a pole here (…); expected a finite value"): the libraries'
+/// own texts ("log_eval(): log(0)", "Not a 32-bit integer") name internals.
+[[nodiscard]] std::string reason_of_library_failure(const std::exception& e);
 
 /// Throws rigid::Error for `expression` at character `offset`.
 [[noreturn]] void throw_at(const Expression& expression, std::size_t offset,
