@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 
 #include "rigid/common/error.hpp"
+#include "rigid/common/escape.hpp"
 #include "rigid/io/atomic_file.hpp"
 
 namespace rigid::io {
@@ -205,7 +206,18 @@ Table read_csv(const std::filesystem::path& path) {
                                                      names.size() + 1)
                                        : fmt::format("column name '{}' appears twice in the "
                                                      "header; expected each name once",
-                                                     f));
+                                                     escaped(f)));
+    }
+    // no control character (a carriage return inside a name would not survive a write and a
+    // read: the line's last one is taken for a CRLF ending)
+    if (const auto bad = std::find_if(f.begin(), f.end(), [](char c) {
+          return static_cast<unsigned char>(c) < 0x20 || c == 0x7f;
+        });
+        bad != f.end()) {
+      detail::throw_error_at({path.string(), 1, header_column + static_cast<int>(bad - f.begin())},
+                             fmt::format("column name '{}' holds a control character; expected "
+                                         "printable names",
+                                         escaped(f)));
     }
     names.emplace_back(f);
     header_column += static_cast<int>(f.size()) + 1;
@@ -230,7 +242,7 @@ Table read_csv(const std::filesystem::path& path) {
       const auto [end, ec] = std::from_chars(f.data(), f.data() + f.size(), v);
       if (ec != std::errc() || end != f.data() + f.size()) {
         detail::throw_error_at({path.string(), line_no, column},
-                               fmt::format("'{}' is not a number", f));
+                               fmt::format("'{}' is not a number", escaped(f)));
       }
       row.push_back(v);
       column += static_cast<int>(f.size()) + 1;

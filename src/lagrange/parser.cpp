@@ -352,10 +352,66 @@ class Parser {
 
 }  // namespace
 
+namespace {
+
+// log10 of the number of terms expand() gives an expression (`result`), and the largest such
+// count among its parts (`worst`: expand works from the leaves up). An upper estimate: no
+// cancellation is assumed, and a sum of t terms to the n is counted as C(n + t − 1, n).
+struct ExpandedTerms {
+  double result = 0;
+  double worst = 0;
+};
+
+ExpandedTerms expanded_terms(const GiNaC::ex& e) {
+  ExpandedTerms out;
+  if (GiNaC::is_a<GiNaC::add>(e)) {
+    // log10 Σ 10^rᵢ, without overflow
+    std::vector<double> r;
+    for (const GiNaC::ex& op : e) {
+      const ExpandedTerms t = expanded_terms(op);
+      out.worst = std::max(out.worst, t.worst);
+      r.push_back(t.result);
+    }
+    const double top = *std::max_element(r.begin(), r.end());
+    double sum = 0;
+    for (const double x : r) sum += std::pow(10.0, x - top);
+    out.result = top + std::log10(sum);
+  } else if (GiNaC::is_a<GiNaC::mul>(e)) {
+    for (const GiNaC::ex& op : e) {
+      const ExpandedTerms t = expanded_terms(op);
+      out.worst = std::max(out.worst, t.worst);
+      out.result += t.result;
+    }
+  } else if (GiNaC::is_a<GiNaC::power>(e)) {
+    const ExpandedTerms base = expanded_terms(e.op(0));
+    const ExpandedTerms exponent = expanded_terms(e.op(1));
+    out.worst = std::max(base.worst, exponent.worst);
+    const GiNaC::ex& p = e.op(1);
+    if (base.result > 0 && GiNaC::is_a<GiNaC::numeric>(p) && GiNaC::ex_to<GiNaC::numeric>(p).is_pos_integer()) {
+      const double n = GiNaC::ex_to<GiNaC::numeric>(p).to_double();
+      const double t = std::pow(10.0, std::min(base.result, 300.0));
+      out.result = (std::lgamma(n + t) - std::lgamma(n + 1) - std::lgamma(t)) / std::log(10.0);
+    }
+  } else {
+    for (const GiNaC::ex& op : e) out.worst = std::max(out.worst, expanded_terms(op).worst);
+  }
+  out.worst = std::max(out.worst, out.result);
+  return out;
+}
+
+}  // namespace
+
 GiNaC::ex parse_expression(const Expression& expression,
                            const std::map<std::string, GiNaC::ex>& names,
                            std::string_view context) {
   const GiNaC::ex value = Parser(expression, names, context).parse();
+  if (const double terms = expanded_terms(value).worst; !(terms <= std::log10(kMaxExpandedTerms))) {
+    throw_at(expression, 0, context,
+             fmt::format("the expression multiplies out to about 10^{:.3g} terms (an integer power "
+                         "of a sum); at most {:.0f} are allowed, since the equations of motion are "
+                         "derived from the expanded expression",
+                         terms, kMaxExpandedTerms));
+  }
   // a complex number inside (sqrt(-1) is I) has no place in the real model
   for (auto it = value.preorder_begin(); it != value.preorder_end(); ++it) {
     if (GiNaC::is_a<GiNaC::numeric>(*it) && !GiNaC::ex_to<GiNaC::numeric>(*it).is_real()) {

@@ -845,9 +845,8 @@ System::System(const SystemSpec& spec) {
     // GiNaC or CLN failing on what the parser accepted: a derivative with a pole (d/dq 0^q has
     // log 0), an exact power expanded beyond CLN's integers; worded, not their own texts
     throw Error(fmt::format(
-        "deriving the equations of motion: a term of the Lagrangian, its energies or their "
-        "derivatives {}; expected expressions smooth in the coordinates, velocities and time "
-        "(a power of 0 whose exponent depends on them has no derivative)",
+        "a term of the Lagrangian, its energies or their derivatives {} (a power of 0 whose "
+        "exponent depends on a coordinate, velocity or time has no derivative)",
         detail::reason_of_library_failure(e)));
   }
   impl_ = std::move(impl);

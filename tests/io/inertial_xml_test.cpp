@@ -208,6 +208,9 @@ TEST(InertialXml, MalformedXmlIsRefusedInPlainWords) {
       {"<robot>\n  <link name=\"a\"\n</robot>", "m.xml:2: malformed XML: a tag is badly formed or not closed"},
       {"<robot>\n<!-- a comment\n</robot>\n", "m.xml:2: malformed XML: a comment is not closed (expected -->)"},
       {"", "m.xml:1: malformed XML: the file is empty"},
+      // a name is quoted escaped: a control character and a byte that is not UTF-8
+      {"<ro\x1b\xff" "bot", "m.xml:1: malformed XML: the file ends in the middle of the start tag "
+                         "<ro\\x1b\\xffbot: it is cut short"},
   };
   for (const auto& c : cases) {
     SCOPED_TRACE(c.xml);
