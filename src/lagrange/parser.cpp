@@ -388,9 +388,17 @@ ExpandedTerms expanded_terms(const GiNaC::ex& e) {
     out.worst = std::max(base.worst, exponent.worst);
     const GiNaC::ex& p = e.op(1);
     if (base.result > 0 && GiNaC::is_a<GiNaC::numeric>(p) && GiNaC::ex_to<GiNaC::numeric>(p).is_pos_integer()) {
+      // C(N, k) with N = n + t − 1 and k = min(n, t − 1) ≤ N/2: a product of k ratios while k
+      // is small (a difference of lgamma values would cancel to 0 for n = 2^708), else at
+      // least 2^k, already far beyond the limit
       const double n = GiNaC::ex_to<GiNaC::numeric>(p).to_double();
-      const double t = std::pow(10.0, std::min(base.result, 300.0));
-      out.result = (std::lgamma(n + t) - std::lgamma(n + 1) - std::lgamma(t)) / std::log(10.0);
+      const double t = std::round(std::pow(10.0, std::min(base.result, 300.0)));
+      const double N = n + t - 1, k = std::min(n, t - 1);
+      if (k > 64) {
+        out.result = k * std::log10(2.0);
+      } else {
+        for (double i = 1; i <= k; ++i) out.result += std::log10((N - k + i) / i);
+      }
     }
   } else {
     for (const GiNaC::ex& op : e) out.worst = std::max(out.worst, expanded_terms(op).worst);

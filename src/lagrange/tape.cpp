@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "rigid/common/error.hpp"
@@ -193,7 +194,9 @@ std::int32_t TapeBuilder::emit_power(std::int32_t base, const GiNaC::ex& exponen
   using GiNaC::numeric;
   if (GiNaC::is_a<numeric>(exponent)) {
     const numeric k = GiNaC::ex_to<numeric>(exponent);
-    if (k.is_integer()) {
+    // integer powers by multiplication while the exponent fits the op's 32 bits (q^(6^63)
+    // would wrap: to_long of it negated overflowed); larger ones through pow
+    if (k.is_integer() && GiNaC::abs(k) <= numeric(std::numeric_limits<std::int32_t>::max())) {
       const long n = k.to_long();
       if (n == 1) return base;
       if (n == 2) return emit(Op::kSquare, base);
