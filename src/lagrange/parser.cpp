@@ -354,9 +354,11 @@ class Parser {
 
 namespace {
 
-// log10 of the number of terms expand() gives an expression (`result`), and the largest such
-// count among its parts (`worst`: expand works from the leaves up). An upper estimate: no
-// cancellation is assumed, and a sum of t terms to the n is counted as C(n + t − 1, n).
+// log10 of the number of terms expand() gives an expression (`result`), and the largest count
+// that multiplying out creates among its parts (`worst`: a product of two or more sums, a sum
+// to a power; expand works from the leaves up). A sum as written is not counted: its terms are
+// the text's own. An upper estimate: no cancellation is assumed, and a sum of t terms to the n
+// is counted as C(n + t − 1, n).
 struct ExpandedTerms {
   double result = 0;
   double worst = 0;
@@ -377,11 +379,14 @@ ExpandedTerms expanded_terms(const GiNaC::ex& e) {
     for (const double x : r) sum += std::pow(10.0, x - top);
     out.result = top + std::log10(sum);
   } else if (GiNaC::is_a<GiNaC::mul>(e)) {
+    int sums = 0;
     for (const GiNaC::ex& op : e) {
       const ExpandedTerms t = expanded_terms(op);
       out.worst = std::max(out.worst, t.worst);
       out.result += t.result;
+      if (t.result > 0) ++sums;
     }
+    if (sums >= 2) out.worst = std::max(out.worst, out.result);
   } else if (GiNaC::is_a<GiNaC::power>(e)) {
     const ExpandedTerms base = expanded_terms(e.op(0));
     const ExpandedTerms exponent = expanded_terms(e.op(1));
@@ -399,11 +404,11 @@ ExpandedTerms expanded_terms(const GiNaC::ex& e) {
       } else {
         for (double i = 1; i <= k; ++i) out.result += std::log10((N - k + i) / i);
       }
+      out.worst = std::max(out.worst, out.result);
     }
   } else {
     for (const GiNaC::ex& op : e) out.worst = std::max(out.worst, expanded_terms(op).worst);
   }
-  out.worst = std::max(out.worst, out.result);
   return out;
 }
 

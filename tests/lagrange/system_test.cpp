@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include <fmt/format.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -103,6 +104,15 @@ TEST(System, ExpressionsThatMultiplyOutBeyondTheLimitAreRefusedBeforeExpanding) 
     big.accelerations(0.0, big.initial_q(), big.initial_q_dot(), q_ddot, lambda);
     EXPECT_EQ(q_ddot(0), 0.0);
   }
+  // a product of two sums multiplies out (30 × 40 = 1,200 terms); a long sum as written does
+  // not (2,000 terms of the text's own)
+  std::string first = "0", second = "0", sum = "0";
+  for (int i = 1; i <= 30; ++i) first += fmt::format(" + {}*q^{}", i, i);
+  for (int i = 1; i <= 40; ++i) second += fmt::format(" + a^{}", i);
+  for (int i = 1; i <= 2000; ++i) sum += fmt::format(" + q*a^{}", i);
+  EXPECT_RIGID_ERROR(System(spec_with("(" + first + ")*(" + second + ")")), "about 10^3.08 terms");
+  EXPECT_NO_THROW(System(spec_with(sum)));
+  EXPECT_NO_THROW(System(spec_with("2*(" + first + ")")));
   // within the limit: (q + a)^9 = Σ C(9, k) q^k a^(9-k), V' = 9 (q + a)^8 at q = 0.3
   const System sys(spec_with("(q + a)^9"));
   Eigen::VectorXd q_ddot, lambda;
