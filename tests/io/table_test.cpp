@@ -86,6 +86,20 @@ TEST(Table, BadInputIsNamed) {
   }
   EXPECT_RIGID_ERROR((void)read_csv(file),
                      file.string() + ":1:3: column 2 of the header has an empty name");
+  // a control character in a name, quoted escaped at its own column: "b\r" (the line's last CR
+  // is its CRLF ending) would be written back as "b" and read so (a csv_table fuzz finding)
+  {
+    std::ofstream out(file, std::ios::binary);
+    out << "a,b\r\r\n1,2\n";
+  }
+  EXPECT_RIGID_ERROR((void)read_csv(file), file.string() +
+                                               ":1:4: column name 'b\\x0d' holds a control "
+                                               "character; expected printable names");
+  {
+    std::ofstream out(file, std::ios::binary);
+    out << "a,b\n1,\x1b[31m\n";
+  }
+  EXPECT_RIGID_ERROR((void)read_csv(file), file.string() + ":2:3: '\\x1b[31m' is not a number");
   EXPECT_RIGID_ERROR((void)read_csv(file.string() + ".missing"), "cannot open");
 }
 
