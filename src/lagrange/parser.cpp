@@ -420,8 +420,8 @@ GiNaC::ex parse_expression(const Expression& expression,
   const GiNaC::ex value = Parser(expression, names, context).parse();
   if (const double terms = expanded_terms(value).worst; !(terms <= std::log10(kMaxExpandedTerms))) {
     throw_at(expression, 0, context,
-             fmt::format("the expression multiplies out to about 10^{:.3g} terms (an integer power "
-                         "of a sum); at most {:.0f} are allowed, since the equations of motion are "
+             fmt::format("the expression multiplies out to about 10^{:.3g} terms (products and "
+                         "integer powers of sums); at most {:.0f} are allowed, since the equations of motion are "
                          "derived from the expanded expression",
                          terms, kMaxExpandedTerms));
   }

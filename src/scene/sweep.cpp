@@ -20,6 +20,7 @@
 #include <new>
 #include <numeric>
 #include <sstream>
+#include <stdexcept>
 #include <system_error>
 #include <thread>
 
@@ -106,6 +107,14 @@ Json number_json(double v) {
   return std::isnan(v) ? "nan" : (v > 0 ? "inf" : "-inf");
 }
 
+// A journal's count or run number: a whole number ≥ 0, else std::invalid_argument (the
+// caller's "edited or damaged"). nlohmann's get<std::size_t>() would turn −1 into 2⁶⁴ − 1 and
+// 2.5 into 2, and of 5e66 (a float to it) is undefined behaviour.
+std::uint64_t whole_number(const Json& j, const char* what) {
+  if (!j.is_number_unsigned()) throw std::invalid_argument(what);
+  return j.get<std::uint64_t>();
+}
+
 double number_from_json(const Json& j) {
   if (j.is_number()) return j.get<double>();
   if (j.is_string()) {
@@ -160,15 +169,10 @@ JournalText parse_journal(const fs::path& path) {
         const Json h = Json::parse(line);
         out.contents.description = h.at("sweep").get<std::string>();
         out.contents.names = h.at("names").get<std::vector<std::string>>();
-        // whole numbers ≥ 0 only: get<std::size_t>() turns −1 into 2⁶⁴ − 1, and get<int>() of
-        // 5e66 (a float to nlohmann) is undefined behaviour
-        if (!h.at("runs").is_number_unsigned()) throw Error("runs");
-        out.contents.runs = h.at("runs").get<std::size_t>();
+        out.contents.runs = whole_number(h.at("runs"), "runs");
         out.contents.shard = parse_shard(h.at("shard").get<std::string>());
         if (h.contains("units")) out.contents.units = h.at("units").get<SweepUnits>();
-        if (!h.at("rigid_sweep").is_number_unsigned() || h.at("rigid_sweep").get<std::uint64_t>() != 1) {
-          throw Error("version");
-        }
+        if (whole_number(h.at("rigid_sweep"), "version") != 1) throw Error("version");
       } catch (const std::exception&) {
         throw Error(fmt::format("{}: not the header of a rigid sweep journal", where));
       }
@@ -403,9 +407,7 @@ SweepRow row_from_json(std::string_view line, std::string_view where) {
   try {
     const Json j = Json::parse(line);
     SweepRow row;
-    // a run number is a whole number ≥ 0 (nlohmann would turn −1 into 2⁶⁴ − 1, and 2.5 into 2)
-    if (!j.at("run").is_number_unsigned()) throw std::invalid_argument("run");
-    row.index = j.at("run").get<std::size_t>();
+    row.index = whole_number(j.at("run"), "run");
     for (const auto& v : j.at("values")) row.values.push_back(number_from_json(v));
     for (const auto& r : j.at("results")) {
       row.results.emplace_back(r.at(0).get<std::string>(), number_from_json(r.at(1)));
