@@ -9,7 +9,9 @@
 //    integration;
 //  - one run through run_sweep (the file read, and a coordinate scene's derivation, included);
 //  - the serial work per run (the symbolic core's lock held) of a grid of the pendulum, the
-//    racket and a mesh body, and of a Monte Carlo sample of the pendulum.
+//    racket and a mesh body, and of a Monte Carlo sample of the pendulum;
+//  - a free-body sweep (the racket example) with its runs marched four at a time through the
+//    four-body kernel against one by one.
 // MPI ranks are measured from the command line (docs/performance.md gives the commands).
 #include <cmath>
 #include <filesystem>
@@ -43,6 +45,30 @@ t_end = 10.0
 integrator = "splitting4"
 dt = 0.01
 output_dt = 0.05
+)toml";
+
+// examples/tennis_racket.toml (100 s at the default 1 ms, its flip and energy metrics), its
+// middle moment swept: the free-body sweep whose runs march four at a time.
+constexpr const char* kRacket100 = R"toml(
+[parameters]
+I2 = 2
+[[bodies]]
+name = "racket"
+free = true
+inertia = {mass = 0.35, ixx = 1, iyy = "I2", izz = 3}
+angular_velocity = [0.01, 1, 0.01]
+[simulation]
+t_end = 100.0
+output_dt = 0.05
+[[output.metrics]]
+name = "first_flip"
+kind = "crossing"
+column = "racket.wy"
+k = 1
+[[output.metrics]]
+name = "energy_drift"
+kind = "drift"
+column = "energy"
 )toml";
 
 constexpr const char* kSmallPendulum = R"toml(
@@ -120,6 +146,25 @@ void BM_Sweep_runs(benchmark::State& st, const char* name, const char* text, con
   std::iota(all.begin(), all.end(), 0);
   for (auto _ : st) {
     const auto rows = rigid::scene::run_sweep(id, all, {.threads = static_cast<std::size_t>(st.range(0))});
+    benchmark::DoNotOptimize(rows.data());
+  }
+  st.counters["runs/s"] =
+      benchmark::Counter(static_cast<double>(st.iterations() * all.size()), benchmark::Counter::kIsRate);
+}
+
+// A free-body sweep with its runs marched together (range(0) = 1: Model::run_batch, the
+// rotations of four runs in one call of the four-body kernel) or one by one (0), on range(1)
+// threads, with `integrator`; counter "runs/s".
+void BM_Sweep_freeBatch(benchmark::State& st, const char* name, const char* text, const char* axis,
+                        const char* integrator) {
+  auto id = sweep_of(name, text, axis);
+  id.integrator = integrator;
+  std::vector<std::size_t> all(rigid::scene::run_count(id.spec));
+  std::iota(all.begin(), all.end(), 0);
+  const rigid::scene::SweepRunOptions options{.threads = static_cast<std::size_t>(st.range(1)),
+                                              .batch = st.range(0) != 0};
+  for (auto _ : st) {
+    const auto rows = rigid::scene::run_sweep(id, all, options);
     benchmark::DoNotOptimize(rows.data());
   }
   st.counters["runs/s"] =
@@ -206,6 +251,13 @@ BENCHMARK_CAPTURE(BM_Sweep_runs, mesh_100s_x32, "meshl", kMeshBody, "rho=900:110
 
 BENCHMARK_CAPTURE(BM_Sweep_runs, racket_10s_x32, "racket", kSmallRacket, "I2=1.95:2.05:32")
     ->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);
+// the racket example's sweep, one by one and batched, on 1 and 2 threads
+BENCHMARK_CAPTURE(BM_Sweep_freeBatch, racket_100s_x32_splitting4, "racketb4", kRacket100, "I2=1.95:2.05:32",
+                  "splitting4")
+    ->ArgsProduct({{0, 1}, {1, 2}})->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Sweep_freeBatch, racket_100s_x32_splitting2, "racketb2", kRacket100, "I2=1.95:2.05:32",
+                  "splitting2")
+    ->ArgsProduct({{0, 1}, {1}})->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Sweep_runs, pendulum_2s_x32, "pendulum", kSmallPendulum, "L=0.5:2:32")
     ->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Sweep_modelRun, racket_10s, kSmallRacket)->Unit(benchmark::kMicrosecond);

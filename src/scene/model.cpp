@@ -17,6 +17,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "rigid/body/free_body_batch.hpp"
 #include "rigid/body/free_body_exact.hpp"
 #include "rigid/body/free_body_integrators.hpp"
 #include "rigid/body/heavy_top.hpp"
@@ -350,6 +351,12 @@ double max_change(const std::vector<double>& x) {
   double m = 0;
   for (double v : x) m = std::max(m, std::abs(v - x.front()));
   return m;
+}
+
+// A value that is not finite, in words: "not a number", "+infinity" or "-infinity".
+std::string nonfinite_text(double v) {
+  if (std::isnan(v)) return "not a number";
+  return v > 0 ? "+infinity" : "-infinity";
 }
 
 std::string format_vec(const Eigen::Vector3d& v) {
@@ -804,6 +811,13 @@ struct Model::Impl {
   [[nodiscard]] Method parse_method(const std::string& requested) const;
   RunResult run_coordinates(const Method& method, const RunOptions& o) const;
   RunResult run_free(const Method& method, const RunOptions& o) const;
+  // What run() adds to every run's result after it has run (its scene, integrator, times,
+  // parameters, warnings, the columns [output] keeps), checked against the schema.
+  void finish_run(RunResult& r, const Method& method, double wall_seconds) const;
+  // Whether run_batch steps this model with `method` and `o` together with `first` (itself or
+  // the batch's first model): see Model::batches.
+  [[nodiscard]] bool batches_with(const Impl& first, const Method& method, const RunOptions& o) const;
+  struct FreeRun;
 };
 
 Model::Model(const Scene& scene) : Model(scene, nullptr) {}
@@ -1063,17 +1077,40 @@ RunResult Model::run(const RunOptions& options) const {
   const auto start = Clock::now();
   RunResult r = impl_->kind == SceneKind::kCoordinates ? impl_->run_coordinates(method, o)
                                                        : impl_->run_free(method, o);
-  r.summary.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  impl_->finish_run(r, method, std::chrono::duration<double>(Clock::now() - start).count());
+  return r;
+}
+
+void Model::Impl::finish_run(RunResult& r, const Method& method, double wall_seconds) const {
+  // The march checks the state after every step; a quantity computed from a finite state can
+  // still overflow (the energy ½ m |v|² − m g·p of a body at 1e154 m/s, its change between
+  // two samples): refused, never written as a number.
+  const auto& data = r.trajectory.data();
+  if (const auto i = integrate::first_nonfinite(data)) [[unlikely]] {
+    const std::size_t cols = r.trajectory.columns().size(), row = *i / cols;
+    throw Error(fmt::format("the output {} at t = {} s is {}, computed from a finite state: it overflowed the "
+                            "double range (±1.8e308); check the scene's scales (masses, sizes, gravity, "
+                            "velocities)",
+                            r.trajectory.columns()[*i % cols], data[row * cols], nonfinite_text(data[*i])));
+  }
+  for (const auto& [name, value] : r.summary.diagnostics) {
+    if (!std::isfinite(value)) [[unlikely]] {
+      throw Error(fmt::format("the diagnostic {} is {}, computed from finite outputs: it overflowed the double "
+                              "range (±1.8e308); check the scene's scales (masses, sizes, gravity, velocities)",
+                              name, nonfinite_text(value)));
+    }
+  }
+  r.summary.wall_seconds = wall_seconds;
   // shown, never opened: a file name of any bytes (0xff) escaped, so that the JSON writer
   // gets UTF-8 (it threw after the whole run, and nothing was written)
-  r.summary.scene = escaped(impl_->scene.file.string());
+  r.summary.scene = escaped(scene.file.string());
   r.summary.integrator = method.name;
-  r.summary.t_end = impl_->t_end;
+  r.summary.t_end = t_end;
   r.summary.samples = r.trajectory.rows();
-  for (const auto& p : impl_->params) r.summary.parameters.emplace_back(p.name, p.value);
-  r.summary.warnings = impl_->warnings;
+  for (const auto& p : params) r.summary.parameters.emplace_back(p.name, p.value);
+  r.summary.warnings = warnings;
   // the schema is the model's, published before the run: a run that disagreed with it is a defect
-  const io::RunSchema& full = impl_->full_schema;
+  const io::RunSchema& full = full_schema;
   RIGID_REQUIRE(r.trajectory.columns().size() == full.columns.size() &&
                     r.summary.diagnostics.size() == full.diagnostics.size() &&
                     r.summary.metrics.size() == full.metrics.size(),
@@ -1082,9 +1119,8 @@ RunResult Model::run(const RunOptions& options) const {
                 r.trajectory.columns().size(), r.summary.diagnostics.size(),
                 r.summary.metrics.size(), full.columns.size(), full.diagnostics.size(),
                 full.metrics.size());
-  if (impl_->kept.size() != full.columns.size()) r.trajectory = r.trajectory.select(impl_->kept);
-  r.schema = impl_->schema;
-  return r;
+  if (kept.size() != full.columns.size()) r.trajectory = r.trajectory.select(kept);
+  r.schema = schema;
 }
 
 std::filesystem::path Model::output_directory(const std::string& requested) const {
@@ -1210,32 +1246,51 @@ RunResult Model::Impl::run_coordinates(const Method& method, const RunOptions& o
   return r;
 }
 
-RunResult Model::Impl::run_free(const Method& method, const RunOptions& o) const {
+// One run of a free-body model as it marches: the bodies' state (in P) and what the run
+// records from it (the rows, each body's conserved quantity and orthonormality, the energy,
+// the metrics). run_free marches one; Model::run_batch marches several through one step.
+struct Model::Impl::FreeRun {
+  const Impl& m;
   RunResult r;
-  r.trajectory = io::Table(columns());
-
-  const integrate::TimeGrid grid = integrate::TimeGrid::uniform(0.0, t_end, output_dt > 0 ? output_dt : dt);
   std::vector<body::RigidBodyState> state;
   std::vector<std::string> owners;
-  for (const FreeBody& f : free) {
-    state.push_back(f.initial);
-    owners.push_back(fmt::format("body '{}'", f.name));
+  // the quaternion sign of the last row (continuity) and of the last metric probe
+  std::vector<Eigen::Vector4d> previous, probe_previous;
+  // per body: |L| about the COM (free) or g·L about the pivot (top) at each output, and
+  // max |RᵀR − 1|; the total energy at each output
+  std::vector<std::vector<double>> L;
+  std::vector<double> ortho, energy;
+  std::vector<double> row, values, conserved;
+  Eigen::Vector3d g_dir;
+  bool with_metrics;
+  MetricRecorder recorder;
+  std::string error;  // a batched run that failed: the message its run() would throw
+
+  explicit FreeRun(const Impl& model)
+      : m(model),
+        previous(model.free.size(), Eigen::Vector4d(1, 0, 0, 0)),
+        probe_previous(model.free.size(), Eigen::Vector4d(1, 0, 0, 0)),
+        L(model.free.size()),
+        ortho(model.free.size(), 0.0),
+        conserved(model.free.size()),
+        g_dir(model.gravity.norm() > 0 ? Eigen::Vector3d(model.gravity.normalized()) : Eigen::Vector3d::UnitZ()),
+        with_metrics(!model.scene.output.metrics.empty()),
+        recorder(model.scene.output.metrics, model.metric_columns) {
+    r.trajectory = io::Table(m.columns());
+    for (const FreeBody& f : m.free) {
+      state.push_back(f.initial);
+      owners.push_back(fmt::format("body '{}'", f.name));
+    }
   }
-  std::vector<Eigen::Vector4d> previous(free.size(), Eigen::Vector4d(1, 0, 0, 0));
-  // per body: |L| about the COM (free) or g·L about the pivot (top), and |RᵀR − 1|
-  std::vector<std::vector<double>> L(free.size());
-  std::vector<double> ortho(free.size(), 0.0), energy;
-  const Eigen::Vector3d g_dir = gravity.norm() > 0 ? Eigen::Vector3d(gravity.normalized()) : Eigen::Vector3d::UnitZ();
-  std::vector<double> row;
-  // a row of the trajectory from the bodies' state at t; `conserved` gets each body's |L| (free)
-  // or g·L (top), the return value is the total energy
-  std::vector<double> conserved(free.size());
-  auto fill_row = [&](double t, std::vector<double>& out, std::vector<Eigen::Vector4d>& continuity) {
+
+  // A row of the trajectory from the bodies' state at t; `conserved` gets each body's |L|
+  // (free) or g·L (top), the return value is the total energy.
+  double fill_row(double t, std::vector<double>& out, std::vector<Eigen::Vector4d>& continuity) {
     out.clear();
     out.push_back(t);
     double e_total = 0;
-    for (std::size_t i = 0; i < free.size(); ++i) {
-      const FreeBody& f = free[i];
+    for (std::size_t i = 0; i < m.free.size(); ++i) {
+      const FreeBody& f = m.free[i];
       const body::RigidBodyState& s = state[i];  // in P
       const SO3d R_WB = f.principal_is_body ? s.R_WB : s.R_WB * f.R_BP.inverse();
       const Eigen::Vector3d w_B = f.principal_is_body ? s.w_B : Eigen::Vector3d(f.R_BP * s.w_B);
@@ -1263,29 +1318,68 @@ RunResult Model::Impl::run_free(const Method& method, const RunOptions& o) const
     }
     out.push_back(e_total);
     return e_total;
-  };
-  auto observe = [&](std::size_t, double t) {
+  }
+
+  // Output k at its time t.
+  void observe(double t) {
     energy.push_back(fill_row(t, row, previous));
-    for (std::size_t i = 0; i < free.size(); ++i) {
+    for (std::size_t i = 0; i < m.free.size(); ++i) {
       L[i].push_back(conserved[i]);
       const Eigen::Matrix3d R_WP = state[i].R_WB.matrix();
       ortho[i] = std::max(ortho[i], (R_WP.transpose() * R_WP - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff());
     }
     r.trajectory.add_row(row);
-  };
-  // metrics: every step's state through the same row (fixed steps: interpolated by cubics;
-  // the closed form: evaluated where the root finder asks)
-  const bool with_metrics = !scene.output.metrics.empty();
-  MetricRecorder recorder(scene.output.metrics, metric_columns);
-  std::vector<Eigen::Vector4d> probe_previous(free.size(), Eigen::Vector4d(1, 0, 0, 0));
-  std::vector<double> values;
-  integrate::MarchControl control = o.control;
-  if (with_metrics) {
+  }
+
+  // Metrics: the state at t = 0, then every step's (fixed steps: interpolated by cubics).
+  void start_metrics() {
     (void)fill_row(0.0, values, probe_previous);
     recorder.start(0.0, values);
+  }
+  void record_step(double t1) {
+    (void)fill_row(t1, values, probe_previous);
+    recorder.step(t1, values, nullptr);
+  }
+
+  [[nodiscard]] std::optional<integrate::NonFinite> find_nonfinite() const {
+    for (std::size_t i = 0; i < state.size(); ++i) {
+      if (auto bad = body::find_nonfinite(state[i], owners[i])) return bad;
+    }
+    return std::nullopt;
+  }
+
+  // The summary after the last output: `steps` steps taken.
+  void summarize(std::size_t steps) {
+    RunSummary& s = r.summary;
+    s.kind = SceneKind::kFreeBodies;
+    s.dt = m.dt;
+    s.steps = steps;
+    s.diagnostics.emplace_back("energy_initial", energy.front());
+    s.diagnostics.emplace_back("energy_final", energy.back());
+    s.diagnostics.emplace_back("energy_max_change", max_change(energy));
+    for (std::size_t i = 0; i < m.free.size(); ++i) {
+      const std::string& n = m.free[i].name;
+      s.diagnostics.emplace_back(n + (m.free[i].top ? ".L_vertical_max_change" : ".L_norm_max_change"),
+                                 max_change(L[i]));
+      s.diagnostics.emplace_back(n + ".orthonormality_max", ortho[i]);
+    }
+    if (with_metrics) {
+      std::vector<std::pair<std::string, std::vector<double>>> drift = {{"energy", energy}};
+      for (std::size_t i = 0; i < m.free.size(); ++i) drift.emplace_back(m.free[i].name + ".L", L[i]);
+      s.metrics = m.metrics_of(recorder, drift);
+    }
+  }
+};
+
+RunResult Model::Impl::run_free(const Method& method, const RunOptions& o) const {
+  FreeRun run(*this);
+  const integrate::TimeGrid grid = integrate::TimeGrid::uniform(0.0, t_end, output_dt > 0 ? output_dt : dt);
+  auto observe = [&](std::size_t, double t) { run.observe(t); };
+  integrate::MarchControl control = o.control;
+  if (run.with_metrics) {
+    run.start_metrics();
     control.on_step = [&, outer = o.control.on_step](const integrate::StepView& v) {
-      (void)fill_row(v.t1, values, probe_previous);
-      recorder.step(v.t1, values, nullptr);
+      run.record_step(v.t1);
       if (outer) outer(v);
     };
   }
@@ -1295,28 +1389,27 @@ RunResult Model::Impl::run_free(const Method& method, const RunOptions& o) const
     // the closed-form rotation (Jacobi elliptic functions) and the COM's parabola, evaluated
     // at each output time
     std::vector<body::FreeBodyMotion> motions;
-    for (std::size_t i = 0; i < free.size(); ++i) {
-      motions.emplace_back(free[i].rigid->principal_moments(), free[i].initial.R_WB, free[i].initial.w_B);
-    }
+    for (const FreeBody& f : free) motions.emplace_back(f.rigid->principal_moments(), f.initial.R_WB, f.initial.w_B);
     auto set_state = [&](double t) {
       for (std::size_t i = 0; i < free.size(); ++i) {
         const body::RigidBodyState& s0 = free[i].initial;
-        state[i].R_WB = motions[i].orientation(t);
-        state[i].w_B = motions[i].omega_body(t);
-        state[i].p_WC = s0.p_WC + s0.v_WC * t + 0.5 * gravity * t * t;
-        state[i].v_WC = s0.v_WC + gravity * t;
+        body::RigidBodyState& s = run.state[i];
+        s.R_WB = motions[i].orientation(t);
+        s.w_B = motions[i].omega_body(t);
+        s.p_WC = s0.p_WC + s0.v_WC * t + 0.5 * gravity * t * t;
+        s.v_WC = s0.v_WC + gravity * t;
       }
     };
     // the closed form is its own dense output: events between output times are found on it
     const MetricProbe exact = [&](double t, std::vector<double>& out) {
       set_state(t);
-      (void)fill_row(t, out, probe_previous);
+      (void)run.fill_row(t, out, run.probe_previous);
     };
     for (std::size_t k = 0; k < grid.size(); ++k) {
       const double t = grid[k];
-      if (with_metrics) {
-        exact(t, values);
-        recorder.step(t, values, &exact);
+      if (run.with_metrics) {
+        exact(t, run.values);
+        run.recorder.step(t, run.values, &exact);
       }
       set_state(t);
       observe(k, t);
@@ -1328,7 +1421,7 @@ RunResult Model::Impl::run_free(const Method& method, const RunOptions& o) const
     auto step = [&](double t, double h) {
       for (std::size_t i = 0; i < free.size(); ++i) {
         const FreeBody& f = free[i];
-        body::RigidBodyState& s = state[i];
+        body::RigidBodyState& s = run.state[i];
         if (f.top) {
           const body::FreeBodyState next = f.top->step({s.R_WB, s.w_B}, h, method.free);
           s.R_WB = next.R_WB;
@@ -1338,33 +1431,212 @@ RunResult Model::Impl::run_free(const Method& method, const RunOptions& o) const
         }
       }
     };
-    auto find_nonfinite = [&]() -> std::optional<integrate::NonFinite> {
-      for (std::size_t i = 0; i < free.size(); ++i) {
-        if (auto bad = body::find_nonfinite(state[i], owners[i])) return bad;
+    steps = integrate::march(grid, dt, step, [&] { return run.find_nonfinite(); }, observe, control).steps;
+  }
+  run.summarize(steps);
+  return std::move(run.r);
+}
+
+bool Model::Impl::batches_with(const Impl& first, const Method& method, const RunOptions& o) const {
+  const bool splitting = method.free == body::FreeBodyMethod::kSplitting2 ||
+                         method.free == body::FreeBodyMethod::kSplitting4 ||
+                         method.free == body::FreeBodyMethod::kSplitting6;
+  if (kind != SceneKind::kFreeBodies || method.exact || !splitting || o.control.on_step || o.control.progress) {
+    return false;
+  }
+  // one grid and one step for the whole batch
+  if (t_end != first.t_end || dt != first.dt || output_dt != first.output_dt) return false;
+  // bodies in uniform gravity alone (a kick is v += ½h g), stepped in their principal frame
+  // as they are, from a finite state (the step's input checks pass: a run with a non-finite
+  // start is run alone, where its error is raised)
+  return std::all_of(free.begin(), free.end(), [](const FreeBody& f) {
+    const body::RigidBodyState& s = f.initial;
+    return !f.top && f.rigid && f.rigid->load_count() == 0 &&
+           f.rigid->principal_axes().quaternion() == Eigen::Vector4d(1, 0, 0, 0) &&
+           std::isfinite(s.R_WB.quaternion().sum() + s.w_B.sum() + s.p_WC.sum() + s.v_WC.sum());
+  });
+}
+
+bool Model::batches(const RunOptions& options) const {
+  try {
+    return impl_->batches_with(*impl_, impl_->parse_method(options.integrator), options);
+  } catch (const Error&) {
+    return false;  // an unknown integrator: its run refuses it
+  }
+}
+
+namespace {
+
+// The message of integrate::throw_nonfinite, for a batched run that diverged alone.
+std::string nonfinite_message(const integrate::NonFinite& bad, std::size_t step, double t, double h) {
+  try {
+    integrate::throw_nonfinite(bad, step, t, h);
+  } catch (const Error& e) {
+    return e.what();
+  }
+}
+
+// Thrown inside a batch's march when every run of it has failed: nothing is left to step.
+struct BatchEmpty {};
+
+}  // namespace
+
+std::vector<Model::BatchedRun> Model::run_batch(std::span<const Model* const> models, const RunOptions& options) {
+  std::vector<BatchedRun> out(models.size());
+  const bool together = models.size() > 1 && std::all_of(models.begin(), models.end(), [&](const Model* m) {
+    if (!m->batches(options)) return false;
+    const Method a = m->impl_->parse_method(options.integrator), b = models[0]->impl_->parse_method(options.integrator);
+    return a.name == b.name && a.free == b.free && m->impl_->batches_with(*models[0]->impl_, a, options);
+  });
+  if (!together) {
+    for (std::size_t i = 0; i < models.size(); ++i) {
+      try {
+        out[i].result = models[i]->run(options);
+      } catch (const Cancelled&) {
+        throw;
+      } catch (const Error& e) {
+        out[i].error = e.what();
       }
-      return std::nullopt;
-    };
-    steps = integrate::march(grid, dt, step, find_nonfinite, observe, control).steps;
+    }
+    return out;
   }
 
-  RunSummary& s = r.summary;
-  s.kind = SceneKind::kFreeBodies;
-  s.dt = dt;
-  s.steps = steps;
-  s.diagnostics.emplace_back("energy_initial", energy.front());
-  s.diagnostics.emplace_back("energy_final", energy.back());
-  s.diagnostics.emplace_back("energy_max_change", max_change(energy));
-  for (std::size_t i = 0; i < free.size(); ++i) {
-    const std::string& n = free[i].name;
-    s.diagnostics.emplace_back(n + (free[i].top ? ".L_vertical_max_change" : ".L_norm_max_change"), max_change(L[i]));
-    s.diagnostics.emplace_back(n + ".orthonormality_max", ortho[i]);
+  const Impl& first = *models[0]->impl_;
+  const Method method = first.parse_method(options.integrator);
+  // each run's own start, as run() makes it: the memory and step budget
+  std::vector<std::unique_ptr<Impl::FreeRun>> runs(models.size());
+  std::vector<Impl::FreeRun*> active;
+  for (std::size_t i = 0; i < models.size(); ++i) {
+    try {
+      (void)models[i]->impl_->check_budget(method, options);
+      runs[i] = std::make_unique<Impl::FreeRun>(*models[i]->impl_);
+      if (runs[i]->with_metrics) runs[i]->start_metrics();
+      active.push_back(runs[i].get());
+    } catch (const Cancelled&) {
+      throw;
+    } catch (const Error& e) {
+      out[i].error = e.what();
+      runs[i].reset();
+    }
   }
-  if (with_metrics) {
-    std::vector<std::pair<std::string, std::vector<double>>> drift = {{"energy", energy}};
-    for (std::size_t i = 0; i < free.size(); ++i) drift.emplace_back(free[i].name + ".L", L[i]);
-    s.metrics = metrics_of(recorder, drift);
+  const auto start = Clock::now();
+
+  // The step of step_rigid_body (kSplitting2: kick ½h, drift h, kick ½h; gravity alone, so a
+  // kick is v += ½h g) for every body of every active run, with the drift's rotations in one
+  // call of the batch kernel (blocks of four bodies in vector registers), whose results are
+  // the bits of step_free_body: each run's rows are those of its run() alone.
+  std::vector<Eigen::Vector3d> moments;
+  std::vector<body::FreeBodyState> rotations;
+  auto gather_moments = [&] {
+    moments.clear();
+    for (const Impl::FreeRun* run : active) {
+      for (const FreeBody& f : run->m.free) moments.push_back(f.rigid->principal_moments());
+    }
+    rotations.resize(moments.size());
+  };
+  gather_moments();
+  double last_h = 0;
+  auto step = [&](double, double h) {
+    last_h = h;
+    const double tau = 0.5 * h;
+    std::size_t k = 0;
+    for (Impl::FreeRun* run : active) {
+      for (std::size_t i = 0; i < run->state.size(); ++i) {
+        body::RigidBodyState& s = run->state[i];
+        s.v_WC += tau * run->m.free[i].rigid->gravity();
+        s.p_WC += h * s.v_WC;
+        rotations[k++] = {s.R_WB, s.w_B};
+      }
+    }
+    try {
+      body::step_free_bodies(method.free, moments, rotations, h);
+    } catch (const Error&) {
+      // a body's rotation diverged (every body has been stepped): its run finds the
+      // component below and fails, as its run() would
+    }
+    k = 0;
+    for (Impl::FreeRun* run : active) {
+      for (std::size_t i = 0; i < run->state.size(); ++i) {
+        body::RigidBodyState& s = run->state[i];
+        s.R_WB = rotations[k].R_WB;
+        s.w_B = rotations[k].w_B;
+        ++k;
+        s.v_WC += tau * run->m.free[i].rigid->gravity();
+      }
+    }
+  };
+  // a run that fails leaves the batch; the others go on
+  auto leave = [&](std::vector<Impl::FreeRun*>& left) {
+    if (left.empty()) return;
+    std::erase_if(active, [&](const Impl::FreeRun* r) { return std::find(left.begin(), left.end(), r) != left.end(); });
+    left.clear();
+    if (active.empty()) throw BatchEmpty{};
+    gather_moments();
+  };
+  std::vector<Impl::FreeRun*> left;
+  std::size_t steps = 0;
+  integrate::MarchControl control = options.control;
+  // after every step: each run's finiteness check (march's, with its message) and its metrics
+  control.on_step = [&](const integrate::StepView& v) {
+    ++steps;
+    for (Impl::FreeRun* run : active) {
+      if (auto bad = run->find_nonfinite()) [[unlikely]] {
+        run->error = nonfinite_message(*bad, steps, v.t1, last_h);
+        left.push_back(run);
+      } else if (run->with_metrics) {
+        try {
+          run->record_step(v.t1);
+        } catch (const Error& e) {
+          run->error = e.what();
+          left.push_back(run);
+        }
+      }
+    }
+    leave(left);
+  };
+  auto observe = [&](std::size_t, double t) {
+    for (Impl::FreeRun* run : active) {
+      try {
+        run->observe(t);
+      } catch (const Error& e) {
+        run->error = e.what();
+        left.push_back(run);
+      }
+    }
+    leave(left);
+  };
+  const integrate::TimeGrid grid =
+      integrate::TimeGrid::uniform(0.0, first.t_end, first.output_dt > 0 ? first.output_dt : first.dt);
+  try {
+    if (active.empty()) throw BatchEmpty{};
+    steps = integrate::march(grid, first.dt, step, [] { return std::optional<integrate::NonFinite>{}; }, observe,
+                             control)
+                .steps;
+  } catch (const BatchEmpty&) {
+    // every run failed
+  } catch (const Cancelled&) {
+    throw;
+  } catch (const Error& e) {
+    for (Impl::FreeRun* run : active) run->error = e.what();  // the march's own refusal: every run's
+    active.clear();
   }
-  return r;
+  const double wall = std::chrono::duration<double>(Clock::now() - start).count();
+  for (std::size_t i = 0; i < models.size(); ++i) {
+    if (!runs[i]) continue;
+    Impl::FreeRun& run = *runs[i];
+    if (std::find(active.begin(), active.end(), &run) == active.end()) {
+      out[i].error = run.error;
+      continue;
+    }
+    try {
+      run.summarize(steps);
+      models[i]->impl_->finish_run(run.r, method, wall);
+      out[i].result = std::move(run.r);
+    } catch (const Error& e) {
+      out[i].error = e.what();
+    }
+  }
+  return out;
 }
 
 Model load_model(const std::filesystem::path& file, const std::vector<std::string>& overrides,

@@ -635,14 +635,6 @@ std::vector<SweepRow> run_sweep(const SweepIdentity& id, const RunIndexSource& n
   std::mutex take;  // next_index, and the first index held back for the prototype
   std::optional<std::size_t> first_index = next_index();
   bool first_taken = false;
-  auto take_index = [&]() -> std::optional<std::size_t> {
-    std::lock_guard lock(take);
-    if (!first_taken) {
-      first_taken = true;
-      return first_index;
-    }
-    return first_index ? next_index() : std::nullopt;
-  };
   std::atomic<bool> stopped{false};
   std::mutex report;
   auto overrides_of = [&](const std::vector<double>& values) { return run_overrides(id, names, values); };
@@ -657,56 +649,125 @@ std::vector<SweepRow> run_sweep(const SweepIdentity& id, const RunIndexSource& n
   const Scene base = load_scene(id.scene, id.model);
   std::shared_ptr<const Model> prototype;
   if (first_index) prototype = options.first_run ? options.first_run : first_run_model(id, base);
-  auto one_run = [&](std::size_t index) {
-    SweepRow row;
-    row.index = index;
-    row.values = run_values(id.spec, row.index);
-    std::optional<Model> model;
-    try {
-      {
-        Scene scene = base;
-        apply_overrides(scene, overrides_of(row.values));
-        model.emplace(scene, *prototype);
+  // The runs a worker takes at once. Runs of a free-body scene stepped by a splitting march
+  // together (Model::run_batch: their rotations four bodies at a time in vector registers, each
+  // run's result the bits of its run alone); up to kSweepBatch of them, fewer when the sweep is
+  // short against its threads, so that every thread has runs. Other runs go one at a time.
+  const std::size_t threads = std::clamp<std::size_t>(options.threads, 1, std::max<std::size_t>(count, 1));
+  RunOptions run_options;
+  run_options.integrator = id.integrator;
+  run_options.control.cancel = options.cancel;
+  const std::size_t batch = options.batch && prototype && prototype->batches(run_options)
+                                ? std::clamp<std::size_t>(count / threads, 1, kSweepBatch)
+                                : 1;
+  auto take_indices = [&](std::vector<std::size_t>& indices) {
+    indices.clear();
+    std::lock_guard lock(take);
+    while (indices.size() < batch) {
+      std::optional<std::size_t> index;
+      if (!first_taken) {
+        first_taken = true;
+        index = first_index;
+      } else if (first_index) {
+        index = next_index();
       }
-      RunOptions ro;
-      ro.integrator = id.integrator;
-      ro.control.cancel = options.cancel;
-      const RunResult result = model->run(ro);
+      if (!index) break;
+      indices.push_back(*index);
+    }
+  };
+  auto fail = [&](SweepRow& row, std::string_view what) {
+    row.results.clear();
+    row.error = word_for(options.wording, what);
+    if (row.error.empty()) row.error = "failed";
+  };
+  // one run asked for more memory than there is (its trajectory): that run fails, the sweep
+  // goes on with the memory freed
+  constexpr std::string_view kOutOfMemory =
+      "out of memory: the run needs more memory than is available; lower its trajectory's size";
+  // a run's row from its result (and its trajectory written when asked)
+  auto record = [&](SweepRow& row, const Model& model, const RunResult& result) {
+    try {
       for (const auto& m : result.summary.metrics) row.results.emplace_back(m.name, m.value);
       for (const auto& [n, v] : result.summary.diagnostics) row.results.emplace_back(n, v);
       if (!options.keep_trajectories.empty()) {
-        const auto formats = model->output_formats();
+        const auto formats = model.output_formats();
         (void)io::write_run(options.keep_trajectories / fmt::format("{:05}", row.index), result, formats);
       }
+    } catch (const Error& e) {
+      fail(row, e.what());
+    }
+  };
+  auto run_alone = [&](SweepRow& row, const Model& model) {
+    try {
+      record(row, model, model.run(run_options));
     } catch (const Cancelled&) {
       throw;
     } catch (const Error& e) {
-      row.results.clear();
-      row.error = word_for(options.wording, e.what());
-      if (row.error.empty()) row.error = "failed";
+      fail(row, e.what());
     } catch (const std::bad_alloc&) {
-      // one run asked for more memory than there is (its trajectory): that run fails, the
-      // sweep goes on with the memory freed
-      row.results.clear();
-      row.error = "out of memory: the run needs more memory than is available; lower its trajectory's size";
+      fail(row, kOutOfMemory);
     }
-    model.reset();
-    if (options.journal) options.journal->append(row);
-    std::lock_guard lock(report);
-    if (options.on_row) options.on_row(row);
-    if (options.keep_rows) rows.push_back(std::move(row));
-    ++made;
+  };
+  auto run_indices = [&](std::span<const std::size_t> indices) {
+    std::vector<SweepRow> done(indices.size());
+    std::vector<std::optional<Model>> models(indices.size());
+    std::vector<const Model*> built;
+    std::vector<std::size_t> built_at;
+    for (std::size_t i = 0; i < indices.size(); ++i) {
+      SweepRow& row = done[i];
+      row.index = indices[i];
+      row.values = run_values(id.spec, row.index);
+      try {
+        Scene scene = base;
+        apply_overrides(scene, overrides_of(row.values));
+        models[i].emplace(scene, *prototype);
+        built.push_back(&*models[i]);
+        built_at.push_back(i);
+      } catch (const Error& e) {
+        fail(row, e.what());
+      } catch (const std::bad_alloc&) {
+        fail(row, kOutOfMemory);
+      }
+    }
+    std::optional<std::vector<Model::BatchedRun>> batched;
+    if (built.size() > 1) {
+      try {
+        batched = Model::run_batch(built, run_options);
+      } catch (const std::bad_alloc&) {
+        // the batch's memory at once is too much: each run alone, as without batching
+      }
+    }
+    for (std::size_t j = 0; j < built.size(); ++j) {
+      SweepRow& row = done[built_at[j]];
+      if (!batched) {
+        run_alone(row, *built[j]);
+      } else if (Model::BatchedRun& b = (*batched)[j]; b.result) {
+        record(row, *built[j], *b.result);
+      } else {
+        fail(row, b.error);
+      }
+    }
+    batched.reset();
+    models.clear();
+    for (SweepRow& row : done) {
+      if (options.journal) options.journal->append(row);
+      std::lock_guard lock(report);
+      if (options.on_row) options.on_row(row);
+      if (options.keep_rows) rows.push_back(std::move(row));
+      ++made;
+    }
   };
 
   std::exception_ptr failure;
   std::mutex failure_lock;
   auto worker = [&] {
+    std::vector<std::size_t> indices;
     while (true) {
       if (stopped || (options.cancel != nullptr && options.cancel->load(std::memory_order_relaxed))) return;
       try {
-        const std::optional<std::size_t> index = take_index();
-        if (!index) return;
-        one_run(*index);
+        take_indices(indices);
+        if (indices.empty()) return;
+        run_indices(indices);
       } catch (...) {
         // a cancellation, or an error outside a run (the journal cannot be written): stop all
         stopped = true;
@@ -716,7 +777,6 @@ std::vector<SweepRow> run_sweep(const SweepIdentity& id, const RunIndexSource& n
       }
     }
   };
-  const std::size_t threads = std::clamp<std::size_t>(options.threads, 1, std::max<std::size_t>(count, 1));
   {
     std::vector<std::jthread> pool;
     for (std::size_t t = 1; t < threads; ++t) pool.emplace_back(worker);

@@ -289,3 +289,42 @@ def test_seeds_and_counts_are_whole_numbers_in_range(rigid_exe, tmp_path, option
     else:
         assert proc.returncode == 2 and f"{option} {value}: " in proc.stderr, proc.stderr
         assert "whole number from 0 to 18446744073709551615" in proc.stderr
+
+
+# A finite state whose energy overflows (a body falling in g = 1e307 reaches v ~ 1e307, and
+# ½ m v² is beyond the double range) printed energy_final = -nan with exit 0. Such a run is
+# refused alike by run, Python and a sweep (whose other runs go on, batched or not).
+FALLING = """\
+gravity = [0, 0, "-g"]
+[parameters]
+g = 9.81
+[[bodies]]
+name = "b"
+free = true
+primitive = "box"
+size = [1, 2, 3]
+mass = 1
+angular_velocity = [0.3, 1, 0.1]
+[simulation]
+t_end = 2.0
+output_dt = 0.1
+"""
+
+
+def test_an_output_that_overflows_from_a_finite_state_is_refused(run, tmp_path):
+    path = scene(tmp_path, FALLING)
+    message = "computed from a finite state: it overflowed the double range"
+    proc = run("run", path, "--set", "g=1e307", "-o", tmp_path / "out")
+    assert_refused(proc, "the output energy at t = ", message)
+    assert not (tmp_path / "out").exists()
+    with pytest.raises(rigid.Error) as err:
+        rigid.Scene(path, set=["g=1e307"]).run(output=tmp_path / "py")
+    assert str(err.value) in proc.stderr
+    out = rigid.sweep(path, grid=["g=9.81:1e307:2"], output=tmp_path / "sweep")
+    assert out["errors"][0] == ""
+    assert str(err.value) in out["errors"][1]
+    # a coordinate scene alike: ½ m v² with m = 1e308 and v = 2
+    coords = scene(tmp_path, PENDULUM.format(m=1e308, t_end=0.01).replace('initial = 1.0', 'initial = 1.0\nvelocity = 2'),
+                   "coords.toml")
+    assert_refused(run("run", coords, "-o", tmp_path / "c"), "computed from a finite state")
+    assert not (tmp_path / "c").exists()

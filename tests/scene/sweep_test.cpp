@@ -10,6 +10,7 @@
 #include <fstream>
 #include <limits>
 #include <numeric>
+#include <set>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -620,6 +621,181 @@ TEST(SweepOutputs, FailuresAreGroupedByMessageMostFrequentFirst) {
   EXPECT_EQ(j["failure_groups"][0]["runs"], nlohmann::json::array({0, n}));
   EXPECT_EQ(j["failure_groups_left_out"]["groups"], 3);
   EXPECT_EQ(j["failure_groups_left_out"]["runs"], 3);
+}
+
+// Two free bodies in gravity, one of them not principal in its own frame (stepped in P), with
+// the metrics that observe every step: what a free-body sweep marches in batches.
+constexpr const char* kTwoFreeBodies = R"toml(
+gravity = [0, 0, "-g"]
+[parameters]
+I2 = 2
+g = 9.81
+[[bodies]]
+name = "racket"
+free = true
+inertia = {mass = 0.35, ixx = 1, iyy = "I2", izz = 3}
+angular_velocity = [0.01, 1, 0.01]
+[[bodies]]
+name = "brick"
+free = true
+inertia = {mass = 2, ixx = 0.5, iyy = 0.7, izz = 0.9, ixy = 0.1, ixz = -0.05, iyz = 0.02}
+initial_velocity = [1, 0, 2]
+initial_position = [1, 2, 3]
+angular_velocity = [0.3, -2, 1.5]
+[simulation]
+t_end = 2.0
+output_dt = 0.1
+[[output.metrics]]
+name = "first_flip"
+kind = "crossing"
+column = "racket.wy"
+k = 1
+[[output.metrics]]
+name = "energy_drift"
+kind = "drift"
+column = "energy"
+)toml";
+
+void expect_same_run(const Model::BatchedRun& batched, const Model& model, const RunOptions& options,
+                     const std::string& what) {
+  std::optional<RunResult> alone;
+  std::string error;
+  try {
+    alone = model.run(options);
+  } catch (const Error& e) {
+    error = e.what();
+  }
+  ASSERT_EQ(batched.result.has_value(), alone.has_value()) << what << ": " << batched.error << " / " << error;
+  EXPECT_EQ(batched.error, error) << what;
+  if (!alone) return;
+  const RunResult& b = *batched.result;
+  EXPECT_EQ(b.trajectory.columns(), alone->trajectory.columns()) << what;
+  ASSERT_EQ(b.trajectory.data().size(), alone->trajectory.data().size()) << what;
+  for (std::size_t i = 0; i < b.trajectory.data().size(); ++i) {
+    ASSERT_EQ(std::bit_cast<std::uint64_t>(b.trajectory.data()[i]), std::bit_cast<std::uint64_t>(alone->trajectory.data()[i]))
+        << what << ": value " << i << " of the trajectory";
+  }
+  ASSERT_EQ(b.summary.diagnostics.size(), alone->summary.diagnostics.size()) << what;
+  for (std::size_t i = 0; i < b.summary.diagnostics.size(); ++i) {
+    EXPECT_EQ(b.summary.diagnostics[i].first, alone->summary.diagnostics[i].first) << what;
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(b.summary.diagnostics[i].second),
+              std::bit_cast<std::uint64_t>(alone->summary.diagnostics[i].second))
+        << what << ": " << b.summary.diagnostics[i].first;
+  }
+  ASSERT_EQ(b.summary.metrics.size(), alone->summary.metrics.size()) << what;
+  for (std::size_t i = 0; i < b.summary.metrics.size(); ++i) {
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(b.summary.metrics[i].value),
+              std::bit_cast<std::uint64_t>(alone->summary.metrics[i].value))
+        << what << ": " << b.summary.metrics[i].name;
+    EXPECT_EQ(b.summary.metrics[i].note, alone->summary.metrics[i].note) << what;
+  }
+  EXPECT_EQ(b.summary.steps, alone->summary.steps) << what;
+  EXPECT_EQ(b.summary.integrator, alone->summary.integrator) << what;
+  EXPECT_EQ(b.summary.samples, alone->summary.samples) << what;
+}
+
+// Free-body runs marched together (Model::run_batch: every body's rotation through the
+// four-body kernel) are, bit for bit, the runs alone: trajectories, diagnostics, metrics and
+// the error of a run that diverges (g = 1.7e308: a position overflows at step 1058) while the
+// others of its batch go on. With each splitting, and with a batch whose runs differ in dt
+// (run one after the other).
+TEST(SweepRun, FreeBodyRunsMarchedTogetherAreTheBitsOfEachRunAlone) {
+  const fs::path dir = temp_dir("batch");
+  const fs::path file = dir / "two.toml";
+  std::ofstream(file) << kTwoFreeBodies;
+  const Scene base = load_scene(file);
+  const Model prototype(base);
+  for (const char* integrator : {"splitting2", "splitting4", "splitting6"}) {
+    RunOptions options;
+    options.integrator = integrator;
+    ASSERT_TRUE(prototype.batches(options)) << integrator;
+    std::vector<Model> models;
+    for (const char* g : {"9.81", "1.7e308", "3", "9.81", "1.7e308"}) {
+      for (const char* I2 : {"2", "2.5", "3.1"}) {
+        Scene s = base;
+        apply_overrides(s, {fmt::format("g={}", g), fmt::format("I2={}", I2)});
+        models.emplace_back(s, prototype);
+      }
+    }
+    std::vector<const Model*> all;
+    for (const Model& m : models) all.push_back(&m);
+    const auto batched = Model::run_batch(all, options);
+    ASSERT_EQ(batched.size(), models.size());
+    std::size_t diverged = 0;
+    for (std::size_t i = 0; i < models.size(); ++i) {
+      expect_same_run(batched[i], models[i], options, fmt::format("{} run {}", integrator, i));
+      if (!batched[i].result) {
+        EXPECT_THAT(batched[i].error, ::testing::HasSubstr("non-finite state at step 1058"));
+        ++diverged;
+      }
+    }
+    EXPECT_EQ(diverged, 6u) << integrator;
+    // they marched as one batch: the runs that finished report the batch's wall time
+    std::set<double> walls;
+    for (const auto& b : batched) {
+      if (b.result) walls.insert(b.result->summary.wall_seconds);
+    }
+    EXPECT_EQ(walls.size(), 1u) << integrator;
+  }
+  // not marched together: different steps, a method that is not a splitting
+  Scene finer = base;
+  apply_overrides(finer, {"simulation.dt=0.0005"});
+  const Model a(base, prototype), b(finer, prototype);
+  const std::vector<const Model*> mixed{&a, &b};
+  const auto apart = Model::run_batch(mixed, {});
+  expect_same_run(apart[0], a, {}, "dt 1e-3");
+  expect_same_run(apart[1], b, {}, "dt 5e-4");
+  RunOptions rk4;
+  rk4.integrator = "rk4";
+  EXPECT_FALSE(prototype.batches(rk4));
+  // a body on a pivot (a heavy top's gravity splitting) is stepped alone
+  std::ofstream(dir / "top.toml") << R"toml(
+[[bodies]]
+name = "top"
+free = true
+primitive = "solid_cone"
+radius = 0.05
+height = 0.2
+mass = 1.0
+pivot = [0, 0, 0.2]
+angular_velocity = [0, 0, 50]
+[simulation]
+t_end = 0.1
+)toml";
+  EXPECT_FALSE(Model(load_scene(dir / "top.toml")).batches());
+  fs::remove_all(dir);
+}
+
+// A sweep of a free-body scene marches its runs in batches: its rows are the same bytes batched
+// or not, on one or three threads, failures (a refused inertia, a diverged run) included.
+TEST(SweepRun, AFreeBodySweepsRowsAreTheSameBatchedOrNot) {
+  const fs::path dir = temp_dir("batchsweep");
+  const fs::path scene = dir / "two.toml";
+  std::ofstream(scene) << kTwoFreeBodies;
+  // I2 from 2 to 4.5: valid up to I1 + I3 = 4; g = 1.7e308 diverges
+  const SweepIdentity id{.scene = scene, .set = {}, .integrator = "",
+                         .spec = {.grid = {parse_grid_axis("I2=2:4.5:6"), parse_grid_axis("g=9.81:1.7e308:2")}}};
+  std::vector<std::size_t> all(run_count(id.spec));
+  std::iota(all.begin(), all.end(), 0);
+  const auto apart = run_sweep(id, all, {.threads = 1, .batch = false});
+  ASSERT_EQ(apart.size(), 12u);
+  for (std::size_t threads : {1, 3}) {
+    const auto together = run_sweep(id, all, {.threads = threads});
+    ASSERT_EQ(together.size(), apart.size());
+    for (std::size_t i = 0; i < apart.size(); ++i) {
+      EXPECT_EQ(row_to_json(together[i]), row_to_json(apart[i])) << threads << " threads, run " << i;
+    }
+  }
+  std::size_t refused = 0, diverged = 0, ran = 0;
+  for (const SweepRow& row : apart) {
+    refused += row.error.find("violate") != std::string::npos;
+    diverged += row.error.find("non-finite state") != std::string::npos;
+    ran += row.error.empty();
+  }
+  EXPECT_EQ(refused, 2u);
+  EXPECT_EQ(diverged, 5u);
+  EXPECT_EQ(ran, 5u);
+  fs::remove_all(dir);
 }
 
 TEST(SweepRun, ACancelledSweepStopsWithCancelled) {

@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -141,6 +142,27 @@ class Model {
   /// @throws rigid::Error for anything that stops the run (a diverging state naming the body,
   ///   the component and t; a singular mass matrix), rigid::Cancelled from options.control.
   [[nodiscard]] RunResult run(const RunOptions& options = {}) const;
+
+  /// Whether run_batch steps this model's run with `options` together with others: a scene of
+  /// free bodies in uniform gravity (no pivot, no applied load) stepped by splitting2,
+  /// splitting4 or splitting6, with no progress or step observer in options.control.
+  [[nodiscard]] bool batches(const RunOptions& options = {}) const;
+
+  /// A run of run_batch: its result, or the message of the rigid::Error its run() throws.
+  struct BatchedRun {
+    std::optional<RunResult> result;
+    std::string error;
+  };
+  /// Runs every model with `options` as run() runs it. When every model batches() and all share
+  /// t_end, dt, output_dt and the integrator, they march together: each step's rotations, of
+  /// every body of every run, go through one call of rigid::body::step_free_bodies (four bodies
+  /// at a time in vector registers), whose results are step_free_body's bits, so each run's
+  /// trajectory, diagnostics, metrics and error message are those of its run() alone (tested);
+  /// a run that fails leaves the batch and the others go on. Only summary.wall_seconds
+  /// differs: it is the batch's. Otherwise the models run one after the other.
+  /// @throws rigid::Cancelled from options.control (no result is returned then).
+  [[nodiscard]] static std::vector<BatchedRun> run_batch(std::span<const Model* const> models,
+                                                         const RunOptions& options = {});
 
   /// The directory a run writes to: `requested` if not empty, else [output] directory, else
   /// "out/<stem of the scene file>" (one directory per scene).

@@ -194,6 +194,10 @@ struct JournalContents {
 [[nodiscard]] JournalContents read_journal(const std::filesystem::path& directory);
 
 /// How the runs of a sweep are run.
+/// Most runs of a free-body sweep that one thread marches together (Model::run_batch): one
+/// block of the four-body kernel for a scene of one body.
+inline constexpr std::size_t kSweepBatch = 4;
+
 struct SweepRunOptions {
   std::size_t threads = 1;
   /// Called after each run (from the worker thread that ran it; calls are serialized).
@@ -215,6 +219,11 @@ struct SweepRunOptions {
   /// Run 0's model as check_first_run returned it, when the caller checked it already; empty:
   /// run_sweep builds and checks it.
   std::shared_ptr<const Model> first_run{};
+  /// When true, runs of a free-body scene that Model::batches() march kSweepBatch at a time
+  /// (fewer when the sweep has fewer than kSweepBatch runs per thread) through
+  /// Model::run_batch: the rows are the same bytes either way (tested); false runs them one by
+  /// one (the benchmark's comparison).
+  bool batch = true;
 };
 
 /// Checks, before running, that every swept and fixed name is one the scene accepts (the
@@ -231,9 +240,10 @@ void check_overrides(const SweepIdentity& identity);
 [[nodiscard]] std::shared_ptr<const Model> check_first_run(const SweepIdentity& identity);
 
 /// Runs the runs `indices` on a pool of options.threads threads (each takes the next index from
-/// an atomic counter) and returns their rows sorted by index. A run that throws rigid::Error is
-/// a row with its error. Models are built and destroyed one at a time (the symbolic side is
-/// single-threaded); runs go in parallel. Before any run, run 0 is built and checked
+/// an atomic counter; up to kSweepBatch at a time when they batch, see SweepRunOptions::batch) and
+/// returns their rows sorted by index. A run that throws rigid::Error is a row with its error.
+/// Runs go in parallel, each model built by the thread that runs it from the prototype's
+/// equations. Before any run, run 0 is built and checked
 /// (check_first_run, unless options.first_run holds it): a coordinate scene is derived once,
 /// there, and every run's model shares its equations.
 /// @throws rigid::Error from check_first_run when there is a run to make; rigid::Cancelled when
