@@ -21,6 +21,7 @@
 #include <vector>
 
 #include <benchmark/benchmark.h>
+#include <fmt/format.h>
 
 #include "mesh/mesh_builders.hpp"
 #include "rigid/io/table.hpp"
@@ -211,11 +212,9 @@ void BM_Sweep_modelRun(benchmark::State& st, const char* text) {
 // 1 / (s + (1 − s)/P) with s = serial / (serial + parallel per run).
 // `axis` is a grid axis without its count ("L=0.5:2:"), or with `sample` a distribution
 // ("L=uniform(0.5,2)": a Monte Carlo sweep of 16 and 32 draws).
-void BM_Sweep_serialPerRun(benchmark::State& st, const char* name, const char* text, const char* axis,
-                           bool sample = false) {
-  write_sphere_once();
-  const auto small = sample ? sample_of(name, text, axis, 16) : sweep_of(name, text, (std::string(axis) + "16").c_str());
-  const auto large = sample ? sample_of(name, text, axis, 32) : sweep_of(name, text, (std::string(axis) + "32").c_str());
+// The measurement of BM_Sweep_serialPerRun: a sweep `large` of 16 runs more than `small`.
+void serial_per_run(benchmark::State& st, const rigid::scene::SweepIdentity& small,
+                    const rigid::scene::SweepIdentity& large) {
   double serial = 0.0, entries = 0.0, runs = 0.0;
   for (auto _ : st) {
     for (const auto* id : {&small, &large}) {
@@ -235,9 +234,29 @@ void BM_Sweep_serialPerRun(benchmark::State& st, const char* name, const char* t
   st.counters["entries"] = entries / runs;
 }
 
+void BM_Sweep_serialPerRun(benchmark::State& st, const char* name, const char* text, const char* axis,
+                           bool sample = false) {
+  write_sphere_once();
+  const auto small = sample ? sample_of(name, text, axis, 16) : sweep_of(name, text, (std::string(axis) + "16").c_str());
+  const auto large = sample ? sample_of(name, text, axis, 32) : sweep_of(name, text, (std::string(axis) + "32").c_str());
+  serial_per_run(st, small, large);
+}
+
+// The same for a robot model file of examples/ (its joints' initial angles swept), 0.2 s a run.
+void BM_Sweep_serialPerRunFile(benchmark::State& st, const char* file, const char* axis) {
+  auto of = [&](int count) {
+    return rigid::scene::SweepIdentity{.scene = std::filesystem::path(RIGID_EXAMPLES_DIR) / file,
+                                       .set = {"simulation.t_end=0.2"}, .integrator = "",
+                                       .spec = {.grid = {rigid::scene::parse_grid_axis(fmt::format("{}{}", axis, count))}}};
+  };
+  serial_per_run(st, of(16), of(32));
+}
+
 BENCHMARK_CAPTURE(BM_Sweep_serialPerRun, pendulum, "pendulums", kSmallPendulum, "L=0.5:2:")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Sweep_serialPerRun, racket, "rackets", kSmallRacket, "I2=1.95:2.05:")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Sweep_serialPerRun, mesh, "meshs", kMeshBody, "rho=900:1100:")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Sweep_serialPerRunFile, cart_arm_urdf, "cart_arm.urdf", "shoulder.initial=0.2:1.0:")
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Sweep_serialPerRun, pendulum_sample, "pendulumm", kSmallPendulum, "L=uniform(0.5,2)", true)
     ->Unit(benchmark::kMillisecond);
 // A sweep of the mesh body: 8 runs on 1 and 2 threads (the file read once, by the prototype).
@@ -252,10 +271,10 @@ BENCHMARK_CAPTURE(BM_Sweep_runs, mesh_100s_x32, "meshl", kMeshBody, "rho=900:110
 BENCHMARK_CAPTURE(BM_Sweep_runs, racket_10s_x32, "racket", kSmallRacket, "I2=1.95:2.05:32")
     ->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);
 // the racket example's sweep, one by one and batched, on 1 and 2 threads
-BENCHMARK_CAPTURE(BM_Sweep_freeBatch, racket_100s_x32_splitting4, "racketb4", kRacket100, "I2=1.95:2.05:32",
+BENCHMARK_CAPTURE(BM_Sweep_freeBatch, racket_100s_x32_splitting4, "racketb4", kRacket100, "I2=2:2.5:32",
                   "splitting4")
     ->ArgsProduct({{0, 1}, {1, 2}})->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_Sweep_freeBatch, racket_100s_x32_splitting2, "racketb2", kRacket100, "I2=1.95:2.05:32",
+BENCHMARK_CAPTURE(BM_Sweep_freeBatch, racket_100s_x32_splitting2, "racketb2", kRacket100, "I2=2:2.5:32",
                   "splitting2")
     ->ArgsProduct({{0, 1}, {1}})->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Sweep_runs, pendulum_2s_x32, "pendulum", kSmallPendulum, "L=0.5:2:32")

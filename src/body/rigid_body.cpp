@@ -87,10 +87,15 @@ RigidBodyAcceleration RigidBody::acceleration(double t, const RigidBodyState& st
   return {w.force / mass_, I_C_B_inv_ * (w.torque - omega.cross(I_C_B_ * omega))};
 }
 
+double RigidBody::energy(const RigidBodyState& s) const {
+  const Eigen::Vector3d L_B = I_C_B_ * s.w_B;
+  return 0.5 * mass_ * s.v_WC.squaredNorm() + 0.5 * s.w_B.dot(L_B) - mass_ * g_W_.dot(s.p_WC);
+}
+
 RigidBodyDiagnostics RigidBody::diagnose(const RigidBodyState& s) const {
   RigidBodyDiagnostics d;
   const Eigen::Vector3d L_B = I_C_B_ * s.w_B;
-  d.energy = 0.5 * mass_ * s.v_WC.squaredNorm() + 0.5 * s.w_B.dot(L_B) - mass_ * g_W_.dot(s.p_WC);
+  d.energy = energy(s);
   d.P_W = mass_ * s.v_WC;
   // L about the world origin O = spin about C + orbital part p_OC × m v  [Goldstein2002, §1.2]
   d.L_W = s.R_WB * L_B + s.p_WC.cross(d.P_W);

@@ -70,8 +70,14 @@ void MetricRecorder::step(double t, const std::vector<double>& values, const Met
   } else {
     // fixed steps: interval j is interpolated by the cubic through points j−1 … j+2, so it is
     // processed when the point after its end has come (the first and last use the four nearest)
-    if (history_.size() == 4) history_.erase(history_.begin());
-    history_.push_back(Point{t, values});
+    if (history_.size() == 4) {
+      // the oldest point's buffer takes the new one: no allocation per step
+      std::rotate(history_.begin(), history_.begin() + 1, history_.end());
+      history_.back().t = t;
+      history_.back().v.assign(values.begin(), values.end());
+    } else {
+      history_.push_back(Point{t, values});
+    }
     if (history_.size() == 4) {
       if (!first_done_) {
         cubic_interval(0, 1);

@@ -1305,12 +1305,12 @@ struct Model::Impl::FreeRun {
         conserved[i] = g_dir.dot(L_W);
       } else {
         // P is principal: I ω is a componentwise product; the energy ½ m |v|² + ½ ωᵀ I ω − m g·p
-        // is the library's (RigidBody::diagnose)
+        // is the library's (RigidBody::energy)
         const Eigen::Vector3d L_P = f.rigid->principal_moments().cwiseProduct(s.w_B);
         p_WB = s.p_WC - R_WB * f.com_B;
         v_WC = s.v_WC;
         L_W = R_WP * L_P;  // about the COM
-        e_total += f.rigid->diagnose(s).energy;
+        e_total += f.rigid->energy(s);
         conserved[i] = L_W.norm();
       }
       push_pose(out, p_WB, R_WB, continuity[i]);

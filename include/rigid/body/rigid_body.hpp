@@ -114,6 +114,8 @@ class RigidBody {
   [[nodiscard]] Wrench total_wrench(double t, const RigidBodyState& state) const;
   /// Accelerations from Newton's and Euler's equations at time t (s).
   [[nodiscard]] RigidBodyAcceleration acceleration(double t, const RigidBodyState& state) const;
+  /// The energy ½ m |v|² + ½ ωᵀ I ω − m g·p (J): diagnose()'s, without the rest.
+  [[nodiscard]] double energy(const RigidBodyState& state) const;
   [[nodiscard]] RigidBodyDiagnostics diagnose(const RigidBodyState& state) const;
   /// Position of B's origin in the world, p_WC − R_WB p_BC_B (m).
   [[nodiscard]] Eigen::Vector3d origin_position(const RigidBodyState& state) const {
