@@ -354,44 +354,68 @@ class Parser {
 
 namespace {
 
-// log10 of the number of terms expand() gives an expression (`result`), and the largest count
-// that multiplying out creates among its parts (`worst`: a product of two or more sums, a sum
-// to a power; expand works from the leaves up). A sum as written is not counted: its terms are
-// the text's own. An upper estimate: no cancellation is assumed, and a sum of t terms to the n
-// is counted as C(n + t − 1, n).
+// What expand() makes of an expression, estimated from the parsed expression before anything is
+// expanded, as log10 of counts: `result`, its number of terms; `worst`, the largest count that
+// multiplying out creates among its parts (a product of two or more sums, a sum to a power;
+// expand works from the leaves up; a sum as written is not counted: its terms are the text's
+// own); `size`, its number of nodes written as a tree (what the derivation, the printer and the
+// tape builder walk), and `worst_size`, the largest of its parts'. Upper estimates: no
+// cancellation is assumed, a sum of t terms to the n is counted as C(n + t − 1, n) terms, each a
+// product of min(n, t) powers of the base's terms of average size.
 struct ExpandedTerms {
   double result = 0;
   double worst = 0;
+  double size = 0;
+  double worst_size = 0;
 };
 
-ExpandedTerms expanded_terms(const GiNaC::ex& e) {
+// log10(10^x + 10^y), without overflow
+double log_sum(double x, double y) {
+  const double top = std::max(x, y);
+  return top + std::log10(std::pow(10.0, x - top) + std::pow(10.0, y - top));
+}
+
+using ExpandedMemo = std::map<GiNaC::ex, ExpandedTerms, GiNaC::ex_is_less>;
+
+// Memoized on the expression's graph: a subexpression GiNaC shares (a power whose exponent is a
+// sum used in many places) is estimated once, whatever its number of uses.
+ExpandedTerms expanded_terms(const GiNaC::ex& e, ExpandedMemo& memo) {
+  if (const auto found = memo.find(e); found != memo.end()) return found->second;
   ExpandedTerms out;
+  auto part = [&](const ExpandedTerms& t) {
+    out.worst = std::max(out.worst, t.worst);
+    out.worst_size = std::max(out.worst_size, t.worst_size);
+  };
   if (GiNaC::is_a<GiNaC::add>(e)) {
-    // log10 Σ 10^rᵢ, without overflow
-    std::vector<double> r;
+    bool first = true;
     for (const GiNaC::ex& op : e) {
-      const ExpandedTerms t = expanded_terms(op);
-      out.worst = std::max(out.worst, t.worst);
-      r.push_back(t.result);
+      const ExpandedTerms t = expanded_terms(op, memo);
+      part(t);
+      out.result = first ? t.result : log_sum(out.result, t.result);
+      out.size = first ? t.size : log_sum(out.size, t.size);
+      first = false;
     }
-    const double top = *std::max_element(r.begin(), r.end());
-    double sum = 0;
-    for (const double x : r) sum += std::pow(10.0, x - top);
-    out.result = top + std::log10(sum);
   } else if (GiNaC::is_a<GiNaC::mul>(e)) {
     int sums = 0;
+    double term_size = 0;  // log10 of a product term's size: Σ of each factor's average term
+    bool first = true;
     for (const GiNaC::ex& op : e) {
-      const ExpandedTerms t = expanded_terms(op);
-      out.worst = std::max(out.worst, t.worst);
+      const ExpandedTerms t = expanded_terms(op, memo);
+      part(t);
       out.result += t.result;
+      term_size = first ? t.size - t.result : log_sum(term_size, t.size - t.result);
+      first = false;
       if (t.result > 0) ++sums;
     }
+    out.size = out.result + term_size;
     if (sums >= 2) out.worst = std::max(out.worst, out.result);
   } else if (GiNaC::is_a<GiNaC::power>(e)) {
-    const ExpandedTerms base = expanded_terms(e.op(0));
-    const ExpandedTerms exponent = expanded_terms(e.op(1));
-    out.worst = std::max(base.worst, exponent.worst);
+    const ExpandedTerms base = expanded_terms(e.op(0), memo);
+    const ExpandedTerms exponent = expanded_terms(e.op(1), memo);
+    part(base);
+    part(exponent);
     const GiNaC::ex& p = e.op(1);
+    out.size = log_sum(base.size, exponent.size);
     if (base.result > 0 && GiNaC::is_a<GiNaC::numeric>(p) && GiNaC::ex_to<GiNaC::numeric>(p).is_pos_integer()) {
       // C(N, k) with N = n + t − 1 and k = min(n, t − 1) ≤ N/2: a product of k ratios while k
       // is small (a difference of lgamma values would cancel to 0 for n = 2^708), else at
@@ -404,11 +428,18 @@ ExpandedTerms expanded_terms(const GiNaC::ex& e) {
       } else {
         for (double i = 1; i <= k; ++i) out.result += std::log10((N - k + i) / i);
       }
+      out.size = out.result + std::log10(std::min(n, t)) + (base.size - base.result);
       out.worst = std::max(out.worst, out.result);
     }
   } else {
-    for (const GiNaC::ex& op : e) out.worst = std::max(out.worst, expanded_terms(op).worst);
+    for (const GiNaC::ex& op : e) {
+      const ExpandedTerms t = expanded_terms(op, memo);
+      part(t);
+      out.size = log_sum(out.size, t.size);
+    }
   }
+  out.worst_size = std::max(out.worst_size, out.size);
+  memo.emplace(e, out);
   return out;
 }
 
@@ -418,12 +449,22 @@ GiNaC::ex parse_expression(const Expression& expression,
                            const std::map<std::string, GiNaC::ex>& names,
                            std::string_view context) {
   const GiNaC::ex value = Parser(expression, names, context).parse();
-  if (const double terms = expanded_terms(value).worst; !(terms <= std::log10(kMaxExpandedTerms))) {
+  ExpandedMemo memo;
+  const ExpandedTerms expanded = expanded_terms(value, memo);
+  if (const double terms = expanded.worst; !(terms <= std::log10(kMaxExpandedTerms))) {
     throw_at(expression, 0, context,
              fmt::format("the expression multiplies out to about 10^{:.3g} terms (products and "
                          "integer powers of sums); at most {:.0f} are allowed, since the equations of motion are "
                          "derived from the expanded expression",
                          terms, kMaxExpandedTerms));
+  }
+  if (const double nodes = expanded.worst_size; !(nodes <= std::log10(kMaxExpandedNodes))) {
+    throw_at(expression, 0, context,
+             fmt::format("the expression multiplies out to about 10^{:.3g} symbols and operations "
+                         "(products and integer powers of sums whose terms are long); at most {:.0f} "
+                         "are allowed, since the equations of motion are derived from the expanded "
+                         "expression",
+                         nodes, kMaxExpandedNodes));
   }
   // a complex number inside (sqrt(-1) is I) has no place in the real model
   for (auto it = value.preorder_begin(); it != value.preorder_end(); ++it) {

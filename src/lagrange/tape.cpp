@@ -3,7 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <cstdint>
 #include <sstream>
+#include <string_view>
+
+#include <fmt/format.h>
 
 #include "rigid/common/error.hpp"
 
@@ -213,6 +217,26 @@ std::int32_t TapeBuilder::emit_power(std::int32_t base, const GiNaC::ex& exponen
   return emit(Op::kPow, base, slot_of(exponent));
 }
 
+namespace {
+
+// Longest key kept as text (TapeBuilder::key_of).
+constexpr std::size_t kMaxKeyLength = 128;
+
+// "#" and two 64-bit hashes of `text` in the manner of FNV-1a (Fowler–Noll–Vo: xor a byte,
+// multiply), one with FNV's offset basis and prime, one with other constants (the golden-ratio
+// multiplier 0x9e3779b97f4a7c15): the same on every machine and run; two keys of one
+// expression that collided would only have their order follow GiNaC's.
+std::string digest_key(std::string_view text) {
+  std::uint64_t h1 = 14695981039346656037ULL, h2 = ~14695981039346656037ULL;
+  for (const char c : text) {
+    h1 = (h1 ^ static_cast<unsigned char>(c)) * 1099511628211ULL;
+    h2 = (h2 ^ static_cast<unsigned char>(c)) * 0x9e3779b97f4a7c15ULL;
+  }
+  return fmt::format("#{:016x}{:016x}", h1, h2);
+}
+
+}  // namespace
+
 // A key that depends only on the structure and the names, not on GiNaC's term order (which
 // follows hash values and symbol serial numbers and so differs between two Systems built in
 // one process). Sums and products are emitted in key order, so the same model always gives
@@ -234,6 +258,12 @@ const std::string& TapeBuilder::key_of(const GiNaC::ex& e) {
           is_a<function>(e) ? ex_to<function>(e).get_name() + "(" : "?(";
     for (const auto& part : parts) key += part + ",";
     key += ")";
+    // A long key becomes a digest of itself: a key spelled out in full is as long as its
+    // expression written as a tree, and an expression that shares subexpressions (a power of a
+    // sum whose exponent is a sum) is exponentially longer as a tree than as the graph GiNaC
+    // holds; every node's key then costs that length (a fuzz input took minutes). Keys up to
+    // kMaxKeyLength keep their text, so short expressions keep their order.
+    if (key.size() > kMaxKeyLength) key = digest_key(key);
   }
   return keys_.emplace(e, std::move(key)).first->second;
 }

@@ -136,6 +136,30 @@ def test_merged_shards_keep_the_units_and_refuse_other_units(run, tmp_path):
     assert not (tmp_path / "m2" / "summary.json").exists()
 
 
+def test_a_free_body_sweeps_batched_rows_are_the_runs_of_rigid_run(run, tmp_path):
+    # a free-body sweep marches its runs four at a time (8 runs on 2 threads: two batches of
+    # four); each row is still, bit for bit, `rigid run --set` and Python's run of its value
+    scene = racket(tmp_path, t_end=20)
+    out = tmp_path / "s"
+    run("sweep", scene, "--grid", "I2=2:2.4:8", "--threads", "2", "-o", out, "-q", check=True)
+    header, rows = read_runs(out)
+    rigid = pytest.importorskip("rigid")
+    for row in (rows[0], rows[5], rows[7]):
+        row = dict(zip(header, row))
+        value = row["I2"]
+        run("run", scene, "--set", f"I2={value}", "-o", tmp_path / "r", "-q", check=True)
+        diag = json.loads((tmp_path / "r" / "summary.json").read_text())["diagnostics"]
+        assert diag and row["error"] == ""
+        for name, v in diag.items():
+            assert float(row[name]) == v, (value, name)
+        summary = rigid.Scene(str(scene), set=[f"I2={value}"]).run()["summary"]
+        for name, v in summary["diagnostics"].items():
+            assert float(row[name]) == v, (value, name)
+    # and one thread (batches of four taken in another order) gives the same bytes
+    run("sweep", scene, "--grid", "I2=2:2.4:8", "--threads", "1", "-o", tmp_path / "one", "-q", check=True)
+    same_outputs(out, tmp_path / "one")
+
+
 def test_one_and_two_threads_give_the_same_bytes(run, tmp_path):
     scene = racket(tmp_path, t_end=20)
     args = ("sweep", scene, "--sample", "I2=uniform(1.98,2.02)", "-n", "12", "--seed", "5", "-q")
