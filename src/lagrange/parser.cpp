@@ -359,9 +359,9 @@ namespace {
 // multiplying out creates among its parts (a product of two or more sums, a sum to a power;
 // expand works from the leaves up; a sum as written is not counted: its terms are the text's
 // own); `size`, its number of nodes written as a tree (what the derivation, the printer and the
-// tape builder walk), and `worst_size`, the largest of its parts'. Upper estimates: no
-// cancellation is assumed, a sum of t terms to the n is counted as C(n + t − 1, n) terms, each a
-// product of min(n, t) powers of the base's terms of average size.
+// tape builder walk), and `worst_size`, the largest size that multiplying out creates. Upper
+// estimates: no cancellation is assumed, a sum of t terms to the n is counted as
+// C(n + t − 1, n) terms, each a product of min(n, t) powers of the base's terms of average size.
 struct ExpandedTerms {
   double result = 0;
   double worst = 0;
@@ -408,7 +408,10 @@ ExpandedTerms expanded_terms(const GiNaC::ex& e, ExpandedMemo& memo) {
       if (t.result > 0) ++sums;
     }
     out.size = out.result + term_size;
-    if (sums >= 2) out.worst = std::max(out.worst, out.result);
+    if (sums >= 2) {
+      out.worst = std::max(out.worst, out.result);
+      out.worst_size = std::max(out.worst_size, out.size);
+    }
   } else if (GiNaC::is_a<GiNaC::power>(e)) {
     const ExpandedTerms base = expanded_terms(e.op(0), memo);
     const ExpandedTerms exponent = expanded_terms(e.op(1), memo);
@@ -430,6 +433,7 @@ ExpandedTerms expanded_terms(const GiNaC::ex& e, ExpandedMemo& memo) {
       }
       out.size = out.result + std::log10(std::min(n, t)) + (base.size - base.result);
       out.worst = std::max(out.worst, out.result);
+      out.worst_size = std::max(out.worst_size, out.size);
     }
   } else {
     for (const GiNaC::ex& op : e) {
@@ -438,7 +442,6 @@ ExpandedTerms expanded_terms(const GiNaC::ex& e, ExpandedMemo& memo) {
       out.size = log_sum(out.size, t.size);
     }
   }
-  out.worst_size = std::max(out.worst_size, out.size);
   memo.emplace(e, out);
   return out;
 }

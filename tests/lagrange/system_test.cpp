@@ -113,6 +113,16 @@ TEST(System, ExpressionsThatMultiplyOutBeyondTheLimitAreRefusedBeforeExpanding) 
   EXPECT_RIGID_ERROR(System(spec_with("(" + first + ")*(" + second + ")")), "about 10^3.08 terms");
   EXPECT_NO_THROW(System(spec_with(sum)));
   EXPECT_NO_THROW(System(spec_with("2*(" + first + ")")));
+  // few terms, each long (from the fuzz target, where it took minutes; a second such input is
+  // fuzz/regressions/expression/nested_powers_of_sums_long_terms.txt): the 627 terms of
+  // (a + X·pi)^626 each hold X = (a + pi)^E with E's 627 terms, about 10^5.9 symbols and
+  // operations
+  EXPECT_RIGID_ERROR(System(spec_with("(a + (a + pi)^((a + pi)^626)*pi)^626")),
+                     "multiplies out to about 10^5.9 symbols and operations");
+  // a long sum as written is not counted (4,000 terms of about three symbols each)
+  std::string long_sum = "0";
+  for (int i = 1; i <= 4000; ++i) long_sum += fmt::format(" + q*a^{}", i);
+  EXPECT_NO_THROW(System(spec_with(long_sum)));
   // within the limit: (q + a)^9 = Σ C(9, k) q^k a^(9-k), V' = 9 (q + a)^8 at q = 0.3
   const System sys(spec_with("(q + a)^9"));
   Eigen::VectorXd q_ddot, lambda;

@@ -52,10 +52,11 @@ inline constexpr double kMaxExactPowerBits = 4'194'304;
 /// minutes, and 6,562 terms of (a + pi)^6561 take 10 s to derive (1,000 take 0.4 s).
 /// Estimated from the parsed expression before anything is expanded.
 inline constexpr double kMaxExpandedTerms = 1'000;
-/// Most symbols, numbers and operations the expanded expression may hold, written out as a
+/// Most symbols, numbers and operations that multiplying out may create, written out as a
 /// tree: (a + (a + pi)^((a + pi)^626)·pi)^626 has 627 terms, each holding a 627-term exponent
 /// (about 10^5.9 in all), which took minutes to derive and print. Ten per term of
-/// kMaxExpandedTerms' thousand. Estimated with kMaxExpandedTerms, before anything is expanded.
+/// kMaxExpandedTerms' thousand; a long sum as written is not counted. Estimated with
+/// kMaxExpandedTerms, before anything is expanded.
 inline constexpr double kMaxExpandedNodes = 10'000;
 
 /// Three expressions: a vector of the world or a body frame (gravity, a COM). Implicit from a
