@@ -205,13 +205,6 @@ void BM_Sweep_modelRun(benchmark::State& st, const char* text) {
   }
 }
 
-// The serial work per run of a sweep: the time the symbolic core's lock (the one lock a run could
-// wait for) was held, per run, beyond what the prototype (derivation, mesh read) took: a sweep of
-// `2·count` runs against one of `count`, on 2 threads. Counter "serial_us" (µs per run) and
-// "entries" (symbolic-core entries per run); the Amdahl bound at P cores is
-// 1 / (s + (1 − s)/P) with s = serial / (serial + parallel per run).
-// `axis` is a grid axis without its count ("L=0.5:2:"), or with `sample` a distribution
-// ("L=uniform(0.5,2)": a Monte Carlo sweep of 16 and 32 draws).
 // The measurement of BM_Sweep_serialPerRun: a sweep `large` of 16 runs more than `small`.
 void serial_per_run(benchmark::State& st, const rigid::scene::SweepIdentity& small,
                     const rigid::scene::SweepIdentity& large) {
@@ -234,6 +227,13 @@ void serial_per_run(benchmark::State& st, const rigid::scene::SweepIdentity& sma
   st.counters["entries"] = entries / runs;
 }
 
+// The serial work per run of a sweep: the time the symbolic core's lock (the one lock a run could
+// wait for) was held, per run, beyond what the prototype (derivation, mesh read) took: a sweep of
+// `2·count` runs against one of `count`, on 2 threads. Counter "serial_us" (µs per run) and
+// "entries" (symbolic-core entries per run); the Amdahl bound at P cores is
+// 1 / (s + (1 − s)/P) with s = serial / (serial + parallel per run).
+// `axis` is a grid axis without its count ("L=0.5:2:"), or with `sample` a distribution
+// ("L=uniform(0.5,2)": a Monte Carlo sweep of 16 and 32 draws).
 void BM_Sweep_serialPerRun(benchmark::State& st, const char* name, const char* text, const char* axis,
                            bool sample = false) {
   write_sphere_once();
