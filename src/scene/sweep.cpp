@@ -695,6 +695,8 @@ std::vector<SweepRow> run_sweep(const SweepIdentity& id, const RunIndexSource& n
       }
     } catch (const Error& e) {
       fail(row, e.what());
+    } catch (const std::bad_alloc&) {
+      fail(row, kOutOfMemory);
     }
   };
   auto run_alone = [&](SweepRow& row, const Model& model) {
