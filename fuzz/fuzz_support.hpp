@@ -40,12 +40,11 @@ inline constexpr std::string_view kRawLibraryText[] = {
 /// punctuation, which the message may have added).
 inline void check_refusal(const rigid::Error& e, std::string_view input) {
   const std::string_view what = e.what();
-  // a quoted stretch of the input followed by the message's own punctuation can spell a raw
+  // A quoted stretch of the input followed by the message's own punctuation can spell a raw
   // text ("<basic_string:" + ": it is cut short"), so the input need only hold the text
-  // without its trailing ':', ' ', '(' and ')'
-  // Messages quote the input escaped (rigid::escaped), and an escape can spell the start of a
-  // raw text: the byte 0xba before "d_variant_access" reads "\xbad_variant_access", so the
-  // escaped input is searched as well.
+  // without its trailing ':', ' ', '(' and ')'. Messages quote the input escaped
+  // (rigid::escaped), and an escape can spell the start of a raw text (the byte 0xba before
+  // "d_variant_access" reads "\xbad_variant_access"), so the escaped input is searched too.
   const std::string escaped_input = rigid::escaped(input);
   const auto raw = [&](std::string_view text) {
     const std::string_view core = text.substr(0, text.find_last_not_of(":() ") + 1);
