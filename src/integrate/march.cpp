@@ -75,11 +75,15 @@ std::size_t TimeGrid::steps_in(std::size_t k, double h_max, std::size_t max_step
   return static_cast<std::size_t>(n);
 }
 
-void throw_nonfinite(const NonFinite& bad, std::size_t step, double t, double h) {
+std::string nonfinite_message(const NonFinite& bad, std::size_t step, double t, double h) {
   const std::string who = bad.owner.empty() ? bad.component : bad.owner + " " + bad.component;
-  throw Error(fmt::format("non-finite state at step {}, t = {} s: {} = {}; the motion diverged: "
-                          "reduce the step (h = {} s) or check the model",
-                          step, t, who, bad.value, h));
+  return fmt::format("non-finite state at step {}, t = {} s: {} = {}; the motion diverged: "
+                     "reduce the step (h = {} s) or check the model",
+                     step, t, who, bad.value, h);
+}
+
+void throw_nonfinite(const NonFinite& bad, std::size_t step, double t, double h) {
+  throw Error(nonfinite_message(bad, step, t, h));
 }
 
 void throw_in_step(const Error& e, std::size_t step, double t) {

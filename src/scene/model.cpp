@@ -1467,15 +1467,6 @@ bool Model::batches(const RunOptions& options) const {
 
 namespace {
 
-// The message of integrate::throw_nonfinite, for a batched run that diverged alone.
-std::string nonfinite_message(const integrate::NonFinite& bad, std::size_t step, double t, double h) {
-  try {
-    integrate::throw_nonfinite(bad, step, t, h);
-  } catch (const Error& e) {
-    return e.what();
-  }
-}
-
 // Thrown inside a batch's march when every run of it has failed: nothing is left to step.
 struct BatchEmpty {};
 
@@ -1483,10 +1474,20 @@ struct BatchEmpty {};
 
 std::vector<Model::BatchedRun> Model::run_batch(std::span<const Model* const> models, const RunOptions& options) {
   std::vector<BatchedRun> out(models.size());
-  const bool together = models.size() > 1 && std::all_of(models.begin(), models.end(), [&](const Model* m) {
-    if (!m->batches(options)) return false;
-    const Method a = m->impl_->parse_method(options.integrator), b = models[0]->impl_->parse_method(options.integrator);
-    return a.name == b.name && a.free == b.free && m->impl_->batches_with(*models[0]->impl_, a, options);
+  // together when every model's method is the first's and batches with it (an unknown
+  // integrator: one by one, where each run refuses it)
+  const auto method_of = [&](const Model* m) -> std::optional<Method> {
+    try {
+      return m->impl_->parse_method(options.integrator);
+    } catch (const Error&) {
+      return std::nullopt;
+    }
+  };
+  const std::optional<Method> common = models.empty() ? std::nullopt : method_of(models[0]);
+  const bool together = models.size() > 1 && common && std::all_of(models.begin(), models.end(), [&](const Model* m) {
+    const std::optional<Method> a = method_of(m);
+    return a && a->name == common->name && a->free == common->free &&
+           m->impl_->batches_with(*models[0]->impl_, *a, options);
   });
   if (!together) {
     for (std::size_t i = 0; i < models.size(); ++i) {
@@ -1502,7 +1503,7 @@ std::vector<Model::BatchedRun> Model::run_batch(std::span<const Model* const> mo
   }
 
   const Impl& first = *models[0]->impl_;
-  const Method method = first.parse_method(options.integrator);
+  const Method& method = *common;
   // each run's own start, as run() makes it: the memory and step budget
   std::vector<std::unique_ptr<Impl::FreeRun>> runs(models.size());
   std::vector<Impl::FreeRun*> active;
@@ -1581,7 +1582,7 @@ std::vector<Model::BatchedRun> Model::run_batch(std::span<const Model* const> mo
     ++steps;
     for (Impl::FreeRun* run : active) {
       if (auto bad = run->find_nonfinite()) [[unlikely]] {
-        run->error = nonfinite_message(*bad, steps, v.t1, last_h);
+        run->error = integrate::nonfinite_message(*bad, steps, v.t1, last_h);
         left.push_back(run);
       } else if (run->with_metrics) {
         try {

@@ -294,21 +294,7 @@ def test_seeds_and_counts_are_whole_numbers_in_range(rigid_exe, tmp_path, option
 # A finite state whose energy overflows (a body falling in g = 1e307 reaches v ~ 1e307, and
 # ½ m v² is beyond the double range) printed energy_final = -nan with exit 0. Such a run is
 # refused alike by run, Python and a sweep (whose other runs go on, batched or not).
-FALLING = """\
-gravity = [0, 0, "-g"]
-[parameters]
-g = 9.81
-[[bodies]]
-name = "b"
-free = true
-primitive = "box"
-size = [1, 2, 3]
-mass = 1
-angular_velocity = [0.3, 1, 0.1]
-[simulation]
-t_end = 2.0
-output_dt = 0.1
-"""
+FALLING = 'gravity = [0, 0, "-g"]\n[parameters]\ng = 9.81\n' + FREE_BODY.format(t_end=2.0, dt=1e-3, output_dt=0.1)
 
 
 def test_an_output_that_overflows_from_a_finite_state_is_refused(run, tmp_path):

@@ -123,6 +123,10 @@ struct MarchStats {
   std::size_t steps = 0;
 };
 
+/// The message of throw_nonfinite, for a caller that records it instead of throwing (a run
+/// that leaves a batch of runs marched together).
+[[nodiscard]] std::string nonfinite_message(const NonFinite& bad, std::size_t step, double t, double h);
+
 /// Throws the one error of a diverged state: "non-finite state at step N, t = … s: <owner>
 /// <component> = <value>; the motion diverged: reduce the step (h = … s) or check the model".
 [[noreturn]] void throw_nonfinite(const NonFinite& bad, std::size_t step, double t, double h);
