@@ -5,6 +5,7 @@
 #include "detail/canonical.hpp"
 
 #include <algorithm>
+#include <optional>
 #include <sstream>
 #include <unordered_map>
 #include <utility>
@@ -33,15 +34,11 @@ std::string SymbolOrder::code(const symbol& s) const {
 }
 
 const std::string* SymbolOrder::find_printed(const ex& f, bool latex) const {
-  const auto [lo, hi] = printed_[latex ? 1 : 0].equal_range(f.gethash());
-  for (auto it = lo; it != hi; ++it) {
-    if (it->second.first.is_equal(f)) return &it->second.second;
-  }
-  return nullptr;
+  return printed_[latex ? 1 : 0].find(f);
 }
 
 void SymbolOrder::remember_printed(const ex& f, bool latex, std::string text) const {
-  printed_[latex ? 1 : 0].emplace(f.gethash(), std::make_pair(f, std::move(text)));
+  printed_[latex ? 1 : 0].remember(f, std::move(text));
 }
 
 bool SymbolOrder::is_dynamic(const symbol& s) const {
@@ -58,42 +55,73 @@ std::string constant_name(const ex& e) {
   return os.str();
 }
 
-bool has_dynamic(const ex& e, const SymbolOrder& order) {
-  if (is_a<symbol>(e)) return order.is_dynamic(GiNaC::ex_to<symbol>(e));
-  for (std::size_t i = 0; i < e.nops(); ++i) {
-    if (has_dynamic(e.op(i), order)) return true;
+// counts add up to at most this (a code repeated more often in a key sorts as if it were
+// repeated this often; no printed equation holds a symbol this often in one term)
+constexpr double kMaxCodeCount = 1024;
+
+void add_counts(std::map<std::string, double>& to, const std::map<std::string, double>& from, double times) {
+  for (const auto& [code, n] : from) {
+    double& c = to[code];
+    c = std::min(c + n * times, kMaxCodeCount);
   }
-  return false;
 }
 
-// the symbols' codes in e, a power's base repeated by its (small) integer exponent
-void collect_codes(const ex& e, const SymbolOrder& order, int repeat, std::vector<std::string>& dynamic,
-                   std::vector<std::string>& rest) {
+}  // namespace
+
+const SymbolCodes& SymbolOrder::codes_of(const ex& e) const {
+  if (const SymbolCodes* known = codes_.find(e)) return *known;
+  SymbolCodes out;
   if (is_a<symbol>(e)) {
     const symbol& s = GiNaC::ex_to<symbol>(e);
-    auto& out = order.is_dynamic(s) ? dynamic : rest;
-    for (int k = 0; k < repeat; ++k) out.push_back(order.code(s));
-    return;
-  }
-  if (is_a<numeric>(e)) return;
-  if (is_a<GiNaC::constant>(e)) {
-    rest.push_back("5" + constant_name(e));
-    return;
-  }
-  if (is_a<GiNaC::power>(e) && is_a<numeric>(e.op(1))) {
+    (is_dynamic(s) ? out.dynamic : out.rest)[code(s)] = 1;
+  } else if (is_a<GiNaC::constant>(e)) {
+    out.constants["5" + constant_name(e)] = 1;
+  } else if (is_a<GiNaC::power>(e) && is_a<numeric>(e.op(1))) {
+    // the base repeated by its (small) integer exponent
     const numeric& p = GiNaC::ex_to<numeric>(e.op(1));
-    const int n = p.is_pos_integer() && p <= 4 ? static_cast<int>(p.to_long()) : 1;
-    collect_codes(e.op(0), order, repeat * n, dynamic, rest);
-    return;
+    const double n = p.is_pos_integer() && p <= 4 ? static_cast<double>(p.to_long()) : 1;
+    const SymbolCodes& base = codes_of(e.op(0));
+    add_counts(out.dynamic, base.dynamic, n);
+    add_counts(out.rest, base.rest, n);
+    add_counts(out.constants, base.constants, 1);
+  } else if (!is_a<numeric>(e)) {
+    for (std::size_t i = 0; i < e.nops(); ++i) {
+      const SymbolCodes& part = codes_of(e.op(i));
+      add_counts(out.dynamic, part.dynamic, 1);
+      add_counts(out.rest, part.rest, 1);
+      add_counts(out.constants, part.constants, 1);
+    }
   }
-  for (std::size_t i = 0; i < e.nops(); ++i) collect_codes(e.op(i), order, repeat, dynamic, rest);
+  return codes_.remember(e, std::move(out));
 }
 
-void collect_term_codes(const Term& t, const SymbolOrder& order, std::vector<std::string>& dynamic,
-                        std::vector<std::string>& rest) {
-  for (const ex& f : t.factors) collect_codes(f, order, 1, dynamic, rest);
+bool SymbolOrder::has_dynamic(const ex& e) const {
+  if (is_a<symbol>(e)) return is_dynamic(GiNaC::ex_to<symbol>(e));
+  if (e.nops() == 0) return false;
+  if (const bool* known = dynamic_.find(e)) return *known;
+  bool found = false;
+  for (std::size_t i = 0; i < e.nops() && !found; ++i) found = has_dynamic(e.op(i));
+  return dynamic_.remember(e, found);
+}
+
+namespace {
+
+void collect_term_codes(const Term& t, const SymbolOrder& order, SymbolCodes& out) {
+  for (const ex& f : t.factors) {
+    const SymbolCodes& c = order.codes_of(f);
+    add_counts(out.dynamic, c.dynamic, 1);
+    add_counts(out.rest, c.rest, 1);
+    add_counts(out.constants, c.constants, 1);
+  }
   for (const Sum& s : t.sums) {
-    for (const Term& u : s.terms) collect_term_codes(u, order, dynamic, rest);
+    for (const Term& u : s.terms) collect_term_codes(u, order, out);
+  }
+}
+
+// each code followed by \x02, as often as it occurs, in byte order
+void append_codes(std::string& key, const std::map<std::string, double>& counts) {
+  for (const auto& [code, n] : counts) {
+    for (double k = 0; k < n; ++k) key += code + '\x02';
   }
 }
 
@@ -101,15 +129,14 @@ void collect_term_codes(const Term& t, const SymbolOrder& order, std::vector<std
 // multipliers; t), then the other symbols (parameters in declaration order); a term without
 // dynamic atoms sorts after all that have some
 std::string term_key(const Term& t, const SymbolOrder& order) {
-  std::vector<std::string> dynamic, rest;
-  collect_term_codes(t, order, dynamic, rest);
-  std::sort(dynamic.begin(), dynamic.end());
-  std::sort(rest.begin(), rest.end());
-  std::string key = dynamic.empty() ? std::string("\x7f") : std::string();
-  for (const auto& c : dynamic) key += c + '\x02';
+  SymbolCodes codes;
+  collect_term_codes(t, order, codes);
+  for (const auto& [code, n] : codes.constants) codes.rest[code] += n;  // "5…": after the symbols
+  std::string key = codes.dynamic.empty() ? std::string("\x7f") : std::string();
+  append_codes(key, codes.dynamic);
   key += '\x01';
-  for (const auto& c : rest) key += c + '\x02';
-  if (rest.empty()) key += '\x7f';  // numbers after parameters
+  append_codes(key, codes.rest);
+  if (codes.rest.empty()) key += '\x7f';  // numbers after parameters
   return key;
 }
 
@@ -117,11 +144,11 @@ std::string term_key(const Term& t, const SymbolOrder& order) {
 // functions, dynamic symbols, then anything else
 std::string factor_key(const ex& f, const SymbolOrder& order) {
   const ex base = is_a<GiNaC::power>(f) ? f.op(0) : f;
-  std::vector<std::string> dynamic, rest;
-  collect_codes(base, order, 1, dynamic, rest);
+  const SymbolCodes& counts = order.codes_of(base);
   std::string codes;
-  for (const auto& c : dynamic) codes += c + '\x02';
-  for (const auto& c : rest) codes += c + '\x02';
+  append_codes(codes, counts.dynamic);
+  append_codes(codes, counts.rest);
+  append_codes(codes, counts.constants);
   if (is_a<numeric>(base)) return "0";
   if (is_a<GiNaC::constant>(base)) return "1" + codes;
   if (is_a<symbol>(base)) {
@@ -199,6 +226,7 @@ std::string join(const std::vector<std::string>& parts, const char* sep) {
 }
 
 std::string print_atom(const ex& e, const SymbolOrder& order, bool latex);
+std::string print_compound(const ex& e, const SymbolOrder& order, bool latex);
 
 // a power's base: atoms as they are, anything else in parentheses
 std::string print_base(const ex& b, const SymbolOrder& order, bool latex) {
@@ -256,6 +284,14 @@ std::string print_atom(const ex& e, const SymbolOrder& order, bool latex) {
     const std::string n = constant_name(e);
     return latex && n == "Pi" ? "\\pi" : (n == "Pi" ? "pi" : n);
   }
+  // everything else once per distinct subexpression (SymbolOrder's memo)
+  if (const std::string* known = order.find_printed(e, latex)) return *known;
+  std::string out = print_compound(e, order, latex);
+  order.remember_printed(e, latex, out);
+  return out;
+}
+
+std::string print_compound(const ex& e, const SymbolOrder& order, bool latex) {
   if (is_a<GiNaC::power>(e)) {
     const ex p = e.op(1);
     if (is_a<numeric>(p) && GiNaC::ex_to<numeric>(p).is_negative()) {
@@ -264,7 +300,6 @@ std::string print_atom(const ex& e, const SymbolOrder& order, bool latex) {
     return print_power(e.op(0), p, order, latex);
   }
   if (is_a<GiNaC::function>(e)) {
-    if (const std::string* known = order.find_printed(e, latex)) return *known;
     const std::string name = GiNaC::ex_to<GiNaC::function>(e).get_name();
     std::vector<std::string> args;
     for (std::size_t i = 0; i < e.nops(); ++i) args.push_back(print(plain(e.op(i), order), order, latex));
@@ -278,7 +313,6 @@ std::string print_atom(const ex& e, const SymbolOrder& order, bool latex) {
     } else {
       out = function_latex(name) + "(" + join(args, ", ") + ")";
     }
-    order.remember_printed(e, latex, out);
     return out;
   }
   return print(plain(e, order), order, latex);
@@ -456,37 +490,35 @@ void sum_to_product(exvector& terms, const SymbolOrder& order) {
 }
 
 // cosⁿ(a) → cos^(n mod 2)(a) (1 − sin²a)^(n/2) for one argument a
-struct CosToSin : GiNaC::map_function {
-  ex arg;
-  explicit CosToSin(ex a) : arg(std::move(a)) {}
-  ex operator()(const ex& e) override {
-    if (is_a<GiNaC::power>(e) && is_named(e.op(0), "cos") && e.op(0).op(0).is_equal(arg) &&
-        is_a<numeric>(e.op(1)) && GiNaC::ex_to<numeric>(e.op(1)).is_integer()) {
-      const long n = GiNaC::ex_to<numeric>(e.op(1)).to_long();
-      if (n >= 2) return GiNaC::pow(GiNaC::cos(arg), n % 2) * GiNaC::pow(1 - GiNaC::pow(GiNaC::sin(arg), 2), n / 2);
-    }
-    return e.map(*this);
+std::optional<ex> cos_power_to_sines(const ex& e, const ex& arg) {
+  if (is_a<GiNaC::power>(e) && is_named(e.op(0), "cos") && e.op(0).op(0).is_equal(arg) &&
+      is_a<numeric>(e.op(1)) && GiNaC::ex_to<numeric>(e.op(1)).is_integer()) {
+    const long n = GiNaC::ex_to<numeric>(e.op(1)).to_long();
+    if (n >= 2) return GiNaC::pow(GiNaC::cos(arg), n % 2) * GiNaC::pow(1 - GiNaC::pow(GiNaC::sin(arg), 2), n / 2);
   }
-};
+  return std::nullopt;
+}
 
-// the arguments a of every cosⁿ(a), n ≥ 2, in e
-void squared_cosines(const ex& e, exvector& out) {
+// the arguments a of every cosⁿ(a), n ≥ 2, in e (each distinct subexpression visited once)
+void squared_cosines(const ex& e, exvector& out, ExMemo<bool>& seen) {
+  if (e.nops() == 0 || seen.find(e)) return;
+  seen.remember(e, true);
   if (is_a<GiNaC::power>(e) && is_named(e.op(0), "cos") && is_a<numeric>(e.op(1)) &&
       GiNaC::ex_to<numeric>(e.op(1)).is_integer() && GiNaC::ex_to<numeric>(e.op(1)) >= 2) {
     const ex a = e.op(0).op(0);
     if (std::none_of(out.begin(), out.end(), [&](const ex& x) { return x.is_equal(a); })) out.push_back(a);
   }
-  for (std::size_t i = 0; i < e.nops(); ++i) squared_cosines(e.op(i), out);
+  for (std::size_t i = 0; i < e.nops(); ++i) squared_cosines(e.op(i), out, seen);
 }
 
 // the sin² + cos² = 1 form with fewer terms, argument by argument (in canonical order)
 ex fewer_terms(ex e, const SymbolOrder& order) {
   exvector args;
-  squared_cosines(e, args);
+  ExMemo<bool> seen;
+  squared_cosines(e, args, seen);
   sort_canonically(args, order);
   for (const ex& a : args) {
-    CosToSin flip(a);
-    const ex candidate = flip(e).expand();
+    const ex candidate = rewrite(e, [&](const ex& x) { return cos_power_to_sines(x, a); }).expand();
     if (operands(candidate).size() < operands(e).size()) e = candidate;
   }
   return e;
@@ -631,7 +663,7 @@ Sum textbook(const ex& e, const SymbolOrder& order) {
     for (const ex& f : factors_of(term)) {
       if (is_a<numeric>(f)) {
         m.coef *= GiNaC::ex_to<numeric>(f);
-      } else if (has_dynamic(f, order)) {
+      } else if (order.has_dynamic(f)) {
         dynamic *= f;
       } else if (is_a<GiNaC::power>(f) && is_a<numeric>(f.op(1))) {
         m.powers.push_back({f.op(0), GiNaC::ex_to<numeric>(f.op(1))});

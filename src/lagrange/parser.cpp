@@ -398,18 +398,25 @@ ExpandedTerms expanded_terms(const GiNaC::ex& e, ExpandedMemo& memo) {
   } else if (GiNaC::is_a<GiNaC::mul>(e)) {
     int sums = 0;
     double term_size = 0;  // log10 of a product term's size: Σ of each factor's average term
+    double written = 0;    // log10 of the factors' own sizes, side by side
     bool first = true;
     for (const GiNaC::ex& op : e) {
       const ExpandedTerms t = expanded_terms(op, memo);
       part(t);
       out.result += t.result;
       term_size = first ? t.size - t.result : log_sum(term_size, t.size - t.result);
+      written = first ? t.size : log_sum(written, t.size);
       first = false;
       if (t.result > 0) ++sums;
     }
     out.size = out.result + term_size;
     if (sums >= 2) {
       out.worst = std::max(out.worst, out.result);
+      out.worst_size = std::max(out.worst_size, out.size);
+    } else if (sums == 1 && out.size > written + 1) {
+      // one sum times a long product: each term holds the product (a derivative's chain rule
+      // makes these); counted where it multiplies the written size by ten or more, so that a
+      // long sum times a short factor still counts as written
       out.worst_size = std::max(out.worst_size, out.size);
     }
   } else if (GiNaC::is_a<GiNaC::power>(e)) {
@@ -434,6 +441,11 @@ ExpandedTerms expanded_terms(const GiNaC::ex& e, ExpandedMemo& memo) {
       out.size = out.result + std::log10(std::min(n, t)) + (base.size - base.result);
       out.worst = std::max(out.worst, out.result);
       out.worst_size = std::max(out.worst_size, out.size);
+    } else if (exponent.result > 0 && !GiNaC::is_a<GiNaC::numeric>(p)) {
+      // b^(x + y + …) = b^x · b^y · …: a product of as many powers as the exponent has terms,
+      // each holding the base
+      out.size = exponent.result + log_sum(base.size, exponent.size - exponent.result);
+      out.worst_size = std::max(out.worst_size, out.size);
     }
   } else {
     for (const GiNaC::ex& op : e) {
@@ -447,6 +459,12 @@ ExpandedTerms expanded_terms(const GiNaC::ex& e, ExpandedMemo& memo) {
 }
 
 }  // namespace
+
+double expanded_size_log10(const GiNaC::ex& e) {
+  ExpandedMemo memo;
+  const ExpandedTerms expanded = expanded_terms(e, memo);
+  return std::max(expanded.worst_size, expanded.size);
+}
 
 GiNaC::ex parse_expression(const Expression& expression,
                            const std::map<std::string, GiNaC::ex>& names,

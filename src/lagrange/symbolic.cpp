@@ -25,22 +25,47 @@ namespace {
 
 // sinⁿx → sin^(n mod 2)x · (1 − cos²x)^(n/2) for n ≥ 2, so that expand() cancels the
 // sin² + cos² pairs that |ċ|² and ωᵀIω produce
-struct ReduceSines : GiNaC::map_function {
-  ex operator()(const ex& e) override {
-    if (GiNaC::is_a<GiNaC::power>(e) && GiNaC::is_a<GiNaC::function>(e.op(0)) &&
-        GiNaC::ex_to<GiNaC::function>(e.op(0)).get_name() == "sin" &&
-        GiNaC::is_a<GiNaC::numeric>(e.op(1)) && GiNaC::ex_to<GiNaC::numeric>(e.op(1)).is_integer()) {
-      const long n = GiNaC::ex_to<GiNaC::numeric>(e.op(1)).to_long();
-      if (n >= 2) {
-        const ex x = e.op(0).op(0);
-        return GiNaC::pow(GiNaC::sin(x), n % 2) * GiNaC::pow(1 - GiNaC::pow(GiNaC::cos(x), 2), n / 2);
-      }
+std::optional<ex> reduce_sine_power(const ex& e) {
+  if (GiNaC::is_a<GiNaC::power>(e) && GiNaC::is_a<GiNaC::function>(e.op(0)) &&
+      GiNaC::ex_to<GiNaC::function>(e.op(0)).get_name() == "sin" &&
+      GiNaC::is_a<GiNaC::numeric>(e.op(1)) && GiNaC::ex_to<GiNaC::numeric>(e.op(1)).is_integer()) {
+    const long n = GiNaC::ex_to<GiNaC::numeric>(e.op(1)).to_long();
+    if (n >= 2) {
+      const ex x = e.op(0).op(0);
+      return GiNaC::pow(GiNaC::sin(x), n % 2) * GiNaC::pow(1 - GiNaC::pow(GiNaC::cos(x), 2), n / 2);
     }
-    return e.map(*this);
   }
+  return std::nullopt;
+}
+
+// rewrite()'s walk: GiNaC's map() rebuilds a node from its operands, each passed through here
+class GraphRewrite : public GiNaC::map_function {
+ public:
+  explicit GraphRewrite(const Rewrite& rule) : rule_(rule) {}
+  ex operator()(const ex& e) override {
+    if (e.nops() == 0) return rule_(e).value_or(e);
+    // a node kept as it is comes back as the very object passed in (an operand of a product or
+    // a sum is made anew by each op() call: equal, but another object)
+    if (const std::optional<ex>* known = memo_.find(e)) return known->value_or(e);
+    std::optional<ex> out = rule_(e);
+    for (std::size_t i = 0; !out && i < e.nops(); ++i) {
+      const ex op = e.op(i);
+      if (!GiNaC::are_ex_trivially_equal((*this)(op), op)) out = e.map(*this);  // operands remembered now
+    }
+    return memo_.remember(e, std::move(out)).value_or(e);
+  }
+
+ private:
+  const Rewrite& rule_;
+  ExMemo<std::optional<ex>> memo_;  // the replacement, or nothing where the node is kept
 };
 
 }  // namespace
+
+ex rewrite(const ex& e, const Rewrite& rule) {
+  GraphRewrite walk(rule);
+  return walk(e);
+}
 
 bool is_identifier(const std::string& s) {
   if (s.empty() || !(std::isalpha(static_cast<unsigned char>(s[0])) || s[0] == '_')) return false;
@@ -128,17 +153,22 @@ ex d(const ex& e, const symbol& x) {
 }
 
 ex simplify(const ex& e) {
-  ReduceSines reduce;
   const ex expanded = e.expand();
-  // map() hands back the same object when no sine power was found: no second expansion then
-  const ex reduced = reduce(expanded);
+  // rewrite() hands back the same object when no sine power was found: no second expansion then
+  const ex reduced = rewrite(expanded, reduce_sine_power);
   return GiNaC::are_ex_trivially_equal(reduced, expanded) ? expanded : reduced.expand();
 }
 
 // the canonical printer (canonical.hpp) with symbols ranked by name: the same bytes on every
 // run, which GiNaC's own printer does not give
-std::string to_text(const ex& e) { return print(plain(e, SymbolOrder{}), SymbolOrder{}, false); }
-std::string to_latex(const ex& e) { return print(plain(e, SymbolOrder{}), SymbolOrder{}, true); }
+std::string to_text(const ex& e) {
+  const SymbolOrder order;
+  return print(plain(e, order), order, false);
+}
+std::string to_latex(const ex& e) {
+  const SymbolOrder order;
+  return print(plain(e, order), order, true);
+}
 
 // a double as the exact rational of its shortest round-trip decimal (0.7 → 7/10), so that
 // printed equations show 7/10 rather than 0.6999999999999999556 and products stay exact

@@ -658,6 +658,20 @@ std::vector<bool> derive_generalized_forces(System::Impl& s, const SystemSpec& s
   return forced;
 }
 
+// Refuses a derived quantity whose expanded form would exceed kMaxEquationNodes, estimated
+// before anything is expanded: the derivatives of an accepted L can still multiply out far
+// beyond it (the chain rule through a power whose exponent is a long sum makes every term of
+// one factor hold all of another).
+void refuse_beyond_expansion_limit(const ex& e, const std::string& what) {
+  const double size = detail::expanded_size_log10(e);
+  if (size <= std::log10(kMaxEquationNodes)) return;
+  rigid::detail::throw_error(
+      "System", fmt::format("{} multiplies out to about 10^{:.3g} symbols and operations (products of long "
+                            "sums in the derivatives of the Lagrangian); at most {:.0f} are allowed, "
+                            "since the equations are derived, compiled and printed expanded",
+                            what, size, kMaxEquationNodes));
+}
+
 // Euler–Lagrange: p = ∂L/∂q̇, M = ∂p/∂q̇, f = ∂L/∂q − (∂p/∂q) q̇ − ∂p/∂t + Q, and the
 // Jacobi integral h = q̇ᵀ p − L; refuses a singular M.
 void derive_euler_lagrange(System::Impl& s) {
@@ -667,7 +681,11 @@ void derive_euler_lagrange(System::Impl& s) {
   s.f.resize(n);
   for (std::size_t i = 0; i < n; ++i) s.p[i] = d(s.L, s.qd[i]);
   for (std::size_t i = 0; i < n; ++i) {
-    for (std::size_t j = 0; j < n; ++j) s.M[i * n + j] = d(s.p[i], s.qd[j]);
+    for (std::size_t j = 0; j < n; ++j) {
+      s.M[i * n + j] = d(s.p[i], s.qd[j]);
+      refuse_beyond_expansion_limit(s.M[i * n + j], fmt::format("the mass matrix entry ('{}', '{}')",
+                                                                 s.coord_names[i], s.coord_names[j]));
+    }
     if (s.M[i * n + i].expand().is_zero()) {
       rigid::detail::throw_error("System", fmt::format("the Lagrangian is not quadratic in the velocity '{}_dot' (∂²L/∂{}_dot² ≡ 0), "
                   "so the mass matrix is singular; L = {}", s.coord_names[i], s.coord_names[i],
@@ -675,6 +693,7 @@ void derive_euler_lagrange(System::Impl& s) {
     }
     ex fi = d(s.L, s.q[i]) - d(s.p[i], s.t) + s.Q[i];
     for (std::size_t j = 0; j < n; ++j) fi -= d(s.p[i], s.q[j]) * s.qd[j];
+    refuse_beyond_expansion_limit(fi, fmt::format("the equation of motion of '{}'", s.coord_names[i]));
     s.f[i] = fi.expand();
   }
   s.h = 0;

@@ -1,6 +1,7 @@
 #include "lagrange/detail/canonical.hpp"
 
 #include <cmath>
+#include <optional>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -11,6 +12,7 @@ namespace rigid::lagrange::detail {
 namespace {
 
 using GiNaC::cos;
+using GiNaC::is_a;
 using GiNaC::ex;
 using GiNaC::pow;
 using GiNaC::sin;
@@ -81,6 +83,42 @@ TEST(CanonicalPrinter, SameBytesWhateverTheConstructionOrder) {
   EXPECT_EQ(print(plain(a, s.order), s.order, true), print(plain(b, s.order), s.order, true));
 }
 
+TEST(CanonicalPrinter, FactorOrderDoesNotFollowGiNaCsOperandOrder) {
+  // the symbols made in the opposite order: GiNaC then holds theta1 + theta2 as theta2 +
+  // theta1, and a factor's key spelled its symbols in that order (cos(theta1) came before
+  // sin(theta1 + theta2) with one order of creation and after it with the other)
+  struct Reversed {
+    symbol l1{"l1"}, th2{"theta2"}, th1{"theta1"};
+    SymbolOrder order;
+    Reversed() {
+      order.add(th1, SymbolOrder::kCoordinate, 0, 0);
+      order.add(th2, SymbolOrder::kCoordinate, 1, 0);
+      order.add(l1, SymbolOrder::kParameter, 3);
+    }
+  };
+  const Symbols s;
+  const Reversed r;
+  const std::string forward = s.as_is(s.l1 * cos(s.th1) * sin(s.th1 + s.th2));
+  EXPECT_EQ(r.order.code(r.th1), s.order.code(s.th1));
+  EXPECT_EQ(print(plain(r.l1 * cos(r.th1) * sin(r.th1 + r.th2), r.order), r.order, false), forward);
+  EXPECT_EQ(print(plain(r.l1 * sin(r.th2 + r.th1) * cos(r.th1), r.order), r.order, false), forward);
+}
+
+TEST(CanonicalPrinter, SharedSubexpressionsPrintOnceAndAsATree) {
+  // X shared 2^12 times over (each level uses the one below twice): GiNaC holds 13 nodes; the
+  // text holds X's tree written out, and the printer visits each distinct node once
+  const Symbols s;
+  ex x = s.th1 + s.l1;
+  for (int level = 0; level < 12; ++level) x = sin(x) + pow(x, 3);
+  const std::string text = s.as_is(x);
+  std::size_t thetas = 0;
+  for (std::size_t at = text.find("theta1"); at != std::string::npos; at = text.find("theta1", at + 1)) ++thetas;
+  EXPECT_EQ(thetas, std::size_t{1} << 12);
+  std::size_t cubes = 0;
+  for (std::size_t at = text.find(")^3"); at != std::string::npos; at = text.find(")^3", at + 1)) ++cubes;
+  EXPECT_EQ(cubes, (std::size_t{1} << 12) - 1);
+}
+
 TEST(TextbookSimplification, SumToProduct) {
   const Symbols s;
   const ex a = s.th1, b = s.th2;
@@ -126,13 +164,42 @@ TEST(TextbookSimplification, EqualsTheInputIdentically) {
       s.m2 * s.l1 * s.l2 * pow(s.th2d, 2) * (cos(s.th1) * sin(s.th2) - sin(s.th1) * cos(s.th2)) -
           (s.m1 + s.m2) * s.g * s.l1 * sin(s.th1),
       pow(sin(s.th1), 3) * s.m1 + pow(cos(s.th1), 2) * s.m2 * sin(s.th1) + s.l1 / s.l2,
-      sin(s.th1) * cos(s.th2) * cos(s.th1 + s.th2) + cos(s.th1) * sin(s.th2) * cos(s.th1 + s.th2)};
+      sin(s.th1) * cos(s.th2) * cos(s.th1 + s.th2) + cos(s.th1) * sin(s.th2) * cos(s.th1 + s.th2),
+      // powers of sines and cosines inside a shared, nested power of a sum: the rewrites of
+      // sin² and cos² visit each distinct subexpression once and must reach every use
+      pow(pow(sin(s.th1), 2) * s.m1 + s.l1, 3) * pow(cos(s.th2), 2) +
+          pow(pow(pow(sin(s.th1), 2) * s.m1 + s.l1, 3) + pow(cos(s.th2), 3), 2) * s.th1d};
   const std::vector<symbol> vars = {s.th1, s.th2, s.th1d, s.th2d, s.g, s.m1, s.m2, s.l1, s.l2};
   for (const ex& e : inputs) {
     const ex back = to_ex(textbook(e, s.order));
     // values of order 1 (|x| ≤ 2, about ten terms): round-off below 1e-12
     EXPECT_LT(largest_difference(e, back, vars), 1e-12) << s.text(e);
   }
+}
+
+TEST(Rewrite, VisitsEachSubexpressionOnceAndReachesEveryUse) {
+  const Symbols s;
+  const ex shared = pow(sin(s.th1), 2) + s.l1;
+  const ex e = pow(shared, 5) * s.m1 + sin(shared) * cos(s.th2) + GiNaC::exp(shared);
+  int calls = 0;
+  const auto rule = [&](const ex& x) -> std::optional<ex> {
+    ++calls;
+    if (is_a<GiNaC::power>(x) && x.op(0).is_equal(sin(s.th1))) return 1 - pow(cos(s.th1), 2);
+    return std::nullopt;
+  };
+  const ex out = rewrite(e, rule);
+  // GiNaC's own subs() as the reference: the same replacement everywhere
+  EXPECT_TRUE((out - e.subs(pow(sin(s.th1), 2) == 1 - pow(cos(s.th1), 2))).expand().is_zero()) << out;
+  EXPECT_FALSE(out.has(pow(sin(s.th1), 2)));
+  // e's distinct nodes: the sum, three products or functions, the shared sum and its parts, …
+  // well below the 3 uses × the shared part's nodes a tree walk would visit at least
+  const int first = calls;
+  calls = 0;
+  (void)rewrite(pow(e, 2) + e * s.th1d + GiNaC::exp(e), rule);
+  EXPECT_LE(calls, first + 12) << first;
+  // nothing to replace: the expression itself comes back (no rebuilding)
+  const ex unchanged = rewrite(e, [](const ex&) -> std::optional<ex> { return std::nullopt; });
+  EXPECT_TRUE(GiNaC::are_ex_trivially_equal(unchanged, e));
 }
 
 TEST(NumberText, ShortRationalsOrDecimals) {

@@ -116,9 +116,32 @@ TEST(System, ExpressionsThatMultiplyOutBeyondTheLimitAreRefusedBeforeExpanding) 
   // few terms, each long (from the fuzz target, where it took minutes; a second such input is
   // fuzz/regressions/expression/nested_powers_of_sums_long_terms.txt): the 627 terms of
   // (a + X·pi)^626 each hold X = (a + pi)^E with E's 627 terms, about 10^5.9 symbols and
-  // operations
+  // operations at first, 10^6.2 counting the 627 copies of the base that (a + pi)^E multiplies
+  // out to (a power of a sum of exponents is a product of powers)
   EXPECT_RIGID_ERROR(System(spec_with("(a + (a + pi)^((a + pi)^626)*pi)^626")),
-                     "multiplies out to about 10^5.9 symbols and operations");
+                     "multiplies out to about 10^6.2 symbols and operations");
+  // accepted, but its derivative multiplies out far beyond (the fuzz target's
+  // fuzz/regressions/expression/tower_over_a_sum_to_the_626th.txt, which took minutes and
+  // gigabytes to print): by the chain rule each of the 626 terms of d/dq (q + pi)^626 holds the
+  // 627 powers that (a + pi)^((q + pi)^626) multiplies out to. The derived equation is
+  // estimated before it is expanded: 400 × 401 factors are refused, 101 × 102 derived
+  EXPECT_RIGID_ERROR(System(spec_with("626^8^(a + pi)^(q + pi)^626")),
+                     "the equation of motion of 'q' multiplies out to about 10^6.");
+  EXPECT_RIGID_ERROR(System(spec_with("(a + pi)^((q + pi)^400)")),
+                     "the equation of motion of 'q' multiplies out to about 10^6.05 symbols and "
+                     "operations (products of long sums in the derivatives of the Lagrangian); at "
+                     "most 1000000 are allowed");
+  {
+    const System within(spec_with("(a + pi)^((q + 7/10)^100)"));
+    // f = −V' = −V log(a + pi) 100 (q + 7/10)^99 = −100 (a + pi) log(a + pi) at q = 0.3: the
+    // expanded tape (101 positive terms of the exponent, 101 × 102 factors of f) against the
+    // closed form, to the rounding of a few hundred operations on values of order 1
+    Eigen::VectorXd q_ddot, lambda;
+    within.accelerations(0.0, within.initial_q(), within.initial_q_dot(), q_ddot, lambda);
+    const double b = 1.5 + M_PI;
+    EXPECT_NEAR(q_ddot(0), -100 * b * std::log(b), 1e-12 * 100 * b * std::log(b));
+    EXPECT_FALSE(within.equations().text.front().empty());
+  }
   // a long sum as written is not counted (4,000 terms of about three symbols each)
   std::string long_sum = "0";
   for (int i = 1; i <= 4000; ++i) long_sum += fmt::format(" + q*a^{}", i);

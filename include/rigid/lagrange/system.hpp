@@ -54,10 +54,17 @@ inline constexpr double kMaxExactPowerBits = 4'194'304;
 inline constexpr double kMaxExpandedTerms = 1'000;
 /// Most symbols, numbers and operations that multiplying out may create, written out as a
 /// tree: (a + (a + pi)^((a + pi)^626)·pi)^626 has 627 terms, each holding a 627-term exponent
-/// (about 10^5.9 in all), which took minutes to derive and print. Ten per term of
+/// (about 10^6.2 in all), which took minutes to derive and print. Ten per term of
 /// kMaxExpandedTerms' thousand; a long sum as written is not counted. Estimated with
 /// kMaxExpandedTerms, before anything is expanded.
 inline constexpr double kMaxExpandedNodes = 10'000;
+/// Most symbols, numbers and operations an equation of motion or a mass-matrix entry may
+/// multiply out to, estimated like kMaxExpandedNodes before it is expanded. An expression
+/// within kMaxExpandedNodes can still have derivatives far beyond it: the chain rule through
+/// 626^8^(a + pi)^(q + pi)^626 makes each of 626 terms hold a 627-factor product (about
+/// 10^6.9; it took minutes and gigabytes to print). A 7-link spatial chain derived expanded
+/// estimates about 10^5.1 (its equations print 1.3 MB).
+inline constexpr double kMaxEquationNodes = 1'000'000;
 
 /// Three expressions: a vector of the world or a body frame (gravity, a COM). Implicit from a
 /// numeric vector (each entry becomes its shortest round-trip decimal).

@@ -20,8 +20,39 @@
 
 namespace rigid::lagrange::detail {
 
+/// Values remembered per subexpression (by hash, then structural equality). The printer's walks
+/// go through a GiNaC expression as a tree, but GiNaC shares subexpressions: without a memo a
+/// part used k times is printed and keyed k times, and nested uses multiply (the equations of
+/// nested powers of sums took seconds to print 21 KB).
+template <typename V>
+class ExMemo {
+ public:
+  [[nodiscard]] const V* find(const GiNaC::ex& e) const {
+    const auto [lo, hi] = items_.equal_range(e.gethash());
+    for (auto it = lo; it != hi; ++it) {
+      if (it->second.first.is_equal(e)) return &it->second.second;
+    }
+    return nullptr;
+  }
+  const V& remember(const GiNaC::ex& e, V value) {
+    return items_.emplace(e.gethash(), std::make_pair(e, std::move(value)))->second.second;
+  }
+
+ private:
+  std::unordered_multimap<unsigned, std::pair<GiNaC::ex, V>> items_;
+};
+
+/// The symbols' codes of a subexpression as counts (code → number of occurrences, a power's
+/// base counted by its small integer exponent; GiNaC's constants once per occurrence, whatever
+/// the exponent): what orders the terms of a sum.
+struct SymbolCodes {
+  std::map<std::string, double> dynamic, rest, constants;
+};
+
 /// The rank of each named symbol in the canonical order. Unknown symbols rank after all known
-/// ones, by name.
+/// ones, by name. It also holds the printer's memos (printed text, symbol codes, whether a
+/// part depends on the dynamic symbols), valid while the order is in use; one order is used by
+/// one thread at a time.
 class SymbolOrder {
  public:
   enum Group : int { kCoordinate = 0, kMultiplier = 1, kTime = 2, kParameter = 3, kOther = 4 };
@@ -37,6 +68,10 @@ class SymbolOrder {
   /// appears in many terms.
   [[nodiscard]] const std::string* find_printed(const GiNaC::ex& f, bool latex) const;
   void remember_printed(const GiNaC::ex& f, bool latex, std::string text) const;
+  /// The codes of the symbols in e (SymbolCodes), computed once per distinct subexpression.
+  [[nodiscard]] const SymbolCodes& codes_of(const GiNaC::ex& e) const;
+  /// Whether e holds a coordinate, a derivative, a multiplier or t, once per subexpression.
+  [[nodiscard]] bool has_dynamic(const GiNaC::ex& e) const;
 
  private:
   struct Rank {
@@ -45,7 +80,9 @@ class SymbolOrder {
     std::string code;
   };
   std::map<std::string, Rank> ranks_;
-  mutable std::unordered_multimap<unsigned, std::pair<GiNaC::ex, std::string>> printed_[2];
+  mutable ExMemo<std::string> printed_[2];
+  mutable ExMemo<SymbolCodes> codes_;
+  mutable ExMemo<bool> dynamic_;
 };
 
 struct Term;

@@ -18,6 +18,11 @@ namespace rigid::lagrange::detail {
                                          const std::map<std::string, GiNaC::ex>& names,
                                          std::string_view context);
 
+/// log10 of the number of symbols, numbers and operations of e multiplied out, written as a
+/// tree (an upper estimate, from e's graph without expanding it): the larger of the result and
+/// the largest part that multiplying out creates on the way.
+[[nodiscard]] double expanded_size_log10(const GiNaC::ex& e);
+
 /// What a failure inside GiNaC or CLN (pole_error, CLN's floating-point and runtime exceptions,
 /// std::domain_error, std::bad_alloc) means for the user, as the end of a sentence whose
 /// subject is the expression ("has a pole here (…); expected a finite value"): the libraries'

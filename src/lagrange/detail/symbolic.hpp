@@ -4,6 +4,8 @@
 // simplification that cancels sin² + cos², printing, exact numbers and 3×3 rotations.
 
 #include <array>
+#include <functional>
+#include <optional>
 #include <set>
 #include <string>
 
@@ -20,6 +22,12 @@ namespace rigid::lagrange::detail {
 [[nodiscard]] std::string tex_name(const std::string& name);
 /// ∂e/∂x by the sum, product, power and chain rules (subtrees free of x are skipped).
 [[nodiscard]] GiNaC::ex d(const GiNaC::ex& e, const GiNaC::symbol& x);
+/// A node's replacement, or nothing where the node is to be kept (its operands then visited).
+using Rewrite = std::function<std::optional<GiNaC::ex>(const GiNaC::ex&)>;
+/// `rule` applied over e's graph, each distinct subexpression once; a node is rebuilt only when
+/// one of its operands changed, and e itself comes back when nothing did. GiNaC's map() walks a
+/// shared subexpression once per use and rebuilds (and re-evaluates) every node it passes.
+[[nodiscard]] GiNaC::ex rewrite(const GiNaC::ex& e, const Rewrite& rule);
 /// expand, with sinⁿx → sin^(n mod 2)x · (1 − cos²x)^(n/2) so that sin² + cos² cancels.
 [[nodiscard]] GiNaC::ex simplify(const GiNaC::ex& e);
 [[nodiscard]] std::string to_text(const GiNaC::ex& e);
