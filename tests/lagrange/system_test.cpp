@@ -132,6 +132,14 @@ TEST(System, ExpressionsThatMultiplyOutBeyondTheLimitAreRefusedBeforeExpanding) 
                      "operations (products of long sums in the derivatives of the Lagrangian); at "
                      "most 1000000 are allowed");
   {
+    // a constraint's rate and acceleration term likewise (ġ = ∂g/∂q q̇)
+    SystemSpec spec = spec_with("q^2");
+    spec.coordinates.push_back({"x", 0.0, 0.0});
+    spec.lagrangian = "q_dot^2/2 + x_dot^2/2";
+    spec.constraints = {{"tower", "x - (a + pi)^((q + pi)^400)"}};
+    EXPECT_RIGID_ERROR(System(spec), "the rate ġ of constraint 'tower' multiplies out to about 10^6.");
+  }
+  {
     const System within(spec_with("(a + pi)^((q + 7/10)^100)"));
     // f = −V' = −V log(a + pi) 100 (q + 7/10)^99 = −100 (a + pi) log(a + pi) at q = 0.3: the
     // expanded tape (101 positive terms of the exponent, 101 × 102 factors of f) against the
