@@ -68,6 +68,8 @@ class SymbolOrder {
   /// appears in many terms.
   [[nodiscard]] const std::string* find_printed(const GiNaC::ex& f, bool latex) const;
   void remember_printed(const GiNaC::ex& f, bool latex, std::string text) const;
+  /// number_text(x, latex), once per distinct number.
+  [[nodiscard]] const std::string& number_text_of(const GiNaC::numeric& x, bool latex) const;
   /// The codes of the symbols in e (SymbolCodes), computed once per distinct subexpression.
   [[nodiscard]] const SymbolCodes& codes_of(const GiNaC::ex& e) const;
   /// Whether e holds a coordinate, a derivative, a multiplier or t, once per subexpression.
@@ -81,6 +83,7 @@ class SymbolOrder {
   };
   std::map<std::string, Rank> ranks_;
   mutable ExMemo<std::string> printed_[2];
+  mutable ExMemo<std::string> numbers_[2];
   mutable ExMemo<SymbolCodes> codes_;
   mutable ExMemo<bool> dynamic_;
 };
