@@ -508,7 +508,7 @@ std::optional<ex> cos_power_to_sines(const ex& e, const ex& arg) {
   if (is_a<GiNaC::power>(e) && is_named(e.op(0), "cos") && e.op(0).op(0).is_equal(arg) &&
       is_a<numeric>(e.op(1)) && GiNaC::ex_to<numeric>(e.op(1)).is_integer()) {
     const long n = GiNaC::ex_to<numeric>(e.op(1)).to_long();
-    if (n >= 2) return GiNaC::pow(GiNaC::cos(arg), n % 2) * GiNaC::pow(1 - GiNaC::pow(GiNaC::sin(arg), 2), n / 2);
+    if (n >= 2 && n <= kMaxTrigPowerRewritten) return GiNaC::pow(GiNaC::cos(arg), n % 2) * GiNaC::pow(1 - GiNaC::pow(GiNaC::sin(arg), 2), n / 2);
   }
   return std::nullopt;
 }

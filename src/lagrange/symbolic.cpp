@@ -23,14 +23,14 @@ using GiNaC::symbol;
 
 namespace {
 
-// sinⁿx → sin^(n mod 2)x · (1 − cos²x)^(n/2) for n ≥ 2, so that expand() cancels the
-// sin² + cos² pairs that |ċ|² and ωᵀIω produce
+// sinⁿx → sin^(n mod 2)x · (1 − cos²x)^(n/2) for 2 ≤ n ≤ kMaxTrigPowerRewritten, so that
+// expand() cancels the sin² + cos² pairs that |ċ|² and ωᵀIω produce
 std::optional<ex> reduce_sine_power(const ex& e) {
   if (GiNaC::is_a<GiNaC::power>(e) && GiNaC::is_a<GiNaC::function>(e.op(0)) &&
       GiNaC::ex_to<GiNaC::function>(e.op(0)).get_name() == "sin" &&
       GiNaC::is_a<GiNaC::numeric>(e.op(1)) && GiNaC::ex_to<GiNaC::numeric>(e.op(1)).is_integer()) {
     const long n = GiNaC::ex_to<GiNaC::numeric>(e.op(1)).to_long();
-    if (n >= 2) {
+    if (n >= 2 && n <= kMaxTrigPowerRewritten) {
       const ex x = e.op(0).op(0);
       return GiNaC::pow(GiNaC::sin(x), n % 2) * GiNaC::pow(1 - GiNaC::pow(GiNaC::cos(x), 2), n / 2);
     }

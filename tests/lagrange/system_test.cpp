@@ -151,6 +151,15 @@ TEST(System, ExpressionsThatMultiplyOutBeyondTheLimitAreRefusedBeforeExpanding) 
     EXPECT_NEAR(q_ddot(0), -100 * b * std::log(b), 1e-12 * 100 * b * std::log(b));
     EXPECT_FALSE(within.equations().text.front().empty());
   }
+  // a high power of a sine stays a power: sin² + cos² = 1 rewrites only up to the 64th, since
+  // (1 − cos²)^(n/2) multiplies out to n/2 + 1 terms (this one asked for gigabytes; the fuzz
+  // target's fuzz/regressions/expression/sine_to_the_730452665th_out_of_memory.txt)
+  {
+    const System high(spec_with("sin(a + pi)^730452665*807 + q^2/2"));
+    Eigen::VectorXd q_ddot, lambda;
+    high.accelerations(0.0, high.initial_q(), high.initial_q_dot(), q_ddot, lambda);
+    EXPECT_EQ(q_ddot(0), -0.3);  // V' = q; the constant term has no derivative
+  }
   // a long sum as written is not counted (4,000 terms of about three symbols each)
   std::string long_sum = "0";
   for (int i = 1; i <= 4000; ++i) long_sum += fmt::format(" + q*a^{}", i);

@@ -28,6 +28,10 @@ using Rewrite = std::function<std::optional<GiNaC::ex>(const GiNaC::ex&)>;
 /// one of its operands changed, and e itself comes back when nothing did. GiNaC's map() walks a
 /// shared subexpression once per use and rebuilds (and re-evaluates) every node it passes.
 [[nodiscard]] GiNaC::ex rewrite(const GiNaC::ex& e, const Rewrite& rule);
+/// Highest power of a sine or cosine rewritten through sin² + cos² = 1: the rewrite makes a
+/// power of a sum, (1 − cos²x)^(n/2), which expands to n/2 + 1 terms (sin(a + pi)^730452665 from
+/// the fuzz target asked for gigabytes). Kinetic energies give powers up to 4.
+inline constexpr long kMaxTrigPowerRewritten = 64;
 /// expand, with sinⁿx → sin^(n mod 2)x · (1 − cos²x)^(n/2) so that sin² + cos² cancels.
 [[nodiscard]] GiNaC::ex simplify(const GiNaC::ex& e);
 [[nodiscard]] std::string to_text(const GiNaC::ex& e);
