@@ -662,14 +662,16 @@ std::vector<bool> derive_generalized_forces(System::Impl& s, const SystemSpec& s
 // before anything is expanded: the derivatives of an accepted L can still multiply out far
 // beyond it (the chain rule through a power whose exponent is a long sum makes every term of
 // one factor hold all of another).
-void refuse_beyond_expansion_limit(const ex& e, const std::string& what, std::string_view derived_from) {
+// `what` names the quantity, called only for the refusal (not once per entry of M).
+template <typename What>
+void refuse_beyond_expansion_limit(const ex& e, const What& what, std::string_view derived_from) {
   const double size = detail::expanded_size_log10(e);
   if (size <= std::log10(kMaxEquationNodes)) return;
   rigid::detail::throw_error(
       "System", fmt::format("{} multiplies out to about 10^{:.3g} symbols and operations (products of long "
                             "sums in the derivatives of {}); at most {:.0f} are allowed, since the "
                             "equations are derived, compiled and printed expanded",
-                            what, size, derived_from, kMaxEquationNodes));
+                            what(), size, derived_from, kMaxEquationNodes));
 }
 
 // Euler–Lagrange: p = ∂L/∂q̇, M = ∂p/∂q̇, f = ∂L/∂q − (∂p/∂q) q̇ − ∂p/∂t + Q, and the
@@ -683,10 +685,9 @@ void derive_euler_lagrange(System::Impl& s) {
   for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t j = 0; j < n; ++j) {
       s.M[i * n + j] = d(s.p[i], s.qd[j]);
-      refuse_beyond_expansion_limit(s.M[i * n + j],
-                                    fmt::format("the mass matrix entry ('{}', '{}')", s.coord_names[i],
-                                                s.coord_names[j]),
-                                    "the Lagrangian");
+      refuse_beyond_expansion_limit(s.M[i * n + j], [&] {
+        return fmt::format("the mass matrix entry ('{}', '{}')", s.coord_names[i], s.coord_names[j]);
+      }, "the Lagrangian");
     }
     if (s.M[i * n + i].expand().is_zero()) {
       rigid::detail::throw_error("System", fmt::format("the Lagrangian is not quadratic in the velocity '{}_dot' (∂²L/∂{}_dot² ≡ 0), "
@@ -695,7 +696,7 @@ void derive_euler_lagrange(System::Impl& s) {
     }
     ex fi = d(s.L, s.q[i]) - d(s.p[i], s.t) + s.Q[i];
     for (std::size_t j = 0; j < n; ++j) fi -= d(s.p[i], s.q[j]) * s.qd[j];
-    refuse_beyond_expansion_limit(fi, fmt::format("the equation of motion of '{}'", s.coord_names[i]),
+    refuse_beyond_expansion_limit(fi, [&] { return fmt::format("the equation of motion of '{}'", s.coord_names[i]); },
                                   "the Lagrangian");
     s.f[i] = fi.expand();
   }
@@ -725,13 +726,13 @@ std::vector<bool> derive_constraints(System::Impl& s, const SystemSpec& spec,
     RIGID_REQUIRE_AS("System", depends, "constraint '{}' = {} does not depend on any coordinate; it is either "
                   "always or never satisfied", con.name, to_text(gk));
     const ex c_unexpanded = time_derivative(s, gk);
-    refuse_beyond_expansion_limit(c_unexpanded, fmt::format("the rate ġ of constraint '{}'", con.name),
+    refuse_beyond_expansion_limit(c_unexpanded, [&] { return fmt::format("the rate ġ of constraint '{}'", con.name); },
                                   "the constraint");
     const ex ck = c_unexpanded.expand();
     ex gamma = -d(ck, s.t);
     for (std::size_t j = 0; j < n; ++j) gamma -= d(ck, s.q[j]) * s.qd[j];
-    refuse_beyond_expansion_limit(gamma, fmt::format("the acceleration term γ of constraint '{}'", con.name),
-                                  "the constraint");
+    refuse_beyond_expansion_limit(
+        gamma, [&] { return fmt::format("the acceleration term γ of constraint '{}'", con.name); }, "the constraint");
     s.g.push_back(gk);
     s.c.push_back(ck);
     s.gamma.push_back(gamma.expand());
