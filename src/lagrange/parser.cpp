@@ -77,6 +77,17 @@ double log10_abs(const GiNaC::numeric& x) {
          std::log10(2.0);
 }
 
+// A number as an error message shows it: exactly when short, to 6 significant digits when
+// long; as an operand of ^, a fraction or a negative number in parentheses.
+std::string text_of(const GiNaC::numeric& x, bool operand = false) {
+  std::ostringstream out;
+  out << GiNaC::ex(x);
+  std::string text = out.str();
+  if (text.size() > 24) text = fmt::format("{:.6g}", x.to_double());
+  if (operand && text.find_first_of("/-") != std::string::npos) text = "(" + text + ")";
+  return text;
+}
+
 // recursive descent over
 //   sum     = product { ("+" | "-") product }
 //   product = unary { ("*" | "/") unary }
@@ -204,6 +215,12 @@ class Parser {
   // the result is estimated first: a magnitude beyond 10^±kMaxPowerDigits is refused (no finite
   // double comes out of it), and an exact result longer than kMaxExactPowerBits is computed in
   // floating point instead (GiNaC's Digits, at least 17 significant digits).
+  // An irrational power of numbers other than a square root (2^(1/3), 77777^0.1787) is also
+  // computed in floating point here: GiNaC keeps it unevaluated and, each time a product
+  // holding it is rebuilt (every derivative, expansion and printing step), tries the exact
+  // result again through CLN's exp and log at 17 digits; one such number in a sum to the 8th
+  // took seconds to derive and print. A square root stays exact (CLN's exact square-root test
+  // is cheap), as does a root with a rational value (8^(1/3) = 2).
   GiNaC::ex raise(const GiNaC::ex& base, const GiNaC::ex& exponent, std::size_t at) const {
     if (GiNaC::is_a<GiNaC::numeric>(base) && GiNaC::is_a<GiNaC::numeric>(exponent)) {
       const auto& b = GiNaC::ex_to<GiNaC::numeric>(base);
@@ -212,6 +229,12 @@ class Parser {
         if (e.is_zero()) fail(at, "0^0 is undefined; expected a base or an exponent other than 0");
         if (!e.is_real() || !e.is_positive()) fail(at, "0 to a negative power is a division by zero");
         return 0;
+      }
+      if (b.is_real() && b.is_negative() && e.is_real() && !e.is_integer()) {
+        // GiNaC's principal value is complex ((-8)^(1/3) = 1 + 1.732i), and a double NaN
+        fail(at, fmt::format("{}^{} is not real: a negative number to a non-integer power; "
+                             "expected a positive base or an integer exponent",
+                             text_of(b, true), text_of(e, true)));
       }
       if (b.is_real() && e.is_real() && !e.is_zero()) {
         // the result is about 10^(e·log10|b|): compared through logarithms, so nothing overflows
@@ -228,6 +251,11 @@ class Parser {
                                static_cast<double>(b.denom().int_length())) *
                               std::abs(e.to_double());
           if (!(bits <= kMaxExactPowerBits)) {
+            return guarded(at, [&] { return GiNaC::pow(b.evalf(), e); });
+          }
+          if (!e.is_integer() && e.denom() != 2) {
+            const GiNaC::ex exact = guarded(at, [&] { return GiNaC::pow(base, exponent); });
+            if (GiNaC::is_a<GiNaC::numeric>(exact)) return exact;
             return guarded(at, [&] { return GiNaC::pow(b.evalf(), e); });
           }
         }
@@ -328,12 +356,26 @@ class Parser {
     if (f == "sin") return GiNaC::sin(x);
     if (f == "cos") return GiNaC::cos(x);
     if (f == "tan") return GiNaC::tan(x);
-    if (f == "asin") return GiNaC::asin(x);
-    if (f == "acos") return GiNaC::acos(x);
+    if (f == "asin" || f == "acos") {
+      // of a number outside [-1, 1] it is complex: refused here rather than as a NaN at run time
+      if (GiNaC::is_a<GiNaC::numeric>(x) && GiNaC::ex_to<GiNaC::numeric>(x).is_real() &&
+          abs(GiNaC::ex_to<GiNaC::numeric>(x)) > 1) {
+        fail(at, fmt::format("{}({}) is not real; expected an argument in [-1, 1]", f,
+                             text_of(GiNaC::ex_to<GiNaC::numeric>(x))));
+      }
+      return f == "asin" ? GiNaC::asin(x) : GiNaC::acos(x);
+    }
     if (f == "atan") return GiNaC::atan(x);
     if (f == "exp") return GiNaC::exp(x);
     if (f == "log") return GiNaC::log(x);
-    if (f == "sqrt") return GiNaC::sqrt(x);
+    if (f == "sqrt") {
+      if (GiNaC::is_a<GiNaC::numeric>(x) && GiNaC::ex_to<GiNaC::numeric>(x).is_real() &&
+          GiNaC::ex_to<GiNaC::numeric>(x).is_negative()) {
+        fail(at, fmt::format("sqrt({}) is not real; expected a non-negative argument",
+                             text_of(GiNaC::ex_to<GiNaC::numeric>(x))));
+      }
+      return raise(x, GiNaC::numeric(1, 2), at);
+    }
     if (f == "abs") return GiNaC::abs(x);
     if (f == "sinh") return GiNaC::sinh(x);
     if (f == "cosh") return GiNaC::cosh(x);

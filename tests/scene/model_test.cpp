@@ -117,8 +117,11 @@ TEST(Model, InvalidBodiesAreRefusedWithTheirLocation) {
   EXPECT_RIGID_ERROR(model_of(head + "point_masses = [{mass = -1, position = [0, 0, 0]}]\n" + tail),
                      "scene.toml:3:1: body 'b'");
   EXPECT_RIGID_ERROR(model_of(head + "inertia = {mass = \"sqrt(-1)\", ixx = 1, iyy = 1, izz = 1}\n" + tail),
-                     "scene.toml:5:20: body 'b' inertia mass: 'sqrt(-1)' holds the complex number I; expected a "
-                     "real expression");
+                     "scene.toml:5:20: body 'b' inertia mass: sqrt(-1) is not real; expected a non-negative "
+                     "argument");
+  EXPECT_RIGID_ERROR(model_of(head + "inertia = {mass = \"log(-1)\", ixx = 1, iyy = 1, izz = 1}\n" + tail),
+                     "scene.toml:5:20: body 'b' inertia mass: 'log(-1)' holds the complex number I; "
+                     "expected a real expression");
 }
 
 TEST(Model, SimulationSettingsAreChecked) {
