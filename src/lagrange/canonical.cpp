@@ -503,16 +503,6 @@ void sum_to_product(exvector& terms, const SymbolOrder& order) {
   }
 }
 
-// cosⁿ(a) → cos^(n mod 2)(a) (1 − sin²a)^(n/2) for one argument a
-std::optional<ex> cos_power_to_sines(const ex& e, const ex& arg) {
-  if (is_a<GiNaC::power>(e) && is_named(e.op(0), "cos") && e.op(0).op(0).is_equal(arg) &&
-      is_a<numeric>(e.op(1)) && GiNaC::ex_to<numeric>(e.op(1)).is_integer()) {
-    const long n = GiNaC::ex_to<numeric>(e.op(1)).to_long();
-    if (n >= 2 && n <= kMaxTrigPowerRewritten) return GiNaC::pow(GiNaC::cos(arg), n % 2) * GiNaC::pow(1 - GiNaC::pow(GiNaC::sin(arg), 2), n / 2);
-  }
-  return std::nullopt;
-}
-
 // the arguments a of every cosⁿ(a), n ≥ 2, in e (each distinct subexpression visited once)
 void squared_cosines(const ex& e, exvector& out, ExMemo<bool>& seen) {
   if (e.nops() == 0 || seen.find(e)) return;
@@ -532,7 +522,7 @@ ex fewer_terms(ex e, const SymbolOrder& order) {
   squared_cosines(e, args, seen);
   sort_canonically(args, order);
   for (const ex& a : args) {
-    const ex candidate = rewrite(e, [&](const ex& x) { return cos_power_to_sines(x, a); }).expand();
+    const ex candidate = rewrite(e, [&](const ex& x) { return trig_power_through_pythagoras(x, "cos", &a); }).expand();
     if (operands(candidate).size() < operands(e).size()) e = candidate;
   }
   return e;

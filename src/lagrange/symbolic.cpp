@@ -23,21 +23,6 @@ using GiNaC::symbol;
 
 namespace {
 
-// sinⁿx → sin^(n mod 2)x · (1 − cos²x)^(n/2) for 2 ≤ n ≤ kMaxTrigPowerRewritten, so that
-// expand() cancels the sin² + cos² pairs that |ċ|² and ωᵀIω produce
-std::optional<ex> reduce_sine_power(const ex& e) {
-  if (GiNaC::is_a<GiNaC::power>(e) && GiNaC::is_a<GiNaC::function>(e.op(0)) &&
-      GiNaC::ex_to<GiNaC::function>(e.op(0)).get_name() == "sin" &&
-      GiNaC::is_a<GiNaC::numeric>(e.op(1)) && GiNaC::ex_to<GiNaC::numeric>(e.op(1)).is_integer()) {
-    const long n = GiNaC::ex_to<GiNaC::numeric>(e.op(1)).to_long();
-    if (n >= 2 && n <= kMaxTrigPowerRewritten) {
-      const ex x = e.op(0).op(0);
-      return GiNaC::pow(GiNaC::sin(x), n % 2) * GiNaC::pow(1 - GiNaC::pow(GiNaC::cos(x), 2), n / 2);
-    }
-  }
-  return std::nullopt;
-}
-
 // rewrite()'s walk: GiNaC's map() rebuilds a node from its operands, each passed through here
 class GraphRewrite : public GiNaC::map_function {
  public:
@@ -152,10 +137,27 @@ ex d(const ex& e, const symbol& x) {
   return e.diff(x);
 }
 
+std::optional<ex> trig_power_through_pythagoras(const ex& e, std::string_view function, const ex* argument) {
+  if (!GiNaC::is_a<GiNaC::power>(e) || !GiNaC::is_a<GiNaC::function>(e.op(0)) ||
+      GiNaC::ex_to<GiNaC::function>(e.op(0)).get_name() != function || !GiNaC::is_a<GiNaC::numeric>(e.op(1)) ||
+      !GiNaC::ex_to<GiNaC::numeric>(e.op(1)).is_integer()) {
+    return std::nullopt;
+  }
+  const ex x = e.op(0).op(0);
+  if (argument != nullptr && !x.is_equal(*argument)) return std::nullopt;
+  const long n = GiNaC::ex_to<GiNaC::numeric>(e.op(1)).to_long();
+  if (n < 2 || n > kMaxTrigPowerRewritten) return std::nullopt;
+  const bool sine = function == "sin";
+  const ex kept = sine ? GiNaC::sin(x) : GiNaC::cos(x), other = sine ? GiNaC::cos(x) : GiNaC::sin(x);
+  return GiNaC::pow(kept, n % 2) * GiNaC::pow(1 - GiNaC::pow(other, 2), n / 2);
+}
+
 ex simplify(const ex& e) {
   const ex expanded = e.expand();
-  // rewrite() hands back the same object when no sine power was found: no second expansion then
-  const ex reduced = rewrite(expanded, reduce_sine_power);
+  // sinⁿx → sin^(n mod 2)x · (1 − cos²x)^(n/2), so that expand() cancels the sin² + cos² pairs
+  // that |ċ|² and ωᵀIω produce. rewrite() hands back the same object when no sine power was
+  // found: no second expansion then
+  const ex reduced = rewrite(expanded, [](const ex& x) { return trig_power_through_pythagoras(x, "sin"); });
   return GiNaC::are_ex_trivially_equal(reduced, expanded) ? expanded : reduced.expand();
 }
 

@@ -8,6 +8,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <string_view>
 
 #include <Eigen/Core>
 #include <ginac/ginac.h>
@@ -32,6 +33,11 @@ using Rewrite = std::function<std::optional<GiNaC::ex>(const GiNaC::ex&)>;
 /// power of a sum, (1 − cos²x)^(n/2), which expands to n/2 + 1 terms (sin(a + pi)^730452665 from
 /// the fuzz target asked for gigabytes). Kinetic energies give powers up to 4.
 inline constexpr long kMaxTrigPowerRewritten = 64;
+/// Through sin² + cos² = 1: sinⁿx → sin^(n mod 2)x · (1 − cos²x)^(n/2) when `function` is "sin",
+/// cosⁿx → cos^(n mod 2)x · (1 − sin²x)^(n/2) when it is "cos", for 2 ≤ n ≤
+/// kMaxTrigPowerRewritten and, when `argument` is given, x equal to it; nothing otherwise.
+[[nodiscard]] std::optional<GiNaC::ex> trig_power_through_pythagoras(const GiNaC::ex& e, std::string_view function,
+                                                                     const GiNaC::ex* argument = nullptr);
 /// expand, with sinⁿx → sin^(n mod 2)x · (1 − cos²x)^(n/2) so that sin² + cos² cancels.
 [[nodiscard]] GiNaC::ex simplify(const GiNaC::ex& e);
 [[nodiscard]] std::string to_text(const GiNaC::ex& e);
