@@ -204,17 +204,6 @@ NESTED_EIGHTH_POWERS = (
     "  * -  -4840^-267.-   -  -4840^-267.-  -6679^-267. -3^3-66")
 
 
-def test_equations_of_shared_nested_powers_print_in_bounded_time(rigid_exe, tmp_path):
-    import rigid
-    path = tmp_path / "nested.toml"
-    path.write_text(POTENTIAL_SCENE.format(potential=NESTED_EIGHTH_POWERS))
-    proc, wall = bounded([rigid_exe, "eom", path], seconds=60, megabytes=1024)
-    assert proc.returncode == 0, proc.stderr
-    assert wall < 1.5, wall
-    assert "q_ddot = " in proc.stdout
-    assert rigid.Scene(str(path)).equations() == proc.stdout
-
-
 def test_a_derivative_beyond_the_expansion_limit_is_refused_before_expanding(rigid_exe, tmp_path):
     import rigid
     path = tmp_path / "tower.toml"
@@ -241,14 +230,23 @@ LONG_DECIMAL_ROOTS = ("(a + 76/77777^.1787387777/8477777002^q + 6 - 76/77777^.17
                       "/847777700^2.178/777771^.178/7777710^a/a + pi)**8 - q^q^b")
 
 
-def test_roots_of_numbers_with_long_decimal_exponents_derive_and_print_in_bounded_time(rigid_exe, tmp_path):
+# Fuzz findings whose equations took seconds to derive and print (shared nested powers printed
+# once per use: 2.9 s; unevaluated roots retried at every rebuild: 1.6 s), bounded with margin
+# for a loaded CI machine; Python's Scene.equations() gives the same bytes.
+@pytest.mark.parametrize("potential, seconds, absent", [
+    (NESTED_EIGHTH_POWERS, 1.5, None),
+    (LONG_DECIMAL_ROOTS, 1.0, "^(1787387777/10000000000)"),
+])
+def test_equations_of_fuzz_found_expressions_print_in_bounded_time(rigid_exe, tmp_path, potential, seconds, absent):
     import rigid
-    path = tmp_path / "roots.toml"
-    path.write_text(POTENTIAL_SCENE.format(potential=LONG_DECIMAL_ROOTS))
+    path = tmp_path / "slow.toml"
+    path.write_text(POTENTIAL_SCENE.format(potential=potential))
     proc, wall = bounded([rigid_exe, "eom", path], seconds=60, megabytes=1024)
     assert proc.returncode == 0, proc.stderr
-    assert wall < 1.0, wall
-    assert "^(1787387777/10000000000)" not in proc.stdout
+    assert wall < seconds, wall
+    assert "q_ddot = " in proc.stdout
+    if absent is not None:
+        assert absent not in proc.stdout
     assert rigid.Scene(str(path)).equations() == proc.stdout
 
 
