@@ -145,8 +145,9 @@ std::optional<ex> trig_power_through_pythagoras(const ex& e, std::string_view fu
   }
   const ex x = e.op(0).op(0);
   if (argument != nullptr && !x.is_equal(*argument)) return std::nullopt;
-  const long n = GiNaC::ex_to<GiNaC::numeric>(e.op(1)).to_long();
-  if (n < 2 || n > kMaxTrigPowerRewritten) return std::nullopt;
+  const GiNaC::numeric& power = GiNaC::ex_to<GiNaC::numeric>(e.op(1));
+  if (power < 2 || power > kMaxTrigPowerRewritten) return std::nullopt;  // before to_long(): any size
+  const long n = power.to_long();
   const bool sine = function == "sin";
   const ex kept = sine ? GiNaC::sin(x) : GiNaC::cos(x), other = sine ? GiNaC::cos(x) : GiNaC::sin(x);
   return GiNaC::pow(kept, n % 2) * GiNaC::pow(1 - GiNaC::pow(other, 2), n / 2);

@@ -159,6 +159,12 @@ TEST(System, ExpressionsThatMultiplyOutBeyondTheLimitAreRefusedBeforeExpanding) 
     Eigen::VectorXd q_ddot, lambda;
     high.accelerations(0.0, high.initial_q(), high.initial_q_dot(), q_ddot, lambda);
     EXPECT_EQ(q_ddot(0), -0.3);  // V' = q; the constant term has no derivative
+    // an exponent beyond a long is compared as a number, never converted: the equation of
+    // motion keeps it, q̈ = −10³⁰ cos q sin^(10³⁰ − 1) q
+    const System beyond(spec_with("sin(q)^(10^30)"));
+    std::string text;
+    for (const std::string& line : beyond.equations().text) text += line + "\n";
+    EXPECT_NE(text.find("sin(q)^999999999999999999999999999999"), std::string::npos) << text;
   }
   // a long sum as written is not counted (4,000 terms of about three symbols each)
   std::string long_sum = "0";
