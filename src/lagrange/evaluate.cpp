@@ -417,6 +417,19 @@ Trajectory System::simulate(const SimulationOptions& o, const Eigen::VectorXd& q
   evaluate_dynamics(s, w, t0, q0, qd0);
   solve(s, w, t0, q0, acc, lw, o.stabilization);
   w.mass_scale = w.llt_M.matrixLLT().diagonal().cwiseAbs2().maxCoeff();
+  // a q̈ that is not finite at the start is the model's, not the step's: said so here, before
+  // the first step would call it a divergence
+  for (Eigen::Index i = 0; i < n; ++i) {
+    if (!std::isfinite(acc[i])) {
+      throw Error(fmt::format(
+          "the acceleration of '{}' is {} at the start ({}): a term of the model is not finite "
+          "there (a division by zero, or a number outside a function's real domain: a negative "
+          "number to a non-integer power, sqrt or log of a negative number, asin or acos beyond "
+          "[-1, 1]); check the model's expressions and parameters at the initial state",
+          s.coord_names[static_cast<std::size_t>(i)], std::isnan(acc[i]) ? "NaN" : fmt::format("{}", acc[i]),
+          s.state_text(t0, q0)));
+    }
+  }
 
   integrate::Problem problem;
   problem.y0.resize(2 * n);
