@@ -1033,10 +1033,11 @@ void Model::check(const RunOptions& options) const {
   if (m.kind == SceneKind::kCoordinates) {
     // The run's own start, stopped before it steps: simulate() checks the initial conditions
     // against the constraints, factors the mass matrix and evaluates the right-hand side at
-    // t = 0 (a q̈ that is not finite is refused there), the integrator checks its settings and the initial state; the cancel flag, set
-    // already, stops the march at its first poll (fixed-step methods: at t = 0, before any
-    // step; dopri5: after its first step, the first poll it has). Nothing is integrated
-    // further, whatever the output interval or the tolerance.
+    // t = 0 (a q̈ that is not finite is refused there), the integrator checks its settings and
+    // the initial state; the cancel flag, set already, stops the march at its first poll
+    // (fixed-step methods: at t = 0, before any step; dopri5: after its first step, the first
+    // poll it has). Nothing is integrated further, whatever the output interval or the
+    // tolerance.
     lagrange::SimulationOptions so;
     so.method = method.coordinates;
     so.dt = m.dt;
