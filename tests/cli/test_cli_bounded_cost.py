@@ -2,6 +2,7 @@
 timeout and an address-space cap (RLIMIT_AS) sized for the given input, so that a quadratic
 step, a hidden integration or an allocation per requested run fails the test instead of
 passing slowly."""
+import csv
 import re
 import resource
 import subprocess
@@ -296,3 +297,15 @@ def test_an_acceleration_that_is_not_finite_at_the_start_is_the_models_fault_in_
     assert not (tmp_path / "out").exists()
     with pytest.raises(rigid.Error, match=re.escape(message)):
         rigid.Scene(str(path)).run()
+    # inside a sweep on two threads: the run whose parameter makes q̈(0) NaN fails with the same
+    # words in its row, the others run (a first run that fails would refuse the whole sweep)
+    sweep_path = tmp_path / "sweep.toml"
+    sweep_path.write_text(POTENTIAL_SCENE.format(potential="q^2*(a - 4)^(1/3)"))
+    proc, _ = bounded([rigid_exe, "sweep", sweep_path, "--grid", "a=5:3:3", "-o", tmp_path / "sweep", "-q",
+                       "--threads", "2"], seconds=60, megabytes=1024)
+    assert proc.returncode == 0, proc.stderr
+    with open(tmp_path / "sweep" / "runs.csv", newline="") as f:
+        rows = list(csv.DictReader(f))
+    assert [row["a"] for row in rows] == ["5", "4", "3"]
+    assert rows[0]["error"] == "" and rows[1]["error"] == ""
+    assert rows[2]["error"] == message, rows[2]
