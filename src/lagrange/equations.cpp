@@ -39,12 +39,16 @@ bool in_angle(const ex& e, const symbol& x) {
 // The order in which symbols are printed: coordinates (q, q̇, q̈ of each), multipliers (the
 // holonomic ones first), time, parameters.
 SymbolOrder symbol_order(const System::Impl& s) {
-  const auto n = static_cast<std::size_t>(s.n);
   SymbolOrder order;
-  for (std::size_t i = 0; i < n; ++i) {
-    order.add(s.q[i], SymbolOrder::kCoordinate, static_cast<int>(i), 0);
-    order.add(s.qd[i], SymbolOrder::kCoordinate, static_cast<int>(i), 1);
-    order.add(s.qdd[i], SymbolOrder::kCoordinate, static_cast<int>(i), 2);
+  // a velocity ranks with its coordinate; a ball's ω_k with its quaternion's entry k + 1
+  for (std::size_t i = 0; i < s.q.size(); ++i) order.add(s.q[i], SymbolOrder::kCoordinate, static_cast<int>(i), 0);
+  for (std::size_t i = 0; i < s.qd.size(); ++i) {
+    int rank = s.q_of_v[i];
+    for (const System::Impl::Ball& b : s.balls) {
+      if (i >= b.v && i < b.v + 3) rank = static_cast<int>(b.q + 1 + i - b.v);
+    }
+    order.add(s.qd[i], SymbolOrder::kCoordinate, rank, 1);
+    order.add(s.qdd[i], SymbolOrder::kCoordinate, rank, 2);
   }
   for (std::size_t k = 0; k < s.lambda.size(); ++k) {
     order.add(s.lambda[k], SymbolOrder::kMultiplier, static_cast<int>(k));
@@ -123,7 +127,7 @@ bool print_motion(const System::Impl& s, Printer& printer, Equations& eq) {
     for (std::size_t j = 0; j < n; ++j) eq.mass_matrix[i].push_back(printer.both(M_sums[i * n + j]));
     const ex generalized = s.Q[i].expand();
     // −∂V/∂q; a recursive derivation gives it apart (V is in terms of its intermediates)
-    const ex potential = s.f_potential.empty() ? ex(-d(s.V, s.q[i])) : s.f_potential[i];
+    const ex potential = s.f_potential.empty() ? ex(-d(s.V, s.q[i])) : s.f_potential[i];  // (balls: recursive)
     forced = forced || !detail::simplify(generalized).is_zero();
     const detail::Sum f_sum = printer.textbook(s.f[i]);
     eq.forcing.push_back(printer.both(f_sum));
@@ -169,10 +173,22 @@ bool print_constraints(const System::Impl& s, Printer& printer, Equations& eq) {
 // The symbols' table: a coordinate inside an angle or turning a joint is in rad, one sliding a joint
 // (and inside no angle) in m; otherwise the equations do not say.
 std::vector<EquationSymbol> symbols_table(const System::Impl& s) {
-  const auto n = static_cast<std::size_t>(s.n);
   std::vector<EquationSymbol> symbols;
   auto tex = [](const symbol& x) { return x.get_TeX_name().empty() ? detail::tex_name(x.get_name()) : x.get_TeX_name(); };
-  for (std::size_t i = 0; i < n; ++i) {
+  for (const System::Impl::Ball& b : s.balls) {
+    for (std::size_t k = 0; k < 4; ++k) {
+      symbols.push_back({s.q[b.q + k].get_name(), tex(s.q[b.q + k]),
+                         fmt::format("orientation of the ball '{}' (unit quaternion w x y z)", b.name), "1"});
+    }
+    for (std::size_t k = 0; k < 3; ++k) {
+      symbols.push_back({s.qd[b.v + k].get_name(), tex(s.qd[b.v + k]),
+                         fmt::format("angular velocity of the ball '{}' in its body's frame", b.name), "rad/s"});
+      symbols.push_back({s.qdd[b.v + k].get_name(), tex(s.qdd[b.v + k]), "angular acceleration", "rad/s^2"});
+    }
+  }
+  for (std::size_t v = 0; v < s.qd.size(); ++v) {
+    if (s.q_of_v[v] < 0) continue;  // a ball's, above
+    const auto i = static_cast<std::size_t>(s.q_of_v[v]);
     bool angle = in_angle(s.L, s.q[i]);
     for (const ex& a : s.aux_def) angle = angle || in_angle(a, s.q[i]);
     for (const ex& g : s.g) angle = angle || in_angle(g, s.q[i]);
@@ -184,8 +200,8 @@ std::vector<EquationSymbol> symbols_table(const System::Impl& s) {
     const std::string per_s = length ? "m/s" : angle ? "rad/s" : "m/s or rad/s";
     const std::string per_s2 = length ? "m/s^2" : angle ? "rad/s^2" : "m/s^2 or rad/s^2";
     symbols.push_back({s.q[i].get_name(), tex(s.q[i]), "coordinate", unit});
-    symbols.push_back({s.qd[i].get_name(), tex(s.qd[i]), "velocity", per_s});
-    symbols.push_back({s.qdd[i].get_name(), tex(s.qdd[i]), "acceleration", per_s2});
+    symbols.push_back({s.qd[v].get_name(), tex(s.qd[v]), "velocity", per_s});
+    symbols.push_back({s.qdd[v].get_name(), tex(s.qdd[v]), "acceleration", per_s2});
   }
   for (std::size_t k = 0; k < s.lambda.size(); ++k) {
     symbols.push_back({s.lambda[k].get_name(), tex(s.lambda[k]),
@@ -230,6 +246,10 @@ Equations print_equations(const System::Impl& s) {
 
   Equations eq;
   eq.coordinates = s.coord_names;
+  if (!s.balls.empty()) {
+    eq.velocities = s.velocity_names;
+    for (const ex& rate : s.q_rate) eq.coordinate_rates.push_back(printer.simplified(rate));
+  }
   eq.constraint_names = s.constraint_names;
   for (std::size_t k = 0; k < s.param_names.size(); ++k) {
     eq.parameters.push_back({s.param_names[k], s.param_values[k]});
@@ -290,7 +310,15 @@ std::string format_text(const Equations& eq) {
   std::vector<std::string> names;
   for (const Parameter& p : eq.parameters) names.push_back(p.name);
   if (!names.empty()) line(fmt::format("parameters: {}", fmt::join(names, ", ")));
-  line("equations of motion (one per coordinate):");
+  if (!eq.velocities.empty()) {
+    line(fmt::format("velocities: {}", fmt::join(eq.velocities, ", ")));
+    line("coordinate rates (a ball's quaternion: q_dot = q * (0, w)/2, w in the body's frame):");
+    for (std::size_t i = 0; i < eq.coordinates.size(); ++i) {
+      line(fmt::format("  {}_dot = {}", eq.coordinates[i], eq.coordinate_rates[i].text));
+    }
+  }
+  line(eq.velocities.empty() ? "equations of motion (one per coordinate):"
+                             : "equations of motion (one per velocity; a ball's are Euler's):");
   for (const Printed& e : eq.equations) line("  " + e.text);
   if (!eq.intermediates.empty()) {
     line("where (the tree's recursions, each from those before it):");
@@ -322,7 +350,7 @@ std::string format_text(const Equations& eq) {
   }
   line("forcing (inertial + potential + generalized):");
   for (std::size_t i = 0; i < eq.forcing.size(); ++i) {
-    line(fmt::format("  {}: {}", eq.coordinates[i], eq.forcing[i].text));
+    line(fmt::format("  {}: {}", eq.velocities.empty() ? eq.coordinates[i] : eq.velocities[i], eq.forcing[i].text));
     const std::pair<const char*, const Printed*> parts[] = {{"inertial", &eq.forcing_inertial[i]},
                                                             {"potential", &eq.forcing_potential[i]},
                                                             {"generalized", &eq.forcing_generalized[i]}};
@@ -383,8 +411,18 @@ std::string format_latex(const Equations& eq) {
     return s.substr(0, k) + " &= " + s.substr(k + 3);
   };
   std::vector<std::string> rows;
+  for (std::size_t i = 0; i < eq.coordinate_rates.size(); ++i) {
+    std::string q_tex;
+    for (const EquationSymbol& s : eq.symbols) {
+      if (s.name == eq.coordinates[i]) q_tex = s.latex;
+    }
+    rows.push_back(fmt::format("\\dot{{{}}} &= {}", q_tex, eq.coordinate_rates[i].latex));
+  }
+  align("coordinate rates: a ball's quaternion moves by q' = q (0, omega)/2, omega in its body's frame", rows);
+  rows.clear();
   for (const Printed& e : eq.equations) rows.push_back(at_equals(e.latex));
-  align("equations of motion, one per coordinate", rows);
+  align(eq.velocities.empty() ? "equations of motion, one per coordinate" : "equations of motion, one per velocity",
+        rows);
   rows.clear();
   for (const auto& [name, value] : eq.intermediates) rows.push_back(name.latex + " &= " + value.latex);
   align("where: the tree's recursions, each from those before it", rows);
@@ -454,6 +492,10 @@ std::string format_json(const Equations& eq) {
   Json j;
   j["kind"] = "coordinates";
   j["coordinates"] = eq.coordinates;
+  if (!eq.velocities.empty()) {
+    j["velocities"] = eq.velocities;
+    j["coordinate_rates"] = printed(eq.coordinate_rates);
+  }
   Json params = Json::array();
   for (const Parameter& p : eq.parameters) params.push_back({{"name", p.name}, {"value", p.value}});
   j["parameters"] = params;

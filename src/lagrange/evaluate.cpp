@@ -24,12 +24,10 @@ using WorkImpl = Workspace::Impl;
 
 void load_inputs(const Impl& s, WorkImpl& w, double time, const Eigen::VectorXd& qv,
                  const Eigen::VectorXd& qdv) {
-  for (int i = 0; i < s.n; ++i) {
-    w.in[static_cast<std::size_t>(i)] = qv[i];
-    w.in[static_cast<std::size_t>(s.n + i)] = qdv[i];
-  }
-  w.in[static_cast<std::size_t>(2 * s.n)] = time;
-  std::copy(w.params.begin(), w.params.end(), w.in.begin() + 2 * s.n + 1);
+  for (int i = 0; i < s.nq; ++i) w.in[static_cast<std::size_t>(i)] = qv[i];
+  for (int i = 0; i < s.n; ++i) w.in[static_cast<std::size_t>(s.nq + i)] = qdv[i];
+  w.in[static_cast<std::size_t>(s.nq + s.n)] = time;
+  std::copy(w.params.begin(), w.params.end(), w.in.begin() + s.nq + s.n + 1);
 }
 
 void evaluate_dynamics(const Impl& s, WorkImpl& w, double time, const Eigen::VectorXd& qv,
@@ -110,9 +108,14 @@ void solve(const Impl& s, WorkImpl& w, double time, const Eigen::VectorXd& qv,
 WorkImpl& checked(const Impl& s, Workspace& w);
 
 void require_sizes(const Impl& s, const Eigen::VectorXd& q, const Eigen::VectorXd& q_dot) {
-  RIGID_REQUIRE_AS("System", q.size() == s.n && q_dot.size() == s.n,
-                "expected q and q_dot of size {} (one per coordinate), got {} and {}", s.n, q.size(),
-                q_dot.size());
+  if (s.nq == s.n) {
+    RIGID_REQUIRE_AS("System", q.size() == s.n && q_dot.size() == s.n,
+                     "expected q and q_dot of size {} (one per coordinate), got {} and {}", s.n,
+                     q.size(), q_dot.size());
+  }
+  RIGID_REQUIRE_AS("System", q.size() == s.nq && q_dot.size() == s.n,
+                   "expected q of size {} (four per ball coordinate) and q_dot of size {} (three "
+                   "per ball), got {} and {}", s.nq, s.n, q.size(), q_dot.size());
 }
 
 }  // namespace
@@ -227,7 +230,7 @@ double System::jacobi_integral(Workspace& ws, double t, const Eigen::VectorXd& q
 Eigen::VectorXd System::constraint_residual(Workspace& ws, double t, const Eigen::VectorXd& q) const {
   const Impl& s = *impl_;
   WorkImpl& w = checked(s, ws);
-  RIGID_REQUIRE(q.size() == s.n, "expected q of size {} (one per coordinate), got {}", s.n, q.size());
+  RIGID_REQUIRE(q.size() == s.nq, "expected q of size {} (one per coordinate), got {}", s.nq, q.size());
   evaluate_dynamics(s, w, t, q, Eigen::VectorXd::Zero(s.n));
   return w.gw.head(s.m);
 }
@@ -245,7 +248,7 @@ Eigen::VectorXd System::velocity_constraint_residual(double t, const Eigen::Vect
 std::vector<BodyPose> System::body_poses(Workspace& ws, double time, const Eigen::VectorXd& q) const {
   const Impl& s = *impl_;
   WorkImpl& w = checked(s, ws);
-  RIGID_REQUIRE(q.size() == s.n, "expected q of size {} (one per coordinate), got {}", s.n, q.size());
+  RIGID_REQUIRE(q.size() == s.nq, "expected q of size {} (one per coordinate), got {}", s.nq, q.size());
   load_inputs(s, w, time, q, Eigen::VectorXd::Zero(s.n));
   s.pose.evaluate(w.in.data(), w.pose_out.data(), w.pose_scratch);
   std::vector<BodyPose> poses(s.body_names.size());
@@ -305,9 +308,14 @@ Trajectory System::simulate(const SimulationOptions& options) const {
 Trajectory System::simulate(const SimulationOptions& o, const Eigen::VectorXd& q0_in,
                             const Eigen::VectorXd& qd0_in) const {
   const Impl& s = *impl_;
-  RIGID_REQUIRE(q0_in.size() == s.n && qd0_in.size() == s.n,
+  RIGID_REQUIRE(q0_in.size() == s.nq && qd0_in.size() == s.n,
                 "expected initial q and q_dot of size {}, got {} and {}", s.n, q0_in.size(),
                 qd0_in.size());
+  for (const Impl::Ball& b : s.balls) {
+    const double norm = q0_in.segment(static_cast<Eigen::Index>(b.q), 4).norm();
+    RIGID_REQUIRE(std::abs(norm - 1) <= 1e-6, "the initial orientation of the ball coordinate '{}' "
+                  "has norm {}; expected a unit quaternion (w, x, y, z) within 1e-6", b.name, norm);
+  }
   RIGID_REQUIRE(std::isfinite(o.stabilization) && o.stabilization >= 0,
                 "stabilization rate must be ≥ 0 and finite, got {} 1/s", o.stabilization);
   RIGID_REQUIRE(o.consistency_tolerance > 0, "consistency_tolerance must be positive, got {}",
@@ -411,8 +419,8 @@ Trajectory System::simulate(const SimulationOptions& o, const Eigen::VectorXd& q
   }
   // the mass matrix at the start (named error if not positive definite) sets the scale
   // against which it is called singular during the run
-  const Eigen::Index n = s.n;
-  Eigen::VectorXd qv(n), qdv(n), acc(n), lw(mr);
+  const Eigen::Index n = s.n, nq = s.nq;
+  Eigen::VectorXd qv(nq), qdv(n), acc(n), lw(mr);
   w.mass_scale = 0.0;
   evaluate_dynamics(s, w, t0, q0, qd0);
   solve(s, w, t0, q0, acc, lw, o.stabilization);
@@ -426,29 +434,34 @@ Trajectory System::simulate(const SimulationOptions& o, const Eigen::VectorXd& q
           "there (a division by zero, or a number outside a function's real domain: a negative "
           "number to a non-integer power, sqrt or log of a negative number, asin or acos beyond "
           "[-1, 1]); check the model's expressions and parameters at the initial state",
-          s.coord_names[static_cast<std::size_t>(i)], std::isnan(acc[i]) ? "NaN" : fmt::format("{}", acc[i]),
+          s.q_of_v[static_cast<std::size_t>(i)] >= 0
+              ? s.coord_names[static_cast<std::size_t>(s.q_of_v[static_cast<std::size_t>(i)])]
+              : s.velocity_names[static_cast<std::size_t>(i)],
+          std::isnan(acc[i]) ? "NaN" : fmt::format("{}", acc[i]),
           s.state_text(t0, q0)));
     }
   }
 
   integrate::Problem problem;
-  problem.y0.resize(2 * n);
+  problem.y0.resize(nq + n);
   problem.y0 << q0, qd0;
   problem.t0 = t0;
   problem.t_end = o.t_end;
-  problem.n_position = s.n;
+  problem.n_position = s.nq;
   problem.owner = "";
   for (const auto& c : s.coord_names) problem.names.push_back(c);
-  for (const auto& c : s.coord_names) problem.names.push_back(c + "_dot");
+  for (const auto& c : s.velocity_names) problem.names.push_back(c);
   const double alpha = o.stabilization;
+  // a ball's quaternion moves by q̇ = ½ q ⊗ (0, ω); the equations take any q ≠ 0 as the
+  // rotation q/|q| (recursive.cpp), so its drift off the unit sphere changes nothing
   problem.rhs = [&, alpha](double t, const Eigen::VectorXd& y, Eigen::VectorXd& dydt) {
-    qv = y.head(n);
+    qv = y.head(nq);
     qdv = y.tail(n);
     // a Runge–Kutta stage can blow up inside a step (the step's end is checked by the march)
     if (!y.allFinite()) [[unlikely]] {
       std::string velocities;
       for (Eigen::Index i = 0; i < n; ++i) {
-        velocities += fmt::format("{}{}_dot = {}", i ? ", " : "", s.coord_names[static_cast<std::size_t>(i)], qdv[i]);
+        velocities += fmt::format("{}{} = {}", i ? ", " : "", s.velocity_names[static_cast<std::size_t>(i)], qdv[i]);
       }
       throw Error(fmt::format("non-finite state inside a step at {}, q̇ = ({}); the motion diverged: "
                               "reduce the step or check the model",
@@ -456,7 +469,11 @@ Trajectory System::simulate(const SimulationOptions& o, const Eigen::VectorXd& q
     }
     evaluate_dynamics(s, w, t, qv, qdv);
     solve(s, w, t, qv, acc, lw, alpha);
-    dydt.head(n) = qdv;
+    if (s.balls.empty()) {
+      dydt.head(n) = qdv;
+    } else {
+      s.coordinate_rates(qv.data(), qdv.data(), dydt.data());
+    }
     dydt.tail(n) = acc;
   };
   const integrate::Solution sol = integrate::integrate(
@@ -465,11 +482,12 @@ Trajectory System::simulate(const SimulationOptions& o, const Eigen::VectorXd& q
 
   Trajectory tr;
   tr.coordinate_names = s.coord_names;
+  tr.velocity_names = s.velocity_names;
   tr.constraint_names = s.constraint_names;
   tr.cyclic_names = s.cyclic_names;
   const auto rows = static_cast<Eigen::Index>(sol.t.size());
   tr.t.resize(rows);
-  tr.q.resize(rows, n);
+  tr.q.resize(rows, nq);
   tr.q_dot.resize(rows, n);
   tr.lambda.resize(rows, s.m);
   tr.energy.resize(rows);
@@ -483,8 +501,9 @@ Trajectory System::simulate(const SimulationOptions& o, const Eigen::VectorXd& q
   for (Eigen::Index k = 0; k < rows; ++k) {
     const double t = sol.t[static_cast<std::size_t>(k)];
     const Eigen::VectorXd& y = sol.y[static_cast<std::size_t>(k)];
-    qv = y.head(n);
+    qv = y.head(nq);
     qdv = y.tail(n);
+    for (const Impl::Ball& b : s.balls) qv.segment(static_cast<Eigen::Index>(b.q), 4).normalize();
     tr.t[k] = t;
     tr.q.row(k) = qv;
     tr.q_dot.row(k) = qdv;

@@ -1280,6 +1280,7 @@ namespace {
 // The exported functions hold M, f and the holonomic rows G, γ; velocity constraints would be
 // missing from them without a word, so such a system is refused.
 const System::Impl& exportable(const System& system) {
+  impl_of(system).refuse_balls("the code export");
   if (system.num_velocity_constraints() > 0) {
     throw Error(fmt::format("the system has velocity constraints ({}); the export writes M, f and "
                             "the holonomic constraints' G and gamma only",
@@ -1440,6 +1441,7 @@ std::string emit(const System& system, Language language, const ExportOptions& o
 void constraint_terms(const System& system, Workspace& ws, double t, const Eigen::VectorXd& q,
                       const Eigen::VectorXd& q_dot, Eigen::MatrixXd& G, Eigen::VectorXd& gamma) {
   const System::Impl& s = impl_of(system);
+  s.refuse_balls("constraint terms");
   Workspace::Impl* w = Workspace::Access::impl(ws);
   RIGID_REQUIRE(w != nullptr && w->owner == &s,
                 "the workspace belongs to another System (or was moved from); make one with "

@@ -300,6 +300,7 @@ Eigen::VectorXcd normalised(Eigen::VectorXcd v, const Eigen::MatrixXd& M) {
 // that change with time.
 void require_holonomic_and_autonomous(const System& system, const Impl& s) {
   const auto nu = static_cast<std::size_t>(s.n);
+  s.refuse_balls("normal modes");
   // rolling (velocity) constraints restrict the motions, not the configurations: their
   // linearisation needs the reduced (Chaplygin/Voronets) equations, which this does not form
   if (system.num_velocity_constraints() > 0) {

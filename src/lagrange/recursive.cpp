@@ -152,15 +152,55 @@ struct Kinematics {
   Mat3 R;
   Vec3 p;
   Spatial V, A;               // velocity and (q̈ = 0, no gravity) acceleration
-  std::vector<Spatial> S;     // per joint of the body: its motion subspace
-  std::vector<Spatial> V_in, A_in;  // per joint: V and A of the frame it turns in (V_j⁻, A_j⁻)
+  // per column of the body's joints (a hinge or slide has one, a ball three): its motion
+  // subspace, its velocity's index, and V and A of the frame it turns in (V_j⁻, A_j⁻)
+  std::vector<Spatial> S;
+  std::vector<std::size_t> column;
+  std::vector<Spatial> V_in, A_in;
   Inertia body, composite;
   Spatial force, composite_force;
 };
 
+// The name of joint J in intermediates' names: its coordinate's (a ball's own name).
+std::string joint_name(const System::Impl& s, const TreeJoint& J) {
+  if (J.ball) {
+    for (const System::Impl::Ball& b : s.balls) {
+      if (b.q == J.quaternion) return b.name;
+    }
+  }
+  return s.coord_names[static_cast<std::size_t>(s.q_of_v[J.coordinate])];
+}
+
+// The name of velocity v in intermediates' names: its coordinate's, a ball's b_wx b_wy b_wz.
+std::string column_name(const System::Impl& s, std::size_t v) {
+  const int q = s.q_of_v[v];
+  return q >= 0 ? s.coord_names[static_cast<std::size_t>(q)] : s.velocity_names[v];
+}
+
+// The coordinate of a hinge's or slide's amount.
+const GiNaC::symbol& joint_coordinate(const System::Impl& s, const TreeJoint& J) {
+  return s.q[static_cast<std::size_t>(s.q_of_v[J.coordinate])];
+}
+
+// The rotation of a ball's quaternion q = (w, x, y, z), named: with σ = 2/|q|² (named),
+//   R = 1 + σ (w [v]× + [v]×²),  v = (x, y, z),
+// a rotation for every q ≠ 0 (the unit quaternion's matrix when |q| = 1), so that the
+// equations hold along a run whose quaternion drifts off the unit sphere by round-off.
+Mat3 ball_rotation(const System::Impl& s, Namer& name, const TreeJoint& J, const std::string& nm) {
+  const ex w = s.q[J.quaternion], x = s.q[J.quaternion + 1], y = s.q[J.quaternion + 2],
+           z = s.q[J.quaternion + 3];
+  const ex sigma = name("sq_" + nm, 2 / (w * w + x * x + y * y + z * z));
+  return name("Rq_" + nm, Mat3{{{1 - sigma * (y * y + z * z), sigma * (x * y - w * z), sigma * (x * z + w * y)},
+                                {sigma * (x * y + w * z), 1 - sigma * (x * x + z * z), sigma * (y * z - w * x)},
+                                {sigma * (x * z - w * y), sigma * (y * z + w * x), 1 - sigma * (x * x + y * y)}}});
+}
+
 // The frame and the joints of body `b`, from its parent's frame `P` (nullptr: the world).
 // Each joint's frame (R, p before it turns or slides) is named, so that its axis z, a point o
-// on it and the axis's moment o × z stay short expressions of named ones.
+// on it and the axis's moment o × z stay short expressions of named ones. A ball's three
+// columns are the body's axes R e_k through its anchor o, (R e_k, o × R e_k), all three
+// turning in the frame before it: they move with the body, and Σ_k Ṡ_k ω_k = V⁺ × S ω =
+// V⁻ × S ω (V⁺ = V⁻ + S ω), which is A's term (V_j⁻ × S_j) q̇_j per column with V_j⁻ = V⁻.
 void forward(const System::Impl& s, Namer& name, const TreeBody& b, const Kinematics* P,
              Kinematics& K) {
   Mat3 R = P ? P->R : identity3();
@@ -171,23 +211,46 @@ void forward(const System::Impl& s, Namer& name, const TreeBody& b, const Kinema
   p = plus(p, mat_vec(R, b.position));
   R = mat_mul(R, b.orientation);
   for (const TreeJoint& J : b.joints) {
-    const std::string& coord = s.coord_names[J.coordinate];
+    const std::string coord = joint_name(s, J);
     R = name("Rj_" + coord, R);
     p = name("pj_" + coord, p);
+    if (J.ball) {
+      const Vec3 a = vec(J.anchor);
+      const Vec3 o = name("o_" + coord, plus(p, mat_vec(R, a)));
+      const Mat3 RJ = ball_rotation(s, name, J, coord);
+      const Vec3 RJa = mat_vec(RJ, a);
+      p = plus(p, mat_vec(R, {a[0] - RJa[0], a[1] - RJa[1], a[2] - RJa[2]}));
+      R = name("Rb_" + coord, mat_mul(R, RJ));
+      const Spatial V_before = V, A_before = A;
+      for (std::size_t k = 0; k < 3; ++k) {
+        const std::string axis = coord + "_" + kAxis[k];
+        Spatial S;
+        S.a = {R[0][k], R[1][k], R[2][k]};
+        S.b = name("u_" + axis, cross(o, S.a));
+        const ex w = s.qd[J.coordinate + k];
+        K.V_in.push_back(V_before);
+        K.A_in.push_back(A_before);
+        A = plus(A, scaled(cross_motion(V_before, S), w));
+        V = plus(V, scaled(S, w));
+        K.S.push_back(S);
+        K.column.push_back(J.coordinate + k);
+      }
+      continue;
+    }
     const ex qd = s.qd[J.coordinate];
     Spatial S;
     if (J.turn) {
       S.a = name("z_" + coord, mat_vec(R, vec(J.axis)));
       const Vec3 o = name("o_" + coord, plus(p, mat_vec(R, vec(J.anchor))));
       S.b = name("u_" + coord, cross(o, S.a));  // o × z: the axis's moment about O
-      const Mat3 RJ = rodrigues(J.axis, s.q[J.coordinate]);
+      const Mat3 RJ = rodrigues(J.axis, joint_coordinate(s, J));
       const Vec3 a = vec(J.anchor);
       const Vec3 RJa = mat_vec(RJ, a);
       p = plus(p, mat_vec(R, {a[0] - RJa[0], a[1] - RJa[1], a[2] - RJa[2]}));
       R = mat_mul(R, RJ);
     } else {
       S.b = name("z_" + coord, mat_vec(R, vec(J.axis)));
-      p = plus(p, scaled(S.b, s.q[J.coordinate]));
+      p = plus(p, scaled(S.b, joint_coordinate(s, J)));
     }
     // the frame the joint turns in moves with V (V_j⁻): A gains (V_j⁻ × S_j) q̇_j
     K.V_in.push_back(V);
@@ -195,6 +258,7 @@ void forward(const System::Impl& s, Namer& name, const TreeBody& b, const Kinema
     A = plus(A, scaled(cross_motion(V, S), qd));
     V = plus(V, scaled(S, qd));
     K.S.push_back(S);
+    K.column.push_back(J.coordinate);
   }
   K.R = name("R_" + b.name, R);
   K.p = name("p_" + b.name, p);
@@ -248,6 +312,7 @@ TreeInverseDynamics tree_inverse_dynamics(const System::Impl& s,
                                           const std::vector<TreeBody>& bodies,
                                           const Vec3& gravity,
                                           const std::set<std::string>& taken) {
+  RIGID_ASSERT(s.balls.empty());  // the export refuses ball coordinates before it asks
   TreeInverseDynamics out;
   Namer name(out.aux, out.defs, taken);
   out.tau.assign(static_cast<std::size_t>(s.n), 0);
@@ -271,20 +336,20 @@ TreeInverseDynamics tree_inverse_dynamics(const System::Impl& s,
     V = motion_to_child(f.steps.back(), V);
     A = motion_to_child(f.steps.back(), A);
     for (const TreeJoint& J : body.joints) {
-      const std::string& coord = s.coord_names[J.coordinate];
+      const std::string coord = joint_name(s, J);
       Step X;
       Spatial S;
       const Vec3 a = vec(J.axis);
       if (J.turn) {
         // a turn about a through o: C = P turned, its origin at o − E o; S = (a, o × a)
-        X.E = rodrigues(J.axis, s.q[J.coordinate]);
+        X.E = rodrigues(J.axis, joint_coordinate(s, J));
         const Vec3 o = vec(J.anchor);
         const Vec3 Eo = mat_vec(X.E, o);
         X.r = {o[0] - Eo[0], o[1] - Eo[1], o[2] - Eo[2]};
         S = {a, cross(o, a)};
       } else {
         X.E = identity3();
-        X.r = scaled(a, s.q[J.coordinate]);
+        X.r = scaled(a, joint_coordinate(s, J));
         S = {{0, 0, 0}, a};
       }
       const ex qd = s.qd[J.coordinate];
@@ -320,7 +385,10 @@ TreeInverseDynamics tree_inverse_dynamics(const System::Impl& s,
     for (std::size_t j = f.S.size(); j-- > 0;) {
       out.tau[f.c[j]] = power(f.S[j], F).expand();
       F = force_to_parent(f.steps[j + 1], F);
-      if (j > 0) F = name("idn_" + s.coord_names[f.c[j]], "idf_" + s.coord_names[f.c[j]], F);
+      if (j > 0) {
+        const std::string coord = s.coord_names[static_cast<std::size_t>(s.q_of_v[f.c[j]])];
+        F = name("idn_" + coord, "idf_" + coord, F);
+      }
     }
     F = force_to_parent(f.steps[0], F);
     if (bodies[b].parent >= 0) {
@@ -381,21 +449,23 @@ TreeEquations tree_equations(System::Impl& s, const std::vector<TreeBody>& bodie
   out.inertial.assign(n, 0);
   out.gravity.assign(n, 0);
   // the joints on the path from the root to each body, in order: (coordinate, S)
+  // (per column: a ball's three are three entries)
   std::vector<std::vector<std::pair<std::size_t, Spatial>>> path(bodies.size());
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     if (bodies[b].parent >= 0) path[b] = path[static_cast<std::size_t>(bodies[b].parent)];
-    for (std::size_t j = 0; j < bodies[b].joints.size(); ++j) path[b].emplace_back(bodies[b].joints[j].coordinate, K[b].S[j]);
+    for (std::size_t j = 0; j < K[b].S.size(); ++j) path[b].emplace_back(K[b].column[j], K[b].S[j]);
   }
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     const Kinematics& k = K[b];
     const Spatial weight{cross(k.composite.h, gravity), scaled(gravity, k.composite.m)};
-    const std::size_t first = path[b].size() - bodies[b].joints.size();
-    for (std::size_t j = 0; j < bodies[b].joints.size(); ++j) {
-      const std::size_t c = bodies[b].joints[j].coordinate;
+    const std::size_t first = path[b].size() - k.S.size();
+    for (std::size_t j = 0; j < k.S.size(); ++j) {
+      const std::size_t c = k.column[j];
       const Spatial& S = k.S[j];
       out.inertial[c] += -power(S, k.composite_force);
       out.gravity[c] += power(S, weight);
-      const Spatial F = name("Fn_" + s.coord_names[c], "Ff_" + s.coord_names[c], apply(k.composite, S));
+      const std::string cn = column_name(s, c);
+      const Spatial F = name("Fn_" + cn, "Ff_" + cn, apply(k.composite, S));
       for (std::size_t i = 0; i <= first + j; ++i) {
         const std::size_t r = path[b][i].first;
         const ex Mij = power(path[b][i].second, F).expand();
@@ -475,6 +545,7 @@ TreeDerivatives tree_inverse_dynamics_derivatives(const System::Impl& s,
                                                   const std::vector<TreeBody>& bodies,
                                                   const Vec3& gravity,
                                                   const std::set<std::string>& taken) {
+  RIGID_ASSERT(s.balls.empty());  // the export refuses ball coordinates before it asks
   const auto n = static_cast<std::size_t>(s.n);
   TreeDerivatives out;
   Namer name(out.aux, out.defs, taken);
@@ -502,7 +573,7 @@ TreeDerivatives tree_inverse_dynamics_derivatives(const System::Impl& s,
     if (body.parent >= 0) path[b] = path[parent];
     for (std::size_t j = 0; j < body.joints.size(); ++j) {
       const std::size_t c = body.joints[j].coordinate;
-      const std::string& coord = s.coord_names[c];
+      const std::string& coord = s.coord_names[c];  // no balls: q and the velocities align
       Joint J{c, b, K[b].S[j], {}, {}};
       const Spatial& v_in = K[b].V_in[j];
       const Spatial a_in = plus(plus(K[b].A_in[j], a0), acc);

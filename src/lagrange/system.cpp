@@ -81,7 +81,7 @@ void System::Impl::check_masses(const std::vector<double>& values, std::string_v
 
 std::string System::Impl::state_text(double time, const Eigen::VectorXd& qv) const {
   std::string s = fmt::format("t = {} s, q = (", time);
-  for (int i = 0; i < n; ++i) {
+  for (int i = 0; i < nq; ++i) {
     s += fmt::format("{}{} = {}", i ? ", " : "", coord_names[static_cast<std::size_t>(i)], qv[i]);
   }
   return s + ")";
@@ -116,21 +116,66 @@ void declare_symbols(System::Impl& s, const SystemSpec& spec, Names& names) {
     s.param_values.push_back(p.value);
     declare(p.name, "parameter", s.params.back());
   }
-  s.q0.resize(s.n);
+  s.q0.resize(s.nq);
   s.qd0.resize(s.n);
-  for (int i = 0; i < s.n; ++i) {
-    const Coordinate& c = spec.coordinates[static_cast<std::size_t>(i)];
+  Eigen::Index iq = 0, iv = 0;
+  for (const Coordinate& c : spec.coordinates) {
     RIGID_REQUIRE_AS("System", std::isfinite(c.initial) && std::isfinite(c.velocity),
                   "coordinate '{}': initial value {} and velocity {} must be finite", c.name,
                   c.initial, c.velocity);
+    if (c.kind == Coordinate::Kind::kBall) {
+      const Eigen::Vector4d quat(c.orientation[0], c.orientation[1], c.orientation[2], c.orientation[3]);
+      RIGID_REQUIRE_AS("System", quat.allFinite() && c.angular_velocity.allFinite(),
+                       "ball coordinate '{}': orientation ({}, {}, {}, {}) and angular velocity ({}, "
+                       "{}, {}) must be finite", c.name, quat[0], quat[1], quat[2], quat[3],
+                       c.angular_velocity.x(), c.angular_velocity.y(), c.angular_velocity.z());
+      RIGID_REQUIRE_AS("System", std::abs(quat.norm() - 1) <= 1e-6,
+                       "ball coordinate '{}': the orientation ({}, {}, {}, {}) has norm {}; expected "
+                       "a unit quaternion (w, x, y, z) within 1e-6", c.name, quat[0], quat[1],
+                       quat[2], quat[3], quat.norm());
+      s.balls.push_back({static_cast<std::size_t>(iq), static_cast<std::size_t>(iv), c.name});
+      constexpr std::array<const char*, 4> kPart{"w", "x", "y", "z"};
+      for (std::size_t k = 0; k < 4; ++k) {
+        const std::string name = c.name + "_q" + kPart[k];
+        s.coord_names.push_back(name);
+        s.q.emplace_back(name, "q_{" + tex_name(c.name) + "," + kPart[k] + "}");
+        s.q0[iq++] = quat[static_cast<Eigen::Index>(k)] / quat.norm();
+        declare(name, "coordinate", s.q.back());
+      }
+      for (std::size_t k = 0; k < 3; ++k) {
+        const std::string name = c.name + "_w" + kPart[k + 1];
+        s.velocity_names.push_back(name);
+        s.qd.emplace_back(name, "\\omega_{" + tex_name(c.name) + "," + kPart[k + 1] + "}");
+        s.qdd.emplace_back(name + "_dot", "\\dot\\omega_{" + tex_name(c.name) + "," + kPart[k + 1] + "}");
+        s.q_of_v.push_back(-1);
+        s.qd0[iv++] = c.angular_velocity[static_cast<Eigen::Index>(k)];
+        declare(name, "velocity", s.qd.back());
+      }
+      continue;
+    }
     s.coord_names.push_back(c.name);
+    s.velocity_names.push_back(c.name + "_dot");
     s.q.emplace_back(c.name, tex_name(c.name));
     s.qd.emplace_back(c.name + "_dot", "\\dot{" + tex_name(c.name) + "}");
     s.qdd.emplace_back(c.name + "_ddot", "\\ddot{" + tex_name(c.name) + "}");
-    s.q0[i] = c.initial;
-    s.qd0[i] = c.velocity;
+    s.q_of_v.push_back(static_cast<int>(iq));
+    s.q0[iq++] = c.initial;
+    s.qd0[iv++] = c.velocity;
     declare(c.name, "coordinate", s.q.back());
     declare(c.name + "_dot", "velocity", s.qd.back());
+  }
+  // dq/dt: a coordinate's velocity, and ½ q ⊗ (0, ω) for a ball's quaternion
+  s.q_rate.assign(s.q.size(), 0);
+  for (std::size_t v = 0; v < s.qd.size(); ++v) {
+    if (s.q_of_v[v] >= 0) s.q_rate[static_cast<std::size_t>(s.q_of_v[v])] = s.qd[v];
+  }
+  for (const System::Impl::Ball& b : s.balls) {
+    const ex w = s.q[b.q], x = s.q[b.q + 1], y = s.q[b.q + 2], z = s.q[b.q + 3];
+    const ex wx = s.qd[b.v], wy = s.qd[b.v + 1], wz = s.qd[b.v + 2];
+    s.q_rate[b.q] = -(x * wx + y * wy + z * wz) / 2;
+    s.q_rate[b.q + 1] = (w * wx + y * wz - z * wy) / 2;
+    s.q_rate[b.q + 2] = (w * wy + z * wx - x * wz) / 2;
+    s.q_rate[b.q + 3] = (w * wz + x * wy - y * wx) / 2;
   }
 }
 
@@ -147,12 +192,11 @@ class ExpressionReader {
     }
     ex value = detail::parse_expression(e, names_, context);
     if (!allow_velocity) {
-      for (int i = 0; i < s_.n; ++i) {
-        if (value.has(s_.qd[static_cast<std::size_t>(i)])) {
-          detail::throw_at(e, e.text.find(s_.coord_names[static_cast<std::size_t>(i)] + "_dot"),
-                           context, fmt::format("depends on the velocity '{}_dot'; only q and t "
-                                                "may appear here",
-                                                s_.coord_names[static_cast<std::size_t>(i)]));
+      for (const symbol& v : s_.qd) {
+        if (value.has(v)) {
+          detail::throw_at(e, e.text.find(v.get_name()), context,
+                           fmt::format("depends on the velocity '{}'; only q and t may appear here",
+                                       v.get_name()));
         }
       }
     }
@@ -162,12 +206,12 @@ class ExpressionReader {
   // an expression of the parameters and numbers only (masses, inertias, gravity)
   [[nodiscard]] ex parse_constant(const Expression& e, const std::string& context) const {
     const ex value = parse(e, context, false);
-    for (int i = 0; i < s_.n; ++i) {
-      if (value.has(s_.q[static_cast<std::size_t>(i)])) {
-        detail::throw_at(e, e.text.find(s_.coord_names[static_cast<std::size_t>(i)]), context,
+    for (std::size_t i = 0; i < s_.q.size(); ++i) {
+      if (value.has(s_.q[i])) {
+        detail::throw_at(e, e.text.find(s_.coord_names[i]), context,
                          fmt::format("depends on the coordinate '{}'; a constant of the model may "
                                      "use parameters and numbers only",
-                                     s_.coord_names[static_cast<std::size_t>(i)]));
+                                     s_.coord_names[i]));
       }
     }
     if (value.has(s_.t)) {
@@ -183,10 +227,11 @@ class ExpressionReader {
   const Names& names_;
 };
 
-// Total time derivative d/dt e(q, t) = Σ ∂e/∂qᵢ q̇ᵢ + ∂e/∂t.
+// Total time derivative d/dt e(q, t) = Σ ∂e/∂qᵢ q̇ᵢ + ∂e/∂t (q̇ᵢ of a ball's quaternion:
+// ½ q ⊗ (0, ω)).
 ex time_derivative(const System::Impl& s, const ex& e) {
   ex r = d(e, s.t);
-  for (int i = 0; i < s.n; ++i) r += d(e, s.q[static_cast<std::size_t>(i)]) * s.qd[static_cast<std::size_t>(i)];
+  for (std::size_t i = 0; i < s.q.size(); ++i) r += d(e, s.q[i]) * s.q_rate[i];
   return r;
 }
 
@@ -457,6 +502,17 @@ BodyTerms derive_energies(System::Impl& s, const SystemSpec& spec, const Express
   return terms;
 }
 
+// The ball coordinate `text` names (blanks around it ignored), or nullptr.
+const System::Impl::Ball* find_ball(const System::Impl& s, const std::string& text) {
+  const auto first = text.find_first_not_of(" \t"), last = text.find_last_not_of(" \t");
+  if (first == std::string::npos) return nullptr;
+  const std::string name = text.substr(first, last - first + 1);
+  for (const System::Impl::Ball& b : s.balls) {
+    if (b.name == name) return &b;
+  }
+  return nullptr;
+}
+
 // Why the tree's recursions do not derive `spec` (empty: they do); `depth` receives the most
 // joints on one chain from the world.
 std::string recursion_refusal(const System::Impl& s, const SystemSpec& spec,
@@ -465,7 +521,7 @@ std::string recursion_refusal(const System::Impl& s, const SystemSpec& spec,
   if (!spec.springs.empty()) return "springs act between the bodies' points, not along a tree";
   if (spec.bodies.empty()) return "there are no bodies";
   std::map<std::string, int> depth_of;  // body name → joints from the world to it
-  std::vector<bool> driven(static_cast<std::size_t>(s.n), false);
+  std::vector<bool> driven(s.q.size(), false);  // per entry of q (a ball: its w)
   for (std::size_t i = 0; i < spec.bodies.size(); ++i) {
     const Body& b = spec.bodies[i];
     const std::string who = b.name.empty() ? fmt::format("body{}", i) : b.name;
@@ -495,23 +551,43 @@ std::string recursion_refusal(const System::Impl& s, const SystemSpec& spec,
     for (std::size_t j = 0; j < b.joints.size(); ++j) {
       const JointMotion& J = b.joints[j];
       const double norm = J.axis.norm();
-      if (!std::isfinite(norm) || norm <= 0 || !J.anchor.allFinite()) {
+      const bool ball = J.kind == JointMotion::Kind::kBall;
+      if ((!ball && (!std::isfinite(norm) || norm <= 0)) || !J.anchor.allFinite()) {
         return fmt::format("body '{}' joint {} has no valid axis or anchor", who, j);
       }
-      const ex amount = reader.parse(J.amount, fmt::format("body '{}' joint {} {}", b.name, j,
-                                     J.kind == JointMotion::Kind::kTurn ? "turn" : "slide"), false);
-      auto it = std::find_if(s.q.begin(), s.q.end(), [&](const symbol& q) { return amount.is_equal(q); });
-      if (it == s.q.end()) {
-        return fmt::format("body '{}' joint {} moves by '{}', which is not a coordinate", who, j,
-                           J.amount.text);
+      const System::Impl::Ball* named_ball = find_ball(s, J.amount.text);
+      if (ball != (named_ball != nullptr)) {
+        return ball ? fmt::format("body '{}' joint {} is a ball turned by '{}', which is no ball "
+                                  "coordinate", who, j, J.amount.text)
+                    : fmt::format("body '{}' joint {} is a {} by the ball coordinate '{}'; a ball "
+                                  "coordinate turns a ball joint", who, j,
+                                  J.kind == JointMotion::Kind::kTurn ? "turn" : "slide", J.amount.text);
       }
-      const auto c = static_cast<std::size_t>(it - s.q.begin());
-      if (driven[c]) return fmt::format("the coordinate '{}' drives two joints", s.coord_names[c]);
+      std::size_t c = 0;
+      if (ball) {
+        c = named_ball->q;
+      } else {
+        const ex amount = reader.parse(J.amount, fmt::format("body '{}' joint {} {}", b.name, j,
+                                       J.kind == JointMotion::Kind::kTurn ? "turn" : "slide"), false);
+        auto it = std::find_if(s.q.begin(), s.q.end(), [&](const symbol& q) { return amount.is_equal(q); });
+        if (it == s.q.end() || s.q_of_v.end() == std::find(s.q_of_v.begin(), s.q_of_v.end(),
+                                                           static_cast<int>(it - s.q.begin()))) {
+          return fmt::format("body '{}' joint {} moves by '{}', which is not a coordinate", who, j,
+                             J.amount.text);
+        }
+        c = static_cast<std::size_t>(it - s.q.begin());
+      }
+      if (driven[c]) {
+        return fmt::format("the coordinate '{}' drives two joints", ball ? named_ball->name : s.coord_names[c]);
+      }
       driven[c] = true;
     }
     d += static_cast<int>(b.joints.size());
     depth = std::max(depth, d);
     depth_of[b.name] = d;
+  }
+  for (const System::Impl::Ball& ball : s.balls) {
+    if (!driven[ball.q]) return fmt::format("the ball coordinate '{}' turns no ball joint", ball.name);
   }
   return {};
 }
@@ -519,6 +595,20 @@ std::string recursion_refusal(const System::Impl& s, const SystemSpec& spec,
 // Whether the bodies are derived by the tree's recursions (SystemSpec::Derivation).
 bool use_recursion(const System::Impl& s, const SystemSpec& spec, const ExpressionReader& reader) {
   using Derivation = SystemSpec::Derivation;
+  if (!s.balls.empty()) {
+    // a ball's velocity is no q̇: its equations are the tree's (Euler–Poincaré), not
+    // Lagrange's of an expanded L
+    RIGID_REQUIRE_AS("System", spec.derivation != Derivation::kExpanded,
+                     "the ball coordinate '{}' needs the recursive derivation (its velocity ω is "
+                     "not the rate of its quaternion, so Lagrange's equations of the expanded L do "
+                     "not apply); use derivation auto or recursive", s.balls.front().name);
+    int depth = 0;
+    const std::string why = recursion_refusal(s, spec, reader, depth);
+    RIGID_REQUIRE_AS("System", why.empty(), "a system with the ball coordinate '{}' is derived by "
+                     "the tree's recursions, which apply to a tree of bodies moved by joints; here {}",
+                     s.balls.front().name, why);
+    return true;
+  }
   if (spec.derivation == Derivation::kExpanded) return false;
   int depth = 0;
   const std::string why = recursion_refusal(s, spec, reader, depth);
@@ -560,10 +650,17 @@ std::vector<detail::TreeBody> tree_bodies(System::Impl& s, const SystemSpec& spe
     for (int r = 0; r < 3; ++r)
       for (int c = 0; c < 3; ++c) t.orientation[r][c] = number(b.orientation(r, c));
     for (const JointMotion& J : b.joints) {
+      if (J.kind == JointMotion::Kind::kBall) {
+        const System::Impl::Ball* ball = find_ball(s, J.amount.text);
+        t.joints.push_back({false, Eigen::Vector3d::UnitZ(), J.anchor, ball->v, true, ball->q});
+        continue;
+      }
       const ex amount = reader.parse(J.amount, ctx, false);
       const auto it = std::find_if(s.q.begin(), s.q.end(), [&](const symbol& q) { return amount.is_equal(q); });
-      t.joints.push_back({J.kind == JointMotion::Kind::kTurn, J.axis / J.axis.norm(), J.anchor,
-                          static_cast<std::size_t>(it - s.q.begin())});
+      const auto q = static_cast<std::size_t>(it - s.q.begin());
+      const auto v = static_cast<std::size_t>(
+          std::find(s.q_of_v.begin(), s.q_of_v.end(), static_cast<int>(q)) - s.q_of_v.begin());
+      t.joints.push_back({J.kind == JointMotion::Kind::kTurn, J.axis / J.axis.norm(), J.anchor, v});
     }
     t.mass = reader.parse_constant(b.mass.mass, ctx + " mass");
     for (int k = 0; k < 3; ++k) t.com[k] = reader.parse_constant(b.mass.com[k], fmt::format("{} com[{}]", ctx, k));
@@ -619,21 +716,58 @@ BodyTerms derive_recursive(System::Impl& s, const SystemSpec& spec, const Expres
   s.M = tree.M;
   s.f.resize(n);
   s.f_potential.resize(n);
+  // a ball's velocity ω is no q̇: L_extra's generalized force on it is Nᵀ ∂L/∂q over its
+  // quaternion (N = ∂q̇/∂ω, the virtual work of a turn), and its momentum ∂L/∂ω adds
+  // Euler–Poincaré's (∂L/∂ω) × ω [Holm, Schmah and Stoica 2009, §7.3]; both hold where the
+  // velocity part of L does not depend on the quaternion, which is refused otherwise
+  for (const System::Impl::Ball& b : s.balls) {
+    for (std::size_t r = 0; r < 4; ++r) {
+      if (T_given.has(s.q[b.q + r])) {
+        rigid::detail::throw_error("System", fmt::format(
+            "the Lagrangian's velocity-dependent part depends on the ball coordinate's '{}'; "
+            "a term of q̇ may depend on the hinges' and slides' coordinates, not on a ball's "
+            "orientation", s.coord_names[b.q + r]));
+      }
+    }
+  }
+  // ∂L/∂(entry v of the velocities) through the coordinates: ∂L/∂q of its coordinate, or
+  // (Nᵀ ∂L/∂q)_k for component k of a ball's ω
+  auto coordinate_force = [&](const ex& L, std::size_t v) -> ex {
+    if (s.q_of_v[v] >= 0) return d(L, s.q[static_cast<std::size_t>(s.q_of_v[v])]);
+    for (const System::Impl::Ball& b : s.balls) {
+      if (v < b.v || v >= b.v + 3) continue;
+      ex sum = 0;
+      for (std::size_t r = 0; r < 4; ++r) sum += d(s.q_rate[b.q + r], s.qd[v]) * d(L, s.q[b.q + r]);
+      return sum;
+    }
+    return 0;
+  };
+  std::vector<ex> p(n);
+  for (std::size_t i = 0; i < n; ++i) p[i] = d(L_extra, s.qd[i]);
   ex h = tree.T + tree.V - L_extra;
   for (std::size_t i = 0; i < n; ++i) {
-    const ex p = d(L_extra, s.qd[i]);
-    for (std::size_t j = 0; j < n; ++j) s.M[i * n + j] = (s.M[i * n + j] + d(p, s.qd[j])).expand();
+    for (std::size_t j = 0; j < n; ++j) s.M[i * n + j] = (s.M[i * n + j] + d(p[i], s.qd[j])).expand();
     if (s.M[i * n + i].is_zero()) {
+      const std::string& c = s.q_of_v[i] >= 0 ? s.coord_names[static_cast<std::size_t>(s.q_of_v[i])]
+                                              : s.velocity_names[i];
       rigid::detail::throw_error("System", fmt::format("no body moves with the coordinate '{}' and the "
-                  "Lagrangian is not quadratic in '{}_dot', so the mass matrix is singular",
-                  s.coord_names[i], s.coord_names[i]));
+                  "Lagrangian is not quadratic in '{}', so the mass matrix is singular",
+                  c, s.velocity_names[i]));
     }
-    ex fi = tree.inertial[i] + tree.gravity[i] + d(L_extra, s.q[i]) - d(p, s.t);
-    for (std::size_t j = 0; j < n; ++j) fi -= d(p, s.q[j]) * s.qd[j];
-    s.f[i] = fi.expand();
-    s.f_potential[i] = (tree.gravity[i] - d(V_extra, s.q[i])).expand();
-    h += s.qd[i] * p;
+    ex fi = tree.inertial[i] + tree.gravity[i] + coordinate_force(L_extra, i) - d(p[i], s.t);
+    for (std::size_t j = 0; j < s.q.size(); ++j) fi -= d(p[i], s.q[j]) * s.q_rate[j];
+    s.f[i] = fi;
+    s.f_potential[i] = (tree.gravity[i] - coordinate_force(V_extra, i)).expand();
+    h += s.qd[i] * p[i];
   }
+  for (const System::Impl::Ball& b : s.balls) {
+    // (∂L/∂ω) × ω, body frame
+    for (std::size_t k = 0; k < 3; ++k) {
+      const std::size_t k1 = b.v + (k + 1) % 3, k2 = b.v + (k + 2) % 3;
+      s.f[b.v + k] += p[k1] * s.qd[k2] - p[k2] * s.qd[k1];
+    }
+  }
+  for (ex& fi : s.f) fi = fi.expand();
   s.h = h.expand();
   return terms;
 }
@@ -643,14 +777,20 @@ std::vector<bool> derive_generalized_forces(System::Impl& s, const SystemSpec& s
                                             const ExpressionReader& reader) {
   std::vector<ex> Q(static_cast<std::size_t>(s.n), 0);
   std::vector<bool> forced(static_cast<std::size_t>(s.n), false);
+  // a force acts on a coordinate by its name, or on a ball's ω_k (a torque about the body's
+  // axis k, N·m) by the velocity's name b_wx, b_wy, b_wz
+  std::vector<std::string> targets(static_cast<std::size_t>(s.n));
+  for (std::size_t v = 0; v < targets.size(); ++v) {
+    targets[v] = s.q_of_v[v] >= 0 ? s.coord_names[static_cast<std::size_t>(s.q_of_v[v])] : s.velocity_names[v];
+  }
   for (const NamedExpression& F : spec.forces) {
-    auto it = std::find(s.coord_names.begin(), s.coord_names.end(), F.name);
-    if (it == s.coord_names.end()) {
+    auto it = std::find(targets.begin(), targets.end(), F.name);
+    if (it == targets.end()) {
       std::string known;
-      for (const auto& c : s.coord_names) known += (known.empty() ? "" : ", ") + c;
+      for (const auto& c : targets) known += (known.empty() ? "" : ", ") + c;
       rigid::detail::throw_error("System", fmt::format("force on '{}': no coordinate of that name; coordinates: {}", F.name, known));
     }
-    const auto i = static_cast<std::size_t>(it - s.coord_names.begin());
+    const auto i = static_cast<std::size_t>(it - targets.begin());
     Q[i] += reader.parse(F.expression, fmt::format("force on '{}'", F.name), true);
     forced[i] = true;
   }
@@ -807,7 +947,11 @@ void compile_tapes(System::Impl& s, const BodyTerms& terms) {
 
 // Parses, assembles, derives and compiles `spec` into `s` (under the symbolic lock).
 void derive(System::Impl& s, const SystemSpec& spec) {
-  s.n = static_cast<int>(spec.coordinates.size());
+  for (const Coordinate& c : spec.coordinates) {
+    const bool ball = c.kind == Coordinate::Kind::kBall;
+    s.n += ball ? 3 : 1;
+    s.nq += ball ? 4 : 1;
+  }
   s.m = static_cast<int>(spec.constraints.size());
   RIGID_REQUIRE_AS("System", s.n > 0, "a system needs at least one coordinate, got none");
 
@@ -815,7 +959,7 @@ void derive(System::Impl& s, const SystemSpec& spec) {
   Names names;
   declare_symbols(s, spec, names);
   // a coordinate that is a joint's amount as written has that joint's unit
-  s.joint_unit.assign(static_cast<std::size_t>(s.n), "");
+  s.joint_unit.assign(static_cast<std::size_t>(s.nq), "");
   for (const Body& b : spec.bodies) {
     for (const JointMotion& J : b.joints) {
       const std::string& a = J.amount.text;
@@ -842,6 +986,9 @@ void derive(System::Impl& s, const SystemSpec& spec) {
     derive_euler_lagrange(s);
   }
 
+  if (!s.balls.empty() && (!spec.constraints.empty() || !spec.velocity_constraints.empty())) {
+    s.refuse_balls(spec.constraints.empty() ? "velocity constraints" : "constraints");
+  }
   // constraints: G = ∂g/∂q, ġ = G q̇ + ∂g/∂t, γ = −(∂ġ/∂q q̇ + ∂ġ/∂t)
   std::vector<bool> constrained = derive_constraints(s, spec, reader);
   // velocity (nonholonomic) constraints A q̇ + a = 0 (velocity_constraints.cpp)
@@ -893,7 +1040,42 @@ System& System::operator=(System&& other) noexcept {
   return *this;
 }
 
-int System::num_coordinates() const { return impl_->n; }
+int System::num_coordinates() const { return impl_->nq; }
+int System::num_velocities() const { return impl_->n; }
+const std::vector<std::string>& System::velocity_names() const { return impl_->velocity_names; }
+bool System::has_ball_coordinates() const { return !impl_->balls.empty(); }
+
+void System::Impl::refuse_balls(std::string_view what) const {
+  if (balls.empty()) return;
+  throw Error(fmt::format("{} of a system with ball coordinates (here '{}': a ball or free joint) "
+                          "are not supported yet; its equations, runs and sweeps are",
+                          what, balls.front().name));
+}
+
+void System::Impl::coordinate_rates(const double* qv, const double* v, double* out) const {
+  for (std::size_t i = 0; i < q_of_v.size(); ++i) {
+    if (q_of_v[i] >= 0) out[q_of_v[i]] = v[i];
+  }
+  for (const Ball& b : balls) {
+    // ½ q ⊗ (0, ω)
+    const double w = qv[b.q], x = qv[b.q + 1], y = qv[b.q + 2], z = qv[b.q + 3];
+    const double wx = v[b.v], wy = v[b.v + 1], wz = v[b.v + 2];
+    out[b.q] = -0.5 * (x * wx + y * wy + z * wz);
+    out[b.q + 1] = 0.5 * (w * wx + y * wz - z * wy);
+    out[b.q + 2] = 0.5 * (w * wy + z * wx - x * wz);
+    out[b.q + 3] = 0.5 * (w * wz + x * wy - y * wx);
+  }
+}
+
+Eigen::VectorXd System::coordinate_rates(const Eigen::VectorXd& q, const Eigen::VectorXd& q_dot) const {
+  const Impl& s = *impl_;
+  RIGID_REQUIRE(q.size() == s.nq && q_dot.size() == s.n,
+                "expected q of size {} and q_dot of size {}, got {} and {}", s.nq, s.n, q.size(),
+                q_dot.size());
+  Eigen::VectorXd out(s.nq);
+  s.coordinate_rates(q.data(), q_dot.data(), out.data());
+  return out;
+}
 int System::num_constraints() const { return impl_->m; }
 const std::vector<std::string>& System::coordinate_names() const { return impl_->coord_names; }
 const std::vector<std::string>& System::constraint_names() const {

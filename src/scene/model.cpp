@@ -458,7 +458,10 @@ struct Model::Impl {
     if (kind == SceneKind::kCoordinates) {
       const lagrange::System& sys = *system;
       for (const auto& c : sys.coordinate_names()) scalar(Q::kCoordinate, c, c);
-      for (const auto& c : sys.coordinate_names()) scalar(Q::kCoordinateRate, c + "_dot", c);
+      // a coordinate's rate c_dot is owned by c; a ball's ω (b_wx …) by itself
+      for (const auto& v : sys.velocity_names()) {
+        scalar(Q::kCoordinateRate, v, v.ends_with("_dot") ? v.substr(0, v.size() - 4) : v);
+      }
       for (const auto& b : sys.body_names()) pose(b);
       scalar(Q::kEnergy, "energy", "");
       scalar(Q::kJacobi, "jacobi", "");
@@ -580,15 +583,26 @@ struct Model::Impl {
                                                      static_cast<double>(integrate::TimeGrid::kMaxOutputs)));
   }
 
+  // q(0) and q̇(0): a ball's quaternion (4 entries of q) and ω (3 of q̇)
   void read_initial_state(const Evaluator& eval) {
-    const auto n = static_cast<Eigen::Index>(scene.coordinates.size());
-    q0.resize(n);
-    q_dot0.resize(n);
-    for (Eigen::Index i = 0; i < n; ++i) {
-      const Coordinate& c = scene.coordinates[static_cast<std::size_t>(i)];
-      q0(i) = eval.value(c.initial, c.name + " initial");
-      q_dot0(i) = eval.value(c.velocity, c.name + " velocity");
+    std::vector<double> q, v;
+    constexpr std::array<const char*, 4> kPart{"w", "x", "y", "z"};
+    for (const Coordinate& c : scene.coordinates) {
+      if (c.kind == Coordinate::Kind::kBall) {
+        for (std::size_t k = 0; k < 4; ++k) {
+          q.push_back(eval.value(c.orientation[k], fmt::format("{} orientation {}", c.name, kPart[k])));
+        }
+        for (std::size_t k = 0; k < 3; ++k) {
+          v.push_back(eval.value(c.angular_velocity[k],
+                                 fmt::format("{} angular velocity {}", c.name, kPart[k + 1])));
+        }
+        continue;
+      }
+      q.push_back(eval.value(c.initial, c.name + " initial"));
+      v.push_back(eval.value(c.velocity, c.name + " velocity"));
     }
+    q0 = Eigen::Map<const Eigen::VectorXd>(q.data(), static_cast<Eigen::Index>(q.size()));
+    q_dot0 = Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size()));
   }
 
   // A workspace of the System with this model's parameter values.
@@ -602,9 +616,18 @@ struct Model::Impl {
     read_initial_state(eval);
     lagrange::SystemSpec spec;
     spec.parameters = params;
-    for (std::size_t i = 0; i < scene.coordinates.size(); ++i) {
-      const auto k = static_cast<Eigen::Index>(i);
-      spec.coordinates.push_back({scene.coordinates[i].name, q0(k), q_dot0(k)});
+    Eigen::Index iq = 0, iv = 0;
+    for (const Coordinate& c : scene.coordinates) {
+      lagrange::Coordinate lc{c.name, 0.0, 0.0};
+      if (c.kind == Coordinate::Kind::kBall) {
+        lc.kind = lagrange::Coordinate::Kind::kBall;
+        for (std::size_t k = 0; k < 4; ++k) lc.orientation[k] = q0(iq++);
+        for (Eigen::Index k = 0; k < 3; ++k) lc.angular_velocity[k] = q_dot0(iv++);
+      } else {
+        lc.initial = q0(iq++);
+        lc.velocity = q_dot0(iv++);
+      }
+      spec.coordinates.push_back(std::move(lc));
     }
     for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
       const Body& b = scene.bodies[i];
@@ -616,8 +639,9 @@ struct Model::Impl {
       if (b.orientation) lb.orientation = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>(b.orientation->data());
       lb.parent = b.parent;
       for (const Joint& j : b.joints) {
-        lb.joints.push_back({j.kind == Joint::Kind::kTurn ? lagrange::JointMotion::Kind::kTurn
-                                                          : lagrange::JointMotion::Kind::kSlide,
+        lb.joints.push_back({j.kind == Joint::Kind::kTurn    ? lagrange::JointMotion::Kind::kTurn
+                             : j.kind == Joint::Kind::kBall ? lagrange::JointMotion::Kind::kBall
+                                                            : lagrange::JointMotion::Kind::kSlide,
                              Eigen::Vector3d(j.axis[0], j.axis[1], j.axis[2]),
                              Eigen::Vector3d(j.anchor[0], j.anchor[1], j.anchor[2]),
                              to_lagrange(j.amount)});
@@ -1140,14 +1164,15 @@ RunResult Model::Impl::run_coordinates(const Method& method, const RunOptions& o
   MetricRecorder recorder(scene.output.metrics, metric_columns);
   so.parameters = params;
   lagrange::Workspace probe_workspace = make_workspace();
-  const auto n = static_cast<Eigen::Index>(system->coordinate_names().size());
+  const auto nq = static_cast<Eigen::Index>(system->num_coordinates());
+  const auto n = static_cast<Eigen::Index>(system->num_velocities());
   std::vector<Eigen::Vector4d> probe_previous(system->body_names().size(), Eigen::Vector4d(1, 0, 0, 0));
-  Eigen::VectorXd pq(n), pqd(n);
+  Eigen::VectorXd pq(nq), pqd(n);
   // the leading columns of a row (t, q, q̇, poses, energy, jacobi) at (t, q, q̇)
   auto probe = [&](double t, std::vector<double>& out) {
     out.clear();
     out.push_back(t);
-    for (Eigen::Index i = 0; i < n; ++i) out.push_back(pq[i]);
+    for (Eigen::Index i = 0; i < nq; ++i) out.push_back(pq[i]);
     for (Eigen::Index i = 0; i < n; ++i) out.push_back(pqd[i]);
     const std::vector<lagrange::BodyPose> poses = system->body_poses(probe_workspace, t, pq);
     for (std::size_t b = 0; b < poses.size(); ++b) push_pose(out, poses[b].p_WB, poses[b].R_WB, probe_previous[b]);
@@ -1155,21 +1180,21 @@ RunResult Model::Impl::run_coordinates(const Method& method, const RunOptions& o
     out.push_back(system->jacobi_integral(probe_workspace, t, pq, pqd));
   };
   std::vector<double> values;
-  std::vector<double> ybuf(static_cast<std::size_t>(2 * n));
+  std::vector<double> ybuf(static_cast<std::size_t>(nq + n));
   if (with_metrics) {
     pq = q0;
     pqd = q_dot0;
     probe(0.0, values);
     recorder.start(0.0, values);
     so.control.on_step = [&, outer = o.control.on_step](const integrate::StepView& v) {
-      pq = Eigen::Map<const Eigen::VectorXd>(v.y.data(), n);
-      pqd = Eigen::Map<const Eigen::VectorXd>(v.y.data() + n, n);
+      pq = Eigen::Map<const Eigen::VectorXd>(v.y.data(), nq);
+      pqd = Eigen::Map<const Eigen::VectorXd>(v.y.data() + nq, n);
       probe(v.t1, values);
       if (v.dense) {
         const MetricProbe dense = [&](double t, std::vector<double>& out) {
           v.dense(t, ybuf);
-          pq = Eigen::Map<const Eigen::VectorXd>(ybuf.data(), n);
-          pqd = Eigen::Map<const Eigen::VectorXd>(ybuf.data() + n, n);
+          pq = Eigen::Map<const Eigen::VectorXd>(ybuf.data(), nq);
+          pqd = Eigen::Map<const Eigen::VectorXd>(ybuf.data() + nq, n);
           probe(t, out);
         };
         // dopri5's last step may pass t_end: the run (and its metrics) end at t_end
@@ -1192,7 +1217,7 @@ RunResult Model::Impl::run_coordinates(const Method& method, const RunOptions& o
     row.clear();
     row.push_back(tr.t[k]);
     for (Eigen::Index i = 0; i < tr.q.cols(); ++i) row.push_back(tr.q(k, i));
-    for (Eigen::Index i = 0; i < tr.q.cols(); ++i) row.push_back(tr.q_dot(k, i));
+    for (Eigen::Index i = 0; i < tr.q_dot.cols(); ++i) row.push_back(tr.q_dot(k, i));
     const std::vector<lagrange::BodyPose> poses = system->body_poses(workspace, tr.t[k], tr.q.row(k).transpose());
     for (std::size_t b = 0; b < poses.size(); ++b) push_pose(row, poses[b].p_WB, poses[b].R_WB, previous[b]);
     row.push_back(tr.energy[k]);

@@ -123,6 +123,15 @@ void merge_massless(const io::RobotModel& model, std::vector<TreeBody>& bodies) 
                       "<inertial>)",
                       link.name, children.size()));
     }
+    for (const io::RobotJoint& j : bodies[b].joints) {
+      if (j.type == io::RobotJointType::kBall || j.type == io::RobotJointType::kFree) {
+        rigid::detail::throw_error_at(
+            where_of(model, link, j.line),
+            fmt::format("joint '{}' ({}) turns link '{}', which has no mass: a ball or free joint "
+                        "turns a link with an <inertial> (its quaternion is the link's orientation)",
+                        j.name, j.type == io::RobotJointType::kBall ? "ball" : "free", link.name));
+      }
+    }
     TreeBody& child = bodies[children.front()];
     std::vector<io::RobotJoint> joints;
     for (const io::RobotJoint& j : bodies[b].joints) {
@@ -134,6 +143,12 @@ void merge_massless(const io::RobotModel& model, std::vector<TreeBody>& bodies) 
     child.parent = bodies[b].parent;
     bodies[b].merged_away = true;
   }
+}
+
+// The name of a free joint's slide k (along the world's x, y, z): j_x, j_y, j_z.
+std::string free_part(const io::RobotJoint& j, std::size_t k) {
+  constexpr std::array<const char*, 3> kAxes{"x", "y", "z"};
+  return j.name + "_" + kAxes[k];
 }
 
 // q − ref as an expression of the coordinate
@@ -183,12 +198,30 @@ Body scene_body(const io::RobotModel& model, const std::vector<TreeBody>& bodies
     out.orientation = O;
   }
   for (const io::RobotJoint& j : b.joints) {
+    const SourceLocation jw = where_of(model, link, j.line);
+    if (j.type == io::RobotJointType::kFree) {
+      // three slides along the world's axes, then a ball about the link's origin: MuJoCo's
+      // qpos (position, quaternion) and qvel (the origin's world velocity, then ω in the link
+      // frame); the link's placement is the free joint's initial value, not a constant
+      for (std::size_t k = 0; k < 3; ++k) {
+        Joint slide;
+        slide.kind = Joint::Kind::kSlide;
+        slide.axis = {k == 0 ? 1.0 : 0.0, k == 1 ? 1.0 : 0.0, k == 2 ? 1.0 : 0.0};
+        slide.amount = text(free_part(j, k), jw);
+        slide.where = jw;
+        out.joints.push_back(std::move(slide));
+      }
+      for (std::size_t k = 0; k < 3; ++k) out.position[k] = number(0, where);
+      out.orientation.reset();
+    }
     Joint joint;
-    joint.kind = j.type == io::RobotJointType::kHinge ? Joint::Kind::kTurn : Joint::Kind::kSlide;
+    joint.kind = j.type == io::RobotJointType::kHinge   ? Joint::Kind::kTurn
+                 : j.type == io::RobotJointType::kSlide ? Joint::Kind::kSlide
+                                                        : Joint::Kind::kBall;
     joint.axis = {j.axis.x(), j.axis.y(), j.axis.z()};
     joint.anchor = {j.anchor.x(), j.anchor.y(), j.anchor.z()};
-    const SourceLocation jw = where_of(model, link, j.line);
-    joint.amount = text(joint_amount(j), jw);
+    if (j.type == io::RobotJointType::kFree) joint.anchor = {0, 0, 0};
+    joint.amount = text(joint.kind == Joint::Kind::kBall ? j.name : joint_amount(j), jw);
     joint.where = jw;
     out.joints.push_back(std::move(joint));
   }
@@ -222,23 +255,36 @@ Body scene_body(const io::RobotModel& model, const std::vector<TreeBody>& bodies
 // The joints' passive terms: damping as forces, stiffness as potentials, armature in L.
 void add_passive_terms(const io::RobotModel& model, Scene& s) {
   std::string armature;
+  auto add_armature = [&](double a, const std::string& velocity) {
+    armature += fmt::format("{}{}/2*{}^2", armature.empty() ? "" : " + ", number_text(a), velocity);
+  };
   for (const io::RobotLink& link : model.links) {
     for (const io::RobotJoint& j : link.joints) {
       const SourceLocation where = where_of(model, link, j.line);
-      if (j.damping != 0) {
-        s.forces.push_back(
-            {j.name, text(fmt::format("-{}*{}_dot", number_text(j.damping), j.name), where)});
+      // the velocities a joint moves: a hinge's or slide's q̇; a ball's ω (named b_wx …, a force
+      // on it by that name); a free joint's slides, then its ball
+      std::vector<std::pair<std::string, std::string>> velocities;  // (force target, velocity)
+      if (j.type == io::RobotJointType::kFree) {
+        for (std::size_t k = 0; k < 3; ++k) velocities.emplace_back(free_part(j, k), free_part(j, k) + "_dot");
       }
-      if (j.stiffness != 0) {
+      if (j.type == io::RobotJointType::kFree || j.type == io::RobotJointType::kBall) {
+        for (const char* w : {"_wx", "_wy", "_wz"}) velocities.emplace_back(j.name + w, j.name + w);
+      } else {
+        velocities.emplace_back(j.name, j.name + "_dot");
+      }
+      for (const auto& [target, velocity] : velocities) {
+        if (j.damping != 0) {
+          s.forces.push_back({target, text(fmt::format("-{}*{}", number_text(j.damping), velocity), where)});
+        }
+        if (j.armature != 0) add_armature(j.armature, velocity);
+      }
+      // (a ball's or free joint's stiffness is refused where its coordinates are made)
+      if (j.stiffness != 0 && j.type != io::RobotJointType::kFree && j.type != io::RobotJointType::kBall) {
         const std::string rest =
             j.springref == 0 ? j.name : fmt::format("{} - ({})", j.name, number_text(j.springref));
         s.potentials.push_back(
             {j.name + "_spring",
              text(fmt::format("{}/2*({})^2", number_text(j.stiffness), rest), where)});
-      }
-      if (j.armature != 0) {
-        armature += fmt::format("{}{}/2*{}_dot^2", armature.empty() ? "" : " + ",
-                                number_text(j.armature), j.name);
       }
     }
   }
@@ -317,42 +363,46 @@ Scene scene_from_robot_file(const std::string& xml, const std::filesystem::path&
   return scene_from_robot(model, scene_file, options.symbolic_inertia.value_or(false));
 }
 
-// The symbolic equations take hinge and slide joints: a ball or free joint is refused, naming
-// it, with the way to pin a free root.
-void refuse_ball_and_free(const io::RobotModel& model) {
-  for (const io::RobotLink& link : model.links) {
-    for (const io::RobotJoint& j : link.joints) {
-      if (j.type == io::RobotJointType::kFree) {
-        rigid::detail::throw_error_at(
-            where_of(model, link, j.line),
-            fmt::format("joint '{}' is a free (floating base) joint: the symbolic equations take "
-                        "hinge and slide joints; to read the robot pinned where its root stands: "
-                        "--pin-free-root, a scene's [model] pin_free_root = true, or "
-                        "rigid.robot.Robot(file, pin_free_root=True); rigid.robot.Robot(file) has "
-                        "its floating-base dynamics in numbers",
-                        j.name));
-      }
-      if (j.type == io::RobotJointType::kBall) {
-        rigid::detail::throw_error_at(
-            where_of(model, link, j.line),
-            fmt::format("joint '{}' is a ball joint: the symbolic equations take hinge and slide "
-                        "joints; rigid.robot.Robot(file) has its dynamics in numbers",
-                        j.name));
-      }
-    }
-  }
-}
-
 Scene scene_from_robot(const io::RobotModel& file_model, const std::filesystem::path& file,
                        bool symbolic_inertia) {
-  refuse_ball_and_free(file_model);
   const io::RobotModel model = with_coordinate_names(file_model);
   Scene s;
   s.file = file;
   const SourceLocation top{model.source, 0, 0};
-  for (const io::RobotLink& link : model.links) {
+  std::vector<TreeBody> bodies = moving_bodies(model);
+  merge_massless(model, bodies);
+  for (std::size_t l = 0; l < model.links.size(); ++l) {
+    const io::RobotLink& link = model.links[l];
     for (const io::RobotJoint& j : link.joints) {
       const SourceLocation where = where_of(model, link, j.line);
+      if (j.type == io::RobotJointType::kFree || j.type == io::RobotJointType::kBall) {
+        if (j.stiffness != 0) {
+          rigid::detail::throw_error_at(
+              where, fmt::format("joint '{}' ({}) has stiffness {}: the symbolic equations do not "
+                                 "take a ball's or free joint's spring yet (MuJoCo's, about the "
+                                 "rotation vector from the reference); rigid.robot.Robot(file) "
+                                 "has it in numbers",
+                                 j.name, j.type == io::RobotJointType::kBall ? "ball" : "free", j.stiffness));
+        }
+        Transform placement;  // a free joint's initial value: its link's placement in the world
+        if (j.type == io::RobotJointType::kFree) {
+          for (const TreeBody& b : bodies) {
+            if (b.link == l) placement = b.placement;
+          }
+          for (std::size_t k = 0; k < 3; ++k) {
+            s.coordinates.push_back(Coordinate{free_part(j, k), number(placement.p(static_cast<Eigen::Index>(k)), where),
+                                               number(0, where), where});
+          }
+        }
+        const Eigen::Quaterniond quat(placement.R);
+        Coordinate ball{j.name, number(0, where), number(0, where), where};
+        ball.kind = Coordinate::Kind::kBall;
+        ball.orientation = {number(quat.w(), where), number(quat.x(), where), number(quat.y(), where),
+                            number(quat.z(), where)};
+        ball.angular_velocity = {number(0, where), number(0, where), number(0, where)};
+        s.coordinates.push_back(std::move(ball));
+        continue;
+      }
       s.coordinates.push_back(Coordinate{j.name, number(j.ref, where), number(0, where), where});
     }
   }
@@ -360,8 +410,6 @@ Scene scene_from_robot(const io::RobotModel& file_model, const std::filesystem::
     rigid::detail::throw_error_at(top, "the model has no joint (every link is fixed), so it has no "
                                        "equations of motion");
   }
-  std::vector<TreeBody> bodies = moving_bodies(model);
-  merge_massless(model, bodies);
   for (const TreeBody& b : bodies) {
     if (!b.merged_away) s.bodies.push_back(scene_body(model, bodies, b, symbolic_inertia, s));
   }

@@ -792,10 +792,18 @@ void parse_model_coordinates(const toml::table& root, const Parser& p, Scene& s)
   std::vector<const toml::node*> set_by(s.coordinates.size(), nullptr);
   p.each_table(root, "coordinates", [&](const toml::table& t, std::size_t i) {
     const std::string ctx = fmt::format("[[coordinates]] entry {}", i);
-    p.check_keys(t, ctx, {"name", "initial", "velocity"});
     const toml::node& name_node = p.required(t, t.source(), "name", ctx);
     const std::string name = p.identifier(name_node, "coordinate name");
     const auto it = std::find(joints.begin(), joints.end(), name);
+    const bool ball = it != joints.end() &&
+                      s.coordinates[static_cast<std::size_t>(it - joints.begin())].kind == Coordinate::Kind::kBall;
+    // a ball's (or a free joint's turning part's) state is an orientation and an angular velocity
+    if (ball) {
+      p.check_keys(t, fmt::format("{} (the ball coordinate '{}')", ctx, name),
+                   {"name", "orientation", "angular_velocity"});
+    } else {
+      p.check_keys(t, ctx, {"name", "initial", "velocity"});
+    }
     if (it == joints.end()) {
       p.fail(name_node, fmt::format("{}: '{}' is not a joint of the model '{}'; in a scene with "
                                     "[model], [[coordinates]] set the initial values of the "
@@ -811,6 +819,17 @@ void parse_model_coordinates(const toml::table& root, const Parser& p, Scene& s)
     }
     set_by[k] = &name_node;
     Coordinate& c = s.coordinates[k];
+    if (ball) {
+      if (auto n = t.get("orientation")) {
+        const std::string what = name + " orientation (a unit quaternion [w, x, y, z])";
+        const auto& a = p.array(*n, what, 4);
+        for (std::size_t e = 0; e < 4; ++e) c.orientation[e] = p.expression(*a.get(e), what);
+      }
+      if (auto n = t.get("angular_velocity")) {
+        c.angular_velocity = p.expression3(*n, name + " angular_velocity (in the body's frame, rad/s)");
+      }
+      return;
+    }
     if (auto n = t.get("initial")) c.initial = p.expression(*n, name + " initial");
     if (auto n = t.get("velocity")) c.velocity = p.expression(*n, name + " velocity");
   });
@@ -1511,6 +1530,11 @@ std::vector<std::string> override_names(const Scene& scene) {
   for (const Parameter& p : scene.parameters) names.push_back(p.name);
   for (const std::string& k : kSimulationOverrides) names.push_back("simulation." + k);
   for (const Coordinate& c : scene.coordinates) {
+    if (c.kind == Coordinate::Kind::kBall) {
+      names.push_back(c.name + ".orientation");
+      names.push_back(c.name + ".angular_velocity");
+      continue;
+    }
     names.push_back(c.name + ".initial");
     names.push_back(c.name + ".velocity");
   }
@@ -1584,13 +1608,37 @@ void apply_overrides(Scene& scene, const std::vector<std::string>& assignments) 
       }
       continue;
     }
-    if (dot != std::string::npos && (key == "initial" || key == "velocity")) {
-      if (auto it = std::find_if(scene.coordinates.begin(), scene.coordinates.end(),
-                                 [&](const Coordinate& c) { return c.name == owner; });
-          it != scene.coordinates.end()) {
-        (key == "initial" ? it->initial : it->velocity) = override_expression(value, a);
+    const auto coordinate = dot == std::string::npos
+                                ? scene.coordinates.end()
+                                : std::find_if(scene.coordinates.begin(), scene.coordinates.end(),
+                                               [&](const Coordinate& c) { return c.name == owner; });
+    const bool ball = coordinate != scene.coordinates.end() && coordinate->kind == Coordinate::Kind::kBall;
+    if (!ball && coordinate != scene.coordinates.end() && (key == "initial" || key == "velocity")) {
+      (key == "initial" ? coordinate->initial : coordinate->velocity) = override_expression(value, a);
+      continue;
+    }
+    if (ball && (key == "orientation" || key == "angular_velocity")) {
+      // a ball coordinate's state (a robot's ball or free joint): numbers, as a free body's
+      auto expressions = [&](const auto& numbers) {
+        std::array<Expression, std::tuple_size_v<std::decay_t<decltype(numbers)>>> out;
+        for (std::size_t k = 0; k < out.size(); ++k) {
+          out[k] = Expression{fmt::format("{}", numbers[k]), {fmt::format("override '{}'", a), 0, 0}, numbers[k], false};
+        }
+        return out;
+      };
+      if (key == "angular_velocity") {
+        coordinate->angular_velocity = expressions(override_vector<3>(value, a, owner + ".angular_velocity"));
         continue;
       }
+      const auto q = override_vector<4>(value, a, owner + ".orientation (w, x, y, z)");
+      const double norm = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+      if (std::abs(norm - 1.0) > 1e-9) {
+        throw Error(fmt::format("override '{}': {}.orientation has norm {}; expected a unit quaternion "
+                                "(w, x, y, z) (|q| within 1e-9 of 1)",
+                                a, owner, norm));
+      }
+      coordinate->orientation = expressions(q);
+      continue;
     }
     if (Body* b = dot != std::string::npos ? find_free_body(scene, owner) : nullptr) {
       const auto setting = std::find_if(kFreeBodyOverrides.begin(), kFreeBodyOverrides.end(),
@@ -1619,7 +1667,9 @@ void apply_overrides(Scene& scene, const std::vector<std::string>& assignments) 
     // unknown: say what the name is if it names something that is set through its keys
     const std::vector<std::string> names = override_names(scene);
     std::string why;
-    if (find_coordinate(scene, name) != nullptr) {
+    if (ball || (find_coordinate(scene, name) != nullptr && find_coordinate(scene, name)->kind == Coordinate::Kind::kBall)) {
+      why = fmt::format("'{}' is a ball coordinate: set '{}.orientation' or '{}.angular_velocity'", owner, owner, owner);
+    } else if (find_coordinate(scene, name) != nullptr) {
       why = fmt::format("'{}' is a coordinate: set '{}.initial' or '{}.velocity'", name, name, name);
     } else if (find_free_body(scene, name) != nullptr) {
       why = fmt::format("'{}' is a free body: set {}", name, free_body_names_text(name));

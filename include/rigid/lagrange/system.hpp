@@ -108,10 +108,24 @@ struct Parameter {
 };
 
 /// A generalized coordinate with its initial value q(0) (m or rad) and velocity q̇(0).
+///
+/// A ball coordinate (kind kBall) is an orientation: the unit quaternion (w, x, y, z) of a
+/// ball joint (JointMotion::Kind::kBall), four entries of q named `<name>_qw … <name>_qz`,
+/// and as its velocity the angular velocity ω of the body the joint turns, in that body's
+/// frame, three entries named `<name>_wx <name>_wy <name>_wz` (MuJoCo's qpos and qvel). Its
+/// rate is q̇ = ½ q ⊗ (0, ω) and its equations are Euler–Poincaré's (a quasi-velocity, not a
+/// q̇). `initial` and `velocity` are not used; `orientation` and `angular_velocity` are.
 struct Coordinate {
   std::string name;
   double initial = 0.0;
   double velocity = 0.0;
+  enum class Kind { kScalar, kBall };
+  Kind kind = Kind::kScalar;
+  /// kBall: q(0), a unit quaternion (w, x, y, z), normalised on use (a norm off 1 by more
+  /// than 1e-6 is refused)
+  std::array<double, 4> orientation{1, 0, 0, 0};
+  /// kBall: ω(0) in the body frame (rad/s)
+  Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();
 };
 
 /// One rotation exp(θ [a]ₓ) about the fixed unit axis a (normalised on use) by angle θ (rad).
@@ -125,8 +139,11 @@ struct AxisRotation {
 /// `amount` (m) along `axis`. axis: non-zero, normalised on use; anchor in that frame (m).
 /// As a pose: a turn is J = Trans(anchor) Rot(axis, amount) Trans(−anchor), a slide
 /// J = Trans(axis · amount). Parsed like a rotation's angle (q, t and the parameters).
+/// A ball (kBall) turns its body about `anchor` by the orientation of the ball coordinate
+/// that `amount` names (Coordinate::Kind::kBall): J = Trans(anchor) R(q) Trans(−anchor);
+/// `axis` is not used.
 struct JointMotion {
-  enum class Kind { kTurn, kSlide };
+  enum class Kind { kTurn, kSlide, kBall };
   Kind kind = Kind::kTurn;
   Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
   Eigen::Vector3d anchor = Eigen::Vector3d::Zero();
@@ -240,6 +257,10 @@ struct Equations {
 
   // the structured form (each quantity as text and LaTeX)
   std::vector<std::string> coordinates;      ///< q, in order
+  /// With ball coordinates: the velocities (System::velocity_names), which the equations,
+  /// M and f are per, and dq/dt of each entry of q (a ball's ½ q ⊗ (0, ω)); empty otherwise
+  std::vector<std::string> velocities;
+  std::vector<Printed> coordinate_rates;
   std::vector<Parameter> parameters;         ///< in declaration order, with their values
   std::vector<std::string> constraint_names; ///< in order
   Printed lagrangian, kinetic_energy, potential_energy;  ///< L = T − V (J)
@@ -305,8 +326,11 @@ struct SimulationOptions {
 /// A simulated trajectory; row k of every matrix is the sample at time t[k].
 struct Trajectory {
   std::vector<std::string> coordinate_names, constraint_names, cyclic_names;
+  std::vector<std::string> velocity_names;  ///< q_dot's columns (System::velocity_names)
   Eigen::VectorXd t;          ///< s
-  Eigen::MatrixXd q, q_dot;   ///< samples × n
+  /// samples × nq and samples × nv (System::num_coordinates, num_velocities); a ball's
+  /// quaternion is written normalised
+  Eigen::MatrixXd q, q_dot;
   Eigen::MatrixXd lambda;     ///< samples × m: multipliers (constraint forces, N or N·m)
   Eigen::VectorXd energy;     ///< T + V (J)
   Eigen::VectorXd jacobi;     ///< h = q̇·∂L/∂q̇ − L (J)
@@ -387,9 +411,21 @@ class System {
   System(const System&) = delete;
   System& operator=(const System&) = delete;
 
+  /// Entries of q (nq): one per coordinate, four per ball coordinate.
   [[nodiscard]] int num_coordinates() const;
+  /// Entries of the velocity q̇ (nv) and of M (nv × nv), f and q̈: one per coordinate, three
+  /// per ball coordinate (its ω). Equal to num_coordinates() without ball coordinates.
+  [[nodiscard]] int num_velocities() const;
   [[nodiscard]] int num_constraints() const;
+  /// The names of q's entries (a ball coordinate `b`: b_qw b_qx b_qy b_qz).
   [[nodiscard]] const std::vector<std::string>& coordinate_names() const;
+  /// The names of the velocities' entries: `<coordinate>_dot`, a ball's b_wx b_wy b_wz.
+  [[nodiscard]] const std::vector<std::string>& velocity_names() const;
+  /// Whether a coordinate is a ball (num_coordinates() != num_velocities()).
+  [[nodiscard]] bool has_ball_coordinates() const;
+  /// dq/dt at (q, v): v's entries for the coordinates, ½ q ⊗ (0, ω) for a ball's quaternion.
+  [[nodiscard]] Eigen::VectorXd coordinate_rates(const Eigen::VectorXd& q,
+                                                 const Eigen::VectorXd& q_dot) const;
   [[nodiscard]] const std::vector<std::string>& constraint_names() const;
   /// Velocity (nonholonomic) constraints: their number r and names.
   [[nodiscard]] int num_velocity_constraints() const;

@@ -41,6 +41,13 @@ struct Coordinate {
   Expression initial;   ///< q(0) (m or rad)
   Expression velocity;  ///< q̇(0)
   SourceLocation where;
+  /// kBall: the orientation of a ball joint (rigid::lagrange::Coordinate::Kind::kBall), with
+  /// `orientation` its unit quaternion (w, x, y, z) at the start and `angular_velocity` ω(0)
+  /// in its body's frame (rad/s); `initial` and `velocity` are not used
+  enum class Kind { kScalar, kBall };
+  Kind kind = Kind::kScalar;
+  std::array<Expression, 4> orientation{};
+  std::array<Expression, 3> angular_velocity{};
 };
 
 /// One elementary rotation about a fixed unit axis by an angle expression (rad).
@@ -53,8 +60,10 @@ struct AxisRotation {
 /// the body's position, rotations and the joints before it: a turn by `amount` (rad, right
 /// hand) about `axis` through `anchor` (m), or a slide by `amount` (m) along `axis`
 /// (rigid::lagrange::JointMotion). The parser normalises `axis`.
+/// A ball (kBall, from a robot model's ball or free joint) turns about `anchor` by the
+/// orientation of the ball coordinate `amount` names.
 struct Joint {
-  enum class Kind { kTurn, kSlide };
+  enum class Kind { kTurn, kSlide, kBall };
   Kind kind = Kind::kTurn;
   std::array<double, 3> axis{0, 0, 1};
   std::array<double, 3> anchor{};

@@ -5,6 +5,7 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <Eigen/Cholesky>
@@ -18,11 +19,24 @@
 namespace rigid::lagrange {
 
 struct System::Impl {
-  // names
+  // names: coord_names of q's nq entries, velocity_names of the n velocities (equal lists
+  // but for the ball coordinates)
+  std::vector<std::string> velocity_names;
   std::vector<std::string> coord_names, constraint_names, cyclic_names, param_names, body_names;
   std::vector<double> param_values;  // defaults; a Workspace copies them
   // symbols (GiNaC: used only while deriving and printing)
+  // q (nq), the velocities qd and their rates qdd (n)
   std::vector<GiNaC::symbol> q, qd, qdd, params, lambda;
+  // the ball coordinates: the index of their quaternion's w in q and of ω_x in the velocities
+  struct Ball {
+    std::size_t q = 0, v = 0;
+    std::string name;
+  };
+  std::vector<Ball> balls;
+  // per velocity: the entry of q it is the rate of, or −1 for a ball's ω
+  std::vector<int> q_of_v;
+  // per entry of q: dq/dt as an expression of q and the velocities (½ q ⊗ (0, ω) for a ball)
+  std::vector<GiNaC::ex> q_rate;
   GiNaC::symbol t{"t"};
   Eigen::VectorXd q0, qd0;
   // derived expressions
@@ -49,7 +63,8 @@ struct System::Impl {
   // compiled: inputs (q, q̇, t, parameters) for dyn, diag and pose; the parameters alone for
   // masses (per body: mass, COM (3), inertia xx yy zz xy xz yz)
   detail::Tape dyn, diag, pose, masses;
-  int n = 0, m = 0;
+  int n = 0, m = 0;  // n: velocities (M is n × n); m: holonomic constraints
+  int nq = 0;        // entries of q (n + one per ball)
   // velocity (nonholonomic) constraints (velocity_constraints.cpp): r rows A q̇ + a = 0; the
   // tape `vel` (inputs as dyn) gives A (r × n, row-major), η = −(Ȧ q̇ + ȧ) and c = A q̇ + a
   int r = 0;
@@ -62,12 +77,16 @@ struct System::Impl {
   mutable std::optional<Equations> equations;
 
   [[nodiscard]] std::size_t num_inputs() const {
-    return static_cast<std::size_t>(2 * n + 1) + param_values.size();
+    return static_cast<std::size_t>(nq + n + 1) + param_values.size();
   }
   [[nodiscard]] std::size_t parameter_index(const std::string& name) const;
   /// Throws naming the body if a parameter set makes a body's mass properties unphysical.
   void check_masses(const std::vector<double>& values, std::string_view context) const;
   [[nodiscard]] std::string state_text(double time, const Eigen::VectorXd& qv) const;
+  /// Refuses, naming `what`, a system with ball coordinates (for what does not take them yet).
+  void refuse_balls(std::string_view what) const;
+  /// dq/dt (nq) at (q, v) into `out`.
+  void coordinate_rates(const double* qv, const double* v, double* out) const;
 };
 
 namespace detail {

@@ -15,12 +15,17 @@
 namespace rigid::lagrange::detail {
 
 /// A joint of a tree body: a turn about, or a slide along, the unit `axis` (in the frame the
-/// joint starts from) through `anchor`, by the coordinate number `coordinate`.
+/// joint starts from) through `anchor`, by the coordinate number `coordinate` (its velocity's
+/// index, which is its index in q but after a ball); or a ball about `anchor`, its quaternion
+/// q[quaternion … quaternion + 3] (w x y z), its ω (in the frame after it) the velocities
+/// coordinate … coordinate + 2.
 struct TreeJoint {
   bool turn = true;
   Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
   Eigen::Vector3d anchor = Eigen::Vector3d::Zero();
   std::size_t coordinate = 0;
+  bool ball = false;
+  std::size_t quaternion = 0;
 };
 
 /// A body of the tree: X_PB = Trans(position) · orientation · J₁ ⋯ J_m (as lagrange::Body),
