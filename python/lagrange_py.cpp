@@ -21,9 +21,12 @@ namespace {
 using rigid::lagrange::AxisRotation;
 
 // q or q_dot of a system: shape (n,) with n its number of coordinates, finite.
+// q (num_coordinates entries) or, for an argument named q_dot or q_dot0, the velocities
+// (num_velocities: three per ball coordinate where q has four)
 Eigen::VectorXd coordinates_arg(const rigid::lagrange::System& s, const py::handle& value,
                                 std::string_view function, std::string_view name) {
-  return cv::vector(value, {function, name}, s.num_coordinates());
+  const bool velocity = name == "q_dot" || name == "q_dot0";
+  return cv::vector(value, {function, name}, velocity ? s.num_velocities() : s.num_coordinates());
 }
 using rigid::lagrange::Body;
 using rigid::lagrange::NamedExpression;
@@ -295,6 +298,7 @@ py::dict trajectory_dict(const rigid::lagrange::Trajectory& tr) {
   d["residual"] = tr.residual;
   d["velocity_residual"] = tr.velocity_residual;
   d["coordinate_names"] = tr.coordinate_names;
+  d["velocity_names"] = tr.velocity_names;
   d["constraint_names"] = tr.constraint_names;
   d["cyclic_names"] = tr.cyclic_names;
   d["steps"] = tr.steps;
@@ -337,7 +341,18 @@ py::dict simulate_to_dict(const System& s, double t_end, const std::string& meth
 // parameters, the compiled tape, the printed equations and the exported source.
 void bind_system_description(py::class_<System>& cls) {
   cls.def_property_readonly("coordinate_names", &System::coordinate_names,
-                            "The generalized coordinates, in order.")
+                            "The entries of q, in order (a ball coordinate b: b_qw b_qx b_qy b_qz).")
+      .def_property_readonly("velocity_names", &System::velocity_names,
+                             "The entries of q_dot, M's rows and f: c_dot per coordinate c, a ball's "
+                             "body-frame angular velocity b_wx b_wy b_wz.")
+      .def(
+          "coordinate_rates",
+          [](const System& s, const py::object& q, const py::object& q_dot) {
+            return s.coordinate_rates(coordinates_arg(s, q, "System.coordinate_rates", "q"),
+                                      coordinates_arg(s, q_dot, "System.coordinate_rates", "q_dot"));
+          },
+          py::arg("q"), py::arg("q_dot"),
+          "dq/dt at (q, q_dot): q_dot's entries, and 1/2 q * (0, w) for a ball's quaternion.")
       .def_property_readonly("constraint_names", &System::constraint_names,
                              "The holonomic constraints, in order.")
       .def_property_readonly("cyclic_coordinates", &System::cyclic_coordinates,
@@ -347,7 +362,8 @@ void bind_system_description(py::class_<System>& cls) {
       .def_property_readonly("body_names", &System::body_names, "Names of the bodies, in order.")
       .def_property_readonly("initial_q", &System::initial_q,
                              "q(0) from the coordinates' declarations, shape (n,).")
-      .def_property_readonly("initial_q_dot", &System::initial_q_dot, "q̇(0), shape (n,).")
+      .def_property_readonly("initial_q_dot", &System::initial_q_dot,
+                             "q̇(0), shape (nv,) (the velocities: a ball's ω in its body's frame).")
       .def_property_readonly(
           "parameters", [](const System& s) { return parameters_dict(s.parameters()); },
           "{name: value} of the parameters, in declaration order.")

@@ -259,7 +259,8 @@ density = 500
   EXPECT_EQ(s.model->density, 2000.0);
 }
 
-// An MJCF whose root body is free: refused, unless pinned by the section or by the options.
+// An MJCF whose root body is free: its free joint's coordinates (three slides and a ball), or
+// the hinge alone when pinned by the section or by the options.
 constexpr const char* kFreeRootMjcf = R"x(<mujoco model="floating">
   <worldbody>
     <body name="torso" pos="0 0 1">
@@ -278,9 +279,21 @@ TEST_F(ModelSection, ModelFileErrorsNameTheModelFileAndPinningReachesTheReader) 
   const fs::path robot = write("robots/floating.xml", kFreeRootMjcf);
   const fs::path scene =
       write("scenes/floating.toml", "[model]\nfile = \"../robots/floating.xml\"\n");
-  // the reader's refusal, at the free joint's line of the model file
-  EXPECT_RIGID_ERROR((void)load_scene(scene), fmt::format("{}:4:", robot.string()));
+  // free: root_x, root_y, root_z and the ball 'root' (at the free joint's line), then the hinge
+  const Scene free = load_scene(scene);
+  ASSERT_EQ(free.coordinates.size(), 5u);
+  EXPECT_EQ(free.coordinates[3].name, "root");
+  EXPECT_EQ(free.coordinates[3].kind, Coordinate::Kind::kBall);
+  EXPECT_EQ(free.coordinates[3].where.file, robot.string());
+  EXPECT_EQ(free.coordinates[3].where.line, 4);
+  // a wrong setting in the model file is named there: a free joint on a child body
+  std::string nested = kFreeRootMjcf;
+  nested.replace(nested.find(R"(<joint name="swing" type="hinge" axis="0 1 0"/>)"),
+                 std::string(R"(<joint name="swing" type="hinge" axis="0 1 0"/>)").size(), "<freejoint/>");
+  write("robots/floating.xml", nested);
+  EXPECT_RIGID_ERROR((void)load_scene(scene), fmt::format("{}:7:", robot.string()));
   EXPECT_RIGID_ERROR((void)load_scene(scene), "free");
+  write("robots/floating.xml", kFreeRootMjcf);
   const Scene pinned = load_scene(scene, {.pin_free_root = true});
   EXPECT_EQ(pinned.coordinates.size(), 1u);
   EXPECT_EQ(pinned.coordinates[0].name, "swing");

@@ -19,10 +19,13 @@
 
 #include "rigid/common/error.hpp"
 #include "rigid/io/robot_model.hpp"
+#include "rigid/lagrange/export.hpp"
+#include "rigid/lagrange/linearize.hpp"
 #include "rigid/robot/tree_dynamics.hpp"
 #include "rigid/scene/model.hpp"
 #include "rigid/scene/robot_scene.hpp"
 #include "rigid/scene/scene.hpp"
+#include "support/expect_error.hpp"
 
 namespace rigid::scene {
 namespace {
@@ -180,15 +183,6 @@ TEST(RobotScene, Refusals) {
     EXPECT_NE(std::string(e.what()).find(fork.string() + ":2"), std::string::npos) << e.what();
   }
   fs::remove(fork);
-  // MuJoCo's humanoid (pinned): 9 joints from the torso to a foot
-  try {
-    (void)load_scene("/usr/share/mujoco/model/humanoid/humanoid.xml");
-    FAIL() << "expected rigid::Error";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("joint 'root' is a free (floating base) joint"),
-              std::string::npos)
-        << e.what();
-  }
   // an XML file that is neither URDF nor MJCF
   const fs::path other = write("other.xml", "<svg/>\n");
   EXPECT_THROW((void)load_scene(other), Error);
@@ -213,6 +207,65 @@ TEST(RobotScene, DeepChainsAreDerivedByTheTreesRecursions) {
   expect_same_equations(f, 9);
   fs::remove(f);
   expect_same_equations(kExamples / "arm7.urdf", 7);
+}
+
+// MuJoCo's humanoid with its free root: q is MuJoCo's qpos (the root's position, then its
+// quaternion as the ball coordinate 'root'), the velocities its qvel; what does not take ball
+// coordinates yet says so by name rather than computing something else.
+TEST(RobotScene, FreeRootHumanoidHasBallCoordinates) {
+  const fs::path file = "/usr/share/mujoco/model/humanoid/humanoid.xml";  // libmujoco-samples
+  ASSERT_TRUE(fs::exists(file)) << file << " is missing: scripts/install-deps.sh installs it";
+  const Model model(load_scene(file));
+  const lagrange::System& system = model.system();
+  EXPECT_EQ(system.num_coordinates(), 28);
+  EXPECT_EQ(system.num_velocities(), 27);
+  EXPECT_TRUE(system.has_ball_coordinates());
+  const std::vector<std::string> head(system.coordinate_names().begin(), system.coordinate_names().begin() + 8);
+  EXPECT_EQ(head, (std::vector<std::string>{"root_x", "root_y", "root_z", "root_qw", "root_qx", "root_qy",
+                                            "root_qz", "abdomen_z"}));
+  // the torso's placement (pos 0 0 1.5, no rotation) is the free joint's initial value
+  EXPECT_EQ(system.initial_q().head<7>(), (Eigen::Matrix<double, 7, 1>() << 0, 0, 1.5, 1, 0, 0, 0).finished());
+  // q̇ = ½ q ⊗ (0, ω): about the body's z axis at the identity, q̇ = (0, 0, 0, ω/2)
+  Eigen::VectorXd v = Eigen::VectorXd::Zero(27);
+  v(5) = 2.0;
+  const Eigen::VectorXd rate = system.coordinate_rates(system.initial_q(), v);
+  EXPECT_EQ(rate.segment<4>(3), Eigen::Vector4d(0, 0, 0, 1));
+  EXPECT_RIGID_ERROR((void)lagrange::normal_modes(system),
+                     "normal modes of a system with ball coordinates (here 'root': a ball or free joint) are not supported yet");
+  EXPECT_RIGID_ERROR((void)lagrange::emit_cpp(system), "the code export of a system with ball coordinates");
+  // an initial state set on the ball by its own keys; the scalar keys are not the ball's
+  Scene s = load_scene(file);
+  apply_overrides(s, {"root.orientation=[0, 1, 0, 0]", "root.angular_velocity=[0, 0, 3]"});
+  const Model turned(s);
+  EXPECT_EQ(turned.system().initial_q().segment<4>(3), Eigen::Vector4d(0, 1, 0, 0));
+  EXPECT_EQ(turned.system().initial_q_dot().segment<3>(3), Eigen::Vector3d(0, 0, 3));
+  EXPECT_RIGID_ERROR(apply_overrides(s, {"root.initial=1"}),
+                     "'root' is a ball coordinate: set 'root.orientation' or 'root.angular_velocity'");
+  EXPECT_RIGID_ERROR(apply_overrides(s, {"root.orientation=[1, 1, 0, 0]"}),
+                     "root.orientation has norm 1.4142135623730951; expected a unit quaternion");
+  // the same through a scene file's [[coordinates]]
+  const fs::path toml = write("humanoid_turned.toml", fmt::format(R"([model]
+file = "{}"
+
+[[coordinates]]
+name = "root"
+orientation = [0, 1, 0, 0]
+angular_velocity = [0, 0, "3"]
+)", file.string()));
+  const Model from_file(load_scene(toml));
+  EXPECT_EQ(from_file.system().initial_q(), turned.system().initial_q());
+  EXPECT_EQ(from_file.system().initial_q_dot(), turned.system().initial_q_dot());
+  const fs::path scalar = write("humanoid_scalar.toml", fmt::format(R"([model]
+file = "{}"
+
+[[coordinates]]
+name = "root"
+initial = 1
+)", file.string()));
+  EXPECT_RIGID_ERROR((void)load_scene(scalar),
+                     "unknown key 'initial' in [[coordinates]] entry 1 (the ball coordinate 'root')");
+  fs::remove(toml);
+  fs::remove(scalar);
 }
 
 TEST(RobotScene, PinnedHumanoidEqualsTreeDynamics) {
