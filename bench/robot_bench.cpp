@@ -159,9 +159,12 @@ void BM_MuJoCo_biasForces(benchmark::State& state) {
   }
 }
 
-// the exported code of the model: which == 0 arm7, 1 the pinned humanoid
+// the exported code of the model: which == 0 arm7, 1 the pinned humanoid, 2 the humanoid on its
+// free root
 const rigid_bench::Codegen& codegen(int which) {
-  return which == 0 ? rigid_bench::codegen_arm7() : rigid_bench::codegen_humanoid_pinned();
+  return which == 0   ? rigid_bench::codegen_arm7()
+         : which == 1 ? rigid_bench::codegen_humanoid_pinned()
+                      : rigid_bench::codegen_humanoid_free();
 }
 
 void BM_Exported_massMatrix(benchmark::State& state) {
@@ -315,10 +318,10 @@ BENCHMARK(BM_Robot_biasForces)->Arg(0)->Arg(1)->Arg(2);
 BENCHMARK(BM_MuJoCo_biasForces)->Arg(0)->Arg(1)->Arg(2);
 BENCHMARK(BM_Robot_forwardDynamics)->Arg(0)->Arg(1)->Arg(2);
 BENCHMARK(BM_MuJoCo_forward)->Arg(0)->Arg(1);
-BENCHMARK(BM_Exported_massMatrix)->Arg(0)->Arg(1);
-BENCHMARK(BM_Exported_inverseDynamics)->Arg(0)->Arg(1);
-BENCHMARK(BM_MuJoCo_inverseDynamics)->Arg(0)->Arg(1);
-BENCHMARK(BM_Exported_forwardDynamics)->Arg(0)->Arg(1);
+BENCHMARK(BM_Exported_massMatrix)->Arg(0)->Arg(1)->Arg(2);
+BENCHMARK(BM_Exported_inverseDynamics)->Arg(0)->Arg(1)->Arg(2);
+BENCHMARK(BM_MuJoCo_inverseDynamics)->Arg(0)->Arg(1)->Arg(2);
+BENCHMARK(BM_Exported_forwardDynamics)->Arg(0)->Arg(1)->Arg(2);
 BENCHMARK(BM_MuJoCo_forwardNoConstraints)->Arg(0)->Arg(1)->Arg(2);
 BENCHMARK(BM_Exported_inverseDynamicsDerivatives);
 BENCHMARK(BM_Exported_forwardDynamicsDerivatives);

@@ -1,6 +1,12 @@
 // The flat export of MuJoCo's pinned humanoid (generated at build time by
 // rigid_robot_codegen_gen), compiled with the project's flags, behind robot_codegen.hpp's wrappers.
+#include <cmath>
+
+// in an unnamed namespace: each model's export declares the same names, which would otherwise
+// be one inline function (or variable) of the program with different definitions
+namespace {
 #include "humanoid_pinned_flat.hpp"
+}  // namespace
 
 #define RIGID_CODEGEN_NAME codegen_humanoid_pinned
 #define RIGID_CODEGEN_DERIVATIVES 0

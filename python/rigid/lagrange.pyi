@@ -105,7 +105,12 @@ class System(metaclass=_Pybind11Type):
         """coordinates: [(name, q0, q_dot0)]; parameters: {name: value}; bodies: [{'name', 'mass': rigid.MassProperties, 'position': [3 expressions], 'rotations': [(axis, angle expression)]}]; potentials/forces/constraints: [(name, expression)] (a force's name is its coordinate); springs: [{'body_a', 'point_a', 'body_b' (omit: world), 'point_b', 'stiffness', 'rest_length'}]; velocity_constraints: [{'name', 'coefficients': {coordinate: A_i(q, t)}, 'term': a(q, t)}] for Σ A_i q̇_i + a = 0."""
     @property
     def coordinate_names(self) -> list[str]:
-        """The generalized coordinates, in order."""
+        """The entries of q, in order (a ball coordinate b: b_qw b_qx b_qy b_qz)."""
+    @property
+    def velocity_names(self) -> list[str]:
+        """The entries of q_dot, M's rows and f: c_dot per coordinate c, a ball's body-frame angular velocity b_wx b_wy b_wz."""
+    def coordinate_rates(self, q: object, q_dot: object) -> NDArray[numpy.float64]:
+        """dq/dt at (q, q_dot): q_dot's entries, and 1/2 q * (0, w) for a ball's quaternion."""
     @property
     def constraint_names(self) -> list[str]:
         """The holonomic constraints, in order."""
@@ -123,7 +128,7 @@ class System(metaclass=_Pybind11Type):
         """q(0) from the coordinates' declarations, shape (n,)."""
     @property
     def initial_q_dot(self) -> NDArray[numpy.float64]:
-        """q̇(0), shape (n,)."""
+        """q̇(0), shape (nv,) (the velocities: a ball's ω in its body's frame)."""
     @property
     def parameters(self) -> dict[str, Any]:
         """{name: value} of the parameters, in declaration order."""

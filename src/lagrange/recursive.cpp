@@ -312,15 +312,21 @@ TreeInverseDynamics tree_inverse_dynamics(const System::Impl& s,
                                           const std::vector<TreeBody>& bodies,
                                           const Vec3& gravity,
                                           const std::set<std::string>& taken) {
-  RIGID_ASSERT(s.balls.empty());  // the export refuses ball coordinates before it asks
   TreeInverseDynamics out;
   Namer name(out.aux, out.defs, taken);
   out.tau.assign(static_cast<std::size_t>(s.n), 0);
+  // a joint as the body-coordinate recursion takes it: where it puts the frame after it, and
+  // its columns there (a hinge's or slide's one, a ball's three) with their velocities' indices
+  struct Joint {
+    Step X;
+    std::vector<Spatial> S;
+    std::vector<std::size_t> c;
+    std::string name;
+  };
   struct Frame {
-    std::vector<Step> steps;     // the fixed placement, then one per joint
-    std::vector<Spatial> S;      // per joint: its motion in the frame after it
-    std::vector<std::size_t> c;  // per joint: its coordinate
-    Spatial V, A, F;             // in the body's frame; F: the subtree's force on the body
+    Step placement;
+    std::vector<Joint> joints;
+    Spatial V, A, F;  // in the body's frame; F: the subtree's force on the body
   };
   std::vector<Frame> B(bodies.size());
   for (std::size_t b = 0; b < bodies.size(); ++b) {
@@ -332,35 +338,49 @@ TreeInverseDynamics tree_inverse_dynamics(const System::Impl& s,
       V = B[static_cast<std::size_t>(body.parent)].V;
       A = B[static_cast<std::size_t>(body.parent)].A;
     }
-    f.steps.push_back({body.orientation, body.position});
-    V = motion_to_child(f.steps.back(), V);
-    A = motion_to_child(f.steps.back(), A);
+    f.placement = {body.orientation, body.position};
+    V = motion_to_child(f.placement, V);
+    A = motion_to_child(f.placement, A);
     for (const TreeJoint& J : body.joints) {
-      const std::string coord = joint_name(s, J);
-      Step X;
-      Spatial S;
+      Joint j;
+      j.name = joint_name(s, J);
       const Vec3 a = vec(J.axis);
-      if (J.turn) {
+      const Vec3 o = vec(J.anchor);
+      if (J.ball) {
+        // a ball about o: C = P turned by R(q) about o; S_k = (e_k, o × e_k), k = x, y, z
+        j.X.E = ball_rotation(s, name, J, "id" + j.name);
+        const Vec3 Eo = mat_vec(j.X.E, o);
+        j.X.r = {o[0] - Eo[0], o[1] - Eo[1], o[2] - Eo[2]};
+        for (std::size_t k = 0; k < 3; ++k) {
+          Vec3 e{0, 0, 0};
+          e[k] = 1;
+          j.S.push_back({e, cross(o, e)});
+          j.c.push_back(J.coordinate + k);
+        }
+      } else if (J.turn) {
         // a turn about a through o: C = P turned, its origin at o − E o; S = (a, o × a)
-        X.E = rodrigues(J.axis, joint_coordinate(s, J));
-        const Vec3 o = vec(J.anchor);
-        const Vec3 Eo = mat_vec(X.E, o);
-        X.r = {o[0] - Eo[0], o[1] - Eo[1], o[2] - Eo[2]};
-        S = {a, cross(o, a)};
+        j.X.E = rodrigues(J.axis, joint_coordinate(s, J));
+        const Vec3 Eo = mat_vec(j.X.E, o);
+        j.X.r = {o[0] - Eo[0], o[1] - Eo[1], o[2] - Eo[2]};
+        j.S.push_back({a, cross(o, a)});
+        j.c.push_back(J.coordinate);
       } else {
-        X.E = identity3();
-        X.r = scaled(a, joint_coordinate(s, J));
-        S = {{0, 0, 0}, a};
+        j.X.E = identity3();
+        j.X.r = scaled(a, joint_coordinate(s, J));
+        j.S.push_back({{0, 0, 0}, a});
+        j.c.push_back(J.coordinate);
       }
-      const ex qd = s.qd[J.coordinate];
-      V = plus(motion_to_child(X, V), scaled(S, qd));
-      A = plus(plus(motion_to_child(X, A), scaled(S, s.qdd[J.coordinate])),
-               scaled(cross_motion(V, S), qd));
-      V = name("idw_" + coord, "idv_" + coord, V);
-      A = name("ida_" + coord, "idal_" + coord, A);
-      f.steps.push_back(X);
-      f.S.push_back(S);
-      f.c.push_back(J.coordinate);
+      // V_C = X V_P + S q̇, A_C = X A_P + S q̈ + V_C × S q̇ (S fixed in C)
+      Spatial Sqd, Sqdd;
+      for (std::size_t k = 0; k < j.S.size(); ++k) {
+        Sqd = plus(Sqd, scaled(j.S[k], s.qd[j.c[k]]));
+        Sqdd = plus(Sqdd, scaled(j.S[k], s.qdd[j.c[k]]));
+      }
+      V = plus(motion_to_child(j.X, V), Sqd);
+      A = plus(plus(motion_to_child(j.X, A), Sqdd), cross_motion(V, Sqd));
+      V = name("idw_" + j.name, "idv_" + j.name, V);
+      A = name("ida_" + j.name, "idal_" + j.name, A);
+      f.joints.push_back(std::move(j));
     }
     f.V = V;
     f.A = A;
@@ -382,15 +402,13 @@ TreeInverseDynamics tree_inverse_dynamics(const System::Impl& s,
   for (std::size_t b = bodies.size(); b-- > 0;) {
     Frame& f = B[b];
     Spatial F = name("idn_" + bodies[b].name, "idf_" + bodies[b].name, f.F);
-    for (std::size_t j = f.S.size(); j-- > 0;) {
-      out.tau[f.c[j]] = power(f.S[j], F).expand();
-      F = force_to_parent(f.steps[j + 1], F);
-      if (j > 0) {
-        const std::string coord = s.coord_names[static_cast<std::size_t>(s.q_of_v[f.c[j]])];
-        F = name("idn_" + coord, "idf_" + coord, F);
-      }
+    for (std::size_t j = f.joints.size(); j-- > 0;) {
+      const Joint& J = f.joints[j];
+      for (std::size_t k = 0; k < J.S.size(); ++k) out.tau[J.c[k]] = power(J.S[k], F).expand();
+      F = force_to_parent(J.X, F);
+      if (j > 0) F = name("idn_" + J.name, "idf_" + J.name, F);
     }
-    F = force_to_parent(f.steps[0], F);
+    F = force_to_parent(f.placement, F);
     if (bodies[b].parent >= 0) {
       Frame& P = B[static_cast<std::size_t>(bodies[b].parent)];
       P.F = plus(P.F, F);

@@ -51,42 +51,6 @@ double relative_error(const Eigen::MatrixXd& a, const Eigen::MatrixXd& ref) {
   return (a - ref).cwiseAbs().maxCoeff() / std::max(1.0, ref.cwiseAbs().maxCoeff());
 }
 
-Eigen::Quaterniond random_rotation(std::mt19937& rng) {
-  std::normal_distribution<double> n;
-  return Eigen::Quaterniond(n(rng), n(rng), n(rng), n(rng)).normalized();
-}
-
-// A random state of MuJoCo's model: unit quaternions for ball and free joints, a free joint's
-// position near its placement, hinge and slide amounts within their range (or ±2 when not
-// limited), every velocity in [−2, 2].
-void random_state(const mjModel* m, std::mt19937& rng, Eigen::VectorXd& q, Eigen::VectorXd& v) {
-  std::uniform_real_distribution<double> u(-1, 1), unit(0, 1);
-  q.resize(m->nq);
-  v.resize(m->nv);
-  for (int j = 0; j < m->njnt; ++j) {
-    const int a = m->jnt_qposadr[j];
-    switch (m->jnt_type[j]) {
-      case mjJNT_FREE: {
-        for (int k = 0; k < 3; ++k) q(a + k) = m->qpos0[a + k] + u(rng);
-        const Eigen::Quaterniond r = random_rotation(rng);
-        q.segment<4>(a + 3) << r.w(), r.x(), r.y(), r.z();
-        break;
-      }
-      case mjJNT_BALL: {
-        const Eigen::Quaterniond r = random_rotation(rng);
-        q.segment<4>(a) << r.w(), r.x(), r.y(), r.z();
-        break;
-      }
-      default: {
-        const double lo = m->jnt_limited[j] ? m->jnt_range[2 * j] : -2;
-        const double hi = m->jnt_limited[j] ? m->jnt_range[2 * j + 1] : 2;
-        q(a) = lo + (hi - lo) * unit(rng);
-      }
-    }
-  }
-  for (int i = 0; i < m->nv; ++i) v(i) = 2 * u(rng);
-}
-
 struct MuJoCoForces {
   Eigen::MatrixXd M;
   Eigen::VectorXd f;  // −qfrc_bias + qfrc_passive
@@ -119,7 +83,7 @@ std::pair<double, double> compare_with_mujoco(const TreeDynamics& tree, const mj
   double worst_M = 0, worst_f = 0;
   for (int s = 0; s < states; ++s) {
     Eigen::VectorXd q, v;
-    random_state(m, rng, q, v);
+    test::random_state(m, rng, q, v);
     const MuJoCoForces ref = mujoco_forces(m, q, v);
     worst_M = std::max(worst_M, relative_error(tree.mass_matrix(q), ref.M));
     worst_f = std::max(worst_f,
@@ -263,7 +227,7 @@ TEST(FloatingBase, KineticEnergyIsTheLinksKineticEnergy) {
   std::mt19937 rng(3);
   for (int s = 0; s < 5; ++s) {
     Eigen::VectorXd q, v;
-    random_state(m.get(), rng, q, v);
+    test::random_state(m.get(), rng, q, v);
     const double T =
         0.5 * v.dot((tree.mass_matrix(q) - Eigen::MatrixXd(armature.asDiagonal())) * v);
     const auto poses = tree.link_poses(q);
@@ -291,7 +255,7 @@ TEST(FloatingBase, InverseAndForwardDynamicsAgree) {
   std::uniform_real_distribution<double> u(-2, 2);
   for (int s = 0; s < 5; ++s) {
     Eigen::VectorXd q, v;
-    random_state(m.get(), rng, q, v);
+    test::random_state(m.get(), rng, q, v);
     Eigen::VectorXd a(tree.nv());
     for (Eigen::Index i = 0; i < a.size(); ++i) a(i) = u(rng);
     const Eigen::VectorXd tau = tree.inverse_dynamics(q, v, a);
@@ -442,7 +406,7 @@ TEST(FloatingBase, UrdfFloatingReadsAsTheMjcfFreeJoint) {
   std::uniform_real_distribution<double> u(-1, 1);
   for (int s = 0; s < 5; ++s) {
     Eigen::VectorXd q(8), v(7);
-    const Eigen::Quaterniond r = random_rotation(rng);
+    const Eigen::Quaterniond r = test::random_rotation(rng);
     q << u(rng), u(rng), 1 + u(rng), r.w(), r.x(), r.y(), r.z(), 2 * u(rng);
     for (Eigen::Index i = 0; i < 7; ++i) v(i) = 2 * u(rng);
     // the same arithmetic on the same numbers (the URDF's world link adds a massless root):
@@ -485,7 +449,7 @@ std::pair<double, double> compare_system_with_mujoco(const lagrange::System& sys
   double worst_M = 0, worst_f = 0;
   for (int s = 0; s < states; ++s) {
     Eigen::VectorXd q, v;
-    random_state(m, rng, q, v);
+    test::random_state(m, rng, q, v);
     const MuJoCoForces ref = mujoco_forces(m, q, v);
     Eigen::MatrixXd M;
     Eigen::VectorXd f;

@@ -55,10 +55,7 @@ std::string numbers(const Eigen::VectorXd& v) {
   return s;
 }
 
-Eigen::Quaterniond random_rotation(std::mt19937& rng) {
-  std::normal_distribution<double> n;
-  return Eigen::Quaterniond(n(rng), n(rng), n(rng), n(rng)).normalized();
-}
+using test::random_rotation;
 
 io::RobotJoint random_joint(std::mt19937& rng, int index) {
   std::uniform_real_distribution<double> u(-1, 1), pos(0, 1);
