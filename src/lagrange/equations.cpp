@@ -312,8 +312,10 @@ std::string format_text(const Equations& eq) {
   if (!names.empty()) line(fmt::format("parameters: {}", fmt::join(names, ", ")));
   if (!eq.velocities.empty()) {
     line(fmt::format("velocities: {}", fmt::join(eq.velocities, ", ")));
-    line("coordinate rates (a ball's quaternion: q_dot = q * (0, w)/2, w in the body's frame):");
+    line("rates of the balls' quaternions (q_dot = q * (0, w)/2, w in the body's frame; the other "
+         "coordinates' rates are their velocities):");
     for (std::size_t i = 0; i < eq.coordinates.size(); ++i) {
+      if (eq.coordinate_rates[i].text == eq.coordinates[i] + "_dot") continue;
       line(fmt::format("  {}_dot = {}", eq.coordinates[i], eq.coordinate_rates[i].text));
     }
   }
@@ -412,13 +414,14 @@ std::string format_latex(const Equations& eq) {
   };
   std::vector<std::string> rows;
   for (std::size_t i = 0; i < eq.coordinate_rates.size(); ++i) {
+    if (eq.coordinate_rates[i].text == eq.coordinates[i] + "_dot") continue;  // a velocity
     std::string q_tex;
     for (const EquationSymbol& s : eq.symbols) {
       if (s.name == eq.coordinates[i]) q_tex = s.latex;
     }
     rows.push_back(fmt::format("\\dot{{{}}} &= {}", q_tex, eq.coordinate_rates[i].latex));
   }
-  align("coordinate rates: a ball's quaternion moves by q' = q (0, omega)/2, omega in its body's frame", rows);
+  align("the balls' quaternions move by q' = q (0, omega)/2, omega in the body's frame", rows);
   rows.clear();
   for (const Printed& e : eq.equations) rows.push_back(at_equals(e.latex));
   align(eq.velocities.empty() ? "equations of motion, one per coordinate" : "equations of motion, one per velocity",

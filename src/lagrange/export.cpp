@@ -1082,6 +1082,23 @@ FlatDynamics flat_dynamics(const System::Impl& s, const detail::TreeInverseDynam
     return {std::move(D.definitions), s.M, s.f, std::move(D.d)};
   }
   std::vector<GiNaC::ex> extra(n), extra_f(n), extra_M(n * n);
+  if (!s.balls.empty()) {
+    // M and f only (no derivatives with ball coordinates): the tree's from the closed form's
+    // intermediates (staged inertias: fewer operations than the engine's), the rest as derived
+    const detail::TreeDerivatives tree = detail::tree_inverse_dynamics_derivatives(
+        s, s.tree_bodies, s.tree_gravity, taken_names(s, id.aux));
+    FlatDynamics out;
+    for (std::size_t k = 0; k < tree.aux.size(); ++k) out.definitions.emplace_back(tree.aux[k], tree.defs[k]);
+    out.M.resize(n * n);
+    out.f.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      out.f[i] = (-tree.tau_rest[i] + (s.f[i] - s.tree_bias[i]).expand()).expand();
+      for (std::size_t j = 0; j < n; ++j) {
+        out.M[i * n + j] = (tree.M[i * n + j] + (s.M[i * n + j] - s.tree_M[i * n + j]).expand()).expand();
+      }
+    }
+    return out;
+  }
   for (std::size_t i = 0; i < n; ++i) {
     extra_f[i] = (s.f[i] - s.tree_bias[i]).expand();
     GiNaC::ex e = -extra_f[i];
@@ -1153,7 +1170,7 @@ std::string flat_functions(const System::Impl& s, const std::vector<std::string>
   // with ball coordinates: M and f of the world-coordinate recursions, and no derivatives (a
   // quaternion's are on its tangent space, which these do not form yet)
   const bool balls = !s.balls.empty();
-  const FlatDynamics F = balls ? FlatDynamics{{}, s.M, s.f, {}} : flat_dynamics(s, id, tau);
+  const FlatDynamics F = flat_dynamics(s, id, tau);
 
   // mass_matrix
   {

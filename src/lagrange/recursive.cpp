@@ -563,7 +563,6 @@ TreeDerivatives tree_inverse_dynamics_derivatives(const System::Impl& s,
                                                   const std::vector<TreeBody>& bodies,
                                                   const Vec3& gravity,
                                                   const std::set<std::string>& taken) {
-  RIGID_ASSERT(s.balls.empty());  // the export refuses ball coordinates before it asks
   const auto n = static_cast<std::size_t>(s.n);
   TreeDerivatives out;
   Namer name(out.aux, out.defs, taken);
@@ -589,9 +588,9 @@ TreeDerivatives tree_inverse_dynamics_derivatives(const System::Impl& s,
     forward(s, name, body, body.parent < 0 ? nullptr : &K[parent], K[b]);
     Spatial acc = body.parent < 0 ? Spatial{} : qdd_part[parent];
     if (body.parent >= 0) path[b] = path[parent];
-    for (std::size_t j = 0; j < body.joints.size(); ++j) {
-      const std::size_t c = body.joints[j].coordinate;
-      const std::string& coord = s.coord_names[c];  // no balls: q and the velocities align
+    for (std::size_t j = 0; j < K[b].S.size(); ++j) {  // per column (a ball's three)
+      const std::size_t c = K[b].column[j];
+      const std::string coord = column_name(s, c);
       Joint J{c, b, K[b].S[j], {}, {}};
       const Spatial& v_in = K[b].V_in[j];
       const Spatial a_in = plus(plus(K[b].A_in[j], a0), acc);
@@ -650,9 +649,9 @@ TreeDerivatives tree_inverse_dynamics_derivatives(const System::Impl& s,
   auto d_q = [&](std::size_t i, std::size_t j) -> ex& { return out.d[i * 2 * n + j]; };
   auto d_qd = [&](std::size_t i, std::size_t j) -> ex& { return out.d[i * 2 * n + n + j]; };
   for (std::size_t b = 0; b < bodies.size(); ++b) {
-    for (std::size_t jb = path[b].size() - bodies[b].joints.size(); jb < path[b].size(); ++jb) {
+    for (std::size_t jb = path[b].size() - K[b].S.size(); jb < path[b].size(); ++jb) {
       const Joint& Ji = joints[path[b][jb]];
-      const std::string& coord = s.coord_names[Ji.coordinate];
+      const std::string coord = column_name(s, Ji.coordinate);
       const Spatial X = name("dXa_" + coord, "dXb_" + coord, apply(IC[b], Ji.S));
       std::array<ex, 6> Y = transposed_apply(BC[b], Ji.S);
       for (int m = 0; m < 6; ++m)

@@ -312,3 +312,37 @@ def test_the_same_bytes_on_every_run():
         assert len(texts) == 1, model
         assert rigid.Scene(str(EXAMPLES / model)).emit("c++", pathlib.Path(model).stem,
                                                        flat=True).encode() == texts.pop(), model
+
+
+HUMANOID = pathlib.Path("/usr/share/mujoco/model/humanoid/humanoid.xml")
+
+
+def test_free_root_humanoid_exports_flat_and_compiles_without_warnings(tmp_path):
+    """MuJoCo's humanoid on its free root: the flat layout with nq = 28, nv = 27, its velocity
+    names and coordinate_rates, the same bytes through the CLI (twice) and Python; it compiles
+    with g++ and clang++ under -Wall -Wextra -Werror (tests/robot/exported_floating_base_test.cpp
+    compares its numbers with MuJoCo's). The namespaced C++ and the Python export refuse it."""
+    assert HUMANOID.exists(), "libmujoco-samples is missing: scripts/install-deps.sh installs it"
+    texts = {subprocess.run([rigid_exe(), "eom", str(HUMANOID), "--emit", "c++", "--flat"],
+                            capture_output=True, check=True).stdout for _ in range(2)}
+    assert len(texts) == 1
+    text = texts.pop().decode()
+    assert rigid.Scene(str(HUMANOID)).emit("c++", "humanoid", flat=True) == text
+    assert "inline constexpr int nq = 28;" in text and "inline constexpr int nv = 27;" in text
+    assert 'velocity_names[] = {"root_x_dot", "root_y_dot", "root_z_dot", "root_wx",' in text
+    assert "inline void coordinate_rates(" in text and "forward_dynamics_derivatives" not in text
+    header = tmp_path / "humanoid.hpp"
+    header.write_text(text)
+    source = tmp_path / "use.cpp"
+    source.write_text('#include "humanoid.hpp"\nint main() {\n  double q[nq] = {0, 0, 1.5, 1}, v[nv] = {}, '
+                      'tau[nv] = {}, a[nv], r[nq];\n  forward_dynamics(q, v, tau, a);\n'
+                      '  coordinate_rates(q, v, r);\n  return a[2] < -9 ? 0 : 1;\n}\n')
+    for compiler in ("g++", "clang++"):
+        out = subprocess.run([compiler, "-std=c++17", "-fsyntax-only", "-Wall", "-Wextra", "-Werror",
+                              str(source)], capture_output=True, text=True)
+        assert out.returncode == 0, (compiler, out.stderr[-3000:])
+    for args in (["--emit", "c++"], ["--emit", "python"]):
+        out = subprocess.run([rigid_exe(), "eom", str(HUMANOID), *args], capture_output=True, text=True)
+        assert out.returncode == 1 and out.stdout == ""
+        assert "the code export of a system with ball coordinates (here 'root'" in out.stderr
+        assert "writes the flat C++ layout only (--flat)" in out.stderr

@@ -48,7 +48,9 @@ struct TreeInverseDynamics {
 /// ∂τ/∂q and ∂τ/∂q̇ of the tree's inverse dynamics (τ of tree_inverse_dynamics) in closed
 /// form (recursive.cpp: the derivatives of Newton–Euler in world coordinates, an O(n) pass
 /// and a dot product per pair of joints on one path), for the exported derivatives. Its
-/// intermediates are its own, named apart from `taken`.
+/// intermediates are its own, named apart from `taken`. With ball coordinates its M and
+/// tau_rest hold (a ball's three columns turn with its body) but `d` does not: a quaternion's
+/// derivatives are on its tangent space, which this does not form.
 struct TreeDerivatives {
   std::vector<GiNaC::symbol> aux;
   std::vector<GiNaC::ex> defs;
