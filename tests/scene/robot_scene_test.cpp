@@ -354,10 +354,13 @@ TEST(RobotScene, CoordinateNamesFromJointNames) {
 
 // A robot scene's model, built once, run from eight threads at once (ThreadSanitizer in make
 // test): every run's trajectory equals the serial one bit for bit. cart_arm is derived expanded,
-// arm7 by the tree's recursions (its tape reads the intermediates' slots).
+// arm7 by the tree's recursions (its tape reads the intermediates' slots), MuJoCo's humanoid on
+// its free root with ball coordinates (an absolute path: kExamples / it is it).
 TEST(RobotSceneThreads, OneModelRunsOnEightThreads) {
   for (const auto& [file, set] : {std::pair{"cart_arm.urdf", "shoulder.initial=0.8"},
-                                  std::pair{"arm7.urdf", "joint2.initial=0.6"}}) {
+                                  std::pair{"arm7.urdf", "joint2.initial=0.6"},
+                                  std::pair{"/usr/share/mujoco/model/humanoid/humanoid.xml",
+                                            "root.angular_velocity=[0, 0, 3]"}}) {
     SCOPED_TRACE(file);
     Scene s = load_scene(kExamples / file);
     apply_overrides(s, {set, "simulation.t_end=0.5"});
