@@ -1503,6 +1503,19 @@ std::array<double, N> override_vector(const std::string& value, const std::strin
   return out;
 }
 
+// A quaternion value "[w, x, y, z]" of unit norm (within 1e-9), for the setting `what`.
+std::array<double, 4> override_unit_quaternion(const std::string& value, const std::string& assignment,
+                                               const std::string& what) {
+  const auto q = override_vector<4>(value, assignment, what + " (w, x, y, z)");
+  const double norm = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+  if (std::abs(norm - 1.0) > 1e-9) {
+    throw Error(fmt::format("override '{}': {} has norm {}; expected a unit quaternion (|q| within "
+                            "1e-9 of 1)",
+                            assignment, what, norm));
+  }
+  return q;
+}
+
 const Coordinate* find_coordinate(const Scene& s, std::string_view name) {
   for (const Coordinate& c : s.coordinates) {
     if (c.name == name) return &c;
@@ -1630,14 +1643,7 @@ void apply_overrides(Scene& scene, const std::vector<std::string>& assignments) 
         coordinate->angular_velocity = expressions(override_vector<3>(value, a, owner + ".angular_velocity"));
         continue;
       }
-      const auto q = override_vector<4>(value, a, owner + ".orientation (w, x, y, z)");
-      const double norm = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
-      if (std::abs(norm - 1.0) > 1e-9) {
-        throw Error(fmt::format("override '{}': {}.orientation has norm {}; expected a unit quaternion "
-                                "(w, x, y, z) (|q| within 1e-9 of 1)",
-                                a, owner, norm));
-      }
-      coordinate->orientation = expressions(q);
+      coordinate->orientation = expressions(override_unit_quaternion(value, a, owner + ".orientation"));
       continue;
     }
     if (Body* b = dot != std::string::npos ? find_free_body(scene, owner) : nullptr) {
@@ -1652,14 +1658,7 @@ void apply_overrides(Scene& scene, const std::vector<std::string>& assignments) 
         } else if (setting == kFreeBodyOverrides.begin() + 2) {
           b->angular_velocity = override_vector<3>(value, a, what);
         } else {
-          const auto q = override_vector<4>(value, a, what + " (w, x, y, z)");
-          const double norm = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
-          if (std::abs(norm - 1.0) > 1e-9) {
-            throw Error(fmt::format("override '{}': {} has norm {}; expected a unit quaternion (|q| "
-                                    "within 1e-9 of 1)",
-                                    a, what, norm));
-          }
-          b->initial_orientation = q;
+          b->initial_orientation = override_unit_quaternion(value, a, what);
         }
         continue;
       }

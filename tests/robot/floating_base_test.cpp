@@ -70,26 +70,41 @@ MuJoCoForces mujoco_forces(const mjModel* m, const Eigen::VectorXd& q, const Eig
   return r;
 }
 
-// The largest relative errors of M and of −b + p against MuJoCo over `states` random states.
-std::pair<double, double> compare_with_mujoco(const TreeDynamics& tree, const mjModel* m,
-                                              unsigned seed, int states) {
-  EXPECT_EQ(static_cast<int>(tree.nq()), m->nq);
-  EXPECT_EQ(static_cast<int>(tree.nv()), m->nv);
-  // the reference configuration is MuJoCo's qpos0 (a quaternion's sign aside)
-  const Eigen::VectorXd q0 = tree.reference_configuration();
+// The largest relative errors of M and of f = −b + p, from `dynamics(q, v)`, against MuJoCo's
+// over `states` random states; q0 is the model's reference configuration, MuJoCo's qpos0 (a
+// quaternion's sign aside).
+template <typename Dynamics>
+std::pair<double, double> compare_with_mujoco(const Eigen::VectorXd& q0, const Dynamics& dynamics,
+                                              const mjModel* m, unsigned seed, int states) {
   const Eigen::VectorXd mq0 = Eigen::Map<const Eigen::VectorXd>(m->qpos0, m->nq);
-  EXPECT_LT((q0 - mq0).cwiseAbs().maxCoeff(), 1e-12) << q0.transpose() << "\n" << mq0.transpose();
+  EXPECT_EQ(q0.size(), m->nq);
+  if (q0.size() == m->nq) {
+    EXPECT_LT((q0 - mq0).cwiseAbs().maxCoeff(), 1e-12) << q0.transpose() << "\n" << mq0.transpose();
+  }
   std::mt19937 rng(seed);
   double worst_M = 0, worst_f = 0;
   for (int s = 0; s < states; ++s) {
     Eigen::VectorXd q, v;
     test::random_state(m, rng, q, v);
     const MuJoCoForces ref = mujoco_forces(m, q, v);
-    worst_M = std::max(worst_M, relative_error(tree.mass_matrix(q), ref.M));
-    worst_f = std::max(worst_f,
-                       relative_error(tree.passive_forces(q, v) - tree.bias_forces(q, v), ref.f));
+    const auto [M, f] = dynamics(q, v);
+    worst_M = std::max(worst_M, relative_error(M, ref.M));
+    worst_f = std::max(worst_f, relative_error(f, ref.f));
   }
   return {worst_M, worst_f};
+}
+
+// The same for TreeDynamics.
+std::pair<double, double> compare_with_mujoco(const TreeDynamics& tree, const mjModel* m,
+                                              unsigned seed, int states) {
+  EXPECT_EQ(static_cast<int>(tree.nv()), m->nv);
+  return compare_with_mujoco(
+      tree.reference_configuration(),
+      [&](const Eigen::VectorXd& q, const Eigen::VectorXd& v) {
+        return std::pair<Eigen::MatrixXd, Eigen::VectorXd>(
+            tree.mass_matrix(q), tree.passive_forces(q, v) - tree.bias_forces(q, v));
+      },
+      m, seed, states);
 }
 
 TEST(FloatingBase, HumanoidWithItsFreeRootMatchesMuJoCo) {
@@ -435,29 +450,19 @@ TEST(FloatingBase, QuaternionsMustBeUnit) {
 // The symbolic equations (lagrange::System of the robot's scene: a free joint as three slides
 // and a ball coordinate, a ball joint as a ball coordinate) against MuJoCo
 
-// The largest relative errors of the System's M and f (= −b + p) against MuJoCo's over
-// `states` random states, q and q̇ in MuJoCo's qpos and qvel.
+// The same for the symbolic equations, q and q̇ in MuJoCo's qpos and qvel.
 std::pair<double, double> compare_system_with_mujoco(const lagrange::System& system, const mjModel* m,
                                                      unsigned seed, int states) {
-  EXPECT_EQ(system.num_coordinates(), m->nq);
   EXPECT_EQ(system.num_velocities(), m->nv);
-  const Eigen::VectorXd mq0 = Eigen::Map<const Eigen::VectorXd>(m->qpos0, m->nq);
-  EXPECT_LT((system.initial_q() - mq0).cwiseAbs().maxCoeff(), 1e-12)
-      << system.initial_q().transpose() << "\n" << mq0.transpose();
   lagrange::Workspace w = system.make_workspace();
-  std::mt19937 rng(seed);
-  double worst_M = 0, worst_f = 0;
-  for (int s = 0; s < states; ++s) {
-    Eigen::VectorXd q, v;
-    test::random_state(m, rng, q, v);
-    const MuJoCoForces ref = mujoco_forces(m, q, v);
-    Eigen::MatrixXd M;
-    Eigen::VectorXd f;
-    system.mass_matrix_and_forces(w, 0.0, q, v, M, f);
-    worst_M = std::max(worst_M, relative_error(M, ref.M));
-    worst_f = std::max(worst_f, relative_error(f, ref.f));
-  }
-  return {worst_M, worst_f};
+  return compare_with_mujoco(
+      system.initial_q(),
+      [&](const Eigen::VectorXd& q, const Eigen::VectorXd& v) {
+        std::pair<Eigen::MatrixXd, Eigen::VectorXd> Mf;
+        system.mass_matrix_and_forces(w, 0.0, q, v, Mf.first, Mf.second);
+        return Mf;
+      },
+      m, seed, states);
 }
 
 TEST(FloatingBase, SymbolicHumanoidWithItsFreeRootMatchesMuJoCo) {
