@@ -419,6 +419,13 @@ def test_free_root_humanoid_through_every_front_end(run, tmp_path):
     scene = rigid.Scene(str(HUMANOID))
     assert list(scene.system.coordinate_names) == doc["coordinates"]
     assert list(scene.system.velocity_names) == doc["velocities"]
+    # q̇ = ½ q ⊗ (0, ω): turning about the torso's z at the identity moves q_z at ω/2
+    v = np.zeros(27)
+    v[5] = 2.0
+    rates = scene.system.coordinate_rates(scene.system.initial_q, v)
+    assert list(rates[3:7]) == [0.0, 0.0, 0.0, 1.0] and len(rates) == 28
+    with pytest.raises(rigid.Error, match="q_dot"):
+        scene.system.coordinate_rates(scene.system.initial_q, np.zeros(28))
     # a run: the CLI's CSV and Python's columns agree to the printing (as for the cart arm)
     (names, rows), summary = cli_run(run, HUMANOID, tmp_path / "cli", *HUMANOID_SPIN)
     assert names[1:8] == ["root_x", "root_y", "root_z", "root_qw", "root_qx", "root_qy", "root_qz"]
