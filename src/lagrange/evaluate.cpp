@@ -309,7 +309,8 @@ Trajectory System::simulate(const SimulationOptions& o, const Eigen::VectorXd& q
                             const Eigen::VectorXd& qd0_in) const {
   const Impl& s = *impl_;
   RIGID_REQUIRE(q0_in.size() == s.nq && qd0_in.size() == s.n,
-                "expected initial q and q_dot of size {}, got {} and {}", s.n, q0_in.size(),
+                "expected initial q and q_dot of size {}, got {} and {}",
+                s.nq == s.n ? fmt::format("{}", s.n) : fmt::format("{} and {}", s.nq, s.n), q0_in.size(),
                 qd0_in.size());
   for (const Impl::Ball& b : s.balls) {
     const double norm = q0_in.segment(static_cast<Eigen::Index>(b.q), 4).norm();
