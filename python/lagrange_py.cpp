@@ -535,7 +535,9 @@ void bind_system(py::module_& m) {
           py::arg("q0") = py::none(), py::arg("q_dot0") = py::none(),
           "Integrates; returns a dict of numpy arrays (rows are samples): t, q, q_dot, lambda, "
           "energy, jacobi, cyclic_momenta, residual, velocity_residual, mu, "
-          "velocity_constraint_residual.")
+          "velocity_constraint_residual, and the name lists (coordinate_names for q's columns, "
+          "velocity_names for q_dot's: a ball coordinate has four of the first, three of the "
+          "second, its quaternion written normalised).")
       .def("__repr__", [](const System& s) {
         return fmt::format("System(coordinates=[{}], constraints=[{}], velocity_constraints=[{}])",
                            fmt::join(s.coordinate_names(), ", "),

@@ -158,7 +158,7 @@ class System(metaclass=_Pybind11Type):
     def accelerations(self, t: float, q: object, q_dot: object) -> tuple[Any, ...]:
         """(q̈, λ) at (t, q, q̇); λ holds the holonomic multipliers, then the velocity constraints' μ."""
     def simulate(self, t_end: float, method: str = ..., dt: float = ..., tolerance: float = ..., output_dt: float = ..., stabilization: float = ..., project_initial: bool = ..., q0: object = ..., q_dot0: object = ...) -> dict[str, Any]:
-        """Integrates; returns a dict of numpy arrays (rows are samples): t, q, q_dot, lambda, energy, jacobi, cyclic_momenta, residual, velocity_residual, mu, velocity_constraint_residual."""
+        """Integrates; returns a dict of numpy arrays (rows are samples): t, q, q_dot, lambda, energy, jacobi, cyclic_momenta, residual, velocity_residual, mu, velocity_constraint_residual, and the name lists (coordinate_names for q's columns, velocity_names for q_dot's: a ball coordinate has four of the first, three of the second, its quaternion written normalised)."""
     def __repr__(self) -> str: ...
     def modes(self, at: object = ..., parameters: dict[str, float] = ...) -> NormalModes:
         """Linearises about an equilibrium or steady motion: `at` holds coordinates at values and gives cyclic rates ({'theta1': 0.0, 'psi_dot': 60.0} or ['theta1=0']); the other coordinates are found from the initial values. Returns rigid.lagrange.NormalModes."""
