@@ -1167,8 +1167,8 @@ std::string flat_functions(const System::Impl& s, const std::vector<std::string>
   }
   std::string out;
   const std::vector<GiNaC::ex> tau = flat_tau(s, id);
-  // with ball coordinates: M and f of the world-coordinate recursions, and no derivatives (a
-  // quaternion's are on its tangent space, which these do not form yet)
+  // with ball coordinates: M and f (flat_dynamics) but no derivative functions (a quaternion's
+  // derivatives are on its tangent space, which these do not form yet)
   const bool balls = !s.balls.empty();
   const FlatDynamics F = flat_dynamics(s, id, tau);
 
