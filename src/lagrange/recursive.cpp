@@ -198,9 +198,10 @@ Mat3 ball_rotation(const System::Impl& s, Namer& name, const TreeJoint& J, const
 // The frame and the joints of body `b`, from its parent's frame `P` (nullptr: the world).
 // Each joint's frame (R, p before it turns or slides) is named, so that its axis z, a point o
 // on it and the axis's moment o × z stay short expressions of named ones. A ball's three
-// columns are the body's axes R e_k through its anchor o, (R e_k, o × R e_k), all three
-// turning in the frame before it: they move with the body, and Σ_k Ṡ_k ω_k = V⁺ × S ω =
-// V⁻ × S ω (V⁺ = V⁻ + S ω), which is A's term (V_j⁻ × S_j) q̇_j per column with V_j⁻ = V⁻.
+// columns are the body's axes R e_k through its anchor o, (R e_k, o × R e_k). They move with
+// the body, Ṡ_k = V⁺ × S_k, but only their sum enters A: Σ_k Ṡ_k ω_k = V⁺ × S ω = V⁻ × S ω
+// (V⁺ = V⁻ + S ω), which is A's term (V_j⁻ × S_j) q̇_j per column with V_j⁻ = V⁻, the velocity
+// of the frame before the ball, for all three.
 void forward(const System::Impl& s, Namer& name, const TreeBody& b, const Kinematics* P,
              Kinematics& K) {
   Mat3 R = P ? P->R : identity3();
