@@ -108,14 +108,13 @@ void solve(const Impl& s, WorkImpl& w, double time, const Eigen::VectorXd& qv,
 WorkImpl& checked(const Impl& s, Workspace& w);
 
 void require_sizes(const Impl& s, const Eigen::VectorXd& q, const Eigen::VectorXd& q_dot) {
-  if (s.nq == s.n) {
-    RIGID_REQUIRE_AS("System", q.size() == s.n && q_dot.size() == s.n,
-                     "expected q and q_dot of size {} (one per coordinate), got {} and {}", s.n,
-                     q.size(), q_dot.size());
-  }
-  RIGID_REQUIRE_AS("System", q.size() == s.nq && q_dot.size() == s.n,
-                   "expected q of size {} (four per ball coordinate) and q_dot of size {} (three "
-                   "per ball), got {} and {}", s.nq, s.n, q.size(), q_dot.size());
+  if (q.size() == s.nq && q_dot.size() == s.n) return;
+  rigid::detail::throw_error(
+      "System", s.nq == s.n ? fmt::format("expected q and q_dot of size {} (one per coordinate), got {} and {}",
+                                          s.n, q.size(), q_dot.size())
+                            : fmt::format("expected q of size {} (four per ball coordinate) and q_dot of size {} "
+                                          "(three per ball), got {} and {}",
+                                          s.nq, s.n, q.size(), q_dot.size()));
 }
 
 }  // namespace

@@ -595,27 +595,28 @@ std::string recursion_refusal(const System::Impl& s, const SystemSpec& spec,
 // Whether the bodies are derived by the tree's recursions (SystemSpec::Derivation).
 bool use_recursion(const System::Impl& s, const SystemSpec& spec, const ExpressionReader& reader) {
   using Derivation = SystemSpec::Derivation;
+  Derivation derivation = spec.derivation;
   if (!s.balls.empty()) {
     // a ball's velocity is no q̇: its equations are the tree's (Euler–Poincaré), not
     // Lagrange's of an expanded L
-    RIGID_REQUIRE_AS("System", spec.derivation != Derivation::kExpanded,
+    RIGID_REQUIRE_AS("System", derivation != Derivation::kExpanded,
                      "the ball coordinate '{}' needs the recursive derivation (its velocity ω is "
                      "not the rate of its quaternion, so Lagrange's equations of the expanded L do "
                      "not apply); use derivation auto or recursive", s.balls.front().name);
-    int depth = 0;
-    const std::string why = recursion_refusal(s, spec, reader, depth);
-    RIGID_REQUIRE_AS("System", why.empty(), "a system with the ball coordinate '{}' is derived by "
-                     "the tree's recursions, which apply to a tree of bodies moved by joints; here {}",
-                     s.balls.front().name, why);
-    return true;
+    derivation = Derivation::kRecursive;
   }
-  if (spec.derivation == Derivation::kExpanded) return false;
+  if (derivation == Derivation::kExpanded) return false;
   int depth = 0;
   const std::string why = recursion_refusal(s, spec, reader, depth);
-  if (spec.derivation == Derivation::kRecursive) {
-    RIGID_REQUIRE_AS("System", why.empty(), "the recursive derivation applies to a tree of bodies "
-                     "moved by joints; here {}", why);
-    return true;
+  if (derivation == Derivation::kRecursive) {
+    if (why.empty()) return true;
+    rigid::detail::throw_error(
+        "System", s.balls.empty()
+                      ? fmt::format("the recursive derivation applies to a tree of bodies moved by "
+                                    "joints; here {}", why)
+                      : fmt::format("a system with the ball coordinate '{}' is derived by the tree's "
+                                    "recursions, which apply to a tree of bodies moved by joints; here {}",
+                                    s.balls.front().name, why));
   }
   return why.empty() && depth > SystemSpec::kAutoRecursiveDepth;
 }

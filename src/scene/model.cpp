@@ -725,7 +725,7 @@ struct Model::Impl {
         std::array<Expression, 3> pv;
         for (std::size_t k = 0; k < 3; ++k) {
           const double v = (*b.pivot)[k];
-          pv[k] = Expression{fmt::format("{}", v), b.where, v, false};
+          pv[k] = Expression::of(v, b.where);
         }
         f.pivot_expressions = pv;
       } else {

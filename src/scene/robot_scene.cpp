@@ -54,10 +54,6 @@ void add_inertial(TreeBody& b, const io::RobotLink& link, const Transform& X) {
 
 std::string number_text(double v) { return fmt::format("{}", v); }
 
-Expression number(double v, const SourceLocation& where) {
-  return Expression{number_text(v), where, v, false};
-}
-
 Expression text(std::string t, const SourceLocation& where) {
   return Expression{std::move(t), where, std::nullopt, true};
 }
@@ -170,8 +166,8 @@ std::string identifier(std::string name) {
 // `symbolic_inertia` the parameter `name` holding it (added to the scene's parameters).
 Expression mass_property(Scene& s, bool symbolic_inertia, const std::string& name, double value,
                          const SourceLocation& where) {
-  if (!symbolic_inertia) return number(value, where);
-  s.parameters.push_back(Parameter{name, number(value, where)});
+  if (!symbolic_inertia) return Expression::of(value, where);
+  s.parameters.push_back(Parameter{name, Expression::of(value, where)});
   return text(name, where);
 }
 
@@ -184,7 +180,7 @@ Body scene_body(const io::RobotModel& model, const std::vector<TreeBody>& bodies
   out.where = where;
   if (b.parent >= 0) out.parent = model.links[bodies[static_cast<std::size_t>(b.parent)].link].name;
   for (std::size_t k = 0; k < 3; ++k)
-    out.position[k] = number(b.placement.p(static_cast<Eigen::Index>(k)), where);
+    out.position[k] = Expression::of(b.placement.p(static_cast<Eigen::Index>(k)), where);
   if (!b.placement.R.isIdentity(0.0)) {
     // entries of a quarter turn written as 1.5707963267948966 rad are ±1 and 6e-17: the latter
     // are the rounding of the file's angle, and kept they would fill M(q) with terms of 1e-17
@@ -211,7 +207,7 @@ Body scene_body(const io::RobotModel& model, const std::vector<TreeBody>& bodies
         slide.where = jw;
         out.joints.push_back(std::move(slide));
       }
-      for (std::size_t k = 0; k < 3; ++k) out.position[k] = number(0, where);
+      for (std::size_t k = 0; k < 3; ++k) out.position[k] = Expression::of(0, where);
       out.orientation.reset();
     }
     Joint joint;
@@ -390,20 +386,20 @@ Scene scene_from_robot(const io::RobotModel& file_model, const std::filesystem::
             if (b.link == l) placement = b.placement;
           }
           for (std::size_t k = 0; k < 3; ++k) {
-            s.coordinates.push_back(Coordinate{free_part(j, k), number(placement.p(static_cast<Eigen::Index>(k)), where),
-                                               number(0, where), where});
+            s.coordinates.push_back(Coordinate{free_part(j, k), Expression::of(placement.p(static_cast<Eigen::Index>(k)), where),
+                                               Expression::of(0, where), where});
           }
         }
         const Eigen::Quaterniond quat(placement.R);
-        Coordinate ball{j.name, number(0, where), number(0, where), where};
+        Coordinate ball{j.name, Expression::of(0, where), Expression::of(0, where), where};
         ball.kind = Coordinate::Kind::kBall;
-        ball.orientation = {number(quat.w(), where), number(quat.x(), where), number(quat.y(), where),
-                            number(quat.z(), where)};
-        ball.angular_velocity = {number(0, where), number(0, where), number(0, where)};
+        ball.orientation = {Expression::of(quat.w(), where), Expression::of(quat.x(), where), Expression::of(quat.y(), where),
+                            Expression::of(quat.z(), where)};
+        ball.angular_velocity = {Expression::of(0, where), Expression::of(0, where), Expression::of(0, where)};
         s.coordinates.push_back(std::move(ball));
         continue;
       }
-      s.coordinates.push_back(Coordinate{j.name, number(j.ref, where), number(0, where), where});
+      s.coordinates.push_back(Coordinate{j.name, Expression::of(j.ref, where), Expression::of(0, where), where});
     }
   }
   if (s.coordinates.empty()) {
@@ -414,9 +410,9 @@ Scene scene_from_robot(const io::RobotModel& file_model, const std::filesystem::
     if (!b.merged_away) s.bodies.push_back(scene_body(model, bodies, b, symbolic_inertia, s));
   }
   for (std::size_t k = 0; k < 3; ++k)
-    s.gravity[k] = number(model.gravity(static_cast<Eigen::Index>(k)), top);
+    s.gravity[k] = Expression::of(model.gravity(static_cast<Eigen::Index>(k)), top);
   add_passive_terms(model, s);
-  s.simulation.t_end = number(5, top);
+  s.simulation.t_end = Expression::of(5, top);
   s.simulation.where = top;
   return s;
 }

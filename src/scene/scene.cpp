@@ -1349,6 +1349,10 @@ Scene parse_document(const toml::table& root, const Parser& p, const ModelOption
 
 }  // namespace
 
+Expression Expression::of(double value, SourceLocation where) {
+  return Expression{fmt::format("{}", value), std::move(where), value, false};
+}
+
 SourceLocation Expression::at(std::size_t offset) const {
   SourceLocation loc = where;
   if (loc.column > 0) loc.column += static_cast<int>(offset) + (quoted ? 1 : 0);
@@ -1635,7 +1639,7 @@ void apply_overrides(Scene& scene, const std::vector<std::string>& assignments) 
       auto expressions = [&](const auto& numbers) {
         std::array<Expression, std::tuple_size_v<std::decay_t<decltype(numbers)>>> out;
         for (std::size_t k = 0; k < out.size(); ++k) {
-          out[k] = Expression{fmt::format("{}", numbers[k]), {fmt::format("override '{}'", a), 0, 0}, numbers[k], false};
+          out[k] = Expression::of(numbers[k], {fmt::format("override '{}'", a), 0, 0});
         }
         return out;
       };
@@ -1666,9 +1670,10 @@ void apply_overrides(Scene& scene, const std::vector<std::string>& assignments) 
     // unknown: say what the name is if it names something that is set through its keys
     const std::vector<std::string> names = override_names(scene);
     std::string why;
-    if (ball || (find_coordinate(scene, name) != nullptr && find_coordinate(scene, name)->kind == Coordinate::Kind::kBall)) {
+    const Coordinate* named = find_coordinate(scene, name);
+    if (ball || (named != nullptr && named->kind == Coordinate::Kind::kBall)) {
       why = fmt::format("'{}' is a ball coordinate: set '{}.orientation' or '{}.angular_velocity'", owner, owner, owner);
-    } else if (find_coordinate(scene, name) != nullptr) {
+    } else if (named != nullptr) {
       why = fmt::format("'{}' is a coordinate: set '{}.initial' or '{}.velocity'", name, name, name);
     } else if (find_free_body(scene, name) != nullptr) {
       why = fmt::format("'{}' is a free body: set {}", name, free_body_names_text(name));

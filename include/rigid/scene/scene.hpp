@@ -27,6 +27,8 @@ struct Expression {
 
   /// Location of character `offset` of `text` in the file (for errors inside the expression).
   [[nodiscard]] SourceLocation at(std::size_t offset) const;
+  /// The number `value` as an expression (its shortest round-trip decimal), from `where`.
+  [[nodiscard]] static Expression of(double value, SourceLocation where);
 };
 
 /// A named parameter from `[parameters]`, usable in every expression.
