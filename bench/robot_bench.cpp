@@ -205,9 +205,10 @@ void BM_Exported_forwardDynamics(benchmark::State& state) {
 }
 
 void BM_Exported_inverseDynamicsDerivatives(benchmark::State& state) {
-  Pair& p = model(0);
-  state.SetLabel(name_of(0));
-  const rigid_bench::Codegen& c = codegen(0);
+  const int which = static_cast<int>(state.range(0));
+  Pair& p = model(which);
+  state.SetLabel(name_of(which));
+  const rigid_bench::Codegen& c = codegen(which);
   const auto nn = static_cast<std::size_t>(c.nv * c.nv);
   std::vector<double> dq(nn), dv(nn), da(nn);
   for (auto _ : state) {
@@ -218,9 +219,10 @@ void BM_Exported_inverseDynamicsDerivatives(benchmark::State& state) {
 }
 
 void BM_Exported_forwardDynamicsDerivatives(benchmark::State& state) {
-  Pair& p = model(0);
-  state.SetLabel(name_of(0));
-  const rigid_bench::Codegen& c = codegen(0);
+  const int which = static_cast<int>(state.range(0));
+  Pair& p = model(which);
+  state.SetLabel(name_of(which));
+  const rigid_bench::Codegen& c = codegen(which);
   const auto nn = static_cast<std::size_t>(c.nv * c.nv);
   std::vector<double> a(static_cast<std::size_t>(c.nv)), dq(nn), dv(nn), dtau(nn);
   for (auto _ : state) {
@@ -228,6 +230,27 @@ void BM_Exported_forwardDynamicsDerivatives(benchmark::State& state) {
                                    dv.data(), dtau.data());
     benchmark::DoNotOptimize(dq.data());
   }
+}
+
+// What MuJoCo offers for the derivatives: mjd_transitionFD, centered finite differences of its
+// Euler step (constraints and contacts off), here A = ∂(q', v')/∂(q, v) only: 4 nv + 1 steps, each
+// a forward pass. Not the same quantity as ∂q̈/∂x (h ∂q̈/∂x is A's lower half), but what its
+// users call for it.
+void BM_MuJoCo_transitionFD(benchmark::State& state) {
+  Pair& p = model(static_cast<int>(state.range(0)));
+  state.SetLabel(name_of(static_cast<int>(state.range(0))));
+  const int flags = p.m->opt.disableflags;
+  const int integrator = p.m->opt.integrator;
+  p.m->opt.disableflags |= mjDSBL_CONSTRAINT | mjDSBL_CONTACT;
+  p.m->opt.integrator = mjINT_EULER;
+  const int n = 2 * p.m->nv + p.m->na;
+  std::vector<mjtNum> A(static_cast<std::size_t>(n * n));
+  for (auto _ : state) {
+    mjd_transitionFD(p.m, p.d, 1e-6, 1, A.data(), nullptr, nullptr, nullptr);
+    benchmark::DoNotOptimize(A.data());
+  }
+  p.m->opt.disableflags = flags;
+  p.m->opt.integrator = integrator;
 }
 
 // mj_forward with constraints and contacts disabled: the same work as forward dynamics
@@ -323,7 +346,8 @@ BENCHMARK(BM_Exported_inverseDynamics)->Arg(0)->Arg(1)->Arg(2);
 BENCHMARK(BM_MuJoCo_inverseDynamics)->Arg(0)->Arg(1)->Arg(2);
 BENCHMARK(BM_Exported_forwardDynamics)->Arg(0)->Arg(1)->Arg(2);
 BENCHMARK(BM_MuJoCo_forwardNoConstraints)->Arg(0)->Arg(1)->Arg(2);
-BENCHMARK(BM_Exported_inverseDynamicsDerivatives);
-BENCHMARK(BM_Exported_forwardDynamicsDerivatives);
+BENCHMARK(BM_Exported_inverseDynamicsDerivatives)->Arg(0)->Arg(2);
+BENCHMARK(BM_Exported_forwardDynamicsDerivatives)->Arg(0)->Arg(2);
+BENCHMARK(BM_MuJoCo_transitionFD)->Arg(0)->Arg(2)->Unit(benchmark::kMicrosecond);
 
 }  // namespace

@@ -21,7 +21,7 @@ struct Codegen {
 const Codegen& codegen_arm7();
 /// MuJoCo's humanoid pinned at its root (21 hinges); no derivatives (nullptr)
 const Codegen& codegen_humanoid_pinned();
-/// MuJoCo's humanoid on its free root (nq = 28, nv = 27); no derivatives (nullptr)
+/// MuJoCo's humanoid on its free root (nq = 28, nv = 27); the derivatives along the root's tangent
 const Codegen& codegen_humanoid_free();
 
 }  // namespace rigid_bench

@@ -10,5 +10,5 @@ namespace {
 }  // namespace
 
 #define RIGID_CODEGEN_NAME codegen_humanoid_free
-#define RIGID_CODEGEN_DERIVATIVES 0
+#define RIGID_CODEGEN_DERIVATIVES 1
 #include "robot_codegen_wrappers.inc"

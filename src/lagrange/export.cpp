@@ -1075,6 +1075,7 @@ struct FlatDynamics {
 FlatDynamics flat_dynamics(const System::Impl& s, const detail::TreeInverseDynamics& id,
                            const std::vector<GiNaC::ex>& tau) {
   const auto n = static_cast<std::size_t>(s.n);
+  const auto nq = static_cast<std::size_t>(s.nq);
   std::vector<GiNaC::symbol> vars(s.q.begin(), s.q.end());
   vars.insert(vars.end(), s.qd.begin(), s.qd.end());
   if (id.tau.empty()) {
@@ -1082,23 +1083,6 @@ FlatDynamics flat_dynamics(const System::Impl& s, const detail::TreeInverseDynam
     return {std::move(D.definitions), s.M, s.f, std::move(D.d)};
   }
   std::vector<GiNaC::ex> extra(n), extra_f(n), extra_M(n * n);
-  if (!s.balls.empty()) {
-    // M and f only (no derivatives with ball coordinates): the tree's from the closed form's
-    // intermediates (staged inertias: fewer operations than the engine's), the rest as derived
-    const detail::TreeDerivatives tree = detail::tree_inverse_dynamics_derivatives(
-        s, s.tree_bodies, s.tree_gravity, taken_names(s, id.aux));
-    FlatDynamics out;
-    for (std::size_t k = 0; k < tree.aux.size(); ++k) out.definitions.emplace_back(tree.aux[k], tree.defs[k]);
-    out.M.resize(n * n);
-    out.f.resize(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      out.f[i] = (-tree.tau_rest[i] + (s.f[i] - s.tree_bias[i]).expand()).expand();
-      for (std::size_t j = 0; j < n; ++j) {
-        out.M[i * n + j] = (tree.M[i * n + j] + (s.M[i * n + j] - s.tree_M[i * n + j]).expand()).expand();
-      }
-    }
-    return out;
-  }
   for (std::size_t i = 0; i < n; ++i) {
     extra_f[i] = (s.f[i] - s.tree_bias[i]).expand();
     GiNaC::ex e = -extra_f[i];
@@ -1117,8 +1101,25 @@ FlatDynamics flat_dynamics(const System::Impl& s, const detail::TreeInverseDynam
     out.definitions.emplace_back(tree.aux[k], tree.defs[k]);
   }
   out.definitions.insert(out.definitions.end(), D.definitions.begin(), D.definitions.end());
-  out.d.resize(D.d.size());
-  for (std::size_t k = 0; k < D.d.size(); ++k) out.d[k] = (D.d[k] + tree.d[k]).expand();
+  // D's columns are q's (nq) and the velocities'; a ball's tangent column k (q ⊗ exp(δθ), as
+  // the tree's) is ∂/∂q · ∂q/∂δθ_k = ∂/∂q · ½ q ⊗ (0, e_k), the rate's coefficient of ω_k
+  auto extra_d = [&](std::size_t i, std::size_t j) -> GiNaC::ex {
+    const GiNaC::ex* row = &D.d[i * (nq + n)];
+    if (j >= n) return row[nq + j - n];
+    if (s.q_of_v[j] >= 0) return row[static_cast<std::size_t>(s.q_of_v[j])];
+    GiNaC::ex sum = 0;
+    for (const System::Impl::Ball& b : s.balls) {
+      if (j < b.v || j >= b.v + 3) continue;
+      for (std::size_t m = 0; m < 4; ++m) {
+        if (!row[b.q + m].is_zero()) sum += row[b.q + m] * s.q_rate[b.q + m].diff(s.qd[j]);
+      }
+    }
+    return sum;
+  };
+  out.d.resize(2 * n * n);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = 0; j < 2 * n; ++j) out.d[i * 2 * n + j] = (extra_d(i, j) + tree.d[i * 2 * n + j]).expand();
+  }
   out.M.resize(n * n);
   for (std::size_t k = 0; k < n * n; ++k) out.M[k] = (tree.M[k] + extra_M[k]).expand();
   out.f.resize(n);
@@ -1167,9 +1168,6 @@ std::string flat_functions(const System::Impl& s, const std::vector<std::string>
   }
   std::string out;
   const std::vector<GiNaC::ex> tau = flat_tau(s, id);
-  // with ball coordinates: M and f (flat_dynamics) but no derivative functions (a quaternion's
-  // derivatives are on its tangent space, which these do not form yet)
-  const bool balls = !s.balls.empty();
   const FlatDynamics F = flat_dynamics(s, id, tau);
 
   // mass_matrix
@@ -1228,7 +1226,7 @@ std::string flat_functions(const System::Impl& s, const std::vector<std::string>
     out += solve_text(printer, fmt::format("    for (int i = 0; i < {}; ++i) q_ddot[i] = std::nan(\"\");\n", n));
     out += fmt::format("  for (int i = 0; i < {}; ++i) q_ddot[i] = x[i];\n}}\n\n", n);
   }
-  if (balls) {
+  if (!s.balls.empty()) {
     // q̇ = ½ q ⊗ (0, ω) of each ball's quaternion, the velocities' entries for the others
     out += "/// dq/dt (nq) at (q, q̇): q̇'s entries, and ½ q ⊗ (0, ω) for a ball's quaternion (ω in its\n"
            "/// body's frame); the functions above take any q ≠ 0 for a quaternion, as the rotation "
@@ -1245,8 +1243,7 @@ std::string flat_functions(const System::Impl& s, const std::vector<std::string>
       out += fmt::format("  q_rate[{}] = 0.5 * (q[{}] * q_dot[{}] + q[{}] * q_dot[{}] - q[{}] * q_dot[{}]);\n", y, w, c, z, a, x, e);
       out += fmt::format("  q_rate[{}] = 0.5 * (q[{}] * q_dot[{}] + q[{}] * q_dot[{}] - q[{}] * q_dot[{}]);\n", z, w, e, x, c, y, a);
     }
-    out += "}\n";
-    return out;
+    out += "}\n\n";
   }
   auto dtau = [&](std::size_t i, std::size_t j) -> const GiNaC::ex& { return F.d[i * 2 * n + j]; };
   std::vector<GiNaC::ex> derivatives;
@@ -1412,8 +1409,9 @@ std::string emit_cpp_flat(const System::Impl& s, const ExportOptions& options) {
                "has nq entries\n// (a ball's unit quaternion w x y z among them), the velocities "
                "v (q_dot) nv (a ball's ω in\n// its body's frame; dq/dt by coordinate_rates); "
                "arrays row-major ([i*nv + j]), parameters as\n// defaults. forward_dynamics "
-               "factors M along the tree of the coordinates. The derivative functions\n// are not "
-               "written for ball coordinates (a quaternion's are on its tangent space).\n";
+               "factors M along the tree of the coordinates. The derivatives are exact;\n// a "
+               "ball's columns of d/dq are along its tangent, q ⊗ exp(δθ) with δθ in its body's "
+               "frame\n// (MuJoCo's convention), so that every derivative is nv × nv.\n";
   out += "#pragma once\n\n#include <cmath>\n\n";
   out += fmt::format("inline constexpr int nq = {};  // configuration entries\n", s.nq);
   out += fmt::format("inline constexpr int nv = {};  // velocity entries\n", s.n);

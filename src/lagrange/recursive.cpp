@@ -17,6 +17,7 @@
 
 #include <algorithm>
 #include <array>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -157,6 +158,9 @@ struct Kinematics {
   std::vector<Spatial> S;
   std::vector<std::size_t> column;
   std::vector<Spatial> V_in, A_in;
+  // per column: the index in S of its joint's first column, and whether the joint is a ball
+  std::vector<std::size_t> first;
+  std::vector<bool> ball;
   Inertia body, composite;
   Spatial force, composite_force;
 };
@@ -169,6 +173,14 @@ std::string joint_name(const System::Impl& s, const TreeJoint& J) {
     }
   }
   return s.coord_names[static_cast<std::size_t>(s.q_of_v[J.coordinate])];
+}
+
+// The name of the ball whose first velocity is v.
+const std::string& ball_name(const System::Impl& s, std::size_t v) {
+  const auto b = std::find_if(s.balls.begin(), s.balls.end(),
+                              [&](const System::Impl::Ball& ball) { return ball.v == v; });
+  RIGID_ASSERT(b != s.balls.end());
+  return b->name;
 }
 
 // The name of velocity v in intermediates' names: its coordinate's, a ball's b_wx b_wy b_wz.
@@ -223,6 +235,7 @@ void forward(const System::Impl& s, Namer& name, const TreeBody& b, const Kinema
       p = plus(p, mat_vec(R, {a[0] - RJa[0], a[1] - RJa[1], a[2] - RJa[2]}));
       R = name("Rb_" + coord, mat_mul(R, RJ));
       const Spatial V_before = V, A_before = A;
+      const std::size_t first = K.S.size();
       for (std::size_t k = 0; k < 3; ++k) {
         const std::string axis = coord + "_" + kAxis[k];
         Spatial S;
@@ -235,6 +248,8 @@ void forward(const System::Impl& s, Namer& name, const TreeBody& b, const Kinema
         V = plus(V, scaled(S, w));
         K.S.push_back(S);
         K.column.push_back(J.coordinate + k);
+        K.first.push_back(first);
+        K.ball.push_back(true);
       }
       continue;
     }
@@ -258,6 +273,8 @@ void forward(const System::Impl& s, Namer& name, const TreeBody& b, const Kinema
     K.A_in.push_back(A);
     A = plus(A, scaled(cross_motion(V, S), qd));
     V = plus(V, scaled(S, qd));
+    K.first.push_back(K.S.size());
+    K.ball.push_back(false);
     K.S.push_back(S);
     K.column.push_back(J.coordinate);
   }
@@ -525,6 +542,17 @@ TreeEquations tree_equations(System::Impl& s, const std::vector<TreeBody>& bodie
 // rigid body dynamics algorithms", RSS 2018, derive the same in their notation). The pairs
 // j ⪯ i need two vectors per joint i, I^C_i S_i and B^C_iᵀ S_i (S_i·I^C x = x·I^C S_i), so
 // the assembly is a dot product per pair.
+//
+// A ball's orientation is perturbed along its tangent, q ⊗ exp(δθ) with δθ in its body's frame
+// (MuJoCo's convention): the body turns about its own axes through the anchor, so ∂/∂δθ_k acts
+// as S_k × on everything that moves with it, as a hinge's ∂/∂q_k does. Its three columns
+// S_k = (R e_k, o × R e_k) are fixed in the body, so each turns with the other two in both
+// orders, and all three turn in the frame before the ball (forward()): the formulas hold with
+// that frame's v⁻ and a⁻ (q̈ of the joints before the ball only) for each column, and with the
+// pairs of one ball's columns taken as j ⪯ i both ways. Since A sees v⁻ × S_k ω_k rather than
+// the velocity after the earlier columns, the derivative by ω_j gains the ball's own motion
+// Ω = Σ_k S_k ω_k: ∂a_k/∂ω_j = S_j × v_k + χ_j with χ_j = 2 ψ̇_j + Ω × S_j = (2 v⁻ + Ω) × S_j
+// (a hinge's χ_j = 2 ψ̇_j), and ∂f_k/∂q̇_j = B_k S_j + I_k χ_j.
 
 namespace {
 
@@ -572,6 +600,9 @@ TreeDerivatives tree_inverse_dynamics_derivatives(const System::Impl& s,
     std::size_t coordinate;
     std::size_t body;
     Spatial S, dS, ddS;  // S_j, ψ̇_j, ψ̈_j
+    // a ball's column: the velocity index of its ball's first column, and χ_j
+    std::optional<std::size_t> ball;
+    Spatial chi;
   };
   std::vector<Joint> joints;
   std::vector<std::vector<std::size_t>> path(bodies.size());  // indices into joints
@@ -588,16 +619,35 @@ TreeDerivatives tree_inverse_dynamics_derivatives(const System::Impl& s,
     const auto parent = static_cast<std::size_t>(body.parent);
     forward(s, name, body, body.parent < 0 ? nullptr : &K[parent], K[b]);
     Spatial acc = body.parent < 0 ? Spatial{} : qdd_part[parent];
+    Spatial acc_joint = acc;  // at the start of the column's joint
+    Spatial omega;            // a ball's own motion Ω
     if (body.parent >= 0) path[b] = path[parent];
     for (std::size_t j = 0; j < K[b].S.size(); ++j) {  // per column (a ball's three)
       const std::size_t c = K[b].column[j];
       const std::string coord = column_name(s, c);
-      Joint J{c, b, K[b].S[j], {}, {}};
+      Joint J{c, b, K[b].S[j], {}, {}, {}, {}};
       const Spatial& v_in = K[b].V_in[j];
-      const Spatial a_in = plus(plus(K[b].A_in[j], a0), acc);
+      if (K[b].first[j] == j) {
+        acc_joint = acc;
+        if (K[b].ball[j]) {
+          const std::size_t first = K[b].column[j];
+          omega = {};
+          for (std::size_t k = j; k < j + 3; ++k) {
+            omega = plus(omega, scaled(K[b].S[k], s.qd[K[b].column[k]]));
+          }
+          const std::string ball = ball_name(s, first);
+          omega = name("dWa_" + ball, "dWb_" + ball, omega);
+        }
+      }
+      const Spatial a_in = plus(plus(K[b].A_in[j], a0), acc_joint);
       J.dS = name("dSa_" + coord, "dSb_" + coord, cross_motion(v_in, J.S));
       J.ddS = name("ddSa_" + coord, "ddSb_" + coord,
                    plus(cross_motion(a_in, J.S), cross_motion(v_in, J.dS)));
+      if (K[b].ball[j]) {
+        J.ball = K[b].column[K[b].first[j]];
+        J.chi = name("dCa_" + coord, "dCb_" + coord,
+                     cross_motion(plus(scaled(v_in, 2), omega), J.S));
+      }
       // named, so that each use reads six values rather than a sum along the whole path
       acc = name("dQa_" + coord, "dQb_" + coord, plus(acc, scaled(J.S, s.qdd[c])));
       path[b].push_back(joints.size());
@@ -658,15 +708,17 @@ TreeDerivatives tree_inverse_dynamics_derivatives(const System::Impl& s,
       for (int m = 0; m < 6; ++m)
         Y[static_cast<std::size_t>(m)] =
             name(fmt::format("dY{}_{}", m, coord), Y[static_cast<std::size_t>(m)]);
-      // the whole force F^C = FC + GC: q̈ enters only here and in the pairs through it
-      const Spatial Zq = name("dZqa_" + coord, "dZqb_" + coord,
-                              plus(plus(cross_force(Ji.S, plus(FC[b], GC[b])), apply(IC[b], Ji.ddS)),
-                                   apply_columns(BC[b], Ji.dS)));
+      // the whole force F^C = FC + GC: q̈ enters only here and in the pairs through it; a
+      // ball's column pairs with its ball's earlier ones without the turning of S_i
+      const Spatial turning = cross_force(Ji.S, plus(FC[b], GC[b]));
+      const Spatial Zq_rest = plus(apply(IC[b], Ji.ddS), apply_columns(BC[b], Ji.dS));
+      const Spatial Zq = name("dZqa_" + coord, "dZqb_" + coord, plus(turning, Zq_rest));
+      const Spatial Zq_ball = Ji.ball ? name("dZra_" + coord, "dZrb_" + coord, Zq_rest) : Spatial{};
       // B = P + Pᵀ + h×̄ with P = (v×*) I and h×̄ x = x ×* h skew, so B S = Bᵀ S + 2 S ×* h
       Spatial BS{{Y[0], Y[1], Y[2]}, {Y[3], Y[4], Y[5]}};
       BS = plus(BS, scaled(cross_force(Ji.S, HC[b]), 2));
       const Spatial Zv = name("dZva_" + coord, "dZvb_" + coord,
-                              plus(BS, scaled(apply(IC[b], Ji.dS), 2)));
+                              plus(BS, Ji.ball ? apply(IC[b], Ji.chi) : scaled(apply(IC[b], Ji.dS), 2)));
       const std::size_t i = Ji.coordinate;
       out.tau_rest[i] = power(Ji.S, FC[b]).expand();
       for (std::size_t k = 0; k <= jb; ++k) {
@@ -675,9 +727,10 @@ TreeDerivatives tree_inverse_dynamics_derivatives(const System::Impl& s,
         // composite rigid bodies: M_ji = S_j · I^C S_i for j ⪯ i
         out.M[i * n + j] = out.M[j * n + i] = power(Jj.S, X).expand();
         d_q(i, j) = (power(Jj.ddS, X) + dot6(Y, Jj.dS)).expand();
-        d_qd(i, j) = (dot6(Y, Jj.S) + 2 * power(Jj.dS, X)).expand();
+        d_qd(i, j) = (dot6(Y, Jj.S) + (Jj.ball ? power(Jj.chi, X) : 2 * power(Jj.dS, X))).expand();
         if (k == jb) continue;
-        d_q(j, i) = power(Jj.S, Zq).expand();
+        const bool one_ball = Ji.ball && Jj.ball == Ji.ball;
+        d_q(j, i) = power(Jj.S, one_ball ? Zq_ball : Zq).expand();
         d_qd(j, i) = power(Jj.S, Zv).expand();
       }
     }

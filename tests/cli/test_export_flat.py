@@ -319,7 +319,8 @@ HUMANOID = pathlib.Path("/usr/share/mujoco/model/humanoid/humanoid.xml")
 
 def test_free_root_humanoid_exports_flat_and_compiles_without_warnings(tmp_path):
     """MuJoCo's humanoid on its free root: the flat layout with nq = 28, nv = 27, its velocity
-    names and coordinate_rates, the same bytes through the CLI (twice) and Python; it compiles
+    names, coordinate_rates and the derivatives along the root's tangent, the same bytes through
+    the CLI (twice) and Python; it compiles
     with g++ and clang++ under -Wall -Wextra -Werror (tests/robot/exported_floating_base_test.cpp
     compares its numbers with MuJoCo's). The namespaced C++ and the Python export refuse it."""
     assert HUMANOID.exists(), "libmujoco-samples is missing: scripts/install-deps.sh installs it"
@@ -330,7 +331,8 @@ def test_free_root_humanoid_exports_flat_and_compiles_without_warnings(tmp_path)
     assert rigid.Scene(str(HUMANOID)).emit("c++", "humanoid", flat=True) == text
     assert "inline constexpr int nq = 28;" in text and "inline constexpr int nv = 27;" in text
     assert 'velocity_names[] = {"root_x_dot", "root_y_dot", "root_z_dot", "root_wx",' in text
-    assert "inline void coordinate_rates(" in text and "forward_dynamics_derivatives" not in text
+    assert "inline void coordinate_rates(" in text
+    assert "inline void forward_dynamics_derivatives(" in text and "along its tangent" in text
     header = tmp_path / "humanoid.hpp"
     header.write_text(text)
     source = tmp_path / "use.cpp"

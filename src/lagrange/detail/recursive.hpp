@@ -48,13 +48,13 @@ struct TreeInverseDynamics {
 /// ∂τ/∂q and ∂τ/∂q̇ of the tree's inverse dynamics (τ of tree_inverse_dynamics) in closed
 /// form (recursive.cpp: the derivatives of Newton–Euler in world coordinates, an O(n) pass
 /// and a dot product per pair of joints on one path), for the exported derivatives. Its
-/// intermediates are its own, named apart from `taken`. With ball coordinates its M and
-/// tau_rest hold (a ball's three columns turn with its body) but `d` does not: a quaternion's
-/// derivatives are on its tangent space, which this does not form.
+/// intermediates are its own, named apart from `taken`. A ball's columns of ∂τ/∂q are along
+/// its tangent: q ⊗ exp(δθ), δθ in its body's frame (MuJoCo's convention), one per velocity.
 struct TreeDerivatives {
   std::vector<GiNaC::symbol> aux;
   std::vector<GiNaC::ex> defs;
-  /// n × 2n, row-major: ∂τ_i/∂q_j at [i·2n + j], ∂τ_i/∂q̇_j at [i·2n + n + j]
+  /// n × 2n (n velocities), row-major: ∂τ_i/∂q_j at [i·2n + j] (∂τ_i/∂δθ_k for a ball's
+  /// column k), ∂τ_i/∂q̇_j at [i·2n + n + j]
   std::vector<GiNaC::ex> d;
   /// the tree's M (n × n) and τ at q̈ = 0 (= −bias, gravity included) from the same
   /// intermediates, so that code holding the derivatives computes no second recursion
