@@ -106,17 +106,19 @@ void bind_robot_regressor(py::module_& m) {
           [](const TreeDynamics& t, const py::object& q, const py::object& q_dot,
              const py::object& q_ddot) {
             const char* f = "rigid.robot.Robot.regressor";
-            // the joints first: a ball or free joint is refused as such, not by q's size
-            (void)rigid::robot::standard_parameters(t.model());
-            const auto n = static_cast<Eigen::Index>(t.dof());
+            const auto nq = static_cast<Eigen::Index>(t.nq()), nv = static_cast<Eigen::Index>(t.nv());
+            // the sizes named as the other methods name them: dof where nq = nv
+            const char* q_size = nq == nv ? "dof" : "nq";
+            const char* v_size = nq == nv ? "dof" : "nv";
             return rigid::robot::regressor(
-                t.model(), cv::vector(q, {f, "q"}, n, cv::Finite::kRequired, "dof"),
-                cv::vector(q_dot, {f, "q_dot"}, n, cv::Finite::kRequired, "dof"),
-                cv::vector(q_ddot, {f, "q_ddot"}, n, cv::Finite::kRequired, "dof"));
+                t.model(), cv::vector(q, {f, "q"}, nq, cv::Finite::kRequired, q_size),
+                cv::vector(q_dot, {f, "q_dot"}, nv, cv::Finite::kRequired, v_size),
+                cv::vector(q_ddot, {f, "q_ddot"}, nv, cv::Finite::kRequired, v_size));
           },
           py::arg("q"), py::arg("q_dot"), py::arg("q_ddot"),
-          "Y (dof, p): tau = Y pi for the standard parameters pi (gravity and the joints' "
-          "passive forces included). Hinge and slide joints only.")
+          "Y (nv, p): tau = Y pi for the standard parameters pi (gravity and the joints' "
+          "passive forces included). q has nq entries (a ball's or free joint's unit quaternion "
+          "among them), q_dot and q_ddot nv (MuJoCo's qpos and qvel, as inverse_dynamics).")
       .def(
           "base_parameters",
           [](const TreeDynamics& t, std::size_t samples, std::uint64_t seed,

@@ -57,7 +57,7 @@ class Robot(metaclass=_Pybind11Type):
     def standard_parameters(self) -> tuple[Any, ...]:
         """(names, values): the standard parameters pi, per link m, mx, my, mz, Ixx, Ixy, Ixz, Iyy, Iyz, Izz in the link frame about its origin, per joint Ia, fv, k (SI units)."""
     def regressor(self, q: object, q_dot: object, q_ddot: object) -> NDArray[numpy.float64]:
-        """Y (dof, p): tau = Y pi for the standard parameters pi (gravity and the joints' passive forces included). Hinge and slide joints only."""
+        """Y (nv, p): tau = Y pi for the standard parameters pi (gravity and the joints' passive forces included). q has nq entries (a ball's or free joint's unit quaternion among them), q_dot and q_ddot nv (MuJoCo's qpos and qvel, as inverse_dynamics)."""
     def base_parameters(self, *, samples: int = ..., seed: int = ..., rank_tolerance: float = ...) -> BaseParameters:
         """The base parameters (BaseParameters) by a QR of Y stacked at `samples` random states (0: automatic) drawn from `seed`; a column is independent when its distance to the others exceeds rank_tolerance of the largest column norm."""
 

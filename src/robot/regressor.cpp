@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "rigid/common/error.hpp"
+#include "joint_rotation.hpp"
 
 namespace rigid::robot {
 
@@ -28,39 +29,20 @@ Eigen::Matrix3d hat(const Eigen::Vector3d& v) {
   return m;
 }
 
-// The file and line of a joint, for messages.
-SourceLocation where_of(const io::RobotModel& model, const io::RobotLink& link,
-                        const io::RobotJoint& joint) {
-  return SourceLocation{link.file.empty() ? model.source : link.file, joint.line, 0};
-}
-
-// Refuses a joint other than a hinge or a slide (an if-chain: a new joint type compiles and
-// lands here).
-void require_hinges_and_slides(const io::RobotModel& model) {
-  for (const io::RobotLink& link : model.links) {
-    for (const io::RobotJoint& joint : link.joints) {
-      if (joint.type == io::RobotJointType::kHinge) continue;
-      if (joint.type == io::RobotJointType::kSlide) continue;
-      rigid::detail::throw_error_at(
-          where_of(model, link, joint),
-          fmt::format("joint '{}' of link '{}' is a {} joint; the inverse-dynamics regressor "
-                      "takes hinge and slide joints only",
-                      joint.name, link.name, io::to_string(joint.type)));
-    }
-  }
-}
-
 bool has_inertial(const io::RobotLink& link) {
   return link.mass > 0 || !link.inertia_com.isZero(0);
 }
 
-// Layout of π: the first column of each link's 10 (−1: none) and of each link's joint terms.
+// Layout of π: the first column of each link's 10 (−1: none) and of each link's joint terms;
+// the first entry of q and of the velocities of each link's joints.
 struct Layout {
   std::vector<Eigen::Index> link_column;
   std::vector<Eigen::Index> joint_column;  // per link: its first joint's Ia column
-  std::vector<Eigen::Index> first_dof;     // per link: its first joint's coordinate
+  std::vector<Eigen::Index> first_q;       // per link: its first joint's entry of q
+  std::vector<Eigen::Index> first_dof;     // per link: its first joint's velocity
   Eigen::Index parameters = 0;
-  Eigen::Index dof = 0;
+  Eigen::Index nq = 0;
+  Eigen::Index dof = 0;  // nv
 };
 
 Layout layout_of(const io::RobotModel& model) {
@@ -70,15 +52,19 @@ Layout layout_of(const io::RobotModel& model) {
     if (has_inertial(link)) l.parameters += kLinkParameters;
     l.joint_column.push_back(l.parameters);
     l.parameters += kJointParameters * static_cast<Eigen::Index>(link.joints.size());
+    l.first_q.push_back(l.nq);
     l.first_dof.push_back(l.dof);
-    l.dof += static_cast<Eigen::Index>(link.joints.size());
+    for (const io::RobotJoint& joint : link.joints) {
+      l.nq += io::position_count(joint.type);
+      l.dof += io::velocity_count(joint.type);
+    }
   }
   return l;
 }
 
-void check_vector(const char* what, const Eigen::VectorXd& v, Eigen::Index n) {
-  RIGID_REQUIRE_AS("regressor", v.size() == n, "{} has {} entries; the model has {} coordinates",
-                   what, v.size(), n);
+void check_vector(const char* what, const Eigen::VectorXd& v, Eigen::Index n, const char* entries) {
+  RIGID_REQUIRE_AS("regressor", v.size() == n, "{} has {} entries; the model has {} {}", what,
+                   v.size(), n, entries);
   RIGID_REQUIRE_AS("regressor", v.allFinite(), "{} is not finite", what);
 }
 
@@ -110,7 +96,6 @@ Matrix6x10d link_wrench_basis(const Eigen::Vector3d& w, const Eigen::Vector3d& a
 }  // namespace
 
 StandardParameters standard_parameters(const io::RobotModel& model) {
-  require_hinges_and_slides(model);
   const Layout layout = layout_of(model);
   StandardParameters s;
   s.values.resize(layout.parameters);
@@ -141,10 +126,17 @@ StandardParameters standard_parameters(const io::RobotModel& model) {
       add("Izz_" + n, "kg·m²", J(2, 2));
     }
     for (const io::RobotJoint& joint : link.joints) {
-      const bool hinge = joint.type == io::RobotJointType::kHinge;
-      add("Ia_" + joint.name, hinge ? "kg·m²" : "kg", joint.armature);
-      add("fv_" + joint.name, hinge ? "N·m·s/rad" : "N·s/m", joint.damping);
-      add("k_" + joint.name, hinge ? "N·m/rad" : "N/m", joint.stiffness);
+      // a free joint's one number acts on its translations and its rotations alike (MuJoCo's):
+      // its unit is the translations' and the rotations', "kg|kg·m²"
+      const bool slide = joint.type == io::RobotJointType::kSlide;
+      const bool free = joint.type == io::RobotJointType::kFree;
+      add("Ia_" + joint.name, slide ? "kg" : free ? "kg|kg·m²" : "kg·m²",
+          joint.armature);
+      add("fv_" + joint.name,
+          slide ? "N·s/m" : free ? "N·s/m|N·m·s/rad" : "N·m·s/rad",
+          joint.damping);
+      add("k_" + joint.name, slide ? "N/m" : free ? "N/m|N·m/rad" : "N·m/rad",
+          joint.stiffness);
     }
   }
   return s;
@@ -152,11 +144,10 @@ StandardParameters standard_parameters(const io::RobotModel& model) {
 
 Eigen::MatrixXd regressor(const io::RobotModel& model, const Eigen::VectorXd& q,
                           const Eigen::VectorXd& q_dot, const Eigen::VectorXd& q_ddot) {
-  require_hinges_and_slides(model);
   const Layout layout = layout_of(model);
-  check_vector("q", q, layout.dof);
-  check_vector("q_dot", q_dot, layout.dof);
-  check_vector("q_ddot", q_ddot, layout.dof);
+  check_vector("q", q, layout.nq, "coordinates (nq)");
+  check_vector("q_dot", q_dot, layout.dof, "velocities (nv)");
+  check_vector("q_ddot", q_ddot, layout.dof, "velocities (nv)");
   const std::size_t links = model.links.size();
 
   // forward pass: poses, joint axes S and spatial velocity V and acceleration A (ω; v) of
@@ -168,6 +159,13 @@ Eigen::MatrixXd regressor(const io::RobotModel& model, const Eigen::VectorXd& q,
   Eigen::Matrix<double, 6, Eigen::Dynamic> S(6, layout.dof);
   Vector6d A_world = Vector6d::Zero();
   A_world.tail<3>() = -model.gravity;
+  // the rate of s carried by a frame moving with v: v ×m s
+  const auto carried = [](const Vector6d& v, const Vector6d& s) {
+    Vector6d vxs;
+    vxs << v.head<3>().cross(s.head<3>()),
+        v.head<3>().cross(s.tail<3>()) + v.tail<3>().cross(s.head<3>());
+    return vxs;
+  };
   for (std::size_t i = 0; i < links; ++i) {
     const io::RobotLink& link = model.links[i];
     const bool rooted = link.parent < 0;
@@ -177,28 +175,67 @@ Eigen::MatrixXd regressor(const io::RobotModel& model, const Eigen::VectorXd& q,
         rooted ? link.position : Eigen::Vector3d(p[parent] + R[parent] * link.position);
     Vector6d v = rooted ? Vector6d::Zero() : V[parent];
     Vector6d a = rooted ? A_world : A[parent];
+    Eigen::Index e = layout.first_q[i];
     Eigen::Index c = layout.first_dof[i];
-    for (const io::RobotJoint& joint : link.joints) {
-      const double amount = q(c) - joint.ref;
-      const Eigen::Vector3d u = R_WL * joint.axis;
-      Vector6d s = Vector6d::Zero();
-      if (joint.type == io::RobotJointType::kHinge) {
-        // a turn about the line through the anchor: the anchor stays where it is
-        const Eigen::Vector3d anchor = p_WL + R_WL * joint.anchor;
-        s << u, anchor.cross(u);
-        R_WL = R_WL * Eigen::AngleAxisd(amount, joint.axis).toRotationMatrix();
-        p_WL = anchor - R_WL * joint.anchor;
-      } else if (joint.type == io::RobotJointType::kSlide) {
-        s << Eigen::Vector3d::Zero(), u;
-        p_WL += u * amount;
-      }
-      // the rate of s carried by the link's motion so far: v ×m s
-      Vector6d vxs;
-      vxs << v.head<3>().cross(s.head<3>()),
-          v.head<3>().cross(s.tail<3>()) + v.tail<3>().cross(s.head<3>());
-      a += vxs * q_dot(c) + s * q_ddot(c);
+    // one column s of velocity c, turning in a frame that moves with v_in
+    const auto column = [&](const Vector6d& s, const Vector6d& v_in) {
+      a += carried(v_in, s) * q_dot(c) + s * q_ddot(c);
       v += s * q_dot(c);
       S.col(c++) = s;
+    };
+    for (const io::RobotJoint& joint : link.joints) {
+      Vector6d s = Vector6d::Zero();
+      switch (joint.type) {
+        case io::RobotJointType::kHinge: {
+          // a turn about the line through the anchor: the anchor stays where it is
+          const double amount = q(e++) - joint.ref;
+          const Eigen::Vector3d u = R_WL * joint.axis;
+          const Eigen::Vector3d anchor = p_WL + R_WL * joint.anchor;
+          s << u, anchor.cross(u);
+          R_WL = R_WL * Eigen::AngleAxisd(amount, joint.axis).toRotationMatrix();
+          p_WL = anchor - R_WL * joint.anchor;
+          column(s, v);
+          break;
+        }
+        case io::RobotJointType::kSlide: {
+          const Eigen::Vector3d u = R_WL * joint.axis;
+          s << Eigen::Vector3d::Zero(), u;
+          p_WL += u * (q(e++) - joint.ref);
+          column(s, v);
+          break;
+        }
+        case io::RobotJointType::kBall:
+        case io::RobotJointType::kFree: {
+          // as TreeDynamics: a free joint's three world-fixed translations of the link origin,
+          // then (both) the link's own axes R e_k through the anchor, fixed in the link, which
+          // all turn in the frame before them (Σ_k Ṡ_k ω_k = V⁻ × S ω)
+          const bool free = joint.type == io::RobotJointType::kFree;
+          const Eigen::Index at = free ? e + 3 : e;
+          const Eigen::Quaterniond Q = detail::unit_quaternion_at(q, at, joint, "regressor");
+          Eigen::Vector3d anchor;
+          if (free) {
+            anchor = q.segment<3>(e);
+            R_WL = Q.toRotationMatrix();
+            p_WL = anchor;
+            for (int k = 0; k < 3; ++k) {
+              s << Eigen::Vector3d::Zero(), Eigen::Vector3d::Unit(k);
+              column(s, v);
+            }
+          } else {
+            anchor = p_WL + R_WL * joint.anchor;
+            R_WL = R_WL * Q.toRotationMatrix();
+            p_WL = anchor - R_WL * joint.anchor;
+          }
+          const Vector6d v_in = v;
+          for (int k = 0; k < 3; ++k) {
+            const Eigen::Vector3d u = R_WL.col(k);
+            s << u, anchor.cross(u);
+            column(s, v_in);
+          }
+          e += io::position_count(joint.type);
+          break;
+        }
+      }
     }
     R[i] = R_WL;
     p[i] = p_WL;
@@ -226,20 +263,41 @@ Eigen::MatrixXd regressor(const io::RobotModel& model, const Eigen::VectorXd& q,
     for (int a = static_cast<int>(b); a >= 0; a = model.links[static_cast<std::size_t>(a)].parent) {
       const auto ua = static_cast<std::size_t>(a);
       const Eigen::Index first = layout.first_dof[ua];
-      for (Eigen::Index j = 0; j < static_cast<Eigen::Index>(model.links[ua].joints.size()); ++j) {
-        Y.block<1, kLinkParameters>(first + j, column) = S.col(first + j).transpose() * psi;
+      const Eigen::Index last = ua + 1 < links ? layout.first_dof[ua + 1] : layout.dof;
+      for (Eigen::Index j = first; j < last; ++j) {
+        Y.block<1, kLinkParameters>(j, column) = S.col(j).transpose() * psi;
       }
     }
   }
-  // the joint terms: armature q̈, damping q̇, stiffness (q − springref) (τ = … − p)
+  // the joint terms: armature q̈, damping q̇ per velocity entry; stiffness (τ = … − p) times
+  // q − springref, a ball's rotation vector r of q, a free joint's p − p₀ and r of q₀⁻¹ ⊗ q
+  // (MuJoCo's qfrc_passive, as TreeDynamics::passive_forces)
   for (std::size_t i = 0; i < links; ++i) {
+    Eigen::Index e = layout.first_q[i];
     Eigen::Index c = layout.first_dof[i];
     Eigen::Index column = layout.joint_column[i];
     for (const io::RobotJoint& joint : model.links[i].joints) {
-      Y(c, column) = q_ddot(c);
-      Y(c, column + 1) = q_dot(c);
-      Y(c, column + 2) = q(c) - joint.springref;
-      ++c;
+      const int n = io::velocity_count(joint.type);
+      Y.block(c, column, n, 1) = q_ddot.segment(c, n);
+      Y.block(c, column + 1, n, 1) = q_dot.segment(c, n);
+      switch (joint.type) {
+        case io::RobotJointType::kHinge:
+        case io::RobotJointType::kSlide:
+          Y(c, column + 2) = q(e) - joint.springref;
+          break;
+        case io::RobotJointType::kBall:
+          Y.block<3, 1>(c, column + 2) = detail::rotation_vector(detail::quaternion_at(q, e));
+          break;
+        case io::RobotJointType::kFree: {
+          const io::RobotLink& link = model.links[i];
+          Y.block<3, 1>(c, column + 2) = q.segment<3>(e) - link.position;
+          Y.block<3, 1>(c + 3, column + 2) = detail::rotation_vector(
+              detail::reference_orientation(link).conjugate() * detail::quaternion_at(q, e + 3));
+          break;
+        }
+      }
+      e += io::position_count(joint.type);
+      c += n;
       column += kJointParameters;
     }
   }
@@ -296,17 +354,40 @@ BaseParameters base_parameters(const io::RobotModel& model, const BaseParameterO
   const auto uniform = [&rng] {  // in [−1, 1)
     return static_cast<double>(rng() >> 11) * 0x1.0p-52 - 1.0;
   };
+  // a uniformly distributed rotation: a point of the 4-ball (by rejection) made a unit quaternion
+  const auto rotation = [&uniform] {
+    Eigen::Vector4d x;
+    do {
+      for (int k = 0; k < 4; ++k) x(k) = uniform();
+    } while (!(x.squaredNorm() <= 1 && x.squaredNorm() > 1e-6));
+    return Eigen::Vector4d(x.normalized());
+  };
   Eigen::MatrixXd W(n * samples, np);
-  Eigen::VectorXd q(n), q_dot(n), q_ddot(n);
+  Eigen::VectorXd q(layout.nq), q_dot(n), q_ddot(n);
   for (Eigen::Index s = 0; s < samples; ++s) {
-    Eigen::Index c = 0;
+    Eigen::Index e = 0, c = 0;
     for (const io::RobotLink& link : model.links) {
       for (const io::RobotJoint& joint : link.joints) {
-        const double range = joint.type == io::RobotJointType::kHinge ? std::numbers::pi : 1.0;
-        q(c) = joint.ref + range * uniform();
-        q_dot(c) = uniform();
-        q_ddot(c) = uniform();
-        ++c;
+        switch (joint.type) {
+          case io::RobotJointType::kHinge:
+          case io::RobotJointType::kSlide: {
+            const double range = joint.type == io::RobotJointType::kHinge ? std::numbers::pi : 1.0;
+            q(e) = joint.ref + range * uniform();
+            break;
+          }
+          case io::RobotJointType::kBall:
+            q.segment<4>(e) = rotation();
+            break;
+          case io::RobotJointType::kFree:
+            for (int k = 0; k < 3; ++k) q(e + k) = link.position(k) + uniform();
+            q.segment<4>(e + 3) = rotation();
+            break;
+        }
+        e += io::position_count(joint.type);
+        for (int k = 0; k < io::velocity_count(joint.type); ++k, ++c) {
+          q_dot(c) = uniform();
+          q_ddot(c) = uniform();
+        }
       }
     }
     W.middleRows(s * n, n) = regressor(model, q, q_dot, q_ddot);

@@ -19,6 +19,7 @@
 #include <fmt/ranges.h>
 
 #include "rigid/common/error.hpp"
+#include "joint_rotation.hpp"
 
 namespace rigid::robot {
 namespace {
@@ -88,8 +89,9 @@ bool has_inertial(const io::RobotLink& link) {
 // The layout of π and of the coordinates (as regressor.cpp's): per link its first column (none:
 // npos), its joints' first column and its first coordinate.
 struct Layout {
-  std::vector<std::size_t> link_column, joint_column, first_dof;
-  std::size_t parameters = 0, dof = 0;
+  std::vector<std::size_t> link_column, joint_column, first_q, first_dof;
+  std::size_t parameters = 0, nq = 0, dof = 0;  // dof: nv
+  bool rotations = false;                      // a ball or free joint (nq ≠ nv)
 };
 
 Layout layout_of(const io::RobotModel& model) {
@@ -99,9 +101,14 @@ Layout layout_of(const io::RobotModel& model) {
     if (has_inertial(link)) l.parameters += kLinkParameters;
     l.joint_column.push_back(l.parameters);
     l.parameters += kJointParameters * link.joints.size();
+    l.first_q.push_back(l.nq);
     l.first_dof.push_back(l.dof);
-    l.dof += link.joints.size();
+    for (const io::RobotJoint& joint : link.joints) {
+      l.nq += static_cast<std::size_t>(io::position_count(joint.type));
+      l.dof += static_cast<std::size_t>(io::velocity_count(joint.type));
+    }
   }
+  l.rotations = l.nq != l.dof;
   return l;
 }
 
@@ -121,14 +128,19 @@ std::string header_comment(const io::RobotModel& model, const BaseParameters& ba
       "{0}   m, mx, my, mz (m c), Ixx, Ixy, Ixz, Iyy, Iyz, Izz (J = I_C + m (|c|^2 1 - c c^T), "
       "J_xy = -int x y dm);\n"
       "{0}   per joint: Ia (armature), fv (viscous damping), k (stiffness; its column "
-      "q - springref).\n"
+      "q - springref{7}).\n"
       "{0} beta, the {4} base parameters (the identifiable combinations; rank of Y stacked at "
       "{5} random\n"
       "{0} states, seed {6}), beta = C pi:\n",
       mark, options.source.empty() ? "a robot model" : comment_text(options.source),
       vector3(model.gravity), s.values.size(), base.rank, base.samples,
       // the seed is the default of BaseParameterOptions, as rigid eom uses it
-      BaseParameterOptions{}.seed);
+      BaseParameterOptions{}.seed,
+      layout_of(model).rotations
+          ? fmt::format(";\n{}   a ball's the rotation vector r of its quaternion, a free joint's "
+                        "(p - p0, r of q0^-1 q)",
+                        mark)
+          : std::string());
   for (std::size_t i = 0; i < base.rank; ++i) {
     out += fmt::format("{}   {} = {}\n", mark, base.name(i), comment_text(base.expression(i)));
   }
@@ -142,6 +154,100 @@ std::string header_comment(const io::RobotModel& model, const BaseParameters& ba
 }
 
 // ---- C++ ----
+
+// The helpers of ball and free joints, written only into the files of models that have them.
+constexpr const char* kCppRotationHelpers = R"(namespace detail {
+
+// The rotation of a quaternion q = (w, x, y, z), 3 x 3 row-major: q/|q|'s for any q != 0.
+inline void quaternion_rotation(const double* q, double* R) {
+  const double w = q[0], x = q[1], y = q[2], z = q[3];
+  const double s = 2 / (w * w + x * x + y * y + z * z);
+  R[0] = 1 - s * (y * y + z * z);
+  R[1] = s * (x * y - w * z);
+  R[2] = s * (x * z + w * y);
+  R[3] = s * (x * y + w * z);
+  R[4] = 1 - s * (x * x + z * z);
+  R[5] = s * (y * z - w * x);
+  R[6] = s * (x * z - w * y);
+  R[7] = s * (y * z + w * x);
+  R[8] = 1 - s * (x * x + y * y);
+}
+
+// The link's three axes through x (world), s_k = (R e_k, x x R e_k) into S (18 values): fixed in
+// the link, so all three are carried by the velocity the link had before them (V0).
+inline void link_axes(const double* x, const double* rate, const double* accel, const double* R,
+                      double* V, double* A, double* S) {
+  double V0[6], vxs[6], t[3];
+  for (int k = 0; k < 6; ++k) V0[k] = V[k];
+  for (int j = 0; j < 3; ++j) {
+    double* s = S + 6 * j;
+    for (int k = 0; k < 3; ++k) s[k] = R[3 * k + j];
+    cross(x, s, s + 3);
+    cross(V0, s, vxs);
+    cross(V0, s + 3, vxs + 3);
+    cross(V0 + 3, s, t);
+    for (int k = 0; k < 3; ++k) vxs[3 + k] += t[k];
+    for (int k = 0; k < 6; ++k) {
+      A[k] += vxs[k] * rate[j] + s[k] * accel[j];
+      V[k] += s[k] * rate[j];
+    }
+  }
+}
+
+// A ball about `anchor` (link frame) turned by the quaternion q (parent side <- link): the link
+// turns about the anchor; its three axes through it (link_axes) into S.
+inline void ball_joint(const double* anchor, const double* q, const double* rate,
+                       const double* accel, double* R, double* p, double* V, double* A, double* S) {
+  double x[3], t[3], Q[9], Rn[9];
+  mul3(R, anchor, t);
+  for (int k = 0; k < 3; ++k) x[k] = p[k] + t[k];
+  quaternion_rotation(q, Q);
+  mul33(R, Q, Rn);
+  for (int k = 0; k < 9; ++k) R[k] = Rn[k];
+  mul3(R, anchor, t);
+  for (int k = 0; k < 3; ++k) p[k] = x[k] - t[k];
+  link_axes(x, rate, accel, R, V, A, S);
+}
+
+// A free joint: the link's origin at `position` (world), turned by the quaternion q (world <-
+// link); three world-fixed translations, then the link's axes through its origin, into S (36).
+inline void free_joint(const double* position, const double* q, const double* rate,
+                       const double* accel, double* R, double* p, double* V, double* A, double* S) {
+  for (int j = 0; j < 3; ++j) {
+    double* s = S + 6 * j;
+    for (int k = 0; k < 6; ++k) s[k] = k == 3 + j ? 1 : 0;
+    A[3 + j] += accel[j];  // a world-fixed translation: V x s has no part
+    V[3 + j] += rate[j];
+  }
+  quaternion_rotation(q, R);
+  for (int k = 0; k < 3; ++k) p[k] = position[k];
+  link_axes(p, rate + 3, accel + 3, R, V, A, S + 18);
+}
+
+// The rotation vector r of a quaternion (angle in [-pi, pi] about its axis; MuJoCo's
+// mju_quat2Vel), the column of a ball joint's stiffness.
+inline void rotation_vector(const double* q, double* r) {
+  const double s = std::sqrt(q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+  if (!(s > 0)) {
+    r[0] = r[1] = r[2] = 0;
+    return;
+  }
+  double angle = 2 * std::atan2(s, q[0]);
+  if (angle > 3.14159265358979323846) angle -= 2 * 3.14159265358979323846;
+  for (int k = 0; k < 3; ++k) r[k] = angle / s * q[1 + k];
+}
+
+// r of q0^-1 q: a free joint's turn from its reference orientation q0.
+inline void relative_rotation_vector(const double* q0, const double* q, double* r) {
+  const double d[4] = {q0[0] * q[0] + q0[1] * q[1] + q0[2] * q[2] + q0[3] * q[3],
+                       q0[0] * q[1] - q0[1] * q[0] - q0[2] * q[3] + q0[3] * q[2],
+                       q0[0] * q[2] + q0[1] * q[3] - q0[2] * q[0] - q0[3] * q[1],
+                       q0[0] * q[3] - q0[1] * q[2] + q0[2] * q[1] - q0[3] * q[0]};
+  rotation_vector(d, r);
+}
+
+}  // namespace detail
+)";
 
 constexpr const char* kCppHelpers = R"(namespace detail {
 
@@ -343,11 +449,20 @@ struct Printer {
         }
       }
       std::size_t c = layout.first_dof[i];
+      std::size_t e = layout.first_q[i];
       for (const io::RobotJoint& joint : link.joints) {
+        if (joint.type == io::RobotJointType::kBall || joint.type == io::RobotJointType::kFree) {
+          out += rotation_joint(joint, i, e, c);
+          e += static_cast<std::size_t>(io::position_count(joint.type));
+          c += static_cast<std::size_t>(io::velocity_count(joint.type));
+          continue;
+        }
         const bool hinge = joint.type == io::RobotJointType::kHinge;
-        const std::string amount = offset(fmt::format("q[{}]", c), joint.ref);
+        const std::string amount = offset(fmt::format("q[{}]", e), joint.ref);
         out += fmt::format("{}{} joint '{}' ({}, coordinate {})\n", in, python ? "#" : "//",
-                           comment_text(joint.name), hinge ? "hinge" : "slide", c);
+                           comment_text(joint.name), hinge ? "hinge" : "slide",
+                           layout.rotations ? fmt::format("q[{}], velocity {}", e, c)
+                                            : fmt::format("{}", c));
         if (python) {
           out += fmt::format(
               fmt::runtime(hinge ? "{0}S[{1}] = _hinge(({2}), ({3}), {4}, q_dot[{1}], q_ddot[{1}], R{5}, p{5}, "
@@ -369,7 +484,45 @@ struct Printer {
               in, c, vector3(joint.axis), amount, i, 6 * c);
         }
         ++c;
+        ++e;
       }
+    }
+    return out;
+  }
+
+  // A ball or free joint of link i, its quaternion (free: position) at q[e], velocities from c.
+  std::string rotation_joint(const io::RobotJoint& joint, std::size_t i, std::size_t e,
+                             std::size_t c) const {
+    const char* in = python ? "    " : "  ";
+    const bool free = joint.type == io::RobotJointType::kFree;
+    const auto n = static_cast<std::size_t>(io::velocity_count(joint.type));
+    std::string out = fmt::format(
+        "{}{} joint '{}' ({}, q[{}..{}], velocities {}..{}{})\n", in, python ? "#" : "//",
+        comment_text(joint.name), free ? "free" : "ball", e, e + (free ? 6 : 3), c, c + n - 1,
+        free ? "" : ", quaternion parent side <- link");
+    if (python) {
+      if (free) {
+        out += fmt::format(
+            "{0}S[{1}:{2}] = _free_joint(q[{3}:{4}], q[{4}:{5}], q_dot[{1}:{2}], q_ddot[{1}:{2}], "
+            "R{6}, p{6}, V{6}, A{6})\n",
+            in, c, c + n, e, e + 3, e + 7, i);
+      } else {
+        out += fmt::format(
+            "{0}S[{1}:{2}] = _ball_joint(({3}), q[{4}:{5}], q_dot[{1}:{2}], q_ddot[{1}:{2}], "
+            "R{6}, p{6}, V{6}, A{6})\n",
+            in, c, c + n, vector3(joint.anchor), e, e + 4, i);
+      }
+    } else if (free) {
+      out += fmt::format(
+          "{0}detail::free_joint(q + {1}, q + {2}, q_dot + {3}, q_ddot + {3}, R{4}, p{4}, V{4}, "
+          "A{4}, S + {5});\n",
+          in, e, e + 3, c, i, 6 * c);
+    } else {
+      out += fmt::format(
+          "{0}static constexpr double anchor{1}[3] = {{{2}}};\n"
+          "{0}detail::ball_joint(anchor{1}, q + {3}, q_dot + {1}, q_ddot + {1}, R{4}, p{4}, V{4}, "
+          "A{4}, S + {5});\n",
+          in, c, vector3(joint.anchor), e, i, 6 * c);
     }
     return out;
   }
@@ -388,7 +541,8 @@ struct Printer {
                          in, b);
       for (int a = static_cast<int>(b); a >= 0; a = model.links[static_cast<std::size_t>(a)].parent) {
         const auto ua = static_cast<std::size_t>(a);
-        for (std::size_t j = 0; j < model.links[ua].joints.size(); ++j) {
+        const std::size_t last = ua + 1 < model.links.size() ? layout.first_dof[ua + 1] : layout.dof;
+        for (std::size_t j = 0; layout.first_dof[ua] + j < last; ++j) {
           const std::size_t row = layout.first_dof[ua] + j;
           out += fmt::format(fmt::runtime(python ? "{0}_project(S[{1}], psi, Y[{1}], {2})\n"
                                                  : "{0}detail::project(S + {3}, psi, Y + {4});\n"),
@@ -400,9 +554,17 @@ struct Printer {
                        in, python ? "#" : "//");
     for (std::size_t i = 0; i < model.links.size(); ++i) {
       std::size_t c = layout.first_dof[i];
+      std::size_t e = layout.first_q[i];
       std::size_t column = layout.joint_column[i];
       for (const io::RobotJoint& joint : model.links[i].joints) {
-        const std::string spring = offset(fmt::format("q[{}]", c), joint.springref);
+        if (joint.type == io::RobotJointType::kBall || joint.type == io::RobotJointType::kFree) {
+          out += rotation_joint_terms(joint, model.links[i], e, c, column);
+          e += static_cast<std::size_t>(io::position_count(joint.type));
+          c += static_cast<std::size_t>(io::velocity_count(joint.type));
+          column += kJointParameters;
+          continue;
+        }
+        const std::string spring = offset(fmt::format("q[{}]", e), joint.springref);
         if (python) {
           out += fmt::format("{0}Y[{1}][{2}:{3}] = [q_ddot[{1}], q_dot[{1}], {4}]\n", in, c,
                              column, column + kJointParameters, spring);
@@ -412,9 +574,59 @@ struct Printer {
                              in, k, c, k + 1, k + 2, spring);
         }
         ++c;
+        ++e;
         column += kJointParameters;
       }
     }
+    return out;
+  }
+
+  // A ball's or free joint's armature, damping and stiffness columns over its velocity rows: the
+  // stiffness's a ball's rotation vector r, a free joint's p - p0 and r of q0^-1 q
+  std::string rotation_joint_terms(const io::RobotJoint& joint, const io::RobotLink& link,
+                                   std::size_t e, std::size_t c, std::size_t column) const {
+    const char* in = python ? "    " : "  ";
+    const bool free = joint.type == io::RobotJointType::kFree;
+    const auto n = static_cast<std::size_t>(io::velocity_count(joint.type));
+    const std::size_t turn = free ? e + 3 : e;  // the quaternion
+    const std::size_t rows = free ? c + 3 : c;  // the rotation rows
+    std::string out;
+    if (python) {
+      out += fmt::format("{0}for k in range({1}, {2}):\n{0}    Y[k][{3}:{4}] = [q_ddot[k], q_dot[k]]\n",
+                         in, c, c + n, column, column + 2);
+      if (free) {
+        const Eigen::Quaterniond q0 = detail::reference_orientation(link);
+        out += fmt::format("{0}for k in range(3):\n{0}    Y[{1} + k][{2}] = q[{3} + k] - ({4})[k]\n",
+                           in, c, column + 2, e, vector3(link.position));
+        out += fmt::format("{0}r = _relative_rotation_vector(({1}), q[{2}:{3}])\n", in,
+                           literals(Eigen::Vector4d(q0.w(), q0.x(), q0.y(), q0.z()).data(), 4),
+                           turn, turn + 4);
+      } else {
+        out += fmt::format("{0}r = _rotation_vector(q[{1}:{2}])\n", in, turn, turn + 4);
+      }
+      out += fmt::format("{0}for k in range(3):\n{0}    Y[{1} + k][{2}] = r[k]\n", in, rows,
+                         column + 2);
+      return out;
+    }
+    const std::size_t np = layout.parameters;
+    out += fmt::format("{0}for (int k = {1}; k < {2}; ++k) {{\n{0}  Y[k * {3} + {4}] = q_ddot[k];\n"
+                       "{0}  Y[k * {3} + {5}] = q_dot[k];\n{0}}}\n",
+                       in, c, c + n, np, column, column + 1);
+    out += fmt::format("{0}{{\n", in);
+    if (free) {
+      const Eigen::Quaterniond q0 = detail::reference_orientation(link);
+      out += fmt::format("{0}  static constexpr double p0[3] = {{{1}}}, q0[4] = {{{2}}};\n", in,
+                         vector3(link.position),
+                         literals(Eigen::Vector4d(q0.w(), q0.x(), q0.y(), q0.z()).data(), 4));
+      out += fmt::format("{0}  for (int k = 0; k < 3; ++k) Y[({1} + k) * {2} + {3}] = q[{4} + k] - p0[k];\n",
+                         in, c, np, column + 2, e);
+      out += fmt::format("{0}  double r[3];\n{0}  detail::relative_rotation_vector(q0, q + {1}, r);\n",
+                         in, turn);
+    } else {
+      out += fmt::format("{0}  double r[3];\n{0}  detail::rotation_vector(q + {1}, r);\n", in, turn);
+    }
+    out += fmt::format("{0}  for (int k = 0; k < 3; ++k) Y[({1} + k) * {2} + {3}] = r[k];\n{0}}}\n",
+                       in, rows, np, column + 2);
     return out;
   }
 };
@@ -471,12 +683,17 @@ std::string emit_regressor_cpp(const io::RobotModel& model, const BaseParameters
   out += "//\n// Arrays are row-major: Y[i*np + j], Y_b[i*nb + k].\n";
   out += "#pragma once\n\n#include <cmath>\n\n";
   out += fmt::format("namespace {} {{\n\n", ns);
-  out += fmt::format("inline constexpr int nq = {0}, nv = {0};\n", layout.dof);
+  out += fmt::format("inline constexpr int nq = {}, nv = {};\n", layout.nq, layout.dof);
   out += fmt::format("inline constexpr int np = {};  // standard parameters pi\n", layout.parameters);
   out += fmt::format("inline constexpr int nb = {};  // base parameters beta\n", base.rank);
   const std::vector<std::string> coordinates = model.coordinate_names();
   out += fmt::format("inline constexpr const char* coordinate_names[nq] = {{{}}};\n",
                      joined(coordinates.size(), [&](std::size_t k) { return quoted(coordinates[k]); }));
+  if (layout.rotations) {
+    const std::vector<std::string> velocities = model.velocity_names();
+    out += fmt::format("inline constexpr const char* velocity_names[nv] = {{{}}};\n",
+                       joined(velocities.size(), [&](std::size_t k) { return quoted(velocities[k]); }));
+  }
   out += fmt::format("inline constexpr const char* parameter_names[np] = {{{}}};\n",
                      joined(s.names.size(), [&](std::size_t k) { return quoted(s.names[k]); }));
   out += fmt::format("inline constexpr const char* parameter_units[np] = {{{}}};\n",
@@ -493,8 +710,13 @@ std::string emit_regressor_cpp(const io::RobotModel& model, const BaseParameters
   out += fmt::format("inline constexpr double base_parameter_values[nb] = {{{}}};\n\n",
                      literals(base.values.data(), base.rank));
   out += kCppHelpers;
+  if (layout.rotations) out += std::string("\n") + kCppRotationHelpers;
   const Printer printer{model, layout, false};
-  out += "\n/// Y (nv x np): tau = Y pi. q in rad or m, q_dot and q_ddot their rates.\n";
+  out += layout.rotations
+             ? "\n/// Y (nv x np): tau = Y pi. q (nq) in rad, m and a ball's or free joint's quaternion\n"
+               "/// (w, x, y, z), q_dot and q_ddot (nv) the velocities (a ball's angular velocity in its\n"
+               "/// link's frame, MuJoCo's qvel) and their rates.\n"
+             : "\n/// Y (nv x np): tau = Y pi. q in rad or m, q_dot and q_ddot their rates.\n";
   out += "inline void regressor(const double* q, const double* q_dot, const double* q_ddot, "
          "double* Y) {\n";
   out += fmt::format("  static constexpr double g[3] = {{{}}};\n", vector3(model.gravity));
@@ -526,6 +748,93 @@ std::string emit_regressor_cpp(const io::RobotModel& model, const BaseParameters
   return out;
 }
 
+// The Python helpers of ball and free joints, written only into the modules of models that have
+// them (the same operations as kCppRotationHelpers).
+constexpr const char* kPythonRotationHelpers = R"(
+
+def _coordinates(values):
+    values = [float(v) for v in values]
+    if len(values) != _NQ:
+        raise ValueError(f"q needs {_NQ} values (one per coordinate, four per quaternion), "
+                         f"got {len(values)}")
+    return values
+
+
+def _quaternion_rotation(q):
+    """The rotation of a quaternion (w, x, y, z), row-major: q/|q|'s for any q != 0."""
+    w, x, y, z = q
+    s = 2 / (w * w + x * x + y * y + z * z)
+    return [1 - s * (y * y + z * z), s * (x * y - w * z), s * (x * z + w * y),
+            s * (x * y + w * z), 1 - s * (x * x + z * z), s * (y * z - w * x),
+            s * (x * z - w * y), s * (y * z + w * x), 1 - s * (x * x + y * y)]
+
+
+def _link_axes(x, rate, accel, R, V, A):
+    """The link's three axes through x (world), fixed in the link: all three are carried by the
+    velocity it had before them; V and A move; returns the three s."""
+    V0 = list(V)
+    S = []
+    for j in range(3):
+        u = [R[j], R[3 + j], R[6 + j]]
+        s = u + _cross(x, u)
+        vxs = _cross(V0[:3], s[:3]) + _cross(V0[:3], s[3:])
+        t = _cross(V0[3:], s[:3])
+        for k in range(3):
+            vxs[3 + k] += t[k]
+        for k in range(6):
+            A[k] += vxs[k] * rate[j] + s[k] * accel[j]
+            V[k] += s[k] * rate[j]
+        S.append(s)
+    return S
+
+
+def _ball_joint(anchor, q, rate, accel, R, p, V, A):
+    """A ball about anchor (link frame) turned by the quaternion q (parent side <- link); R, p,
+    V, A move; returns its three s."""
+    t = _mul3(R, anchor)
+    x = [p[k] + t[k] for k in range(3)]
+    R[:] = _mul33(R, _quaternion_rotation(q))
+    t = _mul3(R, anchor)
+    p[:] = [x[k] - t[k] for k in range(3)]
+    return _link_axes(x, rate, accel, R, V, A)
+
+
+def _free_joint(position, q, rate, accel, R, p, V, A):
+    """A free joint: the link's origin at position (world), turned by q (world <- link); three
+    world-fixed translations, then the link's axes; returns its six s."""
+    S = []
+    for j in range(3):
+        s = [0.0] * 6
+        s[3 + j] = 1.0
+        A[3 + j] += accel[j]
+        V[3 + j] += rate[j]
+        S.append(s)
+    R[:] = _quaternion_rotation(q)
+    p[:] = list(position)
+    return S + _link_axes(p, rate[3:], accel[3:], R, V, A)
+
+
+def _rotation_vector(q):
+    """The rotation vector of a quaternion (angle in [-pi, pi] about its axis; MuJoCo's
+    mju_quat2Vel): the column of a ball joint's stiffness."""
+    s = math.sqrt(q[1] * q[1] + q[2] * q[2] + q[3] * q[3])
+    if not s > 0:
+        return [0.0, 0.0, 0.0]
+    angle = 2 * math.atan2(s, q[0])
+    if angle > math.pi:
+        angle -= 2 * math.pi
+    return [angle / s * q[1 + k] for k in range(3)]
+
+
+def _relative_rotation_vector(q0, q):
+    """The rotation vector of q0^-1 q: a free joint's turn from its reference orientation."""
+    return _rotation_vector([
+        q0[0] * q[0] + q0[1] * q[1] + q0[2] * q[2] + q0[3] * q[3],
+        q0[0] * q[1] - q0[1] * q[0] - q0[2] * q[3] + q0[3] * q[2],
+        q0[0] * q[2] + q0[1] * q[3] - q0[2] * q[0] - q0[3] * q[1],
+        q0[0] * q[3] - q0[1] * q[2] + q0[2] * q[1] - q0[3] * q[0]])
+)";
+
 std::string emit_regressor_python(const io::RobotModel& model, const BaseParameters& base,
                                   const RegressorExportOptions& options) {
   const Layout layout = layout_of(model);
@@ -554,6 +863,14 @@ std::string emit_regressor_python(const io::RobotModel& model, const BaseParamet
                      }));
   out += fmt::format("_G = ({})\n", vector3(model.gravity));
   out += fmt::format("_NV = {}\n_NP = {}\n", layout.dof, layout.parameters);
+  if (layout.rotations) {
+    const std::vector<std::string> velocities = model.velocity_names();
+    out = out.insert(out.find("# pi of the model"),
+                     fmt::format("VELOCITIES = ({})\n", joined(velocities.size(), [&](std::size_t k) {
+                                   return quoted(velocities[k]);
+                                 })));
+    out += fmt::format("_NQ = {}\n", layout.nq);
+  }
   out += R"(
 
 def _vector(values, name):
@@ -668,7 +985,19 @@ def _project(s, psi, row, column):
     """A joint's share of a link's wrench, per parameter, into row[column:column + 10]."""
     for j in range(10):
         row[column + j] = sum(s[r] * psi[r][j] for r in range(6))
+)";
+  if (layout.rotations) out += kPythonRotationHelpers;
+  out += layout.rotations
+             ? R"(
 
+def regressor(q, q_dot, q_ddot):
+    """Y (nv lists of np floats): tau = Y pi. q (nq) in rad, m and a ball's or free joint's
+    quaternion (w, x, y, z), q_dot and q_ddot (nv) the velocities (a ball's angular velocity in
+    its link's frame, MuJoCo's qvel) and their rates."""
+    q, q_dot, q_ddot = _coordinates(q), _vector(q_dot, "q_dot"), _vector(q_ddot, "q_ddot")
+    S = [None] * _NV
+)"
+             : R"(
 
 def regressor(q, q_dot, q_ddot):
     """Y (nv lists of np floats): tau = Y pi. q in rad or m, q_dot and q_ddot their rates."""

@@ -10,11 +10,14 @@
 
 #include "rigid/common/error.hpp"
 #include "rigid/common/format.hpp"
+#include "joint_rotation.hpp"
 
 namespace rigid::robot {
 
 namespace {
 
+using detail::quaternion_at;
+using detail::rotation_vector;
 using Vector6d = Eigen::Matrix<double, 6, 1>;
 using Matrix6d = Eigen::Matrix<double, 6, 6>;
 
@@ -50,21 +53,6 @@ Matrix6d spatial_inertia(double m, const Eigen::Vector3d& c, const Eigen::Matrix
   I.bottomLeftCorner<3, 3>() = m * C.transpose();
   I.bottomRightCorner<3, 3>() = m * Eigen::Matrix3d::Identity();
   return I;
-}
-
-// The rotation vector r of a unit quaternion (angle |r| in [0, π] about r/|r|): MuJoCo's
-// mju_quat2Vel with dt = 1, as its ball-joint spring uses it (engine_util_spatial.c).
-Eigen::Vector3d rotation_vector(const Eigen::Quaterniond& q) {
-  Eigen::Vector3d axis = q.vec();
-  const double s = axis.norm();
-  if (!(s > 0)) return Eigen::Vector3d::Zero();
-  double angle = 2 * std::atan2(s, q.w());
-  if (angle > std::numbers::pi) angle -= 2 * std::numbers::pi;
-  return angle / s * axis;
-}
-
-Eigen::Quaterniond quaternion_at(const Eigen::VectorXd& q, Eigen::Index at) {
-  return Eigen::Quaterniond(q(at), q(at + 1), q(at + 2), q(at + 3));
 }
 
 bool is_rotation_joint(io::RobotJointType t) {
@@ -129,8 +117,7 @@ TreeDynamics::TreeDynamics(io::RobotModel model) : model_(std::move(model)) {
           k += 4;
           break;
         case io::RobotJointType::kFree: {
-          Eigen::Quaterniond r(link.rotation);
-          if (r.w() < 0) r.coeffs() = -r.coeffs();
+          const Eigen::Quaterniond r = detail::reference_orientation(link);
           q0_.segment<3>(k) = link.position;
           q0_.segment<4>(k + 3) << r.w(), r.x(), r.y(), r.z();
           k += 7;
@@ -212,16 +199,7 @@ void TreeDynamics::kinematics(const Eigen::VectorXd& q, Kinematics& k) const {
         case io::RobotJointType::kFree: {
           const bool free = joint.type == io::RobotJointType::kFree;
           const Eigen::Index at = free ? entry + 3 : entry;
-          const Eigen::Quaterniond Q = quaternion_at(q, at);
-          if (!(std::abs(Q.norm() - 1) <= 1e-6)) {
-            rigid::detail::throw_error(
-                "TreeDynamics",
-                fmt::format("joint '{}' (type {}): its quaternion q[{}..{}] = ({}, {}, {}, {}) has "
-                            "norm {}; expected a unit quaternion (norm 1 within 1e-6): "
-                            "normalise it",
-                            joint.name, io::to_string(joint.type), at, at + 3, Q.w(), Q.x(),
-                            Q.y(), Q.z(), Q.norm()));
-          }
+          const Eigen::Quaterniond Q = detail::unit_quaternion_at(q, at, joint, "TreeDynamics");
           // the anchor (a ball's pivot, a free joint's link origin) stays where it is
           Eigen::Vector3d a;
           if (free) {

@@ -145,19 +145,40 @@ def test_missing_file(run, tmp_path):
     assert proc.returncode == 1 and "none.urdf" in proc.stderr
 
 
-def test_python_regressor_and_base_parameters_agree_with_the_dynamics_and_the_cli(run):
+FLOATING = pathlib.Path(__file__).resolve().parents[1] / "robot" / "data" / "floating.xml"
+HUMANOID = pathlib.Path("/usr/share/mujoco/model/humanoid/humanoid.xml")
+
+
+def random_state(robot, rng):
+    """q about the reference, each quaternion (its w named *_qw) uniform over the rotations;
+    velocities and accelerations in ± 2 (nv each)."""
+    import numpy as np
+
+    q = np.asarray(robot.reference_configuration) + rng.uniform(-2, 2, robot.nq)
+    for i, name in enumerate(robot.coordinates):
+        if name.endswith("_qw"):
+            r = rng.normal(size=4)
+            q[i:i + 4] = r / np.linalg.norm(r)
+    return q, rng.uniform(-2, 2, robot.nv), rng.uniform(-2, 2, robot.nv)
+
+
+@pytest.mark.parametrize("model", [EXAMPLES / "cart_arm.urdf", FLOATING, HUMANOID],
+                         ids=lambda path: path.name)
+def test_python_regressor_and_base_parameters_agree_with_the_dynamics_and_the_cli(run, model):
+    """Robot.regressor times π is Robot.inverse_dynamics, and Y_b β too, at 5 random states;
+    a free joint's and a ball joint's quaternions in q (nq), their velocities in q̇ (nv); the base
+    parameters are the CLI's."""
     import numpy as np
     import rigid
 
-    model = EXAMPLES / "cart_arm.urdf"
     robot = rigid.robot.Robot(str(model))
     names, pi = robot.standard_parameters()
     base = robot.base_parameters()
     rng = np.random.default_rng(5)
     for _ in range(5):
-        q, q_dot, q_ddot = rng.uniform(-2, 2, (3, robot.dof))
+        q, q_dot, q_ddot = random_state(robot, rng)
         Y = robot.regressor(q, q_dot, q_ddot)
-        assert Y.shape == (robot.dof, len(names))
+        assert Y.shape == (robot.nv, len(names))
         tau = robot.inverse_dynamics(q, q_dot, q_ddot)
         # round-off of the largest term, as in tests/robot/regressor_test.cpp
         scale = max(np.abs(tau).max(), (np.abs(Y) @ np.abs(pi)).max())
@@ -172,19 +193,22 @@ def test_python_regressor_and_base_parameters_agree_with_the_dynamics_and_the_cl
     assert base.unidentifiable == doc["unidentifiable"]
 
 
-def test_python_refuses_a_ball_joint(tmp_path):
+def test_floating_base_text_and_refusals(run):
+    """The floating base's free joint's units name both its translations and rotations, in the
+    text as in the JSON; a quaternion off the unit sphere and a q of nv entries are refused,
+    naming what."""
+    import numpy as np
     import rigid
 
-    model = tmp_path / "ball.xml"
-    model.write_text("""<mujoco><worldbody><body name="upper">
-      <joint name="shoulder" type="ball"/>
-      <inertial pos="0 0 -0.2" mass="1" diaginertia="0.01 0.01 0.002"/>
-    </body></worldbody></mujoco>""")
-    robot = rigid.robot.Robot(str(model))
-    with pytest.raises(rigid.Error, match="joint 'shoulder' of link 'upper' is a ball joint"):
-        robot.base_parameters()
-    # regressor() names the joint too, before it reads q (4 entries here, 3 velocities)
-    with pytest.raises(rigid.Error, match="joint 'shoulder' of link 'upper' is a ball joint"):
-        robot.regressor([1, 0, 0, 0], [0, 0, 0], [0, 0, 0])
-    with pytest.raises(rigid.Error, match="joint 'shoulder' of link 'upper' is a ball joint"):
-        robot.standard_parameters()
+    doc = regressor_json(run, FLOATING)
+    units = {p["name"]: p["unit"] for p in doc["standard_parameters"]}
+    assert units["Ia_root"] == "kg|kg·m²" and units["k_shoulder"] == "N·m/rad"
+    base, rank, _ = text_lines(run, FLOATING)
+    assert rank == doc["rank"] and len(base) == rank
+    robot = rigid.robot.Robot(str(FLOATING))
+    q, v, a = random_state(robot, np.random.default_rng(1))
+    with pytest.raises(rigid.Error, match=r"argument 'q' must have shape \(16,\); got \(13,\)"):
+        robot.regressor(q[:13], v, a)
+    q[3:7] = [1.01, 0, 0, 0]
+    with pytest.raises(rigid.Error, match=r"joint 'root' \(type free\): its quaternion q\[3..6\]"):
+        robot.regressor(q, v, a)

@@ -17,18 +17,18 @@ import rigid
 
 EXAMPLES = pathlib.Path(__file__).resolve().parents[2] / "examples"
 
-# per line of stdin "q q_dot q_ddot" (3 nv numbers): Y, Y_b, then beta of the model's pi
+# per line of stdin "q q_dot q_ddot" (nq + 2 nv numbers): Y, Y_b, then beta of the model's pi
 DRIVER = r"""
 #include <cstdio>
 #include <initializer_list>
 #include "exported.hpp"
 using namespace exported;
 int main() {
-  double q[nv], v[nv], a[nv], Y[nv * np], Yb[nv * nb], beta[nb];
+  double q[nq], v[nv], a[nv], Y[nv * np], Yb[nv * nb], beta[nb];
   base_parameters(standard_parameters, beta);
   for (;;) {
     for (double* x : {q, v, a}) {
-      for (int i = 0; i < nv; ++i) {
+      for (int i = 0; i < (x == q ? nq : nv); ++i) {
         if (std::scanf("%lf", &x[i]) != 1) return 0;
       }
     }
@@ -60,32 +60,42 @@ def base_json(model):
 
 
 def random_states(robot, count, seed):
+    """q about the reference (± π per hinge, ± π m per slide or free joint's position), each
+    quaternion (its w named *_qw) uniform over the rotations; velocities in ± 2."""
     rng = np.random.default_rng(seed)
     q0 = np.asarray(robot.reference_configuration)
-    n = robot.dof
-    return [(q0 + rng.uniform(-np.pi, np.pi, n), rng.uniform(-2, 2, n), rng.uniform(-2, 2, n))
-            for _ in range(count)]
+    turns = [i for i, name in enumerate(robot.coordinates) if name.endswith("_qw")]
+    states = []
+    for _ in range(count):
+        q = q0 + rng.uniform(-np.pi, np.pi, robot.nq)
+        for i in turns:
+            r = rng.normal(size=4)
+            q[i:i + 4] = r / np.linalg.norm(r)
+        states.append((q, rng.uniform(-2, 2, robot.nv), rng.uniform(-2, 2, robot.nv)))
+    return states
 
 
 def rel(a, b):
     return np.max(np.abs(np.asarray(a) - np.asarray(b))) / max(np.max(np.abs(b)), 1e-300)
 
 
-MODELS = ["arm7.urdf", "cart_arm.urdf"]
+# the floating base (a free joint and ball joints, every passive term) is tests/robot/data's
+FLOATING = pathlib.Path(__file__).resolve().parents[1] / "robot" / "data" / "floating.xml"
+MODELS = [EXAMPLES / "arm7.urdf", EXAMPLES / "cart_arm.urdf", FLOATING]
 
 
-@pytest.fixture(scope="module", params=MODELS)
+@pytest.fixture(scope="module", params=MODELS, ids=lambda path: path.name)
 def exported(request, tmp_path_factory):
     """(robot, the JSON document, {compiler: run(states)}, the Python module) for one model."""
     if shutil.which("clang++") is None:
         pytest.fail("clang++ is not installed (scripts/install-deps.sh installs clang)")
-    model = EXAMPLES / request.param
+    model = request.param
     tmp = tmp_path_factory.mktemp("regressor_" + model.stem)
     export(model, "c++", tmp / "exported.hpp")
     (tmp / "driver.cpp").write_text(DRIVER)
     robot = rigid.robot.Robot(str(model))
     doc = base_json(model)
-    n, p, r = robot.dof, len(doc["standard_parameters"]), doc["rank"]
+    n, p, r = robot.nv, len(doc["standard_parameters"]), doc["rank"]
     runs = {}
     for compiler in ("g++", "clang++"):
         program = tmp / f"driver_{compiler.replace('+', 'p')}"
@@ -193,17 +203,3 @@ def test_refusals(extra, expected, tmp_path):
     assert out.returncode == 1, out.stderr
     assert expected in out.stderr
     assert "Traceback" not in out.stderr and "terminate" not in out.stderr
-
-
-def test_free_root_is_refused_as_by_the_regressor(tmp_path):
-    """A model with a free joint: the same refusal as `--regressor` without --emit, naming
-    the joint, and no file left behind."""
-    model = tmp_path / "free.xml"
-    model.write_text("<mujoco><worldbody><body name='b'><freejoint name='root'/>"
-                     "<geom type='sphere' size='0.1' mass='1'/></body></worldbody></mujoco>")
-    target = tmp_path / "out.hpp"
-    out = subprocess.run([rigid_exe(), "eom", str(model), "--regressor", "--emit", "c++", "-o",
-                          str(target)], capture_output=True, text=True)
-    assert out.returncode == 1
-    assert "joint 'root'" in out.stderr and "hinge and slide joints only" in out.stderr
-    assert not target.exists()

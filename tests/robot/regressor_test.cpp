@@ -56,6 +56,10 @@ constexpr const char* kSliders = R"(<mujoco model="sliders">
   </worldbody>
 </mujoco>)";
 
+// A floating base with every passive term on its free joint, a ball joint below it and one on
+// the world (data/floating.xml)
+const fs::path kFloating = fs::path(RIGID_TEST_DATA_DIR).parent_path() / "robot" / "data" / "floating.xml";
+
 struct NamedModel {
   std::string name;
   io::RobotModel model;
@@ -64,12 +68,14 @@ struct NamedModel {
 std::vector<NamedModel> models() {
   io::RobotReadOptions pin;
   pin.pin_free_root = true;
+  const std::string humanoid = (kModels / "humanoid" / "humanoid.xml").string();
   return {
       {"arm7", io::read_robot_model_file((kExamples / "arm7.urdf").string())},
       {"cart_arm", io::read_robot_model_file((kExamples / "cart_arm.urdf").string())},
-      {"humanoid",
-       io::read_robot_model_file((kModels / "humanoid" / "humanoid.xml").string(), pin)},
+      {"humanoid", io::read_robot_model_file(humanoid, pin)},
+      {"humanoid (free root)", io::read_robot_model_file(humanoid)},
       {"sliders", io::read_robot_model(kSliders, "sliders.xml")},
+      {"floating", io::read_robot_model_file(kFloating.string())},
   };
 }
 
@@ -77,11 +83,31 @@ struct State {
   Eigen::VectorXd q, q_dot, q_ddot;
 };
 
-State random_state(std::mt19937& rng, Eigen::Index n) {
+// q uniform in ±2 per hinge or slide (and per coordinate of a free joint's position), a ball's
+// or free joint's quaternion uniform over the rotations; q̇ and q̈ uniform in ±2
+State random_state(std::mt19937& rng, const io::RobotModel& model) {
   std::uniform_real_distribution<double> u(-2, 2);
-  State s{Eigen::VectorXd(n), Eigen::VectorXd(n), Eigen::VectorXd(n)};
+  std::normal_distribution<double> gauss;
+  std::vector<double> q, v;
+  for (const io::RobotLink& link : model.links) {
+    for (const io::RobotJoint& joint : link.joints) {
+      if (joint.type == io::RobotJointType::kFree) {
+        for (int k = 0; k < 3; ++k) q.push_back(u(rng));
+      }
+      if (joint.type == io::RobotJointType::kFree || joint.type == io::RobotJointType::kBall) {
+        Eigen::Vector4d r(gauss(rng), gauss(rng), gauss(rng), gauss(rng));
+        r.normalize();
+        q.insert(q.end(), r.data(), r.data() + 4);
+      } else {
+        q.push_back(u(rng));
+      }
+      for (int k = 0; k < io::velocity_count(joint.type); ++k) v.push_back(0);
+    }
+  }
+  const auto n = static_cast<Eigen::Index>(v.size());
+  State s{Eigen::Map<const Eigen::VectorXd>(q.data(), static_cast<Eigen::Index>(q.size())),
+          Eigen::VectorXd(n), Eigen::VectorXd(n)};
   for (Eigen::Index i = 0; i < n; ++i) {
-    s.q(i) = u(rng);
     s.q_dot(i) = u(rng);
     s.q_ddot(i) = u(rng);
   }
@@ -101,7 +127,7 @@ TEST(Regressor, TimesStandardParametersIsInverseDynamics) {
     const TreeDynamics tree(m.model);
     const StandardParameters pi = standard_parameters(m.model);
     for (int k = 0; k < 5; ++k) {
-      const State s = random_state(rng, static_cast<Eigen::Index>(tree.dof()));
+      const State s = random_state(rng, m.model);
       const Eigen::MatrixXd Y = regressor(m.model, s.q, s.q_dot, s.q_ddot);
       ASSERT_EQ(Y.cols(), pi.values.size());
       const Eigen::VectorXd tau = tree.inverse_dynamics(s.q, s.q_dot, s.q_ddot);
@@ -126,7 +152,7 @@ TEST(Regressor, DoesNotDependOnTheParameters) {
     }
   }
   std::mt19937 rng(11);
-  const State s = random_state(rng, 5);
+  const State s = random_state(rng, model);
   const Eigen::MatrixXd Y = regressor(model, s.q, s.q_dot, s.q_ddot);
   EXPECT_EQ(Y, regressor(other, s.q, s.q_dot, s.q_ddot));
   const Eigen::VectorXd pi = standard_parameters(other).values;
@@ -167,7 +193,7 @@ TEST(BaseParameters, ReproduceInverseDynamicsWithFullColumnRank) {
     constexpr Eigen::Index kStates = 40;
     Eigen::MatrixXd Yb_stack(kStates * n, r), Y_stack(kStates * n, base.standard.values.size());
     for (Eigen::Index k = 0; k < kStates; ++k) {
-      const State s = random_state(rng, n);
+      const State s = random_state(rng, m.model);
       const Eigen::MatrixXd Y = regressor(m.model, s.q, s.q_dot, s.q_ddot);
       const Eigen::MatrixXd Yb = base.reduce(Y);
       const Eigen::VectorXd tau = tree.inverse_dynamics(s.q, s.q_dot, s.q_ddot);
@@ -284,24 +310,24 @@ TEST(BaseParameters, PlanarTwoLinkArmClosedForm) {
   EXPECT_EQ(base.expression(static_cast<std::size_t>(zz1)), "Izz_link1 + Ia_j1 + 0.49*m_link2");
 }
 
-TEST(Regressor, RefusesOtherJointsAndBadInput) {
-  // a ball joint (io reads it; the regressor takes hinges and slides only)
-  const std::string ball = R"(<mujoco><worldbody><body name="upper">
-      <joint name="shoulder" type="ball"/>
-      <inertial pos="0 0 -0.2" mass="1" diaginertia="0.01 0.01 0.002"/>
-    </body></worldbody></mujoco>)";
-  EXPECT_RIGID_ERROR(
-      (void)standard_parameters(io::read_robot_model(ball, "ball.xml")),
-      "joint 'shoulder' of link 'upper' is a ball joint; the inverse-dynamics regressor takes "
-      "hinge and slide joints only");
+TEST(Regressor, RefusesBadInput) {
   const io::RobotModel arm = io::read_robot_model_file((kExamples / "cart_arm.urdf").string());
   const Eigen::VectorXd ok = Eigen::VectorXd::Zero(3);
   EXPECT_RIGID_ERROR((void)regressor(arm, Eigen::VectorXd::Zero(2), ok, ok),
-                     "q has 2 entries; the model has 3 coordinates");
+                     "q has 2 entries; the model has 3 coordinates (nq)");
   EXPECT_RIGID_ERROR((void)regressor(arm, ok, ok, Eigen::VectorXd::Constant(3, NAN)),
                      "q_ddot is not finite");
   EXPECT_RIGID_ERROR((void)base_parameters(arm, {.rank_tolerance = 0}),
                      "rank_tolerance 0 is not in (0, 1)");
+  // a quaternion off the unit sphere, named by its joint, as TreeDynamics refuses it
+  const io::RobotModel floating = io::read_robot_model_file(kFloating.string());
+  std::mt19937 rng(5);
+  State s = random_state(rng, floating);
+  EXPECT_RIGID_ERROR((void)regressor(floating, s.q, s.q_dot.head(3), s.q_ddot),
+                     "q_dot has 3 entries; the model has 13 velocities (nv)");
+  s.q.segment<4>(3) << 1.01, 0, 0, 0;  // the root's quaternion, norm 1.01
+  EXPECT_RIGID_ERROR((void)regressor(floating, s.q, s.q_dot, s.q_ddot),
+                     "joint 'root' (type free): its quaternion q[3..6]");
 }
 
 }  // namespace

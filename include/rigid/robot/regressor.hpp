@@ -14,7 +14,11 @@
 ///  - after each link's 10, for each joint of the link (coordinate order) three joint terms:
 ///      Ia_J armature (kg·m² or kg), its column q̈_J;
 ///      fv_J viscous damping (N·m·s/rad or N·s/m), its column q̇_J;
-///      k_J  stiffness (N·m/rad or N/m), its column (q_J − springref_J), springref known.
+///      k_J  stiffness (N·m/rad or N/m), its column (q_J − springref_J), springref known;
+///    a ball or free joint has one of each for all its velocity entries (MuJoCo's), the
+///    columns of a ball's rows ω̇, ω and the rotation vector r of its quaternion, of a free
+///    joint's its six accelerations, velocities and (p − p₀, r of q₀⁻¹ ⊗ q), p₀ and q₀ its
+///    link's placement (TreeDynamics::passive_forces).
 ///    The passive forces enter Y so that Y π is the whole τ of TreeDynamics::inverse_dynamics,
 ///    τ = M q̈ + b − p with p = −damping q̇ − stiffness (q − springref); the springs' springref
 ///    is a known constant of the model, not a parameter.
@@ -28,8 +32,9 @@
 /// with ω, α the link's angular velocity and acceleration and a the acceleration of its origin
 /// less gravity; so F_b = Ψ(V_b, A_b) π_b, and τ_j = S_jᵀ Σ_{b in subtree(j)} F_b.
 ///
-/// Hinge and slide joints only (io::RobotJointType); every function refuses a model with any
-/// other joint, naming it.
+/// Every joint of io::RobotJointType: a ball's or free joint's quaternion in q (nq entries,
+/// MuJoCo's qpos) and its velocities in q̇, q̈ (nv entries, qvel), as TreeDynamics takes them;
+/// Y has a row per velocity. A quaternion not of unit norm is refused, naming the joint.
 
 #include <cstddef>
 #include <cstdint>
@@ -50,14 +55,15 @@ struct StandardParameters {
 };
 
 /// The standard parameters π of `model` (names, units, values from the model's inertials and
-/// joints). @throws rigid::Error for a joint other than a hinge or a slide, naming it.
+/// joints).
 [[nodiscard]] StandardParameters standard_parameters(const io::RobotModel& model);
 
-/// Y(q, q̇, q̈), n × p (n coordinates, p standard parameters), with Y π = τ of
+/// Y(q, q̇, q̈), nv × p (p standard parameters), with Y π = τ of
 /// TreeDynamics::inverse_dynamics (gravity and passive forces included) for every π.
-/// q in rad or m, q̇ and q̈ their rates, in the model's coordinate order.
-/// @throws rigid::Error for a vector whose size is not n or that is not finite, or a joint
-///   other than a hinge or a slide.
+/// q (nq) in rad, m or a unit quaternion, q̇ and q̈ (nv) the velocities and their rates, in the
+/// model's coordinate and velocity order.
+/// @throws rigid::Error for a vector whose size is not nq (q) or nv or that is not finite, or a
+///   quaternion not of unit norm, naming its joint.
 [[nodiscard]] Eigen::MatrixXd regressor(const io::RobotModel& model, const Eigen::VectorXd& q,
                                         const Eigen::VectorXd& q_dot,
                                         const Eigen::VectorXd& q_ddot);
@@ -122,8 +128,10 @@ struct BaseParameters {
 /// while a column that moves τ by less than 1e-9 of the largest cannot be identified from
 /// data in double precision anyway; smallest_independent and largest_dependent report the
 /// margin actually found.
-/// @throws rigid::Error for options out of range (rank_tolerance not in (0, 1)), a joint other
-///   than a hinge or a slide, or a model without joints.
+/// A ball's random orientations are uniform over the rotations, a free joint's position its
+/// placement ± 1 m per axis.
+/// @throws rigid::Error for options out of range (rank_tolerance not in (0, 1)) or a model
+///   without joints.
 [[nodiscard]] BaseParameters base_parameters(const io::RobotModel& model,
                                              const BaseParameterOptions& options = {});
 
