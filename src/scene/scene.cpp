@@ -1153,18 +1153,26 @@ void check_parents(const Scene& s) {
   }
 }
 
-// Every force names a coordinate and every spring's and rope's bodies exist.
+// Every force names a coordinate (a ball coordinate's, one of its velocity's entries:
+// <ball>_wx, _wy, _wz) and every spring's and rope's bodies exist.
 void check_references(const Scene& s) {
-  for (const NamedExpression& f : s.forces) {
-    const bool known = std::any_of(s.coordinates.begin(), s.coordinates.end(),
-                                   [&](const Coordinate& c) { return c.name == f.name; });
-    if (!known) {
-      std::vector<std::string> coords;
-      for (const auto& c : s.coordinates) coords.push_back(c.name);
-      std::string msg = fmt::format("force on unknown coordinate '{}'", f.name);
-      if (auto g = did_you_mean(f.name, coords)) msg += fmt::format("; did you mean '{}'?", *g);
-      detail::throw_error_at(f.expression.where, msg);
+  std::vector<std::string> targets;
+  for (const Coordinate& c : s.coordinates) {
+    if (c.kind == Coordinate::Kind::kBall) {
+      for (const char* axis : {"_wx", "_wy", "_wz"}) targets.push_back(c.name + axis);
+    } else {
+      targets.push_back(c.name);
     }
+  }
+  for (const NamedExpression& f : s.forces) {
+    if (std::find(targets.begin(), targets.end(), f.name) != targets.end()) continue;
+    std::string msg = fmt::format("force on unknown coordinate '{}'", f.name);
+    const bool balls = std::any_of(s.coordinates.begin(), s.coordinates.end(), [](const Coordinate& c) {
+      return c.kind == Coordinate::Kind::kBall;
+    });
+    if (balls) msg += " (a force on a ball coordinate names an entry of its angular velocity: <ball>_wx, _wy or _wz)";
+    if (auto g = did_you_mean(f.name, targets)) msg += fmt::format("; did you mean '{}'?", *g);
+    detail::throw_error_at(f.expression.where, msg);
   }
   auto check_ends = [&](const auto& ends, std::string_view what) {
     for (const std::string* name : {&ends.body_a, &ends.body_b}) {
