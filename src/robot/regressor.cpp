@@ -11,7 +11,7 @@
 #include <fmt/format.h>
 
 #include "rigid/common/error.hpp"
-#include "joint_rotation.hpp"
+#include "joint_motion.hpp"
 
 namespace rigid::robot {
 
@@ -184,58 +184,15 @@ Eigen::MatrixXd regressor(const io::RobotModel& model, const Eigen::VectorXd& q,
       S.col(c++) = s;
     };
     for (const io::RobotJoint& joint : link.joints) {
-      Vector6d s = Vector6d::Zero();
-      switch (joint.type) {
-        case io::RobotJointType::kHinge: {
-          // a turn about the line through the anchor: the anchor stays where it is
-          const double amount = q(e++) - joint.ref;
-          const Eigen::Vector3d u = R_WL * joint.axis;
-          const Eigen::Vector3d anchor = p_WL + R_WL * joint.anchor;
-          s << u, anchor.cross(u);
-          R_WL = R_WL * Eigen::AngleAxisd(amount, joint.axis).toRotationMatrix();
-          p_WL = anchor - R_WL * joint.anchor;
-          column(s, v);
-          break;
-        }
-        case io::RobotJointType::kSlide: {
-          const Eigen::Vector3d u = R_WL * joint.axis;
-          s << Eigen::Vector3d::Zero(), u;
-          p_WL += u * (q(e++) - joint.ref);
-          column(s, v);
-          break;
-        }
-        case io::RobotJointType::kBall:
-        case io::RobotJointType::kFree: {
-          // as TreeDynamics: a free joint's three world-fixed translations of the link origin,
-          // then (both) the link's own axes R e_k through the anchor, fixed in the link, which
-          // all turn in the frame before them (Σ_k Ṡ_k ω_k = V⁻ × S ω)
-          const bool free = joint.type == io::RobotJointType::kFree;
-          const Eigen::Index at = free ? e + 3 : e;
-          const Eigen::Quaterniond Q = detail::unit_quaternion_at(q, at, joint, "regressor");
-          Eigen::Vector3d anchor;
-          if (free) {
-            anchor = q.segment<3>(e);
-            R_WL = Q.toRotationMatrix();
-            p_WL = anchor;
-            for (int k = 0; k < 3; ++k) {
-              s << Eigen::Vector3d::Zero(), Eigen::Vector3d::Unit(k);
-              column(s, v);
-            }
-          } else {
-            anchor = p_WL + R_WL * joint.anchor;
-            R_WL = R_WL * Q.toRotationMatrix();
-            p_WL = anchor - R_WL * joint.anchor;
-          }
-          const Vector6d v_in = v;
-          for (int k = 0; k < 3; ++k) {
-            const Eigen::Vector3d u = R_WL.col(k);
-            s << u, anchor.cross(u);
-            column(s, v_in);
-          }
-          e += io::position_count(joint.type);
-          break;
-        }
+      // a ball's columns, fixed in the link, all turn in the frame before them
+      // (Σ_k Ṡ_k ω_k = V⁻ × S ω); the others in the frame as each finds it
+      const detail::JointMotion m = detail::move_joint(joint, q, e, R_WL, p_WL, "regressor");
+      for (std::size_t k = 0; k < static_cast<std::size_t>(m.sequential); ++k) column(m.S[k], v);
+      const Vector6d v_in = v;
+      for (auto k = static_cast<std::size_t>(m.sequential); k < static_cast<std::size_t>(m.columns); ++k) {
+        column(m.S[k], v_in);
       }
+      e += io::position_count(joint.type);
     }
     R[i] = R_WL;
     p[i] = p_WL;

@@ -19,7 +19,7 @@
 #include <fmt/ranges.h>
 
 #include "rigid/common/error.hpp"
-#include "joint_rotation.hpp"
+#include "joint_motion.hpp"
 
 namespace rigid::robot {
 namespace {

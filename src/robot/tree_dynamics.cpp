@@ -10,7 +10,7 @@
 
 #include "rigid/common/error.hpp"
 #include "rigid/common/format.hpp"
-#include "joint_rotation.hpp"
+#include "joint_motion.hpp"
 
 namespace rigid::robot {
 
@@ -174,57 +174,9 @@ void TreeDynamics::kinematics(const Eigen::VectorXd& q, Kinematics& k) const {
     auto column = static_cast<Eigen::Index>(first_v_[i]);
     auto entry = static_cast<Eigen::Index>(first_q_[i]);
     for (const io::RobotJoint& joint : link.joints) {
-      Vector6d S;
-      switch (joint.type) {
-        case io::RobotJointType::kHinge: {
-          // a turn about the line through the anchor: the anchor stays where it is
-          const double amount = q(entry++) - joint.ref;
-          const Eigen::Vector3d u = R * joint.axis;
-          const Eigen::Vector3d a = p + R * joint.anchor;
-          S << u, a.cross(u);
-          R = R * Eigen::AngleAxisd(amount, joint.axis).toRotationMatrix();
-          p = a - R * joint.anchor;
-          k.S.col(column++) = S;
-          break;
-        }
-        case io::RobotJointType::kSlide: {
-          const double amount = q(entry++) - joint.ref;
-          const Eigen::Vector3d u = R * joint.axis;
-          S << Eigen::Vector3d::Zero(), u;
-          p += u * amount;
-          k.S.col(column++) = S;
-          break;
-        }
-        case io::RobotJointType::kBall:
-        case io::RobotJointType::kFree: {
-          const bool free = joint.type == io::RobotJointType::kFree;
-          const Eigen::Index at = free ? entry + 3 : entry;
-          const Eigen::Quaterniond Q = detail::unit_quaternion_at(q, at, joint, "TreeDynamics");
-          // the anchor (a ball's pivot, a free joint's link origin) stays where it is
-          Eigen::Vector3d a;
-          if (free) {
-            a = q.segment<3>(entry);
-            R = Q.toRotationMatrix();
-            p = a;
-            for (int e = 0; e < 3; ++e) {
-              S << Eigen::Vector3d::Zero(), Eigen::Vector3d::Unit(e);
-              k.S.col(column++) = S;
-            }
-          } else {
-            a = p + R * joint.anchor;
-            R = R * Q.toRotationMatrix();
-            p = a - R * joint.anchor;
-          }
-          // rotations about the link's own axes through the anchor
-          for (int e = 0; e < 3; ++e) {
-            const Eigen::Vector3d u = R.col(e);
-            S << u, a.cross(u);
-            k.S.col(column++) = S;
-          }
-          entry += io::position_count(joint.type);
-          break;
-        }
-      }
+      const detail::JointMotion m = detail::move_joint(joint, q, entry, R, p, "TreeDynamics");
+      for (std::size_t e = 0; e < static_cast<std::size_t>(m.columns); ++e) k.S.col(column++) = m.S[e];
+      entry += io::position_count(joint.type);
     }
     k.poses[i] = {p, R};
     k.inertia[i] =
