@@ -379,10 +379,11 @@ void bind_system_description(py::class_<System>& cls) {
       .def(
           "emit",
           [](const System& s, const std::string& language, const std::string& name, bool flat,
-             std::optional<std::size_t> max_stack_bytes) {
+             std::optional<std::size_t> max_stack_bytes, const std::string& namespace_) {
             rigid::lagrange::ExportOptions o;
             o.name = name;
             o.flat = flat;
+            o.flat_namespace = namespace_;
             const auto lang = rigid::lagrange::parse_language(language);
             if (flat && lang != rigid::lagrange::Language::kCpp) {
               throw rigid::Error("flat=True is a layout of the C++ export (global functions "
@@ -392,18 +393,24 @@ void bind_system_description(py::class_<System>& cls) {
               throw rigid::Error("rigid.lagrange.System.emit(): max_stack_bytes bounds the stack of "
                                  "the flat layout's derivatives; give flat=True with it");
             }
+            if (!namespace_.empty() && !flat) {
+              throw rigid::Error("rigid.lagrange.System.emit(): namespace is the flat layout's "
+                                 "(the other C++ layout's namespace is `name`); give flat=True "
+                                 "with it");
+            }
             if (max_stack_bytes) o.max_stack_bytes = *max_stack_bytes;
             return rigid::lagrange::emit(s, lang, o);
           },
           py::arg("language"), py::arg("name") = "model", py::arg("flat") = false,
-          py::kw_only(), py::arg("max_stack_bytes") = py::none(),
+          py::kw_only(), py::arg("max_stack_bytes") = py::none(), py::arg("namespace") = std::string{},
           "The equations of motion (M, f, G, γ) as one dependency-free source file: language "
           "'c++' (a header, <cmath> only, namespace `name`) or 'python' (a module, math only); "
           "parameters are named arguments with the current values as defaults. flat=True (C++): "
           "the dynamics at global scope without t (mass_matrix, inverse_dynamics, "
           "forward_dynamics and their derivatives), as `rigid eom --emit c++ --flat`; "
           "max_stack_bytes (with flat=True): the stack bound of the derivatives (16 n² + 8 n "
-          "bytes for the products; default 66048), as Scene.emit.");
+          "bytes for the products; default 66048), as Scene.emit; namespace (with flat=True): "
+          "the C++ namespace of its declarations, as Scene.emit.");
 }
 
 // A System evaluated at (t, q) or (t, q, q̇): constraint residuals, energies and body poses.

@@ -415,24 +415,30 @@ void bind_scene(py::module_& m) {
       .def(
           "emit",
           [](const Model& mo, const std::string& language, const std::string& name, bool flat,
-             std::optional<std::size_t> max_stack_bytes) {
+             std::optional<std::size_t> max_stack_bytes, const std::string& namespace_) {
             if (max_stack_bytes && !flat) {
               throw rigid::Error("rigid.Scene.emit(): max_stack_bytes bounds the stack of the flat "
                                  "layout's derivatives; give flat=True with it");
             }
+            if (!namespace_.empty() && !flat) {
+              throw rigid::Error("rigid.Scene.emit(): namespace is the flat layout's (the other "
+                                 "C++ layout's namespace is `name`); give flat=True with it");
+            }
             return rigid::scene::emit_code(
                 mo, language, name, flat,
-                max_stack_bytes.value_or(rigid::lagrange::ExportOptions::kDefaultMaxStackBytes));
+                max_stack_bytes.value_or(rigid::lagrange::ExportOptions::kDefaultMaxStackBytes),
+                namespace_);
           },
           py::arg("language"), py::arg("name") = std::string{}, py::arg("flat") = false,
-          py::kw_only(), py::arg("max_stack_bytes") = py::none(),
+          py::kw_only(), py::arg("max_stack_bytes") = py::none(), py::arg("namespace") = std::string{},
           "The equations of motion (M, f, G, γ) as one dependency-free source file: 'c++' (a "
           "header, <cmath> only; namespace `name`, default the file's stem) or 'python' (a "
           "module, math only), with the scene's parameters as defaults. flat=True (C++): the "
           "dynamics at global scope without t, as `rigid eom --emit c++ --flat`; "
           "max_stack_bytes (with flat=True): the most stack forward_dynamics_derivatives may "
           "take for M⁻¹ and its products, 16 n² + 8 n bytes (default 66048: n ≤ 64), above "
-          "which it solves column by column, as --max-stack-bytes.")
+          "which it solves column by column, as --max-stack-bytes; namespace (with flat=True): "
+          "the C++ namespace of its declarations instead of global scope, as --namespace.")
       .def_property_readonly("system", &Model::system, py::return_value_policy::reference_internal,
                              "The rigid.lagrange.System of a coordinate scene.")
       .def(

@@ -96,6 +96,11 @@ inline void add_run_command(CLI::App& app) {
                 "64); above, it solves column by column with O(n) stack")
       ->needs(flat_opt)
       ->type_name("BYTES");
+  e->add_option("--namespace", emit->flat_namespace,
+                "with --flat: put the declarations in this C++ namespace instead of at global "
+                "scope, so that the exports of two models can share one program")
+      ->needs(flat_opt)
+      ->type_name("NAME");
   auto regressor = std::make_shared<rigid::cli::RegressorOptions>();
   add_regressor_options(e, *regressor);
   e->callback([eom, latex, format, emit, regressor] {

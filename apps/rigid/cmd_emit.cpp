@@ -34,7 +34,7 @@ void run_emit(const SceneOptions& opts, const EmitOptions& emit) {
   // the C++ namespace: the output file's stem, else the scene's
   const std::string code = about_scene(opts.scene, [&] {
     return scene::emit_code(model, emit.language, out.empty() ? "" : out.stem().string(), emit.flat,
-                            max_stack_bytes);
+                            max_stack_bytes, emit.flat_namespace);
   });
   if (out.empty()) {
     std::fwrite(code.data(), 1, code.size(), stdout);

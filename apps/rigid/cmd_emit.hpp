@@ -14,6 +14,8 @@ struct EmitOptions {
   /// --max-stack-bytes as given (a whole number; empty: the default of
   /// lagrange::ExportOptions::max_stack_bytes)
   std::string max_stack_bytes{};
+  /// --namespace: the flat layout's namespace (lagrange::ExportOptions::flat_namespace)
+  std::string flat_namespace{};
 };
 
 /// "" for a known --emit language, else the reason (an unknown name, with a close match).

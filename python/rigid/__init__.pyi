@@ -559,8 +559,8 @@ class Scene(metaclass=_Pybind11Type):
         """The method a run uses (the requested one, the scene's, or the kind's default)."""
     def equations(self, latex: bool = ..., format: str = ...) -> str:
         """The equations of motion as `rigid eom` prints them: format 'text' (default), 'latex' or 'json' (latex=True is format='latex')."""
-    def emit(self, language: str, name: str = ..., flat: bool = ..., *, max_stack_bytes: int | None = ...) -> str:
-        """The equations of motion (M, f, G, γ) as one dependency-free source file: 'c++' (a header, <cmath> only; namespace `name`, default the file's stem) or 'python' (a module, math only), with the scene's parameters as defaults. flat=True (C++): the dynamics at global scope without t, as `rigid eom --emit c++ --flat`; max_stack_bytes (with flat=True): the most stack forward_dynamics_derivatives may take for M⁻¹ and its products, 16 n² + 8 n bytes (default 66048: n ≤ 64), above which it solves column by column, as --max-stack-bytes."""
+    def emit(self, language: str, name: str = ..., flat: bool = ..., *, max_stack_bytes: int | None = ..., namespace: str = ...) -> str:
+        """The equations of motion (M, f, G, γ) as one dependency-free source file: 'c++' (a header, <cmath> only; namespace `name`, default the file's stem) or 'python' (a module, math only), with the scene's parameters as defaults. flat=True (C++): the dynamics at global scope without t, as `rigid eom --emit c++ --flat`; max_stack_bytes (with flat=True): the most stack forward_dynamics_derivatives may take for M⁻¹ and its products, 16 n² + 8 n bytes (default 66048: n ≤ 64), above which it solves column by column, as --max-stack-bytes; namespace (with flat=True): the C++ namespace of its declarations instead of global scope, as --namespace."""
     @property
     def system(self) -> lagrange.System: ...
     def check(self, integrator: str = ..., max_memory: object = ...) -> None:

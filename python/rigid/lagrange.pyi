@@ -139,8 +139,8 @@ class System(metaclass=_Pybind11Type):
         """Sets a parameter's value (SI units) for later evaluations and runs; the equations keep its name."""
     def equations(self) -> Equations:
         """The equations, printed canonically (the same on every run) and simplified: a rigid.lagrange.Equations with each quantity as text and LaTeX."""
-    def emit(self, language: str, name: str = ..., flat: bool = ..., *, max_stack_bytes: int | None = ...) -> str:
-        """The equations of motion (M, f, G, γ) as one dependency-free source file: language 'c++' (a header, <cmath> only, namespace `name`) or 'python' (a module, math only); parameters are named arguments with the current values as defaults. flat=True (C++): the dynamics at global scope without t (mass_matrix, inverse_dynamics, forward_dynamics and their derivatives), as `rigid eom --emit c++ --flat`; max_stack_bytes (with flat=True): the stack bound of the derivatives (16 n² + 8 n bytes for the products; default 66048), as Scene.emit."""
+    def emit(self, language: str, name: str = ..., flat: bool = ..., *, max_stack_bytes: int | None = ..., namespace: str = ...) -> str:
+        """The equations of motion (M, f, G, γ) as one dependency-free source file: language 'c++' (a header, <cmath> only, namespace `name`) or 'python' (a module, math only); parameters are named arguments with the current values as defaults. flat=True (C++): the dynamics at global scope without t (mass_matrix, inverse_dynamics, forward_dynamics and their derivatives), as `rigid eom --emit c++ --flat`; max_stack_bytes (with flat=True): the stack bound of the derivatives (16 n² + 8 n bytes for the products; default 66048), as Scene.emit; namespace (with flat=True): the C++ namespace of its declarations, as Scene.emit."""
     def velocity_constraint_residual(self, t: float, q: object, q_dot: object) -> NDArray[numpy.float64]:
         """A(q, t) q̇ + a(q, t) at time t (s), q and q̇ of shape (n,): one entry per velocity constraint."""
     def energy(self, t: float, q: object, q_dot: object) -> float:

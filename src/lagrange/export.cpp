@@ -1395,11 +1395,22 @@ std::string emit_cpp_flat(const System::Impl& s, const ExportOptions& options) {
       export_identifiers(s.param_names, Language::kCpp, Scope::kMember);
   const std::string helpers =
       export_identifiers({options.name + "_detail"}, Language::kCpp, Scope::kNamespace)[0];
+  const std::string& ns = options.flat_namespace;
+  if (!ns.empty()) {
+    // the user's name as written, or refused: a renamed namespace would not be the one asked for
+    const std::string id = export_identifiers({ns}, Language::kCpp, Scope::kNamespace)[0];
+    if (id != ns) {
+      throw Error(fmt::format("the namespace '{}' is not a C++ identifier the export may take "
+                              "(letters, digits and '_', not starting with a digit or '_', not a "
+                              "keyword, 'std', a macro or a name <cmath> declares): '{}' would be",
+                              ns, id));
+    }
+  }
   std::string out = header_comment(
       s, options, "//", renamed(s.param_names, params),
       "a name starting with '_' takes a 'p' in front; a C or C++ keyword or a macro of the "
       "compiler or <cmath> takes '_' at the end until unused");
-  out += s.balls.empty()
+  std::string layout = s.balls.empty()
              ? "//\n// The dynamics M(q) q̈ = f(q, q̇) + τ at global scope (no namespace, no t): "
                "nq = nv coordinates,\n// arrays row-major ([i*nv + j]), parameters as defaults "
                "(forward_dynamics(q, q_dot, tau, q_ddot, {.name = value})).\n"
@@ -1412,7 +1423,14 @@ std::string emit_cpp_flat(const System::Impl& s, const ExportOptions& options) {
                "factors M along the tree of the coordinates. The derivatives are exact;\n// a "
                "ball's columns of d/dq are along its tangent, q ⊗ exp(δθ) with δθ in its body's "
                "frame\n// (MuJoCo's convention), so that every derivative is nv × nv.\n";
+  if (!ns.empty()) {
+    // in namespace ns (--namespace): the same text otherwise
+    const std::string global = "at global scope (no namespace, no t)";
+    layout.replace(layout.find(global), global.size(), fmt::format("in namespace {} (no t)", ns));
+  }
+  out += layout;
   out += "#pragma once\n\n#include <cmath>\n\n";
+  if (!ns.empty()) out += fmt::format("namespace {} {{\n\n", ns);
   out += fmt::format("inline constexpr int nq = {};  // configuration entries\n", s.nq);
   out += fmt::format("inline constexpr int nv = {};  // velocity entries\n", s.n);
   std::vector<std::string> names;
@@ -1432,6 +1450,7 @@ std::string emit_cpp_flat(const System::Impl& s, const ExportOptions& options) {
   out += flat_factor_and_solve(coordinate_tree(s));
   out += fmt::format("}}  // namespace {}\n\n", helpers);
   out += flat_functions(s, params, helpers, options.max_stack_bytes);
+  if (!ns.empty()) out += fmt::format("\n}}  // namespace {}\n", ns);
   return out;
 }
 

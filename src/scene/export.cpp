@@ -8,7 +8,7 @@
 namespace rigid::scene {
 
 std::string emit_code(const Model& model, std::string_view language, const std::string& name,
-                      bool flat, std::size_t max_stack_bytes) {
+                      bool flat, std::size_t max_stack_bytes, const std::string& flat_namespace) {
   const lagrange::Language lang = lagrange::parse_language(language);
   if (flat && lang != lagrange::Language::kCpp) {
     throw Error("--flat is a layout of the C++ export (global functions without t); the Python "
@@ -27,6 +27,7 @@ std::string emit_code(const Model& model, std::string_view language, const std::
   options.source = file;
   options.flat = flat;
   options.max_stack_bytes = max_stack_bytes;
+  options.flat_namespace = flat_namespace;
   return lagrange::emit(model.system(), lang, options);
 }
 

@@ -443,3 +443,83 @@ expression = "-c*swing_qx*swing_wy + 0.1*cup_qz"
                            if previous[name] > 1e-9), (previous, errors)
             previous = errors
 
+
+# Two models' flat exports in one program, each in a namespace of its own (--namespace): the
+# same numbers as each alone. At global scope the two would declare the same inline names.
+TWO_MODELS = r"""
+#include <cstdio>
+#include "arm7_in.hpp"
+#include "cart_arm_in.hpp"
+int main() {
+  double qa[arm7::nq], va[arm7::nv], ta[arm7::nv], aa[arm7::nv];
+  double qc[cart::nq], vc[cart::nv], tc[cart::nv], ac[cart::nv];
+  for (int i = 0; i < arm7::nv; ++i) qa[i] = 0.1 * i, va[i] = 0.2, ta[i] = 0.5 - 0.1 * i;
+  for (int i = 0; i < cart::nv; ++i) qc[i] = 0.3 * i, vc[i] = -0.1, tc[i] = 0.2 * i;
+  arm7::forward_dynamics(qa, va, ta, aa);
+  cart::forward_dynamics(qc, vc, tc, ac);
+  for (double x : aa) std::printf("%.17g ", x);
+  for (double x : ac) std::printf("%.17g ", x);
+  std::printf("\n");
+}
+"""
+
+ALONE = r"""
+#include <cstdio>
+#include "alone.hpp"
+int main() {
+  double q[nq], v[nv], t[nv], a[nv];
+  for (int i = 0; i < nv; ++i) {
+    q[i] = SCALE_Q * i, v[i] = V, t[i] = T0 + T1 * i;
+  }
+  forward_dynamics(q, v, t, a);
+  for (double x : a) std::printf("%.17g ", x);
+  std::printf("\n");
+}
+"""
+
+
+def test_two_models_in_one_program_by_namespace(tmp_path):
+    """`--namespace NAME` (Python: emit(..., flat=True, namespace=NAME)) puts the flat export in a
+    namespace: arm7's and cart_arm's in one program give, bit for bit, what each gives alone
+    at global scope. A name the export would have to change is refused, and the option needs
+    --flat."""
+    for model, ns in (("arm7.urdf", "arm7"), ("cart_arm.urdf", "cart")):
+        header = tmp_path / f"{model.split('.')[0]}_in.hpp"
+        subprocess.run([rigid_exe(), "eom", str(EXAMPLES / model), "--emit", "c++", "--flat",
+                        "--namespace", ns, "-o", str(header)], check=True)
+        text = header.read_text()
+        assert f"namespace {ns} {{" in text and text.endswith(f"}}  // namespace {ns}\n")
+        assert f"in namespace {ns} (no t)" in text
+        assert rigid.Scene(str(EXAMPLES / model)).emit("c++", header.stem, flat=True,
+                                                       namespace=ns) == text
+    (tmp_path / "two.cpp").write_text(TWO_MODELS)
+    # -O0: the same arithmetic in both programs, compiled quickly
+    out = subprocess.run(["g++", "-std=c++17", "-O0", "-Wall", "-Wextra", "-Werror",
+                          str(tmp_path / "two.cpp"), "-o", str(tmp_path / "two")],
+                         capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr[-3000:]
+    together = subprocess.run([str(tmp_path / "two")], capture_output=True, text=True,
+                              check=True).stdout.split()
+    alone = []
+    for model, scale_q, v, t0, t1 in (("arm7.urdf", "0.1", "0.2", "0.5", "-0.1"),
+                                      ("cart_arm.urdf", "0.3", "-0.1", "0.0", "0.2")):
+        subprocess.run([rigid_exe(), "eom", str(EXAMPLES / model), "--emit", "c++", "--flat", "-o",
+                        str(tmp_path / "alone.hpp")], check=True)
+        (tmp_path / "alone.cpp").write_text(ALONE)
+        subprocess.run(["g++", "-std=c++17", "-O0", f"-DSCALE_Q={scale_q}", f"-DV={v}",
+                        f"-DT0={t0}", f"-DT1={t1}", str(tmp_path / "alone.cpp"), "-o",
+                        str(tmp_path / "alone")], check=True)
+        alone += subprocess.run([str(tmp_path / "alone")], capture_output=True, text=True,
+                                check=True).stdout.split()
+    assert together == alone and len(alone) == 7 + 3
+    for bad in ("std", "2arm", "int"):
+        out = subprocess.run([rigid_exe(), "eom", str(EXAMPLES / "arm7.urdf"), "--emit", "c++",
+                              "--flat", "--namespace", bad], capture_output=True, text=True)
+        assert out.returncode == 1 and out.stdout == ""
+        assert f"the namespace '{bad}' is not a C++ identifier the export may take" in out.stderr
+    out = subprocess.run([rigid_exe(), "eom", str(EXAMPLES / "arm7.urdf"), "--emit", "c++",
+                          "--namespace", "arm7"], capture_output=True, text=True)
+    assert out.returncode == 2 and "--namespace requires --flat" in out.stderr
+    with pytest.raises(rigid.Error, match="give flat=True with it"):
+        rigid.Scene(str(EXAMPLES / "arm7.urdf")).emit("c++", namespace="arm7")
+

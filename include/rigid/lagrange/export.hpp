@@ -35,6 +35,11 @@ struct ExportOptions {
   /// default is 64 degrees of freedom's worth.
   std::size_t max_stack_bytes = kDefaultMaxStackBytes;
   static constexpr std::size_t kDefaultMaxStackBytes = 16 * 64 * 64 + 8 * 64;
+  /// The flat layout: the namespace its declarations go in, so that the exports of two models
+  /// can share one program (each at global scope would declare the same inline names: one
+  /// definition each, which the linker takes as one); empty: global scope. A C++ identifier
+  /// as the export's naming rule leaves it, else refused.
+  std::string flat_namespace{};
 };
 
 /// One C++ header (only <cmath>, plain arrays, no Eigen) with, in namespace `options.name`:
