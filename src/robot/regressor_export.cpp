@@ -113,8 +113,9 @@ Layout layout_of(const io::RobotModel& model) {
 }
 
 // The file's opening comment, in either language's comment marker.
-std::string header_comment(const io::RobotModel& model, const BaseParameters& base,
-                           const RegressorExportOptions& options, std::string_view mark) {
+std::string header_comment(const io::RobotModel& model, const Layout& layout,
+                           const BaseParameters& base, const RegressorExportOptions& options,
+                           std::string_view mark) {
   const StandardParameters& s = base.standard;
   std::string out = fmt::format(
       "{0} The inverse-dynamics regressor of {1}: tau = Y(q, q_dot, q_ddot) pi = "
@@ -136,7 +137,7 @@ std::string header_comment(const io::RobotModel& model, const BaseParameters& ba
       vector3(model.gravity), s.values.size(), base.rank, base.samples,
       // the seed is the default of BaseParameterOptions, as rigid eom uses it
       BaseParameterOptions{}.seed,
-      layout_of(model).rotations
+      layout.rotations
           ? fmt::format(";\n{}   a ball's the rotation vector r of its quaternion, a free joint's "
                         "(p - p0, r of q0^-1 q)",
                         mark)
@@ -590,17 +591,19 @@ struct Printer {
     const auto n = static_cast<std::size_t>(io::velocity_count(joint.type));
     const std::size_t turn = free ? e + 3 : e;  // the quaternion
     const std::size_t rows = free ? c + 3 : c;  // the rotation rows
+    // a free joint's reference placement p0, q0 (its link's), as literals
+    const Eigen::Quaterniond r0 = detail::reference_orientation(link);
+    const std::string p0 = vector3(link.position);
+    const std::string q0 = literals(Eigen::Vector4d(r0.w(), r0.x(), r0.y(), r0.z()).data(), 4);
     std::string out;
     if (python) {
       out += fmt::format("{0}for k in range({1}, {2}):\n{0}    Y[k][{3}:{4}] = [q_ddot[k], q_dot[k]]\n",
                          in, c, c + n, column, column + 2);
       if (free) {
-        const Eigen::Quaterniond q0 = detail::reference_orientation(link);
         out += fmt::format("{0}for k in range(3):\n{0}    Y[{1} + k][{2}] = q[{3} + k] - ({4})[k]\n",
-                           in, c, column + 2, e, vector3(link.position));
-        out += fmt::format("{0}r = _relative_rotation_vector(({1}), q[{2}:{3}])\n", in,
-                           literals(Eigen::Vector4d(q0.w(), q0.x(), q0.y(), q0.z()).data(), 4),
-                           turn, turn + 4);
+                           in, c, column + 2, e, p0);
+        out += fmt::format("{0}r = _relative_rotation_vector(({1}), q[{2}:{3}])\n", in, q0, turn,
+                           turn + 4);
       } else {
         out += fmt::format("{0}r = _rotation_vector(q[{1}:{2}])\n", in, turn, turn + 4);
       }
@@ -614,10 +617,7 @@ struct Printer {
                        in, c, c + n, np, column, column + 1);
     out += fmt::format("{0}{{\n", in);
     if (free) {
-      const Eigen::Quaterniond q0 = detail::reference_orientation(link);
-      out += fmt::format("{0}  static constexpr double p0[3] = {{{1}}}, q0[4] = {{{2}}};\n", in,
-                         vector3(link.position),
-                         literals(Eigen::Vector4d(q0.w(), q0.x(), q0.y(), q0.z()).data(), 4));
+      out += fmt::format("{0}  static constexpr double p0[3] = {{{1}}}, q0[4] = {{{2}}};\n", in, p0, q0);
       out += fmt::format("{0}  for (int k = 0; k < 3; ++k) Y[({1} + k) * {2} + {3}] = q[{4} + k] - p0[k];\n",
                          in, c, np, column + 2, e);
       out += fmt::format("{0}  double r[3];\n{0}  detail::relative_rotation_vector(q0, q + {1}, r);\n",
@@ -679,7 +679,7 @@ std::string emit_regressor_cpp(const io::RobotModel& model, const BaseParameters
                    "the namespace '{}' is not a C++ identifier (letters, digits and '_', not "
                    "starting with a digit)",
                    ns);
-  std::string out = header_comment(model, base, options, "//");
+  std::string out = header_comment(model, layout, base, options, "//");
   out += "//\n// Arrays are row-major: Y[i*np + j], Y_b[i*nb + k].\n";
   out += "#pragma once\n\n#include <cmath>\n\n";
   out += fmt::format("namespace {} {{\n\n", ns);
@@ -840,7 +840,7 @@ std::string emit_regressor_python(const io::RobotModel& model, const BaseParamet
   const Layout layout = layout_of(model);
   check_base(layout, base);
   const StandardParameters& s = base.standard;
-  std::string out = header_comment(model, base, options, "#");
+  std::string out = header_comment(model, layout, base, options, "#");
   out += "#\n# Matrices are lists of rows.\n\n";
   const std::vector<std::string> coordinates = model.coordinate_names();
   out += fmt::format("COORDINATES = ({}{})\n",
