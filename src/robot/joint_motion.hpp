@@ -2,7 +2,7 @@
 // The joints' motions and the quaternions of ball and free joints in q (MuJoCo's qpos), shared
 // by the tree dynamics and the regressor (internal to the robot module): a joint moving its
 // link's frame and its columns of motion, reading a quaternion, refusing one that is not of
-// unit norm, a free joint's reference orientation and the rotation vector of the joints' springs.
+// unit norm, a free joint's reference orientation, and what the joints' springs act on.
 
 #include <array>
 #include <cmath>
@@ -112,6 +112,31 @@ inline JointMotion move_joint(const io::RobotJoint& joint, const Eigen::VectorXd
     m.S[static_cast<std::size_t>(m.sequential + k)] << u, anchor.cross(u);
   }
   return m;
+}
+
+/// What a joint's spring acts on, one entry per velocity (the first io::velocity_count): the
+/// passive force is −stiffness times it and the spring's energy ½ stiffness |it|² (MuJoCo's
+/// qfrc_passive): q − springref for a hinge or slide, the rotation vector of a ball's
+/// quaternion, and for a free joint p − p₀ and the rotation vector of q₀⁻¹ ⊗ q, with p₀ and q₀
+/// its link's placement (mju_subQuat).
+inline Eigen::Matrix<double, 6, 1> spring_displacement(const io::RobotJoint& joint,
+                                                       const io::RobotLink& link,
+                                                       const Eigen::VectorXd& q, Eigen::Index e) {
+  Eigen::Matrix<double, 6, 1> d = Eigen::Matrix<double, 6, 1>::Zero();
+  switch (joint.type) {
+    case io::RobotJointType::kHinge:
+    case io::RobotJointType::kSlide:
+      d(0) = q(e) - joint.springref;
+      break;
+    case io::RobotJointType::kBall:
+      d.head<3>() = rotation_vector(quaternion_at(q, e));
+      break;
+    case io::RobotJointType::kFree:
+      d.head<3>() = q.segment<3>(e) - link.position;
+      d.tail<3>() = rotation_vector(reference_orientation(link).conjugate() * quaternion_at(q, e + 3));
+      break;
+  }
+  return d;
 }
 
 }  // namespace rigid::robot::detail

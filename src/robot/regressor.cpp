@@ -237,22 +237,7 @@ Eigen::MatrixXd regressor(const io::RobotModel& model, const Eigen::VectorXd& q,
       const int n = io::velocity_count(joint.type);
       Y.block(c, column, n, 1) = q_ddot.segment(c, n);
       Y.block(c, column + 1, n, 1) = q_dot.segment(c, n);
-      switch (joint.type) {
-        case io::RobotJointType::kHinge:
-        case io::RobotJointType::kSlide:
-          Y(c, column + 2) = q(e) - joint.springref;
-          break;
-        case io::RobotJointType::kBall:
-          Y.block<3, 1>(c, column + 2) = detail::rotation_vector(detail::quaternion_at(q, e));
-          break;
-        case io::RobotJointType::kFree: {
-          const io::RobotLink& link = model.links[i];
-          Y.block<3, 1>(c, column + 2) = q.segment<3>(e) - link.position;
-          Y.block<3, 1>(c + 3, column + 2) = detail::rotation_vector(
-              detail::reference_orientation(link).conjugate() * detail::quaternion_at(q, e + 3));
-          break;
-        }
-      }
+      Y.block(c, column + 2, n, 1) = detail::spring_displacement(joint, model.links[i], q, e).head(n);
       e += io::position_count(joint.type);
       c += n;
       column += kJointParameters;

@@ -16,8 +16,6 @@ namespace rigid::robot {
 
 namespace {
 
-using detail::quaternion_at;
-using detail::rotation_vector;
 using Vector6d = Eigen::Matrix<double, 6, 1>;
 using Matrix6d = Eigen::Matrix<double, 6, 6>;
 
@@ -292,25 +290,10 @@ Eigen::VectorXd TreeDynamics::passive_forces(const Eigen::VectorXd& q,
     auto e = static_cast<Eigen::Index>(first_q_[i]);
     auto c = static_cast<Eigen::Index>(first_v_[i]);
     for (const io::RobotJoint& joint : model_.links[i].joints) {
-      const double k = joint.stiffness;
-      switch (joint.type) {
-        case io::RobotJointType::kHinge:
-        case io::RobotJointType::kSlide:
-          p(c) -= k * (q(e) - joint.springref);
-          break;
-        case io::RobotJointType::kFree:
-          // MuJoCo's qfrc_passive: −k (p − p₀) on the position, −k r on the rotation, with r
-          // the rotation vector of q₀⁻¹ ⊗ q (mju_subQuat)
-          p.segment<3>(c) -= k * (q.segment<3>(e) - q0_.segment<3>(e));
-          p.segment<3>(c + 3) -=
-              k * rotation_vector(quaternion_at(q0_, e + 3).conjugate() * quaternion_at(q, e + 3));
-          break;
-        case io::RobotJointType::kBall:
-          p.segment<3>(c) -= k * rotation_vector(quaternion_at(q, e));
-          break;
-      }
+      const int n = io::velocity_count(joint.type);
+      p.segment(c, n) -= joint.stiffness * detail::spring_displacement(joint, model_.links[i], q, e).head(n);
       e += io::position_count(joint.type);
-      c += io::velocity_count(joint.type);
+      c += n;
     }
   }
   return p;
@@ -360,24 +343,7 @@ double TreeDynamics::potential_energy(const Eigen::VectorXd& q) const {
   for (std::size_t i = 0; i < model_.links.size(); ++i) {
     auto e = static_cast<Eigen::Index>(first_q_[i]);
     for (const io::RobotJoint& joint : model_.links[i].joints) {
-      const double stiffness = joint.stiffness;
-      switch (joint.type) {
-        case io::RobotJointType::kHinge:
-        case io::RobotJointType::kSlide: {
-          const double d = q(e) - joint.springref;
-          V += 0.5 * stiffness * d * d;
-          break;
-        }
-        case io::RobotJointType::kFree:
-          V += 0.5 * stiffness * (q.segment<3>(e) - q0_.segment<3>(e)).squaredNorm();
-          V += 0.5 * stiffness *
-               rotation_vector(quaternion_at(q0_, e + 3).conjugate() * quaternion_at(q, e + 3))
-                   .squaredNorm();
-          break;
-        case io::RobotJointType::kBall:
-          V += 0.5 * stiffness * rotation_vector(quaternion_at(q, e)).squaredNorm();
-          break;
-      }
+      V += 0.5 * joint.stiffness * detail::spring_displacement(joint, model_.links[i], q, e).squaredNorm();
       e += io::position_count(joint.type);
     }
   }
