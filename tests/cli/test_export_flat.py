@@ -400,8 +400,12 @@ expression = "-c*swing_qx*swing_wy + 0.1*cup_qz"
     wrong.write_text(scene.read_text().replace('coordinate = "swing_wy"', 'coordinate = "swing_y"'))
     out = subprocess.run([rigid_exe(), "check", str(wrong)], capture_output=True, text=True)
     assert out.returncode == 1 and out.stdout == ""
-    assert "force on unknown coordinate 'swing_y' (a force on a ball coordinate names an entry of " \
-           "its angular velocity: <ball>_wx, _wy or _wz); did you mean 'swing_wy'?" in out.stderr
+    words = ("force on unknown coordinate 'swing_y' (a force on a ball coordinate names an entry "
+             "of its angular velocity: <ball>_wx, _wy or _wz); did you mean 'swing_wy'?")
+    assert words in out.stderr
+    with pytest.raises(rigid.Error) as refused:  # the same words from Python
+        rigid.Scene(str(wrong))
+    assert words in str(refused.value)
     system = rigid.Scene(str(scene)).system
     names, velocities = system.coordinate_names, system.velocity_names
     nq, nv = len(names), len(velocities)
