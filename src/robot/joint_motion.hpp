@@ -55,38 +55,35 @@ inline Eigen::Vector3d rotation_vector(const Eigen::Quaterniond& q) {
 }
 
 /// A joint moving a link frame (R, p: world ← link, the frame before the joint) by its entries of
-/// q from e, and its columns of motion in world coordinates at the world origin (angular;
-/// linear): a hinge's (u, a × u) about its axis u through its anchor a, a slide's (0, u); a free
-/// joint's three world-fixed translations of the link origin, then for a free joint and a ball
-/// the link's own axes R e_k through the anchor (a ball's pivot, a free joint's link origin).
-/// The first `sequential` columns turn in the frame as it is when each is reached; a ball's
-/// three, fixed in the link, all turn in the frame before them. `who` names the caller in the
-/// refusal of a quaternion that is not of unit norm.
-struct JointMotion {
-  int sequential = 0, columns = 0;
-  std::array<Eigen::Matrix<double, 6, 1>, 6> S{};
-};
-
-inline JointMotion move_joint(const io::RobotJoint& joint, const Eigen::VectorXd& q, Eigen::Index e,
-                              Eigen::Matrix3d& R, Eigen::Vector3d& p, const char* who) {
-  JointMotion m;
+/// q from e, calling column(S, fixed) for each of its columns of motion in order, in world
+/// coordinates at the world origin (angular; linear): a hinge's (u, a × u) about its axis u
+/// through its anchor a, a slide's (0, u); a free joint's three world-fixed translations of the
+/// link origin, then for a free joint and a ball the link's own axes R e_k through the anchor (a
+/// ball's pivot, a free joint's link origin), `fixed` in the link: those three all turn in the
+/// frame as it was before them, the others in the frame as each finds it. A callback rather
+/// than a returned list, for the hot paths of the tree's kinematics. `who` names the caller in
+/// the refusal of a quaternion that is not of unit norm.
+template <typename Column>
+void move_joint(const io::RobotJoint& joint, const Eigen::VectorXd& q, Eigen::Index e,
+                Eigen::Matrix3d& R, Eigen::Vector3d& p, const char* who, Column&& column) {
+  Eigen::Matrix<double, 6, 1> S;
   switch (joint.type) {
     case io::RobotJointType::kHinge: {
       // a turn about the line through the anchor: the anchor stays where it is
       const Eigen::Vector3d u = R * joint.axis;
       const Eigen::Vector3d anchor = p + R * joint.anchor;
-      m.S[0] << u, anchor.cross(u);
+      S << u, anchor.cross(u);
       R = R * Eigen::AngleAxisd(q(e) - joint.ref, joint.axis).toRotationMatrix();
       p = anchor - R * joint.anchor;
-      m.sequential = m.columns = 1;
-      return m;
+      column(S, false);
+      return;
     }
     case io::RobotJointType::kSlide: {
       const Eigen::Vector3d u = R * joint.axis;
-      m.S[0] << Eigen::Vector3d::Zero(), u;
+      S << Eigen::Vector3d::Zero(), u;
       p += u * (q(e) - joint.ref);
-      m.sequential = m.columns = 1;
-      return m;
+      column(S, false);
+      return;
     }
     case io::RobotJointType::kBall:
     case io::RobotJointType::kFree:
@@ -97,21 +94,22 @@ inline JointMotion move_joint(const io::RobotJoint& joint, const Eigen::VectorXd
   Eigen::Vector3d anchor;  // stays where it is
   if (free) {
     anchor = q.segment<3>(e);
+    for (Eigen::Index k = 0; k < 3; ++k) {
+      S << Eigen::Vector3d::Zero(), Eigen::Vector3d::Unit(k);
+      column(S, false);
+    }
     R = Q.toRotationMatrix();
     p = anchor;
-    m.sequential = 3;
-    for (std::size_t k = 0; k < 3; ++k) m.S[k] << Eigen::Vector3d::Zero(), Eigen::Vector3d::Unit(static_cast<Eigen::Index>(k));
   } else {
     anchor = p + R * joint.anchor;
     R = R * Q.toRotationMatrix();
     p = anchor - R * joint.anchor;
   }
-  m.columns = m.sequential + 3;
-  for (int k = 0; k < 3; ++k) {
+  for (Eigen::Index k = 0; k < 3; ++k) {
     const Eigen::Vector3d u = R.col(k);
-    m.S[static_cast<std::size_t>(m.sequential + k)] << u, anchor.cross(u);
+    S << u, anchor.cross(u);
+    column(S, true);
   }
-  return m;
 }
 
 /// What a joint's spring acts on, one entry per velocity (the first io::velocity_count): the

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <iterator>
 #include <numbers>
+#include <optional>
 #include <random>
 
 #include <Eigen/Geometry>
@@ -186,12 +187,11 @@ Eigen::MatrixXd regressor(const io::RobotModel& model, const Eigen::VectorXd& q,
     for (const io::RobotJoint& joint : link.joints) {
       // a ball's columns, fixed in the link, all turn in the frame before them
       // (Σ_k Ṡ_k ω_k = V⁻ × S ω); the others in the frame as each finds it
-      const detail::JointMotion m = detail::move_joint(joint, q, e, R_WL, p_WL, "regressor");
-      for (std::size_t k = 0; k < static_cast<std::size_t>(m.sequential); ++k) column(m.S[k], v);
-      const Vector6d v_in = v;
-      for (auto k = static_cast<std::size_t>(m.sequential); k < static_cast<std::size_t>(m.columns); ++k) {
-        column(m.S[k], v_in);
-      }
+      std::optional<Vector6d> v_before;  // at the first column fixed in the link
+      detail::move_joint(joint, q, e, R_WL, p_WL, "regressor", [&](const Vector6d& s, bool fixed) {
+        if (fixed && !v_before) v_before = v;
+        column(s, fixed ? *v_before : v);
+      });
       e += io::position_count(joint.type);
     }
     R[i] = R_WL;

@@ -172,8 +172,8 @@ void TreeDynamics::kinematics(const Eigen::VectorXd& q, Kinematics& k) const {
     auto column = static_cast<Eigen::Index>(first_v_[i]);
     auto entry = static_cast<Eigen::Index>(first_q_[i]);
     for (const io::RobotJoint& joint : link.joints) {
-      const detail::JointMotion m = detail::move_joint(joint, q, entry, R, p, "TreeDynamics");
-      for (std::size_t e = 0; e < static_cast<std::size_t>(m.columns); ++e) k.S.col(column++) = m.S[e];
+      detail::move_joint(joint, q, entry, R, p, "TreeDynamics",
+                         [&](const Vector6d& S, bool) { k.S.col(column++) = S; });
       entry += io::position_count(joint.type);
     }
     k.poses[i] = {p, R};
